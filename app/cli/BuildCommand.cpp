@@ -1,0 +1,57 @@
+#include <cstdio>
+#include <sstream>
+
+#include "app/cli/CliArgs.h"
+#include "app/cli/Commands.h"
+#include "app/cli/OctreeBuildRunner.h"
+#include "core/BrickCodec.h"
+#include "core/Error.h"
+#include "core/VoxelSourceFactory.h"
+
+namespace hvx::app {
+
+namespace {
+glm::dvec3 parseSpacing(const std::string& text) {
+    glm::dvec3 s;
+    char c1 = 0, c2 = 0;
+    std::istringstream in(text);
+    if (!(in >> s.x >> c1 >> s.y >> c2 >> s.z) || c1 != ',' || c2 != ',' || !(s.x > 0 && s.y > 0 && s.z > 0))
+        throw core::Error("--spacing must be three positive numbers like 0.5,0.5,1.25");
+    return s;
+}
+}  // namespace
+
+int buildCommand(int argc, char** argv) {
+    const CliArgs args(argc, argv, 2,
+                       {"o", "output", "brick", "border", "empty-below", "codec", "level", "dims", "type", "endian",
+                        "header-bytes", "spacing"},
+                       {"labels", "lossy8", "quiet"});
+    if (args.positional().size() != 1) throw core::Error("usage: holovox-cli build INPUT -o OUT.hvo [options]");
+    const auto out = args.value("o") ? args.value("o") : args.value("output");
+    if (!out) throw core::Error("build needs an output file: -o OUT.hvo");
+
+    core::RawVoxelSource::Options raw;
+    if (const auto d = args.value("dims")) raw.dims = core::VoxelSourceFactory::parseDims(*d);
+    if (const auto t = args.value("type")) raw.type = core::parseScalarType(*t);
+    if (const auto e = args.value("endian")) {
+        if (*e != "little" && *e != "big") throw core::Error("--endian must be little or big");
+        raw.bigEndian = *e == "big";
+    }
+    raw.headerBytes = std::uint64_t(args.integer("header-bytes", 0, 0, 1L << 40));
+    if (const auto s = args.value("spacing")) raw.spacing = parseSpacing(*s);
+
+    core::BuildOptions opt;
+    opt.brickSize = std::uint32_t(args.integer("brick", 32, 4, 256));
+    opt.border = std::uint32_t(args.integer("border", 2, 1, 8));
+    opt.emptyBelow = args.number("empty-below");
+    opt.labels = args.flag("labels");
+    opt.lossy8 = args.flag("lossy8");
+    if (const auto c = args.value("codec")) opt.codec = core::BrickCodec::parse(*c);
+    opt.codecLevel = int(args.integer("level", 0, 0, 19));
+
+    auto source = core::VoxelSourceFactory::open(args.positional()[0], raw);
+    OctreeBuildRunner::run(*source, *out, opt, !args.flag("quiet"));
+    return 0;
+}
+
+}  // namespace hvx::app

@@ -1,0 +1,78 @@
+#include "app/cli/CliArgs.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include "core/Error.h"
+
+namespace hvx::app {
+
+CliArgs::CliArgs(int argc, char** argv, int first, const std::vector<std::string>& valued,
+                 const std::vector<std::string>& flags) {
+    for (int i = first; i < argc; ++i) {
+        std::string a = argv[i];
+        const bool shortOption = a.size() == 2 && a[0] == '-' && std::isalpha(static_cast<unsigned char>(a[1]));
+        if (!shortOption && (a.rfind("--", 0) != 0 || a == "--")) {
+            positional_.push_back(a);
+            continue;
+        }
+        std::string name = a.substr(shortOption ? 1 : 2), value;
+        const auto eq = name.find('=');
+        const bool inlineValue = eq != std::string::npos;
+        if (inlineValue) {
+            value = name.substr(eq + 1);
+            name = name.substr(0, eq);
+        }
+        if (std::find(flags.begin(), flags.end(), name) != flags.end() && !inlineValue) {
+            flags_[name] = true;
+        } else if (std::find(valued.begin(), valued.end(), name) != valued.end()) {
+            if (!inlineValue) {
+                if (i + 1 >= argc) throw core::Error("option --" + name + " needs a value");
+                value = argv[++i];
+            }
+            values_[name] = value;
+        } else {
+            throw core::Error("unknown option --" + name);
+        }
+    }
+}
+
+std::optional<std::string> CliArgs::value(const std::string& name) const {
+    const auto it = values_.find(name);
+    if (it == values_.end()) return std::nullopt;
+    return it->second;
+}
+
+long CliArgs::integer(const std::string& name, long fallback, long lo, long hi) const {
+    const auto v = value(name);
+    if (!v) return fallback;
+    std::size_t used = 0;
+    long x = 0;
+    try {
+        x = std::stol(*v, &used);
+    } catch (...) {
+        used = 0;
+    }
+    if (used != v->size() || v->empty()) throw core::Error("--" + name + " must be an integer, got '" + *v + "'");
+    if (x < lo || x > hi)
+        throw core::Error("--" + name + " must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+    return x;
+}
+
+std::optional<double> CliArgs::number(const std::string& name) const {
+    const auto v = value(name);
+    if (!v) return std::nullopt;
+    std::size_t used = 0;
+    double x = 0;
+    try {
+        x = std::stod(*v, &used);
+    } catch (...) {
+        used = 0;
+    }
+    if (used != v->size() || v->empty() || !std::isfinite(x))
+        throw core::Error("--" + name + " must be a number, got '" + *v + "'");
+    return x;
+}
+
+}  // namespace hvx::app

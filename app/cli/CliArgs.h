@@ -1,0 +1,31 @@
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace hvx::app {
+
+/// Minimal command-line parsing for holovox-cli subcommands: positional arguments plus
+/// `--name value` and `--flag` options, checked against the options a command declares.
+class CliArgs {
+public:
+    /// Parses argv[first..]; `valued` take a value, `flags` do not. Throws core::Error on an
+    /// unknown option or a missing value.
+    CliArgs(int argc, char** argv, int first, const std::vector<std::string>& valued,
+            const std::vector<std::string>& flags);
+    const std::vector<std::string>& positional() const { return positional_; }
+    std::optional<std::string> value(const std::string& name) const;
+    bool flag(const std::string& name) const { return flags_.count(name) != 0; }
+    /// Integer option in [lo, hi], or `fallback` when absent; throws core::Error otherwise.
+    long integer(const std::string& name, long fallback, long lo, long hi) const;
+    /// Floating-point option; throws core::Error when not a number.
+    std::optional<double> number(const std::string& name) const;
+
+private:
+    std::vector<std::string> positional_;
+    std::map<std::string, std::string> values_;
+    std::map<std::string, bool> flags_;
+};
+
+}  // namespace hvx::app

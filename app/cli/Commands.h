@@ -1,0 +1,13 @@
+#pragma once
+
+/// Entry points of holovox-cli's subcommands. Each returns the process exit code and throws
+/// core::Error for bad input (main prints it as one line).
+namespace hvx::app {
+int buildCommand(int argc, char** argv);
+int infoCommand(int argc, char** argv);
+int phantomCommand(int argc, char** argv);
+int demoCommand(int argc, char** argv);
+int versionCommand(int argc, char** argv);
+int dicomInfoCommand(int argc, char** argv);
+int glInfoCommand(int argc, char** argv);
+}  // namespace hvx::app

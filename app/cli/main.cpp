@@ -1,0 +1,51 @@
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+
+#include "app/cli/Commands.h"
+#include "core/Error.h"
+
+namespace {
+void usage() {
+    std::puts(
+        "holovox-cli — Holovox command line\n"
+        "\n"
+        "  build INPUT -o OUT.hvo [--brick N] [--border N] [--empty-below V] [--labels]\n"
+        "        [--codec zstd|lz4|none] [--level N] [--lossy8]\n"
+        "        [--dims XxYxZ --type uint8|int16|uint16|float32 --endian little|big\n"
+        "         --header-bytes N --spacing SX,SY,SZ]            (raw input)\n"
+        "      INPUT: .nii/.nii.gz, .nrrd/.nhdr, .mha/.mhd, .vtk, .vti, .raw, or phantom:XxYxZ[:seed]\n"
+        "  info FILE.hvo [--verify]      levels, nodes, empty fraction, compression, size\n"
+        "  phantom --size XxYxZ -o OUT.{nrrd,hvo} [--seed N] [--noise HU]\n"
+        "  demo [--input FILE] [-o OUT.hvo]   build and summarise the demo study (MRI template)\n"
+        "  dicom-info FILE               one-line summary of a DICOM file's header\n"
+        "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
+        "  version                       versions of Holovox and its libraries");
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+        usage();
+        return argc < 2 ? 2 : 0;
+    }
+    const std::string cmd = argv[1];
+    try {
+        if (cmd == "build") return hvx::app::buildCommand(argc, argv);
+        if (cmd == "info") return hvx::app::infoCommand(argc, argv);
+        if (cmd == "phantom") return hvx::app::phantomCommand(argc, argv);
+        if (cmd == "demo") return hvx::app::demoCommand(argc, argv);
+        if (cmd == "dicom-info") return hvx::app::dicomInfoCommand(argc, argv);
+        if (cmd == "gl-info") return hvx::app::glInfoCommand(argc, argv);
+        if (cmd == "version" || cmd == "--version") return hvx::app::versionCommand(argc, argv);
+        std::fprintf(stderr, "holovox-cli: unknown command '%s' (try --help)\n", cmd.c_str());
+        return 2;
+    } catch (const hvx::core::Cancelled&) {
+        std::fprintf(stderr, "\nholovox-cli: cancelled; no output was written\n");
+        return 130;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "holovox-cli: error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,81 @@
+#include "core/BrickCodec.h"
+
+#include <lz4.h>
+#include <xxhash.h>
+#include <zstd.h>
+
+#include <cstring>
+#include <limits>
+
+#include "core/Error.h"
+
+namespace hvx::core {
+
+void BrickCodec::compress(hvo::Codec codec, const void* src, std::size_t size, std::vector<std::byte>& out,
+                          int level) {
+    switch (codec) {
+    case hvo::Codec::None:
+        out.resize(size);
+        if (size) std::memcpy(out.data(), src, size);
+        return;
+    case hvo::Codec::Zstd: {
+        out.resize(ZSTD_compressBound(size));
+        thread_local ZSTD_CCtx* ctx = ZSTD_createCCtx();
+        const std::size_t n = ZSTD_compressCCtx(ctx, out.data(), out.size(), src, size, level > 0 ? level : 1);
+        if (ZSTD_isError(n)) throw Error(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
+        out.resize(n);
+        return;
+    }
+    case hvo::Codec::Lz4: {
+        if (size > std::size_t(LZ4_MAX_INPUT_SIZE)) throw Error("brick too large for LZ4");
+        out.resize(std::size_t(LZ4_compressBound(int(size))));
+        const int n = LZ4_compress_default(static_cast<const char*>(src), reinterpret_cast<char*>(out.data()),
+                                           int(size), int(out.size()));
+        if (n <= 0) throw Error("LZ4 compression failed");
+        out.resize(std::size_t(n));
+        return;
+    }
+    }
+    throw Error("unknown codec");
+}
+
+bool BrickCodec::decompress(hvo::Codec codec, const void* src, std::size_t size, void* dst, std::size_t dstSize) {
+    switch (codec) {
+    case hvo::Codec::None:
+        if (size != dstSize) return false;
+        if (size) std::memcpy(dst, src, size);
+        return true;
+    case hvo::Codec::Zstd: {
+        thread_local ZSTD_DCtx* ctx = ZSTD_createDCtx();
+        const std::size_t n = ZSTD_decompressDCtx(ctx, dst, dstSize, src, size);
+        return !ZSTD_isError(n) && n == dstSize;
+    }
+    case hvo::Codec::Lz4: {
+        if (size > std::size_t(std::numeric_limits<int>::max()) || dstSize > std::size_t(std::numeric_limits<int>::max()))
+            return false;
+        const int n = LZ4_decompress_safe(static_cast<const char*>(src), static_cast<char*>(dst), int(size), int(dstSize));
+        return n >= 0 && std::size_t(n) == dstSize;
+    }
+    }
+    return false;
+}
+
+std::uint64_t BrickCodec::checksum(const void* data, std::size_t size) { return XXH3_64bits(data, size); }
+
+hvo::Codec BrickCodec::parse(std::string_view name) {
+    if (name == "zstd") return hvo::Codec::Zstd;
+    if (name == "lz4") return hvo::Codec::Lz4;
+    if (name == "none") return hvo::Codec::None;
+    throw Error("unknown codec '" + std::string(name) + "' (supported: zstd, lz4, none)");
+}
+
+std::string_view BrickCodec::name(hvo::Codec codec) {
+    switch (codec) {
+    case hvo::Codec::None: return "none";
+    case hvo::Codec::Zstd: return "zstd";
+    case hvo::Codec::Lz4: return "lz4";
+    }
+    return "unknown";
+}
+
+}  // namespace hvx::core

@@ -1,0 +1,86 @@
+#pragma once
+#include <bit>
+#include <cstdint>
+#include <type_traits>
+
+/// On-disk layout of the .hvo multiresolution brick octree (version 1).
+///
+/// File := FileHeader (512 bytes) | brick payloads (any order) | node table (NodeRecord[nodeCount])
+/// All integers are little endian. Node 0 is the root; nodes are stored level by level from the
+/// root (breadth first), and the children of a node are contiguous, in octant order
+/// (bit 0 = +x, bit 1 = +y, bit 2 = +z). A node at level l with grid coordinate (x, y, z)
+/// covers level-l voxels [x*B, (x+1)*B) along i (likewise j, k), where level l is the volume
+/// box-filtered l times by 2 (dims_l = ceil(dims_{l-1} / 2)). Each payload is a cube of
+/// E = B + 2*border samples starting at level voxel x*B - border, with coordinates clamped to
+/// the volume: neighbour samples are replicated so a brick never needs another brick.
+namespace hvx::core::hvo {
+
+static_assert(std::endian::native == std::endian::little, ".hvo I/O assumes a little-endian host");
+
+inline constexpr char kMagic[8] = {'H', 'O', 'L', 'O', 'V', 'O', 'X', '\0'};
+inline constexpr std::uint32_t kVersion = 1;
+inline constexpr std::uint32_t kNoNode = 0xffffffffu;
+
+/// Lossless per-brick compression.
+enum class Codec : std::uint32_t { None = 0, Zstd = 1, Lz4 = 2 };
+
+/// FileHeader::flags.
+enum FileFlags : std::uint32_t { FileLabels = 1u, FileLossy8 = 2u, FileEmptyThreshold = 4u };
+/// NodeRecord::flags.
+enum NodeFlags : std::uint32_t { NodeEmpty = 1u, NodeLossy8 = 2u };
+
+struct FileHeader {
+    char magic[8];
+    std::uint32_t version;
+    std::uint32_t headerSize;
+    std::uint32_t dims[3];
+    std::uint32_t brickSize;
+    std::uint32_t border;
+    std::uint32_t levelCount;
+    std::uint32_t scalarType;
+    std::uint32_t codec;
+    std::uint32_t flags;
+    std::uint32_t complete;  ///< 1 only once the node table is written
+    double spacing[3];
+    double origin[3];
+    double direction[9];  ///< column-major: direction[3*c + r] is row r of axis c
+    double rescaleSlope;
+    double rescaleIntercept;
+    double valueMin;
+    double valueMax;
+    double emptyBelow;     ///< stored-value threshold (valid with FileEmptyThreshold)
+    double lossyRmsError;  ///< RMS error of 8-bit quantisation over leaf interiors
+    double lossyMaxError;  ///< max abs error of 8-bit quantisation
+    char modality[16];
+    std::uint64_t nodeCount;
+    std::uint64_t nodeTableOffset;
+    std::uint64_t nodeTableChecksum;  ///< XXH3-64 of the node table
+    std::uint64_t fileSize;
+    std::uint64_t payloadBytes;  ///< sum of compressed payload sizes
+    std::uint64_t rawBrickBytes; ///< sum of uncompressed sizes of stored payloads
+    std::uint8_t reserved[512 - 296 - 8];
+    std::uint64_t headerChecksum;  ///< XXH3-64 of the first 504 bytes
+};
+static_assert(sizeof(FileHeader) == 512);
+static_assert(std::is_trivially_copyable_v<FileHeader>);
+
+struct NodeRecord {
+    std::uint64_t payloadOffset;  ///< 0 when the node stores no payload (empty)
+    std::uint64_t checksum;       ///< XXH3-64 of the compressed payload
+    std::uint32_t payloadSize;    ///< compressed bytes
+    std::uint32_t flags;          ///< NodeFlags
+    std::uint32_t parent;         ///< kNoNode for the root
+    std::uint32_t firstChild;     ///< kNoNode for leaves
+    std::uint16_t x, y, z;        ///< grid coordinate at this node's level
+    std::uint8_t level;           ///< 0 = leaves (full resolution)
+    std::uint8_t childMask;       ///< bit o set when child in octant o exists
+    float minValue;  ///< smallest stored value in the brick and all its descendants
+    float maxValue;  ///< largest stored value in the brick and all its descendants
+    float quantMin;  ///< lossy 8-bit nodes: the value byte 0 stands for
+    float quantMax;  ///< lossy 8-bit nodes: the value byte 255 stands for
+    std::uint32_t reserved[2];
+};
+static_assert(sizeof(NodeRecord) == 64);
+static_assert(std::is_trivially_copyable_v<NodeRecord>);
+
+}  // namespace hvx::core::hvo

@@ -1,0 +1,301 @@
+#include "core/OctreeBuilder.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <future>
+#include <limits>
+
+#include "core/AtomicFileWriter.h"
+#include "core/BrickCodec.h"
+#include "core/Error.h"
+#include "core/LevelSlices.h"
+#include "core/OctreeLayout.h"
+#include "core/ThreadPool.h"
+
+namespace hvx::core {
+
+namespace {
+
+struct EncodedBrick {
+    std::uint32_t node = 0;
+    float minValue = 0, maxValue = 0;
+    float quantMin = 0, quantMax = 0;
+    bool empty = false;
+    std::vector<std::byte> payload;
+    double sqError = 0.0;
+    double maxError = 0.0;
+    std::uint64_t errorSamples = 0;
+};
+
+template <class T>
+class BuildRun {
+public:
+    BuildRun(const BuildOptions& opt, VoxelSource& source, const OctreeLayout& layout,
+             std::vector<hvo::NodeRecord>& nodes, AtomicFileWriter& out, JobContext& job)
+        : opt_(opt), source_(source), layout_(layout), nodes_(nodes), out_(out), job_(job),
+          edge_(opt.brickSize + 2 * opt.border) {
+        for (int l = 0; l < layout.levelCount(); ++l)
+            levels_.emplace_back(layout.levelDims(l), opt.brickSize, opt.border);
+        nextRow_.assign(std::size_t(layout.levelCount()), 0);
+        const auto& g = source.geometry();
+        if (opt.emptyBelow) {
+            // Physical threshold -> stored units (the rescale may be decreasing).
+            emptyStored_ = (*opt.emptyBelow - g.rescaleIntercept) / g.rescaleSlope;
+            if (g.rescaleSlope < 0) emptyStored_ = -std::numeric_limits<double>::infinity();
+        }
+    }
+
+    void run() {
+        const auto& dims = source_.geometry().dims;
+        const std::size_t sliceVoxels = std::size_t(dims[0]) * dims[1];
+        const std::uint32_t slab = std::max<std::uint32_t>(1, opt_.brickSize);
+        auto readSlab = [this, sliceVoxels, &dims, slab](std::uint32_t z0) {
+            const std::uint32_t n = std::min(slab, dims[2] - z0);
+            std::vector<std::vector<T>> slices(n, std::vector<T>(sliceVoxels));
+            for (std::uint32_t s = 0; s < n; ++s) source_.readSlices(z0 + s, 1, slices[s].data());
+            return slices;
+        };
+        std::future<std::vector<std::vector<T>>> next = std::async(std::launch::async, readSlab, 0u);
+        for (std::uint32_t z0 = 0; z0 < dims[2]; z0 += slab) {
+            auto slices = next.get();
+            job_.throwIfCancelled();
+            if (z0 + slab < dims[2]) next = std::async(std::launch::async, readSlab, z0 + slab);
+            for (auto& s : slices) pushSlice(0, std::move(s));
+            job_.report(double(std::min(dims[2], z0 + slab)) / dims[2], "building");
+        }
+    }
+
+    double sqError = 0.0, maxError = 0.0;
+    std::uint64_t errorSamples = 0, emptyNodes = 0, rawBytes = 0, payloadBytes = 0;
+
+private:
+    void pushSlice(int level, std::vector<T> slice) {
+        auto& lv = levels_[std::size_t(level)];
+        const std::uint32_t z = lv.received();
+        lv.push(std::move(slice));
+        std::vector<T> down;
+        const bool hasParent = level + 1 < layout_.levelCount();
+        if (hasParent && (z % 2 == 1 || z + 1 == lv.dims()[2])) {
+            const T* a = lv.slice(z % 2 == 1 ? z - 1 : z);
+            const T* b = z % 2 == 1 ? lv.slice(z) : nullptr;
+            down.resize(std::size_t((lv.dims()[0] + 1) / 2) * ((lv.dims()[1] + 1) / 2));
+            const std::uint32_t w = lv.dims()[0], h = lv.dims()[1];
+            // Filter in bands of rows on all cores.
+            const std::uint32_t h2 = (h + 1) / 2, w2 = (w + 1) / 2;
+            ThreadPool::shared().parallelFor(h2, [&](std::size_t y0, std::size_t y1) {
+                for (std::size_t y = y0; y < y1; ++y) {
+                    const std::uint32_t rows = std::min<std::uint32_t>(2, h - 2 * std::uint32_t(y));
+                    auto part = LevelSlices<T>::downsample(a + 2 * y * w, b ? b + 2 * y * w : nullptr, w, rows,
+                                                           opt_.labels);
+                    std::memcpy(down.data() + y * w2, part.data(), w2 * sizeof(T));
+                }
+            }, 16);
+        }
+        emitReadyRows(level);
+        if (!down.empty()) pushSlice(level + 1, std::move(down));
+    }
+
+    void emitReadyRows(int level) {
+        auto& lv = levels_[std::size_t(level)];
+        auto& row = nextRow_[std::size_t(level)];
+        while (row < lv.rows() && lv.rowReady(row)) {
+            emitRow(level, row);
+            ++row;
+            lv.dropBefore(row);
+        }
+    }
+
+    void emitRow(int level, std::uint32_t row) {
+        const auto& n = layout_.levelNodes(level);
+        const std::size_t count = std::size_t(n[0]) * n[1];
+        const std::size_t batch = std::max<std::size_t>(16, 8 * ThreadPool::shared().size());
+        std::vector<EncodedBrick> encoded;
+        for (std::size_t b0 = 0; b0 < count; b0 += batch) {
+            job_.throwIfCancelled();
+            const std::size_t b1 = std::min(count, b0 + batch);
+            encoded.assign(b1 - b0, {});
+            ThreadPool::shared().parallelFor(b1 - b0, [&](std::size_t s, std::size_t e) {
+                std::vector<T> brick(std::size_t(edge_) * edge_ * edge_);
+                for (std::size_t i = s; i < e; ++i) {
+                    const std::size_t c = b0 + i;
+                    encode(level, std::uint32_t(c % n[0]), std::uint32_t(c / n[0]), row, brick, encoded[i]);
+                }
+            });
+            for (auto& eb : encoded) store(eb);
+        }
+    }
+
+    void encode(int level, std::uint32_t x, std::uint32_t y, std::uint32_t row, std::vector<T>& brick,
+                EncodedBrick& eb) const {
+        eb.node = layout_.nodeId(level, x, y, row);
+        levels_[std::size_t(level)].extractBrick(x, y, row, brick.data());
+        const auto [mn, mx] = std::minmax_element(brick.begin(), brick.end());
+        eb.quantMin = float(*mn);
+        eb.quantMax = float(*mx);
+        eb.minValue = eb.quantMin;
+        eb.maxValue = eb.quantMax;
+        // The node's range covers its descendants, which were all emitted before it.
+        const auto& rec = nodes_[eb.node];
+        if (rec.childMask) {
+            for (std::uint32_t c = 0, o = 0; o < 8; ++o) {
+                if (!(rec.childMask & (1u << o))) continue;
+                const auto& child = nodes_[rec.firstChild + c++];
+                eb.minValue = std::min(eb.minValue, child.minValue);
+                eb.maxValue = std::max(eb.maxValue, child.maxValue);
+            }
+        }
+        if (opt_.emptyBelow && double(eb.maxValue) < emptyStored_) {
+            eb.empty = true;
+            return;
+        }
+        if (opt_.lossy8) {
+            std::vector<std::uint8_t> q(brick.size());
+            const double lo = eb.quantMin, range = double(eb.quantMax) - lo;
+            const double scale = range > 0 ? 255.0 / range : 0.0;
+            for (std::size_t i = 0; i < brick.size(); ++i)
+                q[i] = std::uint8_t(std::lround((double(brick[i]) - lo) * scale));
+            if (level == 0) measureLossyError(brick, q, lo, range, eb);
+            BrickCodec::compress(opt_.codec, q.data(), q.size(), eb.payload, opt_.codecLevel);
+        } else {
+            BrickCodec::compress(opt_.codec, brick.data(), brick.size() * sizeof(T), eb.payload, opt_.codecLevel);
+        }
+    }
+
+    void measureLossyError(const std::vector<T>& brick, const std::vector<std::uint8_t>& q, double lo, double range,
+                           EncodedBrick& eb) const {
+        const std::uint32_t b = opt_.border, e = edge_;
+        for (std::uint32_t z = b; z < e - b; ++z)
+            for (std::uint32_t y = b; y < e - b; ++y)
+                for (std::uint32_t x = b; x < e - b; ++x) {
+                    const std::size_t i = (std::size_t(z) * e + y) * e + x;
+                    const double back = lo + q[i] * (range / 255.0);
+                    const double err = std::abs(back - double(brick[i]));
+                    eb.sqError += err * err;
+                    eb.maxError = std::max(eb.maxError, err);
+                    ++eb.errorSamples;
+                }
+    }
+
+    void store(EncodedBrick& eb) {
+        auto& rec = nodes_[eb.node];
+        rec.minValue = eb.minValue;
+        rec.maxValue = eb.maxValue;
+        rec.quantMin = eb.quantMin;
+        rec.quantMax = eb.quantMax;
+        sqError += eb.sqError;
+        maxError = std::max(maxError, eb.maxError);
+        errorSamples += eb.errorSamples;
+        if (eb.empty) {
+            rec.flags |= hvo::NodeEmpty;
+            ++emptyNodes;
+            return;
+        }
+        if (opt_.lossy8) rec.flags |= hvo::NodeLossy8;
+        rec.payloadSize = std::uint32_t(eb.payload.size());
+        rec.checksum = BrickCodec::checksum(eb.payload.data(), eb.payload.size());
+        rec.payloadOffset = out_.append(eb.payload.data(), eb.payload.size());
+        payloadBytes += eb.payload.size();
+        rawBytes += std::size_t(edge_) * edge_ * edge_ * (opt_.lossy8 ? 1 : sizeof(T));
+        std::vector<std::byte>().swap(eb.payload);
+    }
+
+    const BuildOptions& opt_;
+    VoxelSource& source_;
+    const OctreeLayout& layout_;
+    std::vector<hvo::NodeRecord>& nodes_;
+    AtomicFileWriter& out_;
+    JobContext& job_;
+    std::uint32_t edge_;
+    double emptyStored_ = 0.0;
+    std::vector<LevelSlices<T>> levels_;
+    std::vector<std::uint32_t> nextRow_;
+};
+
+void fillHeader(hvo::FileHeader& h, const VolumeGeometry& g, const BuildOptions& opt, int levels) {
+    std::memset(&h, 0, sizeof h);
+    std::memcpy(h.magic, hvo::kMagic, sizeof h.magic);
+    h.version = hvo::kVersion;
+    h.headerSize = sizeof(hvo::FileHeader);
+    for (int a = 0; a < 3; ++a) {
+        h.dims[a] = g.dims[std::size_t(a)];
+        h.spacing[a] = g.spacing[a];
+        h.origin[a] = g.origin[a];
+        for (int r = 0; r < 3; ++r) h.direction[3 * a + r] = g.direction[a][r];
+    }
+    h.brickSize = opt.brickSize;
+    h.border = opt.border;
+    h.levelCount = std::uint32_t(levels);
+    h.scalarType = std::uint32_t(g.scalarType);
+    h.codec = std::uint32_t(opt.codec);
+    h.flags = (opt.labels || g.isLabel ? hvo::FileLabels : 0u) | (opt.lossy8 ? hvo::FileLossy8 : 0u) |
+              (opt.emptyBelow ? hvo::FileEmptyThreshold : 0u);
+    h.rescaleSlope = g.rescaleSlope;
+    h.rescaleIntercept = g.rescaleIntercept;
+    h.emptyBelow = opt.emptyBelow ? *opt.emptyBelow : 0.0;
+    std::strncpy(h.modality, g.modality.c_str(), sizeof h.modality - 1);
+}
+
+}  // namespace
+
+OctreeBuilder::OctreeBuilder(BuildOptions options) : options_(std::move(options)) {
+    if (options_.brickSize < 4 || options_.brickSize > 256)
+        throw Error("brick size must be between 4 and 256 voxels");
+    if (options_.border < 1 || options_.border > 8) throw Error("border must be between 1 and 8 voxels");
+    if (options_.lossy8 && options_.labels) throw Error("label volumes cannot be stored lossy");
+}
+
+BuildReport OctreeBuilder::build(VoxelSource& source, const std::string& output, JobContext& job) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const VolumeGeometry& g = source.geometry();
+    g.validate(source.describe());
+    if (options_.lossy8 && g.scalarType == ScalarType::UInt8)
+        throw Error(source.describe() + ": lossy 8-bit storage only applies to 16-bit and float volumes");
+    const OctreeLayout layout(g.dims, options_.brickSize);
+    std::vector<hvo::NodeRecord> nodes = layout.nodes();
+    AtomicFileWriter out(output);
+
+    hvo::FileHeader header;
+    fillHeader(header, g, options_, layout.levelCount());
+    out.append(&header, sizeof header);  // complete == 0 until the end
+
+    BuildReport report;
+    dispatchScalar(g.scalarType, [&](auto tag) {
+        using T = decltype(tag);
+        BuildOptions opt = options_;
+        opt.labels = options_.labels || g.isLabel;
+        BuildRun<T> run(opt, source, layout, nodes, out, job);
+        run.run();
+        report.emptyNodes = run.emptyNodes;
+        header.payloadBytes = run.payloadBytes;
+        header.rawBrickBytes = run.rawBytes;
+        if (run.errorSamples) {
+            header.lossyRmsError = std::sqrt(run.sqError / double(run.errorSamples));
+            header.lossyMaxError = run.maxError;
+        }
+    });
+    job.throwIfCancelled();
+
+    header.valueMin = nodes[0].minValue;
+    header.valueMax = nodes[0].maxValue;
+    header.nodeCount = nodes.size();
+    header.nodeTableChecksum = BrickCodec::checksum(nodes.data(), nodes.size() * sizeof(hvo::NodeRecord));
+    header.nodeTableOffset = out.append(nodes.data(), nodes.size() * sizeof(hvo::NodeRecord));
+    header.fileSize = out.size();
+    header.complete = 1;
+    header.headerChecksum = BrickCodec::checksum(&header, offsetof(hvo::FileHeader, headerChecksum));
+    out.writeAt(0, &header, sizeof header);
+    out.commit();
+
+    report.nodeCount = nodes.size();
+    report.fileBytes = header.fileSize;
+    report.inputBytes = g.byteSize();
+    report.lossyRmsError = header.lossyRmsError;
+    report.lossyMaxError = header.lossyMaxError;
+    report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    job.report(1.0, "done");
+    return report;
+}
+
+}  // namespace hvx::core

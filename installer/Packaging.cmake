@@ -1,0 +1,15 @@
+# CPack: a Debian package and a tarball with the executables, resources and .desktop entry.
+set(CPACK_PACKAGE_NAME "holovox")
+set(CPACK_PACKAGE_VENDOR "Holovox")
+set(CPACK_PACKAGE_CONTACT "Holovox team <team@holovox.invalid>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Out-of-core medical volume workstation")
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_GENERATOR "DEB;TGZ")
+set(CPACK_PACKAGING_INSTALL_PREFIX "/usr")
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION "science")
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS OFF)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS
+    "libqt6widgets6, libdcmtk17, libvtk9.1, libepoxy0, libegl1, libzstd1, liblz4-1, libxxhash0, libopenexr-3-1-30, libsqlite3-0")
+set(CPACK_ARCHIVE_COMPONENT_INSTALL OFF)
+include(CPack)

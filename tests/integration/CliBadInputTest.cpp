@@ -1,0 +1,92 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+const std::string cli = HVX_CLI;
+
+// Every bad input: non-zero exit, exactly one line on the terminal naming `mustName`,
+// and nothing left in the output directory but the inputs.
+void expectCleanFailure(const std::string& args, const test::TempDir& dir, const std::string& mustName,
+                        const std::vector<std::string>& inputsLeft, const std::string& reason = "") {
+    const auto r = test::runCommand(cli + " " + args + " 2>&1");
+    EXPECT_NE(r.exitCode, 0) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+    EXPECT_NE(r.output.find("error"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(mustName), std::string::npos) << r.output;
+    if (!reason.empty()) EXPECT_NE(r.output.find(reason), std::string::npos) << r.output;
+    EXPECT_EQ(dir.entries(), inputsLeft) << "after: " << args;
+}
+
+void writeBytes(const std::string& path, std::size_t n) {
+    std::ofstream f(path, std::ios::binary);
+    f << std::string(n, '\x01');
+}
+}  // namespace
+
+TEST(CliBadInput, DimensionsThatDoNotMatchTheFileSize) {
+    test::TempDir dir;
+    writeBytes(dir.file("v.raw"), 1000);
+    expectCleanFailure("build " + dir.file("v.raw") + " --dims 10x10x10 --type int16 -o " + dir.file("o.hvo"), dir,
+                       dir.file("v.raw"), {"v.raw"}, "need 2000 bytes but the file has 1000");
+}
+
+TEST(CliBadInput, TruncatedNrrdInput) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 16x16x16 -o " + dir.file("p.nrrd")).exitCode, 0);
+    std::filesystem::resize_file(dir.file("p.nrrd"), std::filesystem::file_size(dir.file("p.nrrd")) - 100);
+    expectCleanFailure("build " + dir.file("p.nrrd") + " -o " + dir.file("o.hvo"), dir, dir.file("p.nrrd"),
+                       {"p.nrrd"}, "bytes but the file has");
+}
+
+TEST(CliBadInput, TruncatedNiftiInput) {
+    test::TempDir dir;
+    const auto r = test::runCommand("gzip -dc /usr/share/mricron/templates/ch2better.nii.gz | head -c 2000000 > " +
+                                    dir.file("t.nii"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectCleanFailure("build " + dir.file("t.nii") + " -o " + dir.file("o.hvo"), dir, dir.file("t.nii"), {"t.nii"});
+}
+
+TEST(CliBadInput, UnsupportedScalarType) {
+    test::TempDir dir;
+    writeBytes(dir.file("v.raw"), 4000);
+    expectCleanFailure("build " + dir.file("v.raw") + " --dims 10x10x10 --type int32 -o " + dir.file("o.hvo"), dir,
+                       "int32", {"v.raw"}, "unsupported");
+    {
+        std::ofstream f(dir.file("d.nrrd"));
+        f << "NRRD0004\ntype: double\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n" << std::string(64, '\0');
+    }
+    expectCleanFailure("build " + dir.file("d.nrrd") + " -o " + dir.file("o.hvo"), dir, dir.file("d.nrrd"),
+                       {"d.nrrd", "v.raw"}, "unsupported NRRD type");
+}
+
+TEST(CliBadInput, OutputThatCannotBeWritten) {
+    test::TempDir dir;
+    expectCleanFailure("phantom --size 8x8x8 -o " + dir.file("missing/dir/o.hvo"), dir, dir.file("missing/dir/o.hvo"),
+                       {}, "cannot write output");
+    expectCleanFailure("phantom --size 8x8x8 -o /proc/holovox.hvo", dir, "/proc/holovox.hvo", {});
+}
+
+TEST(CliBadInput, FullDiskLeavesNoPartialOutput) {
+    // The file-size limit makes write() fail with EFBIG exactly as a full disk fails with ENOSPC.
+    test::TempDir dir;
+    const auto r = test::runCommand("ulimit -f 64; " + cli + " phantom --size 64x64x64 -o " + dir.file("o.hvo") + " 2>&1");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find(dir.file("o.hvo")), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("disk full"), std::string::npos) << r.output;
+    EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(CliBadInput, BadOptionsAndUsage) {
+    test::TempDir dir;
+    expectCleanFailure("phantom --size 0x8x8 -o " + dir.file("o.hvo"), dir, "0x8x8", {});
+    expectCleanFailure("build phantom:8x8x8 --brick 3 -o " + dir.file("o.hvo"), dir, "--brick", {});
+    expectCleanFailure("build phantom:8x8x8 --codec brotli -o " + dir.file("o.hvo"), dir, "brotli", {});
+    expectCleanFailure("build phantom:8x8x8 --frobnicate -o " + dir.file("o.hvo"), dir, "--frobnicate", {});
+    expectCleanFailure("info " + dir.file("none.hvo"), dir, dir.file("none.hvo"), {});
+}

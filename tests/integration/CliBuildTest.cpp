@@ -1,0 +1,123 @@
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <fstream>
+#include <thread>
+
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+const std::string cli = HVX_CLI;
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+}  // namespace
+
+TEST(CliBuild, PhantomToHvoThenInfoAndVerify) {
+    test::TempDir dir;
+    auto r = test::runCommand(cli + " phantom --size 100x80x60 --seed 4 -o " + dir.file("p.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "built")) << r.output;
+    r = test::runCommand(cli + " info " + dir.file("p.hvo") + " --verify");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "100 x 80 x 60 int16, CT")) << r.output;
+    EXPECT_TRUE(contains(r.output, "levels      3")) << r.output;
+    EXPECT_TRUE(contains(r.output, "compression")) << r.output;
+    EXPECT_TRUE(contains(r.output, "on disk")) << r.output;
+    EXPECT_TRUE(contains(r.output, "verified")) << r.output;
+}
+
+TEST(CliBuild, NrrdAndRawInputsWithOptions) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 40x30x20 -o " + dir.file("p.nrrd")).exitCode, 0);
+    auto r = test::runCommand(cli + " build " + dir.file("p.nrrd") + " -o " + dir.file("a.hvo") +
+                              " --brick 16 --border 3 --codec lz4 --empty-below -900");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "16^3 interior, border 3, codec lz4")) << r.output;
+    EXPECT_TRUE(contains(r.output, "empty below -900")) << r.output;
+    // The same voxels as raw: skip the NRRD header with --header-bytes.
+    std::ifstream in(dir.file("p.nrrd"), std::ios::binary);
+    std::string all((std::istreambuf_iterator<char>(in)), {});
+    const auto header = all.find("\n\n") + 2;
+    std::ofstream(dir.file("p.raw"), std::ios::binary) << all.substr(header);
+    r = test::runCommand(cli + " build " + dir.file("p.raw") + " --dims 40x30x20 --type int16 --spacing 1,1,2.5 -o " +
+                         dir.file("b.hvo") + " --lossy8");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "spacing     1 x 1 x 2.5 mm")) << r.output;
+    EXPECT_TRUE(contains(r.output, "lossy error RMS")) << r.output;
+}
+
+TEST(CliBuild, KilledBuildNeverLeavesAFileThatLooksComplete) {
+    test::TempDir dir;
+    const std::string out = dir.file("big.hvo");
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        execl(cli.c_str(), cli.c_str(), "phantom", "--size", "256x256x1024", "-o", out.c_str(), "--quiet",
+              static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    // Wait until the temporary file exists and has grown, then kill without warning.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    bool started = false;
+    while (!started && std::chrono::steady_clock::now() < deadline) {
+        for (const auto& e : dir.entries())
+            if (contains(e, ".partial-") && std::filesystem::file_size(dir.path() / e) > 100000) started = true;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(started) << "the build never started writing";
+    EXPECT_FALSE(std::filesystem::exists(out));
+    // What is left is only the temporary name, which the reader would refuse anyway.
+    for (const auto& e : dir.entries()) {
+        EXPECT_TRUE(contains(e, ".partial-")) << e;
+        const auto r = test::runCommand(cli + " info " + (dir.path() / e).string());
+        EXPECT_NE(r.exitCode, 0);
+        EXPECT_TRUE(contains(r.output, "did not finish") || contains(r.output, "checksum")) << r.output;
+    }
+}
+
+TEST(CliBuild, InterruptedBuildCleansUpAfterItself) {
+    test::TempDir dir;
+    const std::string out = dir.file("big.hvo");
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        execl(cli.c_str(), cli.c_str(), "phantom", "--size", "256x256x1024", "-o", out.c_str(), "--quiet",
+              static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (dir.entries().empty() && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    kill(pid, SIGINT);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(CliBuild, PeakMemoryOf512CubedPhantomBuildIsBounded) {
+    // 512^3 int16 is 256 MiB of voxels; the streaming builder keeps ~36 slices per level.
+    test::TempDir dir;
+    const auto r = test::runCommand(cli + " phantom --size 512x512x512 --quiet -o " + dir.file("p.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const long boundKiB = 160 * 1024;
+    RecordProperty("peak_rss_kib", std::to_string(r.maxRssKiB));
+    std::printf("peak RSS building a 512^3 phantom: %.1f MiB (bound %.0f MiB)\n", double(r.maxRssKiB) / 1024.0,
+                double(boundKiB) / 1024.0);
+    EXPECT_LT(r.maxRssKiB, boundKiB);
+}
+
+TEST(CliBuild, DemoBuildsTheMriTemplate) {
+    test::TempDir dir;
+    const auto r = test::runCommand(cli + " demo -o " + dir.file("demo.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "301 x 370 x 316 uint8, MR")) << r.output;
+    EXPECT_TRUE(contains(r.output, "direction   i=(-1.000,0.000,0.000)")) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("demo.hvo")));
+}
