@@ -11,8 +11,33 @@
 
 namespace hvx::core {
 
+namespace {
+void shuffle(const std::byte* in, std::byte* out, std::size_t size, std::size_t width) {
+    const std::size_t n = size / width;
+    for (std::size_t b = 0; b < width; ++b) {
+        std::byte* plane = out + b * n;
+        for (std::size_t i = 0; i < n; ++i) plane[i] = in[i * width + b];
+    }
+}
+
+void unshuffle(const std::byte* in, std::byte* out, std::size_t size, std::size_t width) {
+    const std::size_t n = size / width;
+    for (std::size_t b = 0; b < width; ++b) {
+        const std::byte* plane = in + b * n;
+        for (std::size_t i = 0; i < n; ++i) out[i * width + b] = plane[i];
+    }
+}
+}  // namespace
+
 void BrickCodec::compress(hvo::Codec codec, const void* src, std::size_t size, std::vector<std::byte>& out,
-                          int level) {
+                          int level, std::size_t elementSize) {
+    if (elementSize > 1 && size % elementSize == 0) {
+        thread_local std::vector<std::byte> planes;
+        planes.resize(size);
+        shuffle(static_cast<const std::byte*>(src), planes.data(), size, elementSize);
+        compress(codec, planes.data(), size, out, level, 1);
+        return;
+    }
     switch (codec) {
     case hvo::Codec::None:
         out.resize(size);
@@ -39,7 +64,15 @@ void BrickCodec::compress(hvo::Codec codec, const void* src, std::size_t size, s
     throw Error("unknown codec");
 }
 
-bool BrickCodec::decompress(hvo::Codec codec, const void* src, std::size_t size, void* dst, std::size_t dstSize) {
+bool BrickCodec::decompress(hvo::Codec codec, const void* src, std::size_t size, void* dst, std::size_t dstSize,
+                            std::size_t elementSize) {
+    if (elementSize > 1 && dstSize % elementSize == 0) {
+        thread_local std::vector<std::byte> planes;
+        planes.resize(dstSize);
+        if (!decompress(codec, src, size, planes.data(), dstSize, 1)) return false;
+        unshuffle(planes.data(), static_cast<std::byte*>(dst), dstSize, elementSize);
+        return true;
+    }
     switch (codec) {
     case hvo::Codec::None:
         if (size != dstSize) return false;

@@ -25,7 +25,12 @@ inline constexpr std::uint32_t kNoNode = 0xffffffffu;
 enum class Codec : std::uint32_t { None = 0, Zstd = 1, Lz4 = 2 };
 
 /// FileHeader::flags.
-enum FileFlags : std::uint32_t { FileLabels = 1u, FileLossy8 = 2u, FileEmptyThreshold = 4u };
+enum FileFlags : std::uint32_t {
+    FileLabels = 1u,
+    FileLossy8 = 2u,
+    FileEmptyThreshold = 4u,
+    FileShuffled = 8u,  ///< multi-byte payloads are byte-shuffled into planes before compression
+};
 /// NodeRecord::flags.
 enum NodeFlags : std::uint32_t { NodeEmpty = 1u, NodeLossy8 = 2u };
 

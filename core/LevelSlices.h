@@ -46,48 +46,49 @@ public:
     /// Copies the E^3 brick (E = brick + 2*border) of node (x, y, row), clamping coordinates to
     /// the volume so that border and padding samples replicate the nearest voxel.
     void extractBrick(std::uint32_t x, std::uint32_t y, std::uint32_t row, T* out) const {
-        const std::int64_t e = brick_ + 2 * border_;
+        const std::int64_t e = brick_ + 2 * border_, w = dims_[0];
         const std::int64_t x0 = std::int64_t(x) * brick_ - border_, y0 = std::int64_t(y) * brick_ - border_,
                            z0 = std::int64_t(row) * brick_ - border_;
-        std::vector<std::uint32_t> xs(std::size_t(e), 0);
-        for (std::int64_t a = 0; a < e; ++a) xs[std::size_t(a)] = clampAxis(x0 + a, 0);
+        // Each brick row is [replicated left edge | a run of real voxels | replicated right edge].
+        const std::int64_t xa = std::clamp<std::int64_t>(x0, 0, w), xb = std::clamp<std::int64_t>(x0 + e, 0, w);
+        const std::int64_t left = std::min(e, xa - x0), mid = std::max<std::int64_t>(0, xb - xa);
+        const std::int64_t right = e - left - mid;
         for (std::int64_t c = 0; c < e; ++c) {
             const T* s = slice(clampAxis(z0 + c, 2));
             for (std::int64_t b = 0; b < e; ++b) {
                 const T* line = s + std::size_t(clampAxis(y0 + b, 1)) * dims_[0];
-                for (std::int64_t a = 0; a < e; ++a) *out++ = line[xs[std::size_t(a)]];
+                out = std::fill_n(out, left, line[0]);
+                std::memcpy(out, line + xa, std::size_t(mid) * sizeof(T));
+                out += mid;
+                out = std::fill_n(out, right, line[w - 1]);
             }
         }
     }
-    /// The next level's slice from two consecutive slices (b == nullptr at an odd end):
-    /// the mean of the existing samples of each 2×2×2 cell, or their most frequent value for
-    /// label volumes (ties go to the smallest value).
-    static std::vector<T> downsample(const T* a, const T* b, std::uint32_t w, std::uint32_t h, bool labels) {
-        const std::uint32_t w2 = (w + 1) / 2, h2 = (h + 1) / 2;
-        std::vector<T> out(std::size_t(w2) * h2);
-        for (std::uint32_t y = 0; y < h2; ++y) {
-            for (std::uint32_t x = 0; x < w2; ++x) {
-                T vals[8];
-                int n = 0;
-                for (const T* s : {a, b}) {
-                    if (!s) continue;
-                    for (std::uint32_t yy = 2 * y; yy < std::min(h, 2 * y + 2); ++yy)
-                        for (std::uint32_t xx = 2 * x; xx < std::min(w, 2 * x + 2); ++xx)
-                            vals[n++] = s[std::size_t(yy) * w + xx];
-                }
-                out[std::size_t(y) * w2 + x] = labels ? mode(vals, n) : mean(vals, n);
+    /// One row of the next level from rows (a0, a1) of one slice and (b0, b1) of the next; at an
+    /// odd end the missing row or slice is passed again. Each output is the mean (or, for labels,
+    /// the most frequent value, ties to the smallest) of its 2x2x2 cell with coordinates
+    /// clamped: replicating a missing sample weights all present ones equally, so this is the
+    /// mean / mode of the samples that exist.
+    static void downsampleRow(const T* a0, const T* a1, const T* b0, const T* b1, std::uint32_t w, T* out,
+                              bool labels) {
+        const std::uint32_t w2 = (w + 1) / 2;
+        for (std::uint32_t x = 0; x < w2; ++x) {
+            const std::uint32_t i = 2 * x, j = std::min(2 * x + 1, w - 1);
+            if (labels) {
+                T v[8] = {a0[i], a0[j], a1[i], a1[j], b0[i], b0[j], b1[i], b1[j]};
+                out[x] = mode(v, 8);
+            } else if constexpr (std::is_floating_point_v<T>) {
+                const double sum = double(a0[i]) + a0[j] + a1[i] + a1[j] + b0[i] + b0[j] + b1[i] + b1[j];
+                out[x] = T(sum / 8.0);
+            } else {
+                const std::int64_t sum = std::int64_t(a0[i]) + a0[j] + a1[i] + a1[j] + b0[i] + b0[j] + b1[i] + b1[j];
+                out[x] = T(roundedEighth(sum));
             }
         }
-        return out;
     }
+    /// round(sum / 8), halves away from zero (as std::llround).
+    static std::int64_t roundedEighth(std::int64_t sum) { return sum >= 0 ? (sum + 4) / 8 : -((-sum + 4) / 8); }
 
-    static T mean(const T* v, int n) {
-        double sum = 0.0;
-        for (int i = 0; i < n; ++i) sum += double(v[i]);
-        const double m = sum / n;
-        if constexpr (std::is_floating_point_v<T>) return T(m);
-        else return T(std::llround(m));
-    }
     static T mode(T* v, int n) {
         for (int i = 1; i < n; ++i)  // insertion sort: at most 8 values
             for (int j = i; j > 0 && v[j] < v[j - 1]; --j) std::swap(v[j], v[j - 1]);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <future>
 #include <limits>
+#include <mutex>
 
 #include "core/AtomicFileWriter.h"
 #include "core/BrickCodec.h"
@@ -79,17 +80,15 @@ private:
         const bool hasParent = level + 1 < layout_.levelCount();
         if (hasParent && (z % 2 == 1 || z + 1 == lv.dims()[2])) {
             const T* a = lv.slice(z % 2 == 1 ? z - 1 : z);
-            const T* b = z % 2 == 1 ? lv.slice(z) : nullptr;
-            down.resize(std::size_t((lv.dims()[0] + 1) / 2) * ((lv.dims()[1] + 1) / 2));
+            const T* b = lv.slice(z);
             const std::uint32_t w = lv.dims()[0], h = lv.dims()[1];
-            // Filter in bands of rows on all cores.
             const std::uint32_t h2 = (h + 1) / 2, w2 = (w + 1) / 2;
+            down.resize(std::size_t(w2) * h2);
             ThreadPool::shared().parallelFor(h2, [&](std::size_t y0, std::size_t y1) {
                 for (std::size_t y = y0; y < y1; ++y) {
-                    const std::uint32_t rows = std::min<std::uint32_t>(2, h - 2 * std::uint32_t(y));
-                    auto part = LevelSlices<T>::downsample(a + 2 * y * w, b ? b + 2 * y * w : nullptr, w, rows,
-                                                           opt_.labels);
-                    std::memcpy(down.data() + y * w2, part.data(), w2 * sizeof(T));
+                    const std::size_t r0 = 2 * y * w, r1 = std::min<std::size_t>(2 * y + 1, h - 1) * w;
+                    LevelSlices<T>::downsampleRow(a + r0, a + r1, b + r0, b + r1, w, down.data() + y * w2,
+                                                  opt_.labels);
                 }
             }, 16);
         }
@@ -111,19 +110,22 @@ private:
         const auto& n = layout_.levelNodes(level);
         const std::size_t count = std::size_t(n[0]) * n[1];
         const std::size_t batch = std::max<std::size_t>(16, 8 * ThreadPool::shared().size());
-        std::vector<EncodedBrick> encoded;
         for (std::size_t b0 = 0; b0 < count; b0 += batch) {
             job_.throwIfCancelled();
             const std::size_t b1 = std::min(count, b0 + batch);
-            encoded.assign(b1 - b0, {});
             ThreadPool::shared().parallelFor(b1 - b0, [&](std::size_t s, std::size_t e) {
-                std::vector<T> brick(std::size_t(edge_) * edge_ * edge_);
+                thread_local std::vector<T> brick;
+                brick.resize(std::size_t(edge_) * edge_ * edge_);
+                EncodedBrick eb;
                 for (std::size_t i = s; i < e; ++i) {
                     const std::size_t c = b0 + i;
-                    encode(level, std::uint32_t(c % n[0]), std::uint32_t(c / n[0]), row, brick, encoded[i]);
+                    eb = EncodedBrick{};
+                    encode(level, std::uint32_t(c % n[0]), std::uint32_t(c / n[0]), row, brick, eb);
+                    // Writing under the lock overlaps other workers' compression.
+                    std::lock_guard lock(storeMutex_);
+                    store(eb);
                 }
             });
-            for (auto& eb : encoded) store(eb);
         }
     }
 
@@ -131,9 +133,13 @@ private:
                 EncodedBrick& eb) const {
         eb.node = layout_.nodeId(level, x, y, row);
         levels_[std::size_t(level)].extractBrick(x, y, row, brick.data());
-        const auto [mn, mx] = std::minmax_element(brick.begin(), brick.end());
-        eb.quantMin = float(*mn);
-        eb.quantMax = float(*mx);
+        T mn = brick[0], mx = brick[0];
+        for (const T v : brick) {  // plain loop: vectorises, unlike minmax_element
+            mn = v < mn ? v : mn;
+            mx = v > mx ? v : mx;
+        }
+        eb.quantMin = float(mn);
+        eb.quantMax = float(mx);
         eb.minValue = eb.quantMin;
         eb.maxValue = eb.quantMax;
         // The node's range covers its descendants, which were all emitted before it.
@@ -159,7 +165,8 @@ private:
             if (level == 0) measureLossyError(brick, q, lo, range, eb);
             BrickCodec::compress(opt_.codec, q.data(), q.size(), eb.payload, opt_.codecLevel);
         } else {
-            BrickCodec::compress(opt_.codec, brick.data(), brick.size() * sizeof(T), eb.payload, opt_.codecLevel);
+            BrickCodec::compress(opt_.codec, brick.data(), brick.size() * sizeof(T), eb.payload, opt_.codecLevel,
+                                 sizeof(T));
         }
     }
 
@@ -211,6 +218,7 @@ private:
     double emptyStored_ = 0.0;
     std::vector<LevelSlices<T>> levels_;
     std::vector<std::uint32_t> nextRow_;
+    std::mutex storeMutex_;
 };
 
 void fillHeader(hvo::FileHeader& h, const VolumeGeometry& g, const BuildOptions& opt, int levels) {
@@ -230,7 +238,7 @@ void fillHeader(hvo::FileHeader& h, const VolumeGeometry& g, const BuildOptions&
     h.scalarType = std::uint32_t(g.scalarType);
     h.codec = std::uint32_t(opt.codec);
     h.flags = (opt.labels || g.isLabel ? hvo::FileLabels : 0u) | (opt.lossy8 ? hvo::FileLossy8 : 0u) |
-              (opt.emptyBelow ? hvo::FileEmptyThreshold : 0u);
+              (opt.emptyBelow ? hvo::FileEmptyThreshold : 0u) | hvo::FileShuffled;
     h.rescaleSlope = g.rescaleSlope;
     h.rescaleIntercept = g.rescaleIntercept;
     h.emptyBelow = opt.emptyBelow ? *opt.emptyBelow : 0.0;

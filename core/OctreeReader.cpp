@@ -138,7 +138,9 @@ Brick OctreeReader::readBrick(std::uint32_t node) const {
     if (BrickCodec::checksum(packed.data(), packed.size()) != n.checksum)
         throw CorruptBrickError(where() + " is corrupt (checksum mismatch)", node);
     b.data.resize(samples * scalarSize(b.type));
-    if (!BrickCodec::decompress(hvo::Codec(header_.codec), packed.data(), packed.size(), b.data.data(), b.data.size()))
+    const std::size_t width = (header_.flags & hvo::FileShuffled) ? scalarSize(b.type) : 1;
+    if (!BrickCodec::decompress(hvo::Codec(header_.codec), packed.data(), packed.size(), b.data.data(), b.data.size(),
+                                width))
         throw CorruptBrickError(where() + " is corrupt (does not decompress)", node);
     return b;
 }

@@ -9,13 +9,13 @@ trap 'rm -rf "$work"' EXIT
 deb=$(ls "$work"/pkg/holovox_*.deb)
 tgz=$(ls "$work"/pkg/holovox-*.tar.gz)
 echo "packages: $(basename "$deb") $(basename "$tgz")"
-dpkg-deb --info "$deb" | grep -q "Package: holovox"
+info=$(dpkg-deb --info "$deb"); grep -q "Package: holovox" <<<"$info"
 dpkg-deb -x "$deb" "$work/root"
 for f in usr/bin/holovox-cli usr/bin/holovox usr/share/applications/holovox.desktop; do
   [ -e "$work/root/$f" ] || { echo "missing from .deb: $f"; exit 1; }
 done
-tar -tzf "$tgz" | grep -q "bin/holovox-cli" || { echo "tarball lacks holovox-cli"; exit 1; }
+listing=$(tar -tzf "$tgz"); grep -q "bin/holovox-cli" <<<"$listing" || { echo "tarball lacks holovox-cli"; exit 1; }
 "$work/root/usr/bin/holovox-cli" version
 "$work/root/usr/bin/holovox-cli" phantom --size 48x40x32 -o "$work/p.hvo" --quiet
-"$work/root/usr/bin/holovox-cli" info "$work/p.hvo" --verify | grep -q "verified"
+out=$("$work/root/usr/bin/holovox-cli" info "$work/p.hvo" --verify); grep -q "verified" <<<"$out"
 echo "installed holovox-cli built and verified an octree"
