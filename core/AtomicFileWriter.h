@@ -36,6 +36,7 @@ private:
     std::string temp_;
     int fd_ = -1;
     std::uint64_t size_ = 0;
+    std::uint64_t flushed_ = 0;
     bool committed_ = false;
 };
 

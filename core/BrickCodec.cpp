@@ -14,6 +14,17 @@ namespace hvx::core {
 namespace {
 void shuffle(const std::byte* in, std::byte* out, std::size_t size, std::size_t width) {
     const std::size_t n = size / width;
+    if (width == 2) {  // the common case (CT, MR): a loop the compiler vectorises
+        auto* lo = reinterpret_cast<std::uint8_t*>(out);
+        auto* hi = lo + n;
+        for (std::size_t i = 0; i < n; ++i) {
+            std::uint16_t v;
+            std::memcpy(&v, in + 2 * i, 2);
+            lo[i] = std::uint8_t(v & 0xffu);
+            hi[i] = std::uint8_t(v >> 8);
+        }
+        return;
+    }
     for (std::size_t b = 0; b < width; ++b) {
         std::byte* plane = out + b * n;
         for (std::size_t i = 0; i < n; ++i) plane[i] = in[i * width + b];
@@ -22,6 +33,15 @@ void shuffle(const std::byte* in, std::byte* out, std::size_t size, std::size_t 
 
 void unshuffle(const std::byte* in, std::byte* out, std::size_t size, std::size_t width) {
     const std::size_t n = size / width;
+    if (width == 2) {
+        const auto* lo = reinterpret_cast<const std::uint8_t*>(in);
+        const auto* hi = lo + n;
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto v = std::uint16_t(lo[i] | (hi[i] << 8));
+            std::memcpy(out + 2 * i, &v, 2);
+        }
+        return;
+    }
     for (std::size_t b = 0; b < width; ++b) {
         const std::byte* plane = in + b * n;
         for (std::size_t i = 0; i < n; ++i) out[i * width + b] = plane[i];
@@ -46,7 +66,7 @@ void BrickCodec::compress(hvo::Codec codec, const void* src, std::size_t size, s
     case hvo::Codec::Zstd: {
         out.resize(ZSTD_compressBound(size));
         thread_local ZSTD_CCtx* ctx = ZSTD_createCCtx();
-        const std::size_t n = ZSTD_compressCCtx(ctx, out.data(), out.size(), src, size, level > 0 ? level : 1);
+        const std::size_t n = ZSTD_compressCCtx(ctx, out.data(), out.size(), src, size, level != 0 ? level : 1);
         if (ZSTD_isError(n)) throw Error(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
         out.resize(n);
         return;

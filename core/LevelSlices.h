@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <deque>
+#include <mutex>
 #include <type_traits>
 #include <vector>
 
@@ -39,9 +40,22 @@ public:
     void dropBefore(std::uint32_t row) {
         const std::int64_t keep = std::int64_t(row) * brick_ - border_;
         while (!slices_.empty() && std::int64_t(base_) < keep) {
+            {
+                std::lock_guard lock(spareMutex_);
+                if (spare_.size() < brick_) spare_.push_back(std::move(slices_.front()));
+            }
             slices_.pop_front();
             ++base_;
         }
+    }
+    /// A slice-sized buffer, recycled from dropped slices when possible (saves page faults).
+    /// Threading: any thread (the builder's reader thread takes, its main thread drops).
+    std::vector<T> takeBuffer() {
+        std::lock_guard lock(spareMutex_);
+        if (spare_.empty()) return std::vector<T>(sliceVoxels());
+        std::vector<T> v = std::move(spare_.back());
+        spare_.pop_back();
+        return v;
     }
     /// Copies the E^3 brick (E = brick + 2*border) of node (x, y, row), clamping coordinates to
     /// the volume so that border and padding samples replicate the nearest voxel.
@@ -116,6 +130,8 @@ private:
     std::uint32_t border_;
     std::uint32_t base_ = 0;
     std::deque<std::vector<T>> slices_;
+    std::vector<std::vector<T>> spare_;
+    std::mutex spareMutex_;
 };
 
 }  // namespace hvx::core

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <future>
 #include <limits>
 #include <mutex>
@@ -50,12 +51,15 @@ public:
 
     void run() {
         const auto& dims = source_.geometry().dims;
-        const std::size_t sliceVoxels = std::size_t(dims[0]) * dims[1];
-        const std::uint32_t slab = std::max<std::uint32_t>(1, opt_.brickSize);
-        auto readSlab = [this, sliceVoxels, &dims, slab](std::uint32_t z0) {
+        // Small read-ahead slabs: enough to overlap I/O, little memory (8 slices of 2048^2 int16 = 64 MiB).
+        const std::uint32_t slab = 8;
+        auto readSlab = [this, &dims, slab](std::uint32_t z0) {
             const std::uint32_t n = std::min(slab, dims[2] - z0);
-            std::vector<std::vector<T>> slices(n, std::vector<T>(sliceVoxels));
-            for (std::uint32_t s = 0; s < n; ++s) source_.readSlices(z0 + s, 1, slices[s].data());
+            std::vector<std::vector<T>> slices;
+            for (std::uint32_t s = 0; s < n; ++s) {
+                slices.push_back(levels_[0].takeBuffer());
+                source_.readSlices(z0 + s, 1, slices.back().data());
+            }
             return slices;
         };
         std::future<std::vector<std::vector<T>>> next = std::async(std::launch::async, readSlab, 0u);
@@ -109,24 +113,20 @@ private:
     void emitRow(int level, std::uint32_t row) {
         const auto& n = layout_.levelNodes(level);
         const std::size_t count = std::size_t(n[0]) * n[1];
-        const std::size_t batch = std::max<std::size_t>(16, 8 * ThreadPool::shared().size());
-        for (std::size_t b0 = 0; b0 < count; b0 += batch) {
-            job_.throwIfCancelled();
-            const std::size_t b1 = std::min(count, b0 + batch);
-            ThreadPool::shared().parallelFor(b1 - b0, [&](std::size_t s, std::size_t e) {
-                thread_local std::vector<T> brick;
-                brick.resize(std::size_t(edge_) * edge_ * edge_);
-                EncodedBrick eb;
-                for (std::size_t i = s; i < e; ++i) {
-                    const std::size_t c = b0 + i;
-                    eb = EncodedBrick{};
-                    encode(level, std::uint32_t(c % n[0]), std::uint32_t(c / n[0]), row, brick, eb);
-                    // Writing under the lock overlaps other workers' compression.
-                    std::lock_guard lock(storeMutex_);
-                    store(eb);
-                }
-            });
-        }
+        job_.throwIfCancelled();
+        ThreadPool::shared().parallelFor(count, [&](std::size_t s, std::size_t e) {
+            thread_local std::vector<T> brick;
+            brick.resize(std::size_t(edge_) * edge_ * edge_);
+            EncodedBrick eb;
+            for (std::size_t c = s; c < e; ++c) {
+                job_.throwIfCancelled();
+                eb = EncodedBrick{};
+                encode(level, std::uint32_t(c % n[0]), std::uint32_t(c / n[0]), row, brick, eb);
+                // Writing under the lock overlaps other workers' compression.
+                std::lock_guard lock(storeMutex_);
+                store(eb);
+            }
+        });
     }
 
     void encode(int level, std::uint32_t x, std::uint32_t y, std::uint32_t row, std::vector<T>& brick,
@@ -216,7 +216,7 @@ private:
     JobContext& job_;
     std::uint32_t edge_;
     double emptyStored_ = 0.0;
-    std::vector<LevelSlices<T>> levels_;
+    std::deque<LevelSlices<T>> levels_;  // deque: LevelSlices holds a mutex and must not move
     std::vector<std::uint32_t> nextRow_;
     std::mutex storeMutex_;
 };

@@ -47,7 +47,7 @@ int buildCommand(int argc, char** argv) {
     opt.labels = args.flag("labels");
     opt.lossy8 = args.flag("lossy8");
     if (const auto c = args.value("codec")) opt.codec = core::BrickCodec::parse(*c);
-    opt.codecLevel = int(args.integer("level", 0, 0, 19));
+    opt.codecLevel = int(args.integer("level", 0, -7, 19));
 
     auto source = core::VoxelSourceFactory::open(args.positional()[0], raw);
     OctreeBuildRunner::run(*source, *out, opt, !args.flag("quiet"));
