@@ -30,6 +30,7 @@ enum FileFlags : std::uint32_t {
     FileLossy8 = 2u,
     FileEmptyThreshold = 4u,
     FileShuffled = 8u,  ///< multi-byte payloads are byte-shuffled into planes before compression
+    FileMonochrome1 = 16u,  ///< display inverted (DICOM MONOCHROME1)
 };
 /// NodeRecord::flags.
 enum NodeFlags : std::uint32_t { NodeEmpty = 1u, NodeLossy8 = 2u };

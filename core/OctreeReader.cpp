@@ -77,6 +77,7 @@ void OctreeReader::load() {
     g.valueMax = h.valueMax;
     g.modality.assign(h.modality, strnlen(h.modality, sizeof h.modality));
     g.isLabel = (h.flags & hvo::FileLabels) != 0;
+    g.monochrome1 = (h.flags & hvo::FileMonochrome1) != 0;
     try {
         g.validate(path_);
     } catch (const Error& e) {

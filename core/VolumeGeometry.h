@@ -26,6 +26,7 @@ struct VolumeGeometry {
     double valueMax = 0.0;  ///< largest stored value in the volume (0 when unknown)
     std::string modality = "OT";  ///< DICOM modality code (CT, MR, ...), "OT" when unknown
     bool isLabel = false;         ///< label map: values are classes, filtered by mode not mean
+    bool monochrome1 = false;     ///< DICOM MONOCHROME1: display with inverted grey scale
 
     /// Number of voxels (as 64-bit, volumes may exceed 2^32 voxels).
     std::uint64_t voxelCount() const {

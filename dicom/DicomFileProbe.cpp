@@ -23,7 +23,7 @@ std::string text(DcmItem* item, const DcmTagKey& key) {
 DicomFileProbe DicomFileProbe::probe(const std::string& path) {
     // Stopping before the pixel data is intended; DCMTK would warn about it on every file.
     static const bool quiet = [] {
-        OFLog::configure(OFLogger::ERROR_LOG_LEVEL);
+        OFLog::configure(OFLogger::OFF_LOG_LEVEL);
         return true;
     }();
     (void)quiet;

@@ -10,4 +10,8 @@ int demoCommand(int argc, char** argv);
 int versionCommand(int argc, char** argv);
 int dicomInfoCommand(int argc, char** argv);
 int glInfoCommand(int argc, char** argv);
+int importCommand(int argc, char** argv);
+int studiesCommand(int argc, char** argv);
+int buildSeriesCommand(int argc, char** argv);
+int exportDicomCommand(int argc, char** argv);
 }  // namespace hvx::app

@@ -19,6 +19,11 @@ void usage() {
         "  info FILE.hvo [--verify]      levels, nodes, empty fraction, compression, size\n"
         "  phantom --size XxYxZ -o OUT.{nrrd,hvo} [--seed N] [--noise HU]\n"
         "  demo [--input FILE] [-o OUT.hvo]   build and summarise the demo study (MRI template)\n"
+        "  import PATH... [--db FILE] [--build]   scan folders/DICOMDIR/files into the study database\n"
+        "  studies [--db FILE] [--patient TEXT] [--from YYYYMMDD] [--to YYYYMMDD] [--modality CT]\n"
+        "  build-series SERIES_UID -o OUT.hvo [--db FILE] [--stack N]\n"
+        "  export-dicom INPUT -o FOLDER [--syntax explicit-little|implicit-little|explicit-big|deflate|rle|\n"
+        "        jpeg-lossless|jpeg-ls] [--enhanced] [--patient NAME] [--patient-id ID] [--study TEXT]\n"
         "  dicom-info FILE               one-line summary of a DICOM file's header\n"
         "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
         "  version                       versions of Holovox and its libraries");
@@ -38,6 +43,10 @@ int main(int argc, char** argv) {
         if (cmd == "demo") return hvx::app::demoCommand(argc, argv);
         if (cmd == "dicom-info") return hvx::app::dicomInfoCommand(argc, argv);
         if (cmd == "gl-info") return hvx::app::glInfoCommand(argc, argv);
+        if (cmd == "import") return hvx::app::importCommand(argc, argv);
+        if (cmd == "studies") return hvx::app::studiesCommand(argc, argv);
+        if (cmd == "build-series") return hvx::app::buildSeriesCommand(argc, argv);
+        if (cmd == "export-dicom") return hvx::app::exportDicomCommand(argc, argv);
         if (cmd == "version" || cmd == "--version") return hvx::app::versionCommand(argc, argv);
         std::fprintf(stderr, "holovox-cli: unknown command '%s' (try --help)\n", cmd.c_str());
         return 2;

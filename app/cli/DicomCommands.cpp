@@ -1,0 +1,177 @@
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+
+#include "app/cli/CliArgs.h"
+#include "app/cli/Commands.h"
+#include "app/cli/OctreeBuildRunner.h"
+#include "app/cli/ProgressBar.h"
+#include "app/cli/SignalCancel.h"
+#include "core/Error.h"
+#include "core/VoxelSourceFactory.h"
+#include "dicom/DicomScanner.h"
+#include "dicom/DicomSeriesSource.h"
+#include "dicom/DicomSeriesWriter.h"
+#include "dicom/SeriesAssembler.h"
+#include "dicom/StudyDatabase.h"
+#include "dicom/UidPath.h"
+
+namespace hvx::app {
+
+namespace {
+std::string octreeFolder(const std::string& dbPath) {
+    return (std::filesystem::path(dbPath).parent_path() / "octrees").string();
+}
+
+void printVolume(const dicom::SeriesVolume& v) {
+    const auto& g = v.geometry;
+    std::printf("    %-40s %4u x %4u x %4u  %.3g x %.3g x %.3g mm  %s%s\n", v.label.c_str(), g.dims[0], g.dims[1],
+                g.dims[2], g.spacing.x, g.spacing.y, g.spacing.z, std::string(core::scalarName(g.scalarType)).c_str(),
+                g.monochrome1 ? " MONOCHROME1" : "");
+    for (const auto& w : v.warnings) std::printf("      warning: %s\n", w.c_str());
+}
+
+std::vector<dicom::SeriesVolume> scanAndAssemble(const std::vector<std::string>& paths, dicom::DicomScanner::Result& scan,
+                                                 std::vector<std::string>& notes) {
+    ProgressBar bar("scan ");
+    core::JobContext job(bar.observer());
+    SignalCancel cancel(job);
+    scan = dicom::DicomScanner::scan(paths, job);
+    bar.finish();
+    return dicom::SeriesAssembler::assemble(scan.instances, notes);
+}
+
+std::string octreeName(const dicom::SeriesVolume& v, std::size_t stacks, std::size_t index) {
+    return dicom::UidPath::component(v.seriesUid) + (stacks > 1 ? "-stack" + std::to_string(index + 1) : "") + ".hvo";
+}
+}  // namespace
+
+int importCommand(int argc, char** argv) {
+    const CliArgs args(argc, argv, 2, {"db"}, {"build"});
+    if (args.positional().empty()) throw core::Error("usage: holovox-cli import PATH... [--db FILE] [--build]");
+    const std::string dbPath = args.value("db").value_or(dicom::StudyDatabase::defaultPath());
+    dicom::StudyDatabase db(dbPath);
+    dicom::DicomScanner::Result scan;
+    std::vector<std::string> notes;
+    const auto volumes = scanAndAssemble(args.positional(), scan, notes);
+    const auto stats = db.addInstances(scan.instances);
+    std::printf("scanned %zu files: %zu DICOM, %zu not DICOM (skipped), %zu broken\n", scan.filesSeen,
+                scan.instances.size(), scan.notDicom, scan.broken);
+    for (const auto& r : scan.brokenReasons) std::printf("  broken: %s\n", r.c_str());
+    std::printf("database %s: %zu new, %zu already known, %zu moved\n", dbPath.c_str(), stats.added, stats.unchanged,
+                stats.moved);
+    for (const auto& n : notes) std::printf("  note: %s\n", n.c_str());
+    // Patient -> study -> series table of what was found.
+    std::string lastPatient, lastStudy;
+    for (const auto& v : volumes) {
+        const auto& in = v.instances.front();
+        if (in.patientId + in.patientName != lastPatient) {
+            std::printf("patient %s (%s) born %s sex %s\n", in.patientName.c_str(), in.patientId.c_str(),
+                        in.patientBirthDate.c_str(), in.patientSex.c_str());
+            lastPatient = in.patientId + in.patientName;
+            lastStudy.clear();
+        }
+        if (in.studyInstanceUid != lastStudy) {
+            std::printf("  study %s %s \"%s\" accession %s\n", in.studyDate.c_str(), in.studyTime.c_str(),
+                        in.studyDescription.c_str(), in.accessionNumber.c_str());
+            lastStudy = in.studyInstanceUid;
+        }
+        printVolume(v);
+    }
+    if (args.flag("build")) {
+        std::filesystem::create_directories(octreeFolder(dbPath));
+        std::map<std::string, std::size_t> stacks, index;
+        for (const auto& v : volumes) ++stacks[v.seriesUid];
+        for (const auto& v : volumes) {
+            const std::string out =
+                (std::filesystem::path(octreeFolder(dbPath)) / octreeName(v, stacks[v.seriesUid], index[v.seriesUid]++))
+                    .string();
+            dicom::DicomSeriesSource source(v);
+            OctreeBuildRunner::run(source, out, core::BuildOptions{}, false);
+            db.setSeriesOctree(v.seriesUid, out);
+        }
+    }
+    return scan.instances.empty() && scan.broken > 0 ? 1 : 0;
+}
+
+int studiesCommand(int argc, char** argv) {
+    const CliArgs args(argc, argv, 2, {"db", "patient", "from", "to", "modality"}, {});
+    dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
+    const std::size_t removed = db.removeMissingFiles();
+    if (removed) std::printf("%zu instances whose files were deleted were removed from the index\n", removed);
+    dicom::StudyQuery q;
+    q.text = args.value("patient").value_or("");
+    q.dateFrom = args.value("from").value_or("");
+    q.dateTo = args.value("to").value_or("");
+    q.modality = args.value("modality").value_or("");
+    const auto studies = db.findStudies(q);
+    for (const auto& s : studies) {
+        std::printf("%-24s %-12s %s %-6s %-30s %s\n", s.patientName.c_str(), s.patientId.c_str(), s.date.c_str(),
+                    s.modalities.c_str(), s.description.c_str(), s.studyUid.c_str());
+        for (const auto& se : db.seriesOfStudy(s.studyUid))
+            std::printf("    series %3d %-4s %-28s %4d images  %s%s%s\n", se.number, se.modality.c_str(),
+                        se.description.c_str(), se.instanceCount, se.seriesUid.c_str(),
+                        se.octreePath.empty() ? "" : "  octree: ", se.octreePath.c_str());
+    }
+    std::printf("%zu studies\n", studies.size());
+    return 0;
+}
+
+int buildSeriesCommand(int argc, char** argv) {
+    const CliArgs args(argc, argv, 2, {"db", "o", "output", "stack"}, {});
+    const auto out = args.value("o") ? args.value("o") : args.value("output");
+    if (args.positional().size() != 1 || !out)
+        throw core::Error("usage: holovox-cli build-series SERIES_UID -o OUT.hvo [--db FILE] [--stack N]");
+    const std::string uid = args.positional()[0];
+    dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
+    const auto files = db.filesOfSeries(uid);
+    if (files.empty()) throw core::Error("series " + uid + " is not in the database (import it first)");
+    dicom::DicomScanner::Result scan;
+    std::vector<std::string> notes;
+    auto volumes = scanAndAssemble(files, scan, notes);
+    volumes.erase(std::remove_if(volumes.begin(), volumes.end(),
+                                 [&](const dicom::SeriesVolume& v) { return v.seriesUid != uid; }),
+                  volumes.end());
+    if (volumes.empty()) throw core::Error("series " + uid + " has no image volume");
+    std::size_t pick = 0;
+    if (args.value("stack")) {
+        pick = std::size_t(args.integer("stack", 1, 1, long(volumes.size()))) - 1;
+    } else {
+        for (std::size_t i = 1; i < volumes.size(); ++i)
+            if (volumes[i].slices.size() > volumes[pick].slices.size()) pick = i;
+    }
+    printVolume(volumes[pick]);
+    dicom::DicomSeriesSource source(volumes[pick]);
+    OctreeBuildRunner::run(source, *out, core::BuildOptions{}, true);
+    db.setSeriesOctree(uid, *out);
+    return 0;
+}
+
+int exportDicomCommand(int argc, char** argv) {
+    const CliArgs args(argc, argv, 2,
+                       {"o", "output", "syntax", "patient", "patient-id", "study", "series", "date", "accession"},
+                       {"enhanced"});
+    const auto out = args.value("o") ? args.value("o") : args.value("output");
+    if (args.positional().size() != 1 || !out)
+        throw core::Error("usage: holovox-cli export-dicom INPUT -o FOLDER [--syntax S] [--enhanced] [--patient NAME]");
+    auto source = core::VoxelSourceFactory::open(args.positional()[0]);
+    dicom::DicomWriteOptions o;
+    if (auto v = args.value("syntax")) o.transferSyntax = *v;
+    if (auto v = args.value("patient")) o.patientName = *v;
+    if (auto v = args.value("patient-id")) o.patientId = *v;
+    if (auto v = args.value("study")) o.studyDescription = *v;
+    if (auto v = args.value("series")) o.seriesDescription = *v;
+    if (auto v = args.value("date")) o.studyDate = *v;
+    if (auto v = args.value("accession")) o.accessionNumber = *v;
+    o.enhancedMultiframe = args.flag("enhanced");
+    ProgressBar bar("export");
+    core::JobContext job(bar.observer());
+    SignalCancel cancel(job);
+    const auto files = dicom::DicomSeriesWriter::write(*source, *out, o, job);
+    bar.finish();
+    std::printf("wrote %zu DICOM files to %s\n", files.size(), out->c_str());
+    return 0;
+}
+
+}  // namespace hvx::app

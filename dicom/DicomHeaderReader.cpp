@@ -1,0 +1,209 @@
+#include "dicom/DicomHeaderReader.h"
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcistrmb.h>
+#include <dcmtk/dcmdata/dcmetinf.h>
+#include <dcmtk/dcmdata/dcsequen.h>
+#include <dcmtk/dcmdata/dcxfer.h>
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "core/Error.h"
+#include "dicom/DcmtkSetup.h"
+
+namespace hvx::dicom {
+
+namespace {
+std::string text(DcmItem* item, const DcmTagKey& key) {
+    OFString v;
+    if (item && item->findAndGetOFStringArray(key, v).good()) {
+        std::string s = v.c_str();
+        while (!s.empty() && (s.back() == ' ' || s.back() == '\0')) s.pop_back();
+        return s;
+    }
+    return {};
+}
+
+bool number(DcmItem* item, const DcmTagKey& key, double& out, unsigned long pos = 0) {
+    Float64 v = 0;
+    if (!item || item->findAndGetFloat64(key, v, pos).bad() || !std::isfinite(v)) return false;
+    out = v;
+    return true;
+}
+
+DcmItem* firstItem(DcmItem* parent, const DcmTagKey& seq) {
+    DcmItem* item = nullptr;
+    if (parent && parent->findAndGetSequenceItem(seq, item, 0).good()) return item;
+    return nullptr;
+}
+
+// Reads position/orientation/spacing/rescale from an item (a dataset or a functional group),
+// leaving fields it does not find unchanged.
+void readPlane(DcmItem* item, FrameGeometry& g) {
+    if (!item) return;
+    double v[6];
+    if (number(item, DCM_ImagePositionPatient, v[0], 0) && number(item, DCM_ImagePositionPatient, v[1], 1) &&
+        number(item, DCM_ImagePositionPatient, v[2], 2)) {
+        g.hasPosition = true;
+        g.position = {v[0], v[1], v[2]};
+    }
+    bool ok = true;
+    for (unsigned long i = 0; i < 6 && ok; ++i) ok = number(item, DCM_ImageOrientationPatient, v[i], i);
+    if (ok) {
+        g.hasOrientation = true;
+        g.rowDirection = {v[0], v[1], v[2]};
+        g.columnDirection = {v[3], v[4], v[5]};
+    }
+    if (number(item, DCM_PixelSpacing, v[0], 0) && number(item, DCM_PixelSpacing, v[1], 1) && v[0] > 0 && v[1] > 0) {
+        g.hasSpacing = true;
+        g.pixelSpacing = {v[0], v[1]};
+    }
+    if (number(item, DCM_RescaleSlope, v[0]) && v[0] != 0.0) g.rescaleSlope = v[0];
+    if (number(item, DCM_RescaleIntercept, v[0])) g.rescaleIntercept = v[0];
+}
+
+void readFunctionalGroup(DcmItem* group, FrameGeometry& g) {
+    readPlane(firstItem(group, DCM_PlanePositionSequence), g);
+    readPlane(firstItem(group, DCM_PlaneOrientationSequence), g);
+    readPlane(firstItem(group, DCM_PixelMeasuresSequence), g);
+    readPlane(firstItem(group, DCM_PixelValueTransformationSequence), g);
+}
+
+void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
+    p.sopClassUid = text(ds, DCM_SOPClassUID);
+    if (p.sopClassUid.empty()) p.sopClassUid = text(meta, DCM_MediaStorageSOPClassUID);
+    p.sopInstanceUid = text(ds, DCM_SOPInstanceUID);
+    if (p.sopInstanceUid.empty()) p.sopInstanceUid = text(meta, DCM_MediaStorageSOPInstanceUID);
+    p.transferSyntaxUid = DcmXfer(ds->getOriginalXfer()).getXferID();
+    p.patientName = text(ds, DCM_PatientName);
+    p.patientId = text(ds, DCM_PatientID);
+    p.patientBirthDate = text(ds, DCM_PatientBirthDate);
+    p.patientSex = text(ds, DCM_PatientSex);
+    p.studyInstanceUid = text(ds, DCM_StudyInstanceUID);
+    p.studyDate = text(ds, DCM_StudyDate);
+    p.studyTime = text(ds, DCM_StudyTime);
+    p.studyDescription = text(ds, DCM_StudyDescription);
+    p.accessionNumber = text(ds, DCM_AccessionNumber);
+    p.seriesInstanceUid = text(ds, DCM_SeriesInstanceUID);
+    p.modality = text(ds, DCM_Modality);
+    p.seriesDescription = text(ds, DCM_SeriesDescription);
+    p.bodyPartExamined = text(ds, DCM_BodyPartExamined);
+    Sint32 i32 = 0;
+    if (ds->findAndGetSint32(DCM_SeriesNumber, i32).good()) p.seriesNumber = i32;
+    if (ds->findAndGetSint32(DCM_InstanceNumber, i32).good()) p.instanceNumber = i32;
+    Uint16 u16 = 0;
+    if (ds->findAndGetUint16(DCM_Rows, u16).good()) p.rows = u16;
+    if (ds->findAndGetUint16(DCM_Columns, u16).good()) p.columns = u16;
+    if (ds->findAndGetUint16(DCM_SamplesPerPixel, u16).good()) p.samplesPerPixel = u16;
+    if (ds->findAndGetUint16(DCM_BitsAllocated, u16).good()) p.bitsAllocated = u16;
+    if (ds->findAndGetUint16(DCM_BitsStored, u16).good()) p.bitsStored = u16;
+    if (ds->findAndGetUint16(DCM_HighBit, u16).good()) p.highBit = u16;
+    if (ds->findAndGetUint16(DCM_PixelRepresentation, u16).good()) p.pixelRepresentation = u16;
+    if (p.bitsStored == 0) p.bitsStored = p.bitsAllocated;
+    p.photometric = text(ds, DCM_PhotometricInterpretation);
+    if (ds->findAndGetSint32(DCM_NumberOfFrames, i32).bad() || i32 < 1) i32 = 1;
+    const bool pixels = ds->tagExists(DCM_PixelData) || ds->tagExists(DCM_FloatPixelData);
+    p.frames = (p.rows && p.columns && (pixels || p.bitsAllocated)) ? std::uint32_t(i32) : 0;
+    double d = 0;
+    if (number(ds, DCM_SliceThickness, d)) p.sliceThickness = d;
+    {
+        // PixelPaddingValue is US or SS depending on PixelRepresentation.
+        Uint16 pu = 0;
+        Sint16 ps = 0;
+        if (p.pixelRepresentation == 1 && ds->findAndGetSint16(DCM_PixelPaddingValue, ps).good()) p.pixelPadding = ps;
+        else if (ds->findAndGetUint16(DCM_PixelPaddingValue, pu).good()) p.pixelPadding = pu;
+    }
+    FrameGeometry base;
+    readPlane(ds, base);
+    DcmItem* shared = firstItem(ds, DCM_SharedFunctionalGroupsSequence);
+    readFunctionalGroup(shared, base);
+    DcmSequenceOfItems* perFrame = nullptr;
+    if (ds->findAndGetSequence(DCM_PerFrameFunctionalGroupsSequence, perFrame).good() && perFrame &&
+        p.frames > 1) {
+        for (std::uint32_t f = 0; f < p.frames; ++f) {
+            FrameGeometry g = base;
+            if (f < perFrame->card()) readFunctionalGroup(perFrame->getItem(f), g);
+            p.frameGeometry.push_back(g);
+        }
+    } else if (p.frames > 1 && ds->tagExists(DCM_GridFrameOffsetVector)) {
+        // RT Dose: frames are planes offset along the normal from ImagePositionPatient.
+        double scaling = 0;
+        if (number(ds, DCM_DoseGridScaling, scaling) && scaling > 0) base.rescaleSlope = scaling;
+        const glm::dvec3 n = glm::cross(base.rowDirection, base.columnDirection);
+        for (std::uint32_t f = 0; f < p.frames; ++f) {
+            FrameGeometry g = base;
+            double offset = 0;
+            if (!number(ds, DCM_GridFrameOffsetVector, offset, f)) g.hasPosition = false;
+            g.position = base.position + n * offset;
+            p.frameGeometry.push_back(g);
+        }
+    } else if (p.frames > 0) {
+        p.frameGeometry.assign(1, base);  // one plane for all frames
+    }
+}
+
+bool hasPreamble(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    char buf[132] = {};
+    f.read(buf, sizeof buf);
+    return f.gcount() == 132 && std::memcmp(buf + 128, "DICM", 4) == 0;
+}
+
+DicomHeaderReader::Kind classify(const OFCondition& status, DcmFileFormat& file, bool preamble,
+                                 const std::string& name, DicomInstance& out) {
+    DcmDataset* ds = file.getDataset();
+    const bool looksDicom = ds && (ds->tagExists(DCM_SOPClassUID) || ds->tagExists(DCM_StudyInstanceUID) ||
+                                   ds->tagExists(DCM_PixelData));
+    if (status.bad()) {
+        if (!preamble && !looksDicom) return DicomHeaderReader::Kind::NotDicom;
+        throw core::Error(name + ": broken DICOM file (" + status.text() + ")");
+    }
+    if (!looksDicom) {
+        if (!preamble) return DicomHeaderReader::Kind::NotDicom;
+        throw core::Error(name + ": DICOM file has no SOP Class, study or pixel data");
+    }
+    fromDataset(ds, file.getMetaInfo(), out);
+    if (out.sopInstanceUid.empty()) throw core::Error(name + ": DICOM file has no SOP Instance UID");
+    return DicomHeaderReader::Kind::Dicom;
+}
+}  // namespace
+
+DicomHeaderReader::Kind DicomHeaderReader::read(const std::string& path, DicomInstance& out) {
+    DcmtkSetup::ensure();
+    out = DicomInstance{};
+    out.path = path;
+    std::error_code ec;
+    out.fileSize = std::filesystem::file_size(path, ec);
+    if (ec) throw core::Error(path + ": cannot read (" + ec.message() + ")");
+    const bool preamble = hasPreamble(path);
+    if (!preamble && out.fileSize < 8) return Kind::NotDicom;
+    DcmFileFormat file;
+    const OFCondition status =
+        file.loadFileUntilTag(path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength, ERM_autoDetect, DCM_PixelData);
+    const Kind k = classify(status, file, preamble, path, out);
+    out.path = path;
+    return k;
+}
+
+DicomHeaderReader::Kind DicomHeaderReader::readBuffer(const void* data, std::size_t size, DicomInstance& out) {
+    DcmtkSetup::ensure();
+    out = DicomInstance{};
+    const bool preamble = size >= 132 && std::memcmp(static_cast<const char*>(data) + 128, "DICM", 4) == 0;
+    DcmInputBufferStream stream;
+    stream.setBuffer(data, offile_off_t(size));
+    stream.setEos();
+    DcmFileFormat file;
+    file.transferInit();
+    const OFCondition status = file.read(stream, EXS_Unknown, EGL_noChange, DCM_MaxReadLength);
+    file.transferEnd();
+    return classify(status, file, preamble, "buffer", out);
+}
+
+}  // namespace hvx::dicom

@@ -1,0 +1,50 @@
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+namespace hvx::dicom {
+
+/// Plane geometry and value transform of one frame (a single-frame image, or one frame of an
+/// enhanced multi-frame object from its per-frame or shared functional groups).
+struct FrameGeometry {
+    bool hasPosition = false;
+    glm::dvec3 position{0.0};  ///< ImagePositionPatient: LPS mm of the first pixel's centre
+    bool hasOrientation = false;
+    glm::dvec3 rowDirection{1, 0, 0};     ///< ImageOrientationPatient[0..2]: towards increasing column
+    glm::dvec3 columnDirection{0, 1, 0};  ///< ImageOrientationPatient[3..5]: towards increasing row
+    bool hasSpacing = false;
+    glm::dvec2 pixelSpacing{1.0, 1.0};  ///< PixelSpacing: (between rows, between columns) mm
+    double rescaleSlope = 1.0;
+    double rescaleIntercept = 0.0;
+};
+
+/// What the scanner reads from one DICOM file's header: the identifiers the study database
+/// needs and everything series assembly and pixel decoding need. No DCMTK types.
+struct DicomInstance {
+    std::string path;
+    std::string sopClassUid, sopInstanceUid, transferSyntaxUid;
+    std::string patientName, patientId, patientBirthDate, patientSex;
+    std::string studyInstanceUid, studyDate, studyTime, studyDescription, accessionNumber;
+    std::string seriesInstanceUid, modality, seriesDescription, bodyPartExamined;
+    int seriesNumber = 0;
+    int instanceNumber = 0;
+    std::uint16_t rows = 0, columns = 0, samplesPerPixel = 1;
+    std::uint16_t bitsAllocated = 0, bitsStored = 0, highBit = 0, pixelRepresentation = 0;
+    std::uint32_t frames = 0;  ///< 0 for objects without pixel data
+    std::string photometric;
+    std::optional<double> pixelPadding;
+    double sliceThickness = 0.0;
+    std::uint64_t fileSize = 0;
+    /// Geometry per frame (one entry for single-frame images).
+    std::vector<FrameGeometry> frameGeometry;
+
+    /// True for objects with image pixel data that can form volumes.
+    bool hasPixels() const { return rows > 0 && columns > 0 && frames > 0 && bitsAllocated > 0; }
+};
+
+}  // namespace hvx::dicom

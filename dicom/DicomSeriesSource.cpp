@@ -1,0 +1,97 @@
+#include "dicom/DicomSeriesSource.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/Error.h"
+#include "core/ThreadPool.h"
+#include "dicom/PixelDecoder.h"
+
+namespace hvx::dicom {
+
+DicomSeriesSource::DicomSeriesSource(SeriesVolume volume) : volume_(std::move(volume)) {
+    if (volume_.slices.empty()) throw core::Error("series " + volume_.seriesUid + " has no slices");
+    const auto& g = volume_.geometry;
+    const auto& s0 = volume_.slices.front();
+    const DicomInstance& first = volume_.instances[s0.instance];
+    if (g.modality == "CT") {
+        paddingStored_ = (-1024.0 - s0.rescaleIntercept) / s0.rescaleSlope;
+    } else {
+        const bool sgn = first.pixelRepresentation == 1;
+        paddingStored_ = sgn ? -double(1u << (first.bitsStored - 1)) : 0.0;
+    }
+}
+
+std::string DicomSeriesSource::describe() const { return "series " + volume_.seriesUid + " (" + volume_.label + ")"; }
+
+const std::vector<std::int32_t>& DicomSeriesSource::input(std::size_t slice) {
+    auto it = decoded_.find(slice);
+    if (it != decoded_.end()) return it->second;
+    // Decode this slice and the next few on all cores; forget slices behind us.
+    while (!decoded_.empty() && decoded_.begin()->first + 1 < slice) decoded_.erase(decoded_.begin());
+    const std::size_t ahead = std::min<std::size_t>(volume_.slices.size() - slice, 8);
+    std::vector<std::vector<std::int32_t>> out(ahead);
+    core::ThreadPool::shared().parallelFor(ahead, [&](std::size_t b, std::size_t e) {
+        thread_local PixelDecoder decoder;
+        for (std::size_t i = b; i < e; ++i) {
+            const SliceRef& s = volume_.slices[slice + i];
+            decoder.decode(volume_.instances[s.instance], s.frame, out[i]);
+        }
+    });
+    for (std::size_t i = 0; i < ahead; ++i) decoded_[slice + i] = std::move(out[i]);
+    return decoded_[slice];
+}
+
+template <class T>
+void DicomSeriesSource::writeSlice(std::uint32_t z, T* out) {
+    const auto& g = volume_.geometry;
+    const std::size_t n = std::size_t(g.dims[0]) * g.dims[1];
+    const auto& slices = volume_.slices;
+    std::size_t a = z, b = z;
+    double t = 0.0;
+    if (volume_.resample) {
+        const double along = slices.front().along + (slices.back().along - slices.front().along) *
+                                                        (g.dims[2] > 1 ? double(z) / (g.dims[2] - 1) : 0.0);
+        b = std::size_t(std::lower_bound(slices.begin(), slices.end(), along,
+                                         [](const SliceRef& s, double v) { return s.along < v; }) -
+                        slices.begin());
+        b = std::min(b, slices.size() - 1);
+        a = b > 0 ? b - 1 : 0;
+        const double span = slices[b].along - slices[a].along;
+        t = span > 0 ? std::clamp((along - slices[a].along) / span, 0.0, 1.0) : 0.0;
+        if (t == 0.0) b = a;
+        if (t == 1.0) a = b;
+    }
+    const auto& va = input(a);
+    const auto& vb = input(b);
+    if (va.size() < n || vb.size() < n) throw core::Error(describe() + ": slice has fewer pixels than the series");
+    const DicomInstance& ia = volume_.instances[slices[a].instance];
+    const DicomInstance& ib = volume_.instances[slices[b].instance];
+    auto value = [&](const DicomInstance& in, const SliceRef& s, std::int32_t v) -> double {
+        const bool padded = in.pixelPadding && double(v) == *in.pixelPadding;
+        const double stored = padded ? paddingStored_ : double(v);
+        return volume_.applyRescale ? stored * s.rescaleSlope + s.rescaleIntercept : stored;
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        double x = value(ia, slices[a], va[i]);
+        if (b != a) x += t * (value(ib, slices[b], vb[i]) - x);
+        if constexpr (std::is_floating_point_v<T>) {
+            out[i] = T(x);
+        } else {
+            x = std::round(x);
+            out[i] = T(std::clamp(x, double(std::numeric_limits<T>::lowest()), double(std::numeric_limits<T>::max())));
+        }
+    }
+}
+
+void DicomSeriesSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) {
+    const auto& g = volume_.geometry;
+    const std::size_t n = std::size_t(g.dims[0]) * g.dims[1];
+    core::dispatchScalar(g.scalarType, [&](auto tag) {
+        using T = decltype(tag);
+        for (std::uint32_t z = 0; z < count; ++z) writeSlice<T>(firstSlice + z, static_cast<T*>(dst) + z * n);
+    });
+}
+
+}  // namespace hvx::dicom

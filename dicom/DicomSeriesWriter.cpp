@@ -1,0 +1,250 @@
+#include "dicom/DicomSeriesWriter.h"
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcrleerg.h>
+#include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmjpeg/djencode.h>
+#include <dcmtk/dcmjpeg/djrplol.h>
+#include <dcmtk/dcmjpls/djencode.h>
+#include <dcmtk/dcmjpls/djrparam.h>
+
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <mutex>
+
+#include "core/Error.h"
+#include "dicom/DcmtkSetup.h"
+
+namespace hvx::dicom {
+
+namespace {
+std::string newUid() {
+    char buf[100];
+    dcmGenerateUniqueIdentifier(buf, SITE_INSTANCE_UID_ROOT);
+    return buf;
+}
+
+std::string today() {
+    const std::time_t t = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&t, &tm);
+    char buf[16];
+    std::strftime(buf, sizeof buf, "%Y%m%d", &tm);
+    return buf;
+}
+
+std::string decimals(std::initializer_list<double> values) {
+    std::string s;
+    for (double v : values) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.10g", v);
+        if (!s.empty()) s += '\\';
+        s += buf;
+    }
+    return s;
+}
+
+E_TransferSyntax syntaxOf(const std::string& name, DcmRepresentationParameter*& param) {
+    static DJ_RPLossless jpegLossless(1, 0);
+    static DJLSRepresentationParameter jpegLs(0, OFTrue);
+    param = nullptr;
+    if (name == "explicit-little") return EXS_LittleEndianExplicit;
+    if (name == "implicit-little") return EXS_LittleEndianImplicit;
+    if (name == "explicit-big") return EXS_BigEndianExplicit;
+    if (name == "deflate") return EXS_DeflatedLittleEndianExplicit;
+    if (name == "rle") return EXS_RLELossless;
+    if (name == "jpeg-lossless") {
+        param = &jpegLossless;
+        return EXS_JPEGProcess14SV1;
+    }
+    if (name == "jpeg-ls") {
+        param = &jpegLs;
+        return EXS_JPEGLSLossless;
+    }
+    throw core::Error("unsupported transfer syntax '" + name +
+                      "' (explicit-little, implicit-little, explicit-big, deflate, rle, jpeg-lossless, jpeg-ls)");
+}
+
+void registerEncoders() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        DJEncoderRegistration::registerCodecs();
+        DJLSEncoderRegistration::registerCodecs();
+        DcmRLEEncoderRegistration::registerCodecs();
+    });
+}
+
+void putCommon(DcmItem* ds, const DicomWriteOptions& o, const core::VolumeGeometry& g, const std::string& modality,
+               const std::string& studyUid, const std::string& seriesUid, const std::string& frameOfReference) {
+    ds->putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 100");
+    ds->putAndInsertString(DCM_PatientName, o.patientName.c_str());
+    ds->putAndInsertString(DCM_PatientID, o.patientId.c_str());
+    ds->putAndInsertString(DCM_PatientBirthDate, o.patientBirthDate.c_str());
+    ds->putAndInsertString(DCM_PatientSex, o.patientSex.c_str());
+    const std::string date = o.studyDate.empty() ? today() : o.studyDate;
+    ds->putAndInsertString(DCM_StudyDate, date.c_str());
+    ds->putAndInsertString(DCM_StudyTime, "120000");
+    ds->putAndInsertString(DCM_SeriesDate, date.c_str());
+    ds->putAndInsertString(DCM_AccessionNumber, o.accessionNumber.c_str());
+    ds->putAndInsertString(DCM_ReferringPhysicianName, "");
+    ds->putAndInsertString(DCM_StudyID, "1");
+    ds->putAndInsertString(DCM_StudyDescription, o.studyDescription.c_str());
+    ds->putAndInsertString(DCM_SeriesDescription, o.seriesDescription.c_str());
+    ds->putAndInsertString(DCM_Modality, modality.c_str());
+    ds->putAndInsertString(DCM_Manufacturer, "Holovox");
+    ds->putAndInsertString(DCM_StudyInstanceUID, studyUid.c_str());
+    ds->putAndInsertString(DCM_SeriesInstanceUID, seriesUid.c_str());
+    ds->putAndInsertString(DCM_FrameOfReferenceUID, frameOfReference.c_str());
+    ds->putAndInsertString(DCM_PositionReferenceIndicator, "");
+    ds->putAndInsertString(DCM_SeriesNumber, std::to_string(o.seriesNumber).c_str());
+    ds->putAndInsertUint16(DCM_SamplesPerPixel, 1);
+    ds->putAndInsertString(DCM_PhotometricInterpretation, g.monochrome1 ? "MONOCHROME1" : "MONOCHROME2");
+    ds->putAndInsertUint16(DCM_Rows, Uint16(g.dims[1]));
+    ds->putAndInsertUint16(DCM_Columns, Uint16(g.dims[0]));
+    const Uint16 bits = g.scalarType == core::ScalarType::UInt8 ? 8 : 16;
+    ds->putAndInsertUint16(DCM_BitsAllocated, bits);
+    ds->putAndInsertUint16(DCM_BitsStored, bits);
+    ds->putAndInsertUint16(DCM_HighBit, Uint16(bits - 1));
+    ds->putAndInsertUint16(DCM_PixelRepresentation, g.scalarType == core::ScalarType::Int16 ? 1 : 0);
+}
+
+void putPlane(DcmItem* item, const core::VolumeGeometry& g, std::uint32_t k, bool position, bool orientation,
+              bool spacing, bool rescale) {
+    if (position) {
+        const glm::dvec3 p = g.origin + g.direction[2] * (g.spacing.z * k);
+        item->putAndInsertString(DCM_ImagePositionPatient, decimals({p.x, p.y, p.z}).c_str());
+    }
+    if (orientation) {
+        const glm::dvec3 r = g.direction[0], c = g.direction[1];
+        item->putAndInsertString(DCM_ImageOrientationPatient, decimals({r.x, r.y, r.z, c.x, c.y, c.z}).c_str());
+    }
+    if (spacing) {
+        item->putAndInsertString(DCM_PixelSpacing, decimals({g.spacing.y, g.spacing.x}).c_str());
+        const glm::dvec3 n = glm::normalize(glm::cross(g.direction[0], g.direction[1]));
+        item->putAndInsertString(DCM_SliceThickness,
+                                 decimals({std::abs(glm::dot(g.direction[2], n)) * g.spacing.z}).c_str());
+    }
+    if (rescale) {
+        item->putAndInsertString(DCM_RescaleIntercept, decimals({g.rescaleIntercept}).c_str());
+        item->putAndInsertString(DCM_RescaleSlope, decimals({g.rescaleSlope}).c_str());
+        item->putAndInsertString(DCM_RescaleType, g.modality == "CT" ? "HU" : "US");
+    }
+}
+
+void save(DcmFileFormat& file, const std::string& path, E_TransferSyntax xfer, DcmRepresentationParameter* param) {
+    DcmDataset* ds = file.getDataset();
+    if (param || xfer == EXS_RLELossless) {
+        const OFCondition c = ds->chooseRepresentation(xfer, param);
+        if (c.bad() || !ds->canWriteXfer(xfer)) throw core::Error(path + ": cannot encode pixel data (" + c.text() + ")");
+    }
+    const std::string tmp = path + ".partial";
+    const OFCondition st = file.saveFile(tmp.c_str(), xfer);
+    if (st.bad()) {
+        std::remove(tmp.c_str());
+        throw core::Error(path + ": cannot write (" + st.text() + ")");
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        throw core::Error(path + ": cannot rename into place");
+    }
+}
+
+void putPixels(DcmItem* ds, const std::vector<std::uint8_t>& bytes, bool eightBit) {
+    if (eightBit) ds->putAndInsertUint8Array(DCM_PixelData, bytes.data(), static_cast<unsigned long>(bytes.size()));
+    else
+        ds->putAndInsertUint16Array(DCM_PixelData, reinterpret_cast<const Uint16*>(bytes.data()),
+                                    static_cast<unsigned long>(bytes.size() / 2));
+}
+}  // namespace
+
+std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, const std::string& folder,
+                                                  const DicomWriteOptions& o, core::JobContext& job) {
+    DcmtkSetup::ensure();
+    registerEncoders();
+    const core::VolumeGeometry& g = source.geometry();
+    if (g.scalarType == core::ScalarType::Float32)
+        throw core::Error(source.describe() + ": float volumes cannot be exported as DICOM images");
+    if (g.dims[0] > 65535 || g.dims[1] > 65535) throw core::Error(source.describe() + ": slices too large for DICOM");
+    DcmRepresentationParameter* param = nullptr;
+    const E_TransferSyntax xfer = syntaxOf(o.transferSyntax, param);
+    std::error_code ec;
+    std::filesystem::create_directories(folder, ec);
+    if (ec) throw core::Error(folder + ": cannot create folder (" + ec.message() + ")");
+    const std::string modality = o.modality.empty() ? (g.modality == "CT" ? "CT" : "MR") : o.modality;
+    const bool ct = modality == "CT";
+    const std::string studyUid = o.studyUid.empty() ? newUid() : o.studyUid;
+    const std::string seriesUid = o.seriesUid.empty() ? newUid() : o.seriesUid;
+    const std::string frameOfReference = newUid();
+    const std::size_t sliceBytes = std::size_t(g.dims[0]) * g.dims[1] * core::scalarSize(g.scalarType);
+    const bool eightBit = g.scalarType == core::ScalarType::UInt8;
+    std::vector<std::string> paths;
+
+    if (o.enhancedMultiframe) {
+        DcmFileFormat file;
+        DcmDataset* ds = file.getDataset();
+        const char* sop = ct ? UID_EnhancedCTImageStorage : UID_EnhancedMRImageStorage;
+        const std::string sopUid = newUid();
+        ds->putAndInsertString(DCM_SOPClassUID, sop);
+        ds->putAndInsertString(DCM_SOPInstanceUID, sopUid.c_str());
+        ds->putAndInsertString(DCM_ImageType, "ORIGINAL\\PRIMARY\\AXIAL\\NONE");
+        putCommon(ds, o, g, modality, studyUid, seriesUid, frameOfReference);
+        ds->putAndInsertString(DCM_InstanceNumber, "1");
+        ds->putAndInsertString(DCM_NumberOfFrames, std::to_string(g.dims[2]).c_str());
+        DcmItem* shared = nullptr;
+        ds->findOrCreateSequenceItem(DCM_SharedFunctionalGroupsSequence, shared, 0);
+        DcmItem* it = nullptr;
+        shared->findOrCreateSequenceItem(DCM_PixelMeasuresSequence, it, 0);
+        putPlane(it, g, 0, false, false, true, false);
+        shared->findOrCreateSequenceItem(DCM_PlaneOrientationSequence, it, 0);
+        putPlane(it, g, 0, false, true, false, false);
+        shared->findOrCreateSequenceItem(DCM_PixelValueTransformationSequence, it, 0);
+        putPlane(it, g, 0, false, false, false, true);
+        std::vector<std::uint8_t> all(sliceBytes * g.dims[2]);
+        for (std::uint32_t k = 0; k < g.dims[2]; ++k) {
+            job.throwIfCancelled();
+            DcmItem* frame = nullptr;
+            ds->findOrCreateSequenceItem(DCM_PerFrameFunctionalGroupsSequence, frame, long(k));
+            frame->findOrCreateSequenceItem(DCM_PlanePositionSequence, it, 0);
+            putPlane(it, g, k, true, false, false, false);
+            source.readSlices(k, 1, all.data() + k * sliceBytes);
+            job.report(double(k + 1) / g.dims[2], "writing frames");
+        }
+        putPixels(ds, all, eightBit);
+        const std::string path = (std::filesystem::path(folder) / "ENHANCED.dcm").string();
+        save(file, path, xfer, param);
+        paths.push_back(path);
+        return paths;
+    }
+
+    std::vector<std::uint8_t> slice(sliceBytes);
+    for (std::uint32_t k = 0; k < g.dims[2]; ++k) {
+        job.throwIfCancelled();
+        DcmFileFormat file;
+        DcmDataset* ds = file.getDataset();
+        const std::string sopUid = newUid();
+        ds->putAndInsertString(DCM_SOPClassUID, ct ? UID_CTImageStorage : UID_MRImageStorage);
+        ds->putAndInsertString(DCM_SOPInstanceUID, sopUid.c_str());
+        ds->putAndInsertString(DCM_ImageType, "ORIGINAL\\PRIMARY\\AXIAL");
+        putCommon(ds, o, g, modality, studyUid, seriesUid, frameOfReference);
+        ds->putAndInsertString(DCM_InstanceNumber, std::to_string(k + 1).c_str());
+        putPlane(ds, g, k, true, true, true, true);
+        if (!ct) {
+            ds->putAndInsertString(DCM_ScanningSequence, "GR");
+            ds->putAndInsertString(DCM_SequenceVariant, "NONE");
+        }
+        source.readSlices(k, 1, slice.data());
+        putPixels(ds, slice, eightBit);
+        char name[32];
+        std::snprintf(name, sizeof name, "IMG%05u.dcm", k + 1);
+        const std::string path = (std::filesystem::path(folder) / name).string();
+        save(file, path, xfer, param);
+        paths.push_back(path);
+        job.report(double(k + 1) / g.dims[2], "writing slices");
+    }
+    return paths;
+}
+
+}  // namespace hvx::dicom

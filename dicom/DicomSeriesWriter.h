@@ -1,0 +1,42 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/JobContext.h"
+#include "core/VoxelSource.h"
+
+namespace hvx::dicom {
+
+/// What to put in the DICOM objects that export a volume.
+struct DicomWriteOptions {
+    std::string patientName = "HOLOVOX^DEMO";
+    std::string patientId = "HVX0001";
+    std::string patientBirthDate = "19700101";
+    std::string patientSex = "O";
+    std::string studyDescription = "Holovox export";
+    std::string seriesDescription = "Volume";
+    std::string studyDate;  ///< YYYYMMDD; today when empty
+    std::string accessionNumber;
+    std::string studyUid, seriesUid;  ///< generated when empty
+    int seriesNumber = 1;
+    std::string modality;  ///< from the volume when empty ("CT" -> CT Image Storage, else MR)
+    /// explicit-little (default), implicit-little, explicit-big, deflate, rle, jpeg-lossless,
+    /// jpeg-ls
+    std::string transferSyntax = "explicit-little";
+    bool enhancedMultiframe = false;  ///< one Enhanced CT/MR object with per-frame groups
+};
+
+/// Writes a volume as a DICOM series (one file per k-slice, or one enhanced multi-frame
+/// object), with exact ImagePositionPatient / ImageOrientationPatient / PixelSpacing from the
+/// volume's geometry (a sheared geometry gives a tilted-gantry stack) and its rescale. Each
+/// file is written under a temporary name and renamed. Holovox uses it to export, to seed the
+/// demo archive, and to write test series with known geometry.
+class DicomSeriesWriter {
+public:
+    /// Writes into `folder` (created if needed); returns the file paths in slice order.
+    /// Throws core::Error (unsupported type or syntax, unwritable folder) or core::Cancelled.
+    static std::vector<std::string> write(core::VoxelSource& source, const std::string& folder,
+                                          const DicomWriteOptions& options, core::JobContext& job);
+};
+
+}  // namespace hvx::dicom

@@ -1,0 +1,126 @@
+#include "dicom/PixelDecoder.h"
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+#include <dcmtk/dcmdata/dcpixel.h>
+#include <dcmtk/dcmdata/dcpixseq.h>
+#include <dcmtk/dcmdata/dcpxitem.h>
+#include <dcmtk/dcmdata/dcxfer.h>
+
+#include <cstring>
+
+#include "core/Error.h"
+#include "dicom/DcmtkSetup.h"
+#include "dicom/Jpeg2000Decoder.h"
+
+namespace hvx::dicom {
+
+struct PixelDecoder::Impl {
+    DcmFileFormat file;
+    std::string loaded;
+};
+
+PixelDecoder::PixelDecoder() : impl_(std::make_unique<Impl>()) { DcmtkSetup::ensure(); }
+PixelDecoder::~PixelDecoder() = default;
+
+namespace {
+bool isJpeg2000(E_TransferSyntax x) {
+    return x == EXS_JPEG2000LosslessOnly || x == EXS_JPEG2000 || x == EXS_JPEG2000MulticomponentLosslessOnly ||
+           x == EXS_JPEG2000Multicomponent;
+}
+
+void decodeJpeg2000(DcmPixelData* pd, E_TransferSyntax xfer, const DicomInstance& in, std::uint32_t frame,
+                    std::vector<std::int32_t>& out) {
+    DcmPixelSequence* seq = nullptr;
+    if (pd->getEncapsulatedRepresentation(xfer, nullptr, seq).bad() || !seq)
+        throw core::Error(in.path + ": JPEG 2000 pixel data is not encapsulated");
+    const unsigned long items = seq->card();
+    if (items < 2) throw core::Error(in.path + ": JPEG 2000 pixel data has no fragments");
+    std::vector<std::uint8_t> stream;
+    auto append = [&](unsigned long i) {
+        DcmPixelItem* item = nullptr;
+        Uint8* bytes = nullptr;
+        if (seq->getItem(item, i).bad() || !item || item->getUint8Array(bytes).bad())
+            throw core::Error(in.path + ": JPEG 2000 fragment " + std::to_string(i) + " is unreadable");
+        if (bytes) stream.insert(stream.end(), bytes, bytes + item->getLength());
+    };
+    if (in.frames == 1) {
+        for (unsigned long i = 1; i < items; ++i) append(i);
+    } else if (items - 1 == in.frames) {
+        append(frame + 1);
+    } else {
+        throw core::Error(in.path + ": multi-frame JPEG 2000 with several fragments per frame is not supported");
+    }
+    Jpeg2000Decoder::decode(stream.data(), stream.size(), in.columns, in.rows, out, in.path);
+}
+}  // namespace
+
+void PixelDecoder::decode(const DicomInstance& in, std::uint32_t frame, std::vector<std::int32_t>& out) {
+    if (!in.hasPixels()) throw core::Error(in.path + ": has no image pixel data");
+    if (frame >= in.frames) throw core::Error(in.path + ": frame " + std::to_string(frame) + " does not exist");
+    if (in.samplesPerPixel != 1) throw core::Error(in.path + ": colour images are not supported as volumes");
+    if (in.bitsAllocated != 8 && in.bitsAllocated != 16 && in.bitsAllocated != 32)
+        throw core::Error(in.path + ": unsupported BitsAllocated " + std::to_string(in.bitsAllocated));
+    if (in.bitsStored == 0 || in.bitsStored > in.bitsAllocated || in.highBit >= in.bitsAllocated)
+        throw core::Error(in.path + ": inconsistent BitsStored/HighBit");
+    if (impl_->loaded != in.path) {
+        impl_->loaded.clear();
+        const OFCondition st = impl_->file.loadFile(in.path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength,
+                                                    ERM_autoDetect);
+        if (st.bad()) throw core::Error(in.path + ": cannot read pixel data (" + st.text() + ")");
+        impl_->loaded = in.path;
+    }
+    DcmDataset* ds = impl_->file.getDataset();
+    DcmElement* element = nullptr;
+    if (ds->findAndGetElement(DCM_PixelData, element).bad() || !element)
+        throw core::Error(in.path + ": pixel data is missing (truncated file?)");
+    auto* pd = OFstatic_cast(DcmPixelData*, element);
+    const E_TransferSyntax xfer = ds->getOriginalXfer();
+    const std::size_t pixels = std::size_t(in.rows) * in.columns;
+    if (isJpeg2000(xfer)) {
+        decodeJpeg2000(pd, xfer, in, frame, out);
+    } else {
+        Uint32 frameSize = 0;
+        if (pd->getUncompressedFrameSize(ds, frameSize).bad() || frameSize < pixels * (in.bitsAllocated / 8))
+            throw core::Error(in.path + ": cannot size the pixel data");
+        std::vector<std::uint8_t> buf(frameSize + (frameSize & 1));
+        Uint32 startFragment = 0;
+        OFString colourModel;
+        const OFCondition st = pd->getUncompressedFrame(ds, frame, startFragment, buf.data(), Uint32(buf.size()),
+                                                        colourModel);
+        if (st.bad()) {
+            const char* name = DcmXfer(xfer).getXferName();
+            throw core::Error(in.path + ": pixel data does not decode (" + std::string(st.text()) + ", " + name + ")");
+        }
+        out.resize(pixels);
+        if (in.bitsAllocated == 8) {
+            for (std::size_t i = 0; i < pixels; ++i) out[i] = buf[i];
+        } else if (in.bitsAllocated == 16) {
+            for (std::size_t i = 0; i < pixels; ++i) {
+                std::uint16_t v;
+                std::memcpy(&v, buf.data() + 2 * i, 2);
+                out[i] = v;
+            }
+        } else {
+            for (std::size_t i = 0; i < pixels; ++i) {
+                std::uint32_t v;
+                std::memcpy(&v, buf.data() + 4 * i, 4);
+                out[i] = std::int32_t(v);
+            }
+        }
+    }
+    // Mask to BitsStored (at HighBit) and sign-extend signed data.
+    const int shift = in.highBit + 1 - in.bitsStored;
+    if (in.bitsStored < 32) {
+        const std::uint32_t mask = (1u << in.bitsStored) - 1u;
+        const std::uint32_t sign = 1u << (in.bitsStored - 1);
+        for (auto& v : out) {
+            std::uint32_t u = (std::uint32_t(v) >> (shift > 0 ? shift : 0)) & mask;
+            if (in.pixelRepresentation == 1 && (u & sign)) u |= ~mask;
+            v = std::int32_t(u);
+        }
+    }
+}
+
+}  // namespace hvx::dicom

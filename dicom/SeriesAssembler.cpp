@@ -1,0 +1,212 @@
+#include "dicom/SeriesAssembler.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+
+namespace hvx::dicom {
+
+namespace {
+struct GroupKey {
+    std::string series;
+    std::uint16_t rows, columns, bits, signedness, samples;
+    std::array<long, 6> iop;
+    std::array<long, 2> spacing;
+    bool operator<(const GroupKey& o) const {
+        return std::tie(series, rows, columns, bits, signedness, samples, iop, spacing) <
+               std::tie(o.series, o.rows, o.columns, o.bits, o.signedness, o.samples, o.iop, o.spacing);
+    }
+};
+
+std::string fmt(const char* f, double a, double b = 0, double c = 0) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf, f, a, b, c);
+    return buf;
+}
+
+core::ScalarType storageType(const DicomInstance& in, bool applyRescale) {
+    if (applyRescale || in.bitsAllocated > 16) return core::ScalarType::Float32;
+    if (in.bitsAllocated <= 8) return in.pixelRepresentation ? core::ScalarType::Int16 : core::ScalarType::UInt8;
+    return in.pixelRepresentation ? core::ScalarType::Int16 : core::ScalarType::UInt16;
+}
+
+void finishGeometry(SeriesVolume& v) {
+    const DicomInstance& first = v.instances[v.slices.front().instance];
+    const FrameGeometry& fg = first.frameGeometry[std::min<std::size_t>(v.slices.front().frame, first.frameGeometry.size() - 1)];
+    glm::dvec3 r = glm::normalize(fg.rowDirection), c = glm::normalize(fg.columnDirection);
+    const glm::dvec3 n = glm::normalize(glm::cross(r, c));
+    auto& g = v.geometry;
+    g.dims = {first.columns, first.rows, 1};
+    g.spacing = {fg.pixelSpacing.y, fg.pixelSpacing.x, first.sliceThickness > 0 ? first.sliceThickness : 1.0};
+    g.origin = v.slices.front().position;
+    glm::dvec3 k = n;
+    const std::size_t count = v.slices.size();
+    if (count > 1) {
+        std::vector<double> gaps;
+        for (std::size_t s = 1; s < count; ++s) gaps.push_back(v.slices[s].along - v.slices[s - 1].along);
+        std::vector<double> sorted = gaps;
+        std::sort(sorted.begin(), sorted.end());
+        const double median = sorted[sorted.size() / 2];
+        const double minGap = sorted.front(), maxGap = sorted.back();
+        const double span = v.slices.back().along - v.slices.front().along;
+        const glm::dvec3 travel = v.slices.back().position - v.slices.front().position;
+        k = glm::normalize(travel);
+        v.tiltDegrees = std::acos(std::clamp(glm::dot(k, n), -1.0, 1.0)) * 180.0 / M_PI;
+        if (v.tiltDegrees > 0.05)
+            v.warnings.push_back(fmt("gantry tilt of %.2f degrees: the stack is kept sheared with its exact patient "
+                                     "transform", v.tiltDegrees));
+        const double tolerance = std::max(0.01 * median, 1e-3);
+        double step = span / double(count - 1);
+        std::uint32_t outSlices = std::uint32_t(count);
+        if (maxGap - minGap > tolerance) {
+            // Irregular: define the volume on a uniform grid at the regular (smallest common) spacing.
+            step = std::max(minGap, median * 0.5);
+            outSlices = std::uint32_t(std::lround(span / step)) + 1;
+            step = span / double(outSlices - 1);
+            v.resample = true;
+            std::size_t missing = 0;
+            for (double gap : gaps)
+                if (gap > 1.5 * median) missing += std::size_t(std::lround(gap / median)) - 1;
+            if (missing)
+                v.warnings.push_back(fmt("%.0f missing slice(s): gaps up to %.3g mm where the spacing is %.3g mm; "
+                                         "the gaps are interpolated", double(missing), maxGap, median));
+            else
+                v.warnings.push_back(fmt("non-uniform slice spacing (%.3g to %.3g mm): resampled to %.4g mm", minGap,
+                                         maxGap, step));
+        }
+        // Step along k that advances `step` along the normal.
+        g.spacing.z = step / glm::dot(k, n);
+        g.dims[2] = outSlices;
+    }
+    g.direction = glm::dmat3(r, c, k);
+    g.modality = first.modality.empty() ? "OT" : first.modality;
+    g.monochrome1 = first.photometric == "MONOCHROME1";
+    // One rescale for every slice keeps stored values; otherwise convert to physical floats.
+    bool sameRescale = true;
+    for (const auto& s : v.slices)
+        sameRescale = sameRescale && s.rescaleSlope == v.slices.front().rescaleSlope &&
+                      s.rescaleIntercept == v.slices.front().rescaleIntercept;
+    v.applyRescale = !sameRescale;
+    if (v.applyRescale) v.warnings.push_back("rescale slope/intercept differ between slices: stored as float32 values");
+    g.scalarType = storageType(first, v.applyRescale || first.bitsAllocated > 16);
+    if (v.applyRescale || g.scalarType == core::ScalarType::Float32) {
+        g.rescaleSlope = 1.0;
+        g.rescaleIntercept = 0.0;
+        v.applyRescale = true;
+    } else {
+        g.rescaleSlope = v.slices.front().rescaleSlope;
+        g.rescaleIntercept = v.slices.front().rescaleIntercept;
+    }
+}
+}  // namespace
+
+std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInstance>& instances,
+                                                    std::vector<std::string>& notes) {
+    std::map<GroupKey, std::vector<std::pair<std::size_t, std::uint32_t>>> groups;
+    std::map<std::string, std::set<std::string>> sizesPerSeries;
+    std::map<std::string, std::size_t> skipped;
+    for (std::size_t i = 0; i < instances.size(); ++i) {
+        const auto& in = instances[i];
+        if (!in.hasPixels() || in.frameGeometry.empty()) {
+            ++skipped[in.modality.empty() ? "objects without image data" : in.modality + " objects without image data"];
+            continue;
+        }
+        if (in.samplesPerPixel != 1) {
+            ++skipped["colour images (not volumes)"];
+            continue;
+        }
+        for (std::uint32_t f = 0; f < in.frames; ++f) {
+            const auto& fg = in.frameGeometry[std::min<std::size_t>(f, in.frameGeometry.size() - 1)];
+            GroupKey k{in.seriesInstanceUid, in.rows, in.columns, in.bitsAllocated, in.pixelRepresentation,
+                       in.samplesPerPixel, {}, {}};
+            const double iop[6] = {fg.rowDirection.x, fg.rowDirection.y, fg.rowDirection.z,
+                                   fg.columnDirection.x, fg.columnDirection.y, fg.columnDirection.z};
+            for (int a = 0; a < 6; ++a) k.iop[a] = std::lround(iop[a] * 1e4);
+            k.spacing[0] = std::lround(fg.pixelSpacing.x * 1e4);
+            k.spacing[1] = std::lround(fg.pixelSpacing.y * 1e4);
+            groups[k].push_back({i, f});
+            sizesPerSeries[in.seriesInstanceUid].insert(std::to_string(in.columns) + "x" + std::to_string(in.rows));
+        }
+    }
+    for (const auto& [what, n] : skipped) notes.push_back(std::to_string(n) + " " + what + " skipped");
+
+    std::map<std::string, int> stacksPerSeries;
+    for (const auto& [key, members] : groups) ++stacksPerSeries[key.series];
+    std::map<std::string, int> stackIndex;
+    std::vector<SeriesVolume> out;
+    for (const auto& [key, members] : groups) {
+        SeriesVolume v;
+        v.seriesUid = key.series;
+        std::map<std::size_t, std::size_t> local;
+        const DicomInstance& ref = instances[members.front().first];
+        const FrameGeometry& rg = ref.frameGeometry[0];
+        const glm::dvec3 n = glm::normalize(glm::cross(rg.rowDirection, rg.columnDirection));
+        bool missingPosition = false;
+        for (const auto& [idx, frame] : members) {
+            const auto& in = instances[idx];
+            if (!local.count(idx)) {
+                local[idx] = v.instances.size();
+                v.instances.push_back(in);
+            }
+            const auto& fg = in.frameGeometry[std::min<std::size_t>(frame, in.frameGeometry.size() - 1)];
+            missingPosition = missingPosition || !fg.hasPosition;
+            SliceRef s;
+            s.instance = local[idx];
+            s.frame = frame;
+            s.position = fg.hasPosition ? fg.position : glm::dvec3(0.0, 0.0, double(v.slices.size()));
+            s.along = glm::dot(s.position, n);
+            s.rescaleSlope = fg.rescaleSlope;
+            s.rescaleIntercept = fg.rescaleIntercept;
+            v.slices.push_back(s);
+        }
+        if (missingPosition)
+            v.warnings.push_back("images have no ImagePositionPatient: stacked in file order with 1 mm spacing");
+        std::stable_sort(v.slices.begin(), v.slices.end(),
+                         [](const SliceRef& a, const SliceRef& b) { return a.along < b.along; });
+        // Several images at one position (repeated acquisitions): keep the first of each.
+        std::size_t duplicates = 0;
+        std::vector<SliceRef> unique;
+        for (const auto& s : v.slices) {
+            if (!unique.empty() && std::abs(s.along - unique.back().along) < 1e-3) {
+                ++duplicates;
+                continue;
+            }
+            unique.push_back(s);
+        }
+        if (duplicates)
+            v.warnings.push_back(std::to_string(duplicates) +
+                                 " images share a position with another (repeated acquisitions?): kept the first");
+        v.slices = std::move(unique);
+        if (stacksPerSeries[key.series] > 1) {
+            std::string sizes;
+            for (const auto& sz : sizesPerSeries[key.series]) sizes += (sizes.empty() ? "" : ", ") + sz;
+            v.warnings.push_back("series holds " + std::to_string(stacksPerSeries[key.series]) +
+                                 " stacks of different geometry" +
+                                 (sizesPerSeries[key.series].size() > 1 ? " and mixed image sizes (" + sizes + ")" : "") +
+                                 ": split into separate volumes");
+        }
+        finishGeometry(v);
+        v.label = (ref.modality.empty() ? std::string("OT") : ref.modality) + " #" + std::to_string(ref.seriesNumber) +
+                  (ref.seriesDescription.empty() ? "" : " " + ref.seriesDescription);
+        if (stacksPerSeries[key.series] > 1)
+            v.label += " (stack " + std::to_string(++stackIndex[key.series]) + " of " +
+                       std::to_string(stacksPerSeries[key.series]) + ")";
+        out.push_back(std::move(v));
+    }
+    // Patient, then study, then series order, as a browser lists them.
+    std::stable_sort(out.begin(), out.end(), [](const SeriesVolume& a, const SeriesVolume& b) {
+        const auto& x = a.instances.front();
+        const auto& y = b.instances.front();
+        return std::tie(x.patientId, x.patientName, x.studyDate, x.studyInstanceUid, x.seriesNumber, a.seriesUid) <
+               std::tie(y.patientId, y.patientName, y.studyDate, y.studyInstanceUid, y.seriesNumber, b.seriesUid);
+    });
+    return out;
+}
+
+}  // namespace hvx::dicom

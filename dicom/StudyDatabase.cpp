@@ -1,0 +1,321 @@
+#include "dicom/StudyDatabase.h"
+
+#include <sqlite3.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+
+#include "core/Error.h"
+
+namespace hvx::dicom {
+
+namespace {
+const char* kSchema = R"sql(
+PRAGMA foreign_keys = ON;
+CREATE TABLE IF NOT EXISTS patients (
+  id INTEGER PRIMARY KEY, patient_id TEXT NOT NULL, name TEXT NOT NULL,
+  birth_date TEXT, sex TEXT, UNIQUE(patient_id, name));
+CREATE TABLE IF NOT EXISTS studies (
+  id INTEGER PRIMARY KEY, uid TEXT NOT NULL UNIQUE,
+  patient INTEGER NOT NULL REFERENCES patients(id) ON DELETE CASCADE,
+  date TEXT, time TEXT, description TEXT, accession TEXT, modalities TEXT);
+CREATE TABLE IF NOT EXISTS series (
+  id INTEGER PRIMARY KEY, uid TEXT NOT NULL UNIQUE,
+  study INTEGER NOT NULL REFERENCES studies(id) ON DELETE CASCADE,
+  number INTEGER, description TEXT, modality TEXT, body_part TEXT,
+  instance_count INTEGER NOT NULL DEFAULT 0, octree TEXT);
+CREATE TABLE IF NOT EXISTS instances (
+  id INTEGER PRIMARY KEY, sop_uid TEXT NOT NULL UNIQUE,
+  series INTEGER NOT NULL REFERENCES series(id) ON DELETE CASCADE,
+  path TEXT NOT NULL, transfer_syntax TEXT, sop_class TEXT, instance_number INTEGER, file_size INTEGER);
+CREATE INDEX IF NOT EXISTS instances_series ON instances(series);
+CREATE INDEX IF NOT EXISTS series_study ON series(study);
+CREATE INDEX IF NOT EXISTS studies_patient ON studies(patient);
+CREATE INDEX IF NOT EXISTS studies_date ON studies(date);
+)sql";
+
+// A prepared statement, finalized on scope exit.
+class Stmt {
+public:
+    Stmt(sqlite3* db, const char* sql) : db_(db) {
+        if (sqlite3_prepare_v2(db, sql, -1, &s_, nullptr) != SQLITE_OK)
+            throw core::Error(std::string("study database: ") + sqlite3_errmsg(db));
+    }
+    ~Stmt() { sqlite3_finalize(s_); }
+    Stmt(const Stmt&) = delete;
+    Stmt& operator=(const Stmt&) = delete;
+    Stmt& bind(int i, const std::string& v) {
+        sqlite3_bind_text(s_, i, v.c_str(), int(v.size()), SQLITE_TRANSIENT);
+        return *this;
+    }
+    Stmt& bind(int i, std::int64_t v) {
+        sqlite3_bind_int64(s_, i, v);
+        return *this;
+    }
+    bool step() {
+        const int rc = sqlite3_step(s_);
+        if (rc == SQLITE_ROW) return true;
+        if (rc == SQLITE_DONE) return false;
+        throw core::Error(std::string("study database: ") + sqlite3_errmsg(db_));
+    }
+    void reset() {
+        sqlite3_reset(s_);
+        sqlite3_clear_bindings(s_);
+    }
+    std::string text(int c) const {
+        const auto* t = sqlite3_column_text(s_, c);
+        return t ? reinterpret_cast<const char*>(t) : "";
+    }
+    std::int64_t integer(int c) const { return sqlite3_column_int64(s_, c); }
+
+private:
+    sqlite3* db_;
+    sqlite3_stmt* s_ = nullptr;
+};
+
+// DICOM wildcards (* ?) to SQL LIKE (% _); plain text becomes a substring match.
+std::string likePattern(const std::string& text) {
+    std::string out;
+    bool wildcard = false;
+    for (char c : text) {
+        if (c == '*') { out += '%'; wildcard = true; }
+        else if (c == '?') { out += '_'; wildcard = true; }
+        else if (c == '%' || c == '_' || c == '\\') { out += '\\'; out += c; }
+        else out += c;
+    }
+    return wildcard ? out : "%" + out + "%";
+}
+}  // namespace
+
+StudyDatabase::StudyDatabase(const std::string& path) : path_(path) {
+    std::error_code ec;
+    const auto parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+    if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
+                        nullptr) != SQLITE_OK) {
+        const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
+        sqlite3_close(db_);
+        db_ = nullptr;
+        throw core::Error(path + ": cannot open the study database (" + why + ")");
+    }
+    sqlite3_busy_timeout(db_, 5000);
+    try {
+        exec("PRAGMA journal_mode = WAL;");
+        exec(kSchema);
+    } catch (const core::Error& e) {
+        sqlite3_close(db_);
+        db_ = nullptr;
+        throw core::Error(path + ": not a usable study database (" + e.what() + ")");
+    }
+}
+
+StudyDatabase::~StudyDatabase() { sqlite3_close(db_); }
+
+std::string StudyDatabase::defaultPath() {
+    if (const char* p = std::getenv("HOLOVOX_DB"); p && *p) return p;
+    std::filesystem::path base;
+    if (const char* x = std::getenv("XDG_DATA_HOME"); x && *x) base = x;
+    else if (const char* h = std::getenv("HOME"); h && *h) base = std::filesystem::path(h) / ".local/share";
+    else base = std::filesystem::temp_directory_path();
+    return (base / "holovox" / "studies.sqlite").string();
+}
+
+void StudyDatabase::exec(const char* sql) const {
+    char* err = nullptr;
+    if (sqlite3_exec(db_, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+        const std::string why = err ? err : "unknown error";
+        sqlite3_free(err);
+        throw core::Error("study database: " + why);
+    }
+}
+
+StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomInstance>& instances) {
+    ImportStats stats;
+    exec("BEGIN IMMEDIATE;");
+    try {
+        Stmt patient(db_, "INSERT INTO patients(patient_id, name, birth_date, sex) VALUES(?1, ?2, ?3, ?4) "
+                          "ON CONFLICT(patient_id, name) DO UPDATE SET birth_date = coalesce(nullif(?3, ''), birth_date), "
+                          "sex = coalesce(nullif(?4, ''), sex) RETURNING id;");
+        Stmt study(db_, "INSERT INTO studies(uid, patient, date, time, description, accession) VALUES(?1, ?2, ?3, ?4, ?5, ?6) "
+                        "ON CONFLICT(uid) DO UPDATE SET date = coalesce(nullif(?3, ''), date) RETURNING id;");
+        Stmt series(db_, "INSERT INTO series(uid, study, number, description, modality, body_part) "
+                         "VALUES(?1, ?2, ?3, ?4, ?5, ?6) ON CONFLICT(uid) DO UPDATE SET modality = modality RETURNING id;");
+        Stmt find(db_, "SELECT path FROM instances WHERE sop_uid = ?1;");
+        Stmt put(db_, "INSERT INTO instances(sop_uid, series, path, transfer_syntax, sop_class, instance_number, file_size) "
+                      "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT(sop_uid) DO UPDATE SET path = ?3, series = ?2, "
+                      "transfer_syntax = ?4, file_size = ?7;");
+        std::set<std::int64_t> touchedSeries, touchedStudies;
+        for (const auto& in : instances) {
+            if (in.studyInstanceUid.empty() || in.seriesInstanceUid.empty() || in.sopInstanceUid.empty()) continue;
+            patient.reset();
+            patient.bind(1, in.patientId).bind(2, in.patientName).bind(3, in.patientBirthDate).bind(4, in.patientSex);
+            patient.step();
+            const auto patientId = patient.integer(0);
+            while (patient.step()) {}
+            study.reset();
+            study.bind(1, in.studyInstanceUid).bind(2, patientId).bind(3, in.studyDate).bind(4, in.studyTime)
+                .bind(5, in.studyDescription).bind(6, in.accessionNumber);
+            study.step();
+            const auto studyId = study.integer(0);
+            while (study.step()) {}
+            series.reset();
+            series.bind(1, in.seriesInstanceUid).bind(2, studyId).bind(3, std::int64_t(in.seriesNumber))
+                .bind(4, in.seriesDescription).bind(5, in.modality).bind(6, in.bodyPartExamined);
+            series.step();
+            const auto seriesId = series.integer(0);
+            while (series.step()) {}
+            find.reset();
+            find.bind(1, in.sopInstanceUid);
+            if (find.step()) {
+                if (find.text(0) == in.path) {
+                    ++stats.unchanged;
+                    continue;
+                }
+                ++stats.moved;
+            } else {
+                ++stats.added;
+            }
+            put.reset();
+            put.bind(1, in.sopInstanceUid).bind(2, seriesId).bind(3, in.path).bind(4, in.transferSyntaxUid)
+                .bind(5, in.sopClassUid).bind(6, std::int64_t(in.instanceNumber)).bind(7, std::int64_t(in.fileSize));
+            put.step();
+            touchedSeries.insert(seriesId);
+            touchedStudies.insert(studyId);
+        }
+        Stmt count(db_, "UPDATE series SET instance_count = (SELECT count(*) FROM instances WHERE series = ?1) WHERE id = ?1;");
+        for (auto id : touchedSeries) {
+            count.reset();
+            count.bind(1, id);
+            count.step();
+        }
+        Stmt mods(db_, "UPDATE studies SET modalities = (SELECT group_concat(m, '\\') FROM "
+                       "(SELECT DISTINCT modality AS m FROM series WHERE study = ?1 AND modality != '' ORDER BY m)) "
+                       "WHERE id = ?1;");
+        for (auto id : touchedStudies) {
+            mods.reset();
+            mods.bind(1, id);
+            mods.step();
+        }
+        exec("COMMIT;");
+    } catch (...) {
+        exec("ROLLBACK;");
+        throw;
+    }
+    return stats;
+}
+
+std::size_t StudyDatabase::removeMissingFiles() {
+    std::vector<std::int64_t> gone;
+    {
+        Stmt all(db_, "SELECT id, path FROM instances;");
+        std::error_code ec;
+        while (all.step())
+            if (!std::filesystem::exists(all.text(1), ec)) gone.push_back(all.integer(0));
+    }
+    exec("BEGIN IMMEDIATE;");
+    try {
+        Stmt del(db_, "DELETE FROM instances WHERE id = ?1;");
+        for (auto id : gone) {
+            del.reset();
+            del.bind(1, id);
+            del.step();
+        }
+        exec("UPDATE series SET instance_count = (SELECT count(*) FROM instances WHERE series = series.id);"
+             "DELETE FROM series WHERE instance_count = 0;"
+             "DELETE FROM studies WHERE id NOT IN (SELECT study FROM series);"
+             "DELETE FROM patients WHERE id NOT IN (SELECT patient FROM studies);");
+        exec("COMMIT;");
+    } catch (...) {
+        exec("ROLLBACK;");
+        throw;
+    }
+    return gone.size();
+}
+
+std::vector<StudyRow> StudyDatabase::findStudies(const StudyQuery& q) const {
+    Stmt s(db_,
+           "SELECT p.name, p.patient_id, p.birth_date, p.sex, st.uid, st.date, st.time, st.description, st.accession, "
+           "coalesce(st.modalities, ''), (SELECT count(*) FROM series WHERE study = st.id) "
+           "FROM studies st JOIN patients p ON p.id = st.patient "
+           "WHERE (?1 = '' OR p.name LIKE ?2 ESCAPE '\\' OR p.patient_id LIKE ?2 ESCAPE '\\') "
+           "AND (?3 = '' OR st.date >= ?3) AND (?4 = '' OR st.date <= ?4) "
+           "AND (?5 = '' OR EXISTS (SELECT 1 FROM series WHERE study = st.id AND modality = ?5)) "
+           "ORDER BY st.date DESC, st.time DESC, p.name;");
+    s.bind(1, q.text).bind(2, likePattern(q.text)).bind(3, q.dateFrom).bind(4, q.dateTo).bind(5, q.modality);
+    std::vector<StudyRow> rows;
+    while (s.step()) {
+        StudyRow r;
+        r.patientName = s.text(0);
+        r.patientId = s.text(1);
+        r.patientBirthDate = s.text(2);
+        r.patientSex = s.text(3);
+        r.studyUid = s.text(4);
+        r.date = s.text(5);
+        r.time = s.text(6);
+        r.description = s.text(7);
+        r.accession = s.text(8);
+        r.modalities = s.text(9);
+        r.seriesCount = int(s.integer(10));
+        rows.push_back(std::move(r));
+    }
+    return rows;
+}
+
+namespace {
+const char* kSeriesColumns =
+    "SELECT se.uid, st.uid, se.modality, se.description, se.body_part, coalesce(se.octree, ''), se.number, "
+    "se.instance_count FROM series se JOIN studies st ON st.id = se.study ";
+
+SeriesRow seriesRow(const Stmt& s) {
+    SeriesRow r;
+    r.seriesUid = s.text(0);
+    r.studyUid = s.text(1);
+    r.modality = s.text(2);
+    r.description = s.text(3);
+    r.bodyPart = s.text(4);
+    r.octreePath = s.text(5);
+    r.number = int(s.integer(6));
+    r.instanceCount = int(s.integer(7));
+    return r;
+}
+}  // namespace
+
+std::vector<SeriesRow> StudyDatabase::seriesOfStudy(const std::string& studyUid) const {
+    Stmt s(db_, (std::string(kSeriesColumns) + "WHERE st.uid = ?1 ORDER BY se.number, se.uid;").c_str());
+    s.bind(1, studyUid);
+    std::vector<SeriesRow> rows;
+    while (s.step()) rows.push_back(seriesRow(s));
+    return rows;
+}
+
+bool StudyDatabase::findSeries(const std::string& seriesUid, SeriesRow& out) const {
+    Stmt s(db_, (std::string(kSeriesColumns) + "WHERE se.uid = ?1;").c_str());
+    s.bind(1, seriesUid);
+    if (!s.step()) return false;
+    out = seriesRow(s);
+    return true;
+}
+
+std::vector<std::string> StudyDatabase::filesOfSeries(const std::string& seriesUid) const {
+    Stmt s(db_, "SELECT i.path FROM instances i JOIN series se ON se.id = i.series WHERE se.uid = ?1 "
+                "ORDER BY i.instance_number, i.path;");
+    s.bind(1, seriesUid);
+    std::vector<std::string> files;
+    while (s.step()) files.push_back(s.text(0));
+    return files;
+}
+
+void StudyDatabase::setSeriesOctree(const std::string& seriesUid, const std::string& octreePath) {
+    Stmt s(db_, "UPDATE series SET octree = ?2 WHERE uid = ?1;");
+    s.bind(1, seriesUid).bind(2, octreePath);
+    s.step();
+}
+
+std::size_t StudyDatabase::instanceCount() const {
+    Stmt s(db_, "SELECT count(*) FROM instances;");
+    s.step();
+    return std::size_t(s.integer(0));
+}
+
+}  // namespace hvx::dicom

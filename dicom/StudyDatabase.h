@@ -1,0 +1,81 @@
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dicom/DicomInstance.h"
+
+struct sqlite3;
+
+namespace hvx::dicom {
+
+/// Filters of the study browser. Empty fields match everything. `text` matches patient name or
+/// patient ID, case-insensitively, with DICOM wildcards (* and ?) or as a substring.
+struct StudyQuery {
+    std::string text;
+    std::string dateFrom;  ///< YYYYMMDD, inclusive
+    std::string dateTo;    ///< YYYYMMDD, inclusive
+    std::string modality;  ///< e.g. "CT": studies with at least one series of it
+};
+
+/// One study as the browser lists it, with its patient.
+struct StudyRow {
+    std::string patientName, patientId, patientBirthDate, patientSex;
+    std::string studyUid, date, time, description, accession, modalities;
+    int seriesCount = 0;
+};
+
+/// One series of a study.
+struct SeriesRow {
+    std::string seriesUid, studyUid, modality, description, bodyPart, octreePath;
+    int number = 0;
+    int instanceCount = 0;
+};
+
+/// The local index of imported DICOM: patients → studies → series → instances, in one SQLite
+/// file. Importing the same files again changes nothing; files deleted from disk are found by
+/// removeMissingFiles().
+///
+/// Threading: one thread at a time per object (open one object per thread if needed; SQLite
+/// serialises writers across connections).
+class StudyDatabase {
+public:
+    /// Opens or creates the database file (and its folder); throws core::Error naming it.
+    explicit StudyDatabase(const std::string& path);
+    ~StudyDatabase();
+    StudyDatabase(const StudyDatabase&) = delete;
+    StudyDatabase& operator=(const StudyDatabase&) = delete;
+
+    /// $HOLOVOX_DB, else $XDG_DATA_HOME/holovox/studies.sqlite, else ~/.local/share/holovox/...
+    static std::string defaultPath();
+
+    struct ImportStats {
+        std::size_t added = 0;      ///< instances new to the database
+        std::size_t unchanged = 0;  ///< already known, same file
+        std::size_t moved = 0;      ///< known SOP instance now found at another path
+    };
+    /// Adds instances (and their patients, studies, series) in one transaction.
+    ImportStats addInstances(const std::vector<DicomInstance>& instances);
+    /// Deletes instances whose files no longer exist, then empty series, studies and patients.
+    /// Returns the number of instances removed.
+    std::size_t removeMissingFiles();
+
+    std::vector<StudyRow> findStudies(const StudyQuery& query) const;
+    std::vector<SeriesRow> seriesOfStudy(const std::string& studyUid) const;
+    /// The series, if known (octreePath empty when none was built).
+    bool findSeries(const std::string& seriesUid, SeriesRow& out) const;
+    /// File paths of a series' instances, ordered by instance number.
+    std::vector<std::string> filesOfSeries(const std::string& seriesUid) const;
+    /// Records the octree built for a series.
+    void setSeriesOctree(const std::string& seriesUid, const std::string& octreePath);
+    std::size_t instanceCount() const;
+    const std::string& path() const { return path_; }
+
+private:
+    void exec(const char* sql) const;
+    std::string path_;
+    sqlite3* db_ = nullptr;
+};
+
+}  // namespace hvx::dicom

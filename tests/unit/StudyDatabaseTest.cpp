@@ -1,0 +1,108 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/Error.h"
+#include "dicom/StudyDatabase.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+dicom::DicomInstance instance(const std::string& path, const std::string& patient, const std::string& id,
+                              const std::string& study, const std::string& date, const std::string& series,
+                              const std::string& modality, const std::string& sop) {
+    dicom::DicomInstance in;
+    in.path = path;
+    in.patientName = patient;
+    in.patientId = id;
+    in.studyInstanceUid = study;
+    in.studyDate = date;
+    in.seriesInstanceUid = series;
+    in.modality = modality;
+    in.sopInstanceUid = sop;
+    in.transferSyntaxUid = "1.2.840.10008.1.2.1";
+    return in;
+}
+
+std::vector<dicom::DicomInstance> sample(const test::TempDir& dir) {
+    std::vector<dicom::DicomInstance> v;
+    for (int i = 0; i < 3; ++i) {
+        const std::string f = dir.file("a" + std::to_string(i));
+        std::ofstream(f) << "x";
+        v.push_back(instance(f, "DOE^JANE", "P1", "1.1", "20240105", "1.1.1", "CT", "1.1.1." + std::to_string(i)));
+    }
+    std::ofstream(dir.file("b0")) << "x";
+    v.push_back(instance(dir.file("b0"), "DOE^JANE", "P1", "1.1", "20240105", "1.1.2", "MR", "1.1.2.0"));
+    std::ofstream(dir.file("c0")) << "x";
+    v.push_back(instance(dir.file("c0"), "ROE^RICHARD", "P2", "2.1", "20231120", "2.1.1", "MR", "2.1.1.0"));
+    return v;
+}
+}  // namespace
+
+TEST(StudyDatabase, ReimportIsIdempotent) {
+    test::TempDir dir;
+    dicom::StudyDatabase db(dir.file("db/studies.sqlite"));
+    const auto in = sample(dir);
+    auto s = db.addInstances(in);
+    EXPECT_EQ(s.added, 5u);
+    s = db.addInstances(in);
+    EXPECT_EQ(s.added, 0u);
+    EXPECT_EQ(s.unchanged, 5u);
+    EXPECT_EQ(db.instanceCount(), 5u);
+    const auto studies = db.findStudies({});
+    ASSERT_EQ(studies.size(), 2u);
+    EXPECT_EQ(studies[0].patientName, "DOE^JANE");  // newest first
+    EXPECT_EQ(studies[0].modalities, "CT\\MR");
+    EXPECT_EQ(studies[0].seriesCount, 2);
+    const auto series = db.seriesOfStudy("1.1");
+    ASSERT_EQ(series.size(), 2u);
+    EXPECT_EQ(series[0].instanceCount + series[1].instanceCount, 4);
+}
+
+TEST(StudyDatabase, QueriesByNameIdDateRangeAndModality) {
+    test::TempDir dir;
+    dicom::StudyDatabase db(dir.file("s.sqlite"));
+    db.addInstances(sample(dir));
+    auto q = [&](dicom::StudyQuery query) { return db.findStudies(query).size(); };
+    EXPECT_EQ(q({"roe", "", "", ""}), 1u);
+    EXPECT_EQ(q({"DOE*", "", "", ""}), 1u);
+    EXPECT_EQ(q({"*E^*", "", "", ""}), 2u);
+    EXPECT_EQ(q({"P2", "", "", ""}), 1u);
+    EXPECT_EQ(q({"", "20240101", "", ""}), 1u);
+    EXPECT_EQ(q({"", "", "20231231", ""}), 1u);
+    EXPECT_EQ(q({"", "20231101", "20240201", ""}), 2u);
+    EXPECT_EQ(q({"", "", "", "CT"}), 1u);
+    EXPECT_EQ(q({"", "", "", "MR"}), 2u);
+    EXPECT_EQ(q({"nobody", "", "", ""}), 0u);
+}
+
+TEST(StudyDatabase, DeletedFilesAreDetectedAndEmptyStudiesPruned) {
+    test::TempDir dir;
+    dicom::StudyDatabase db(dir.file("s.sqlite"));
+    db.addInstances(sample(dir));
+    std::filesystem::remove(dir.file("c0"));
+    std::filesystem::remove(dir.file("a1"));
+    EXPECT_EQ(db.removeMissingFiles(), 2u);
+    EXPECT_EQ(db.findStudies({}).size(), 1u);
+    EXPECT_EQ(db.filesOfSeries("1.1.1").size(), 2u);
+    dicom::SeriesRow row;
+    EXPECT_FALSE(db.findSeries("2.1.1", row));
+    ASSERT_TRUE(db.findSeries("1.1.1", row));
+    EXPECT_EQ(row.instanceCount, 2);
+}
+
+TEST(StudyDatabase, OctreePathIsRecordedAndCorruptFileRefused) {
+    test::TempDir dir;
+    {
+        dicom::StudyDatabase db(dir.file("s.sqlite"));
+        db.addInstances(sample(dir));
+        db.setSeriesOctree("1.1.1", "/tmp/x.hvo");
+    }
+    dicom::StudyDatabase again(dir.file("s.sqlite"));
+    dicom::SeriesRow row;
+    ASSERT_TRUE(again.findSeries("1.1.1", row));
+    EXPECT_EQ(row.octreePath, "/tmp/x.hvo");
+    std::ofstream(dir.file("junk.sqlite")) << std::string(5000, 'j');
+    EXPECT_THROW(dicom::StudyDatabase(dir.file("junk.sqlite")), core::Error);
+}
