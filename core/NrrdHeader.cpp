@@ -125,7 +125,7 @@ std::string NrrdHeader::format(const VolumeGeometry& g) {
         o << " (" << d.x << ',' << d.y << ',' << d.z << ')';
     }
     o << "\nkinds: domain domain domain\nendian: little\nencoding: raw\nspace origin: (" << g.origin.x << ','
-      << g.origin.y << ',' << g.origin.z << ")\n\n";
+      << g.origin.y << ',' << g.origin.z << ")\nmodality:=" << g.modality << "\n\n";
     return o.str();
 }
 

@@ -3,7 +3,6 @@
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
-#include <dcmtk/dcmdata/dcistrmb.h>
 #include <dcmtk/dcmdata/dcmetinf.h>
 #include <dcmtk/dcmdata/dcsequen.h>
 #include <dcmtk/dcmdata/dcxfer.h>
@@ -184,26 +183,19 @@ DicomHeaderReader::Kind DicomHeaderReader::read(const std::string& path, DicomIn
     if (ec) throw core::Error(path + ": cannot read (" + ec.message() + ")");
     const bool preamble = hasPreamble(path);
     if (!preamble && out.fileSize < 8) return Kind::NotDicom;
-    DcmFileFormat file;
-    const OFCondition status =
-        file.loadFileUntilTag(path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength, ERM_autoDetect, DCM_PixelData);
-    const Kind k = classify(status, file, preamble, path, out);
-    out.path = path;
-    return k;
-}
-
-DicomHeaderReader::Kind DicomHeaderReader::readBuffer(const void* data, std::size_t size, DicomInstance& out) {
-    DcmtkSetup::ensure();
-    out = DicomInstance{};
-    const bool preamble = size >= 132 && std::memcmp(static_cast<const char*>(data) + 128, "DICM", 4) == 0;
-    DcmInputBufferStream stream;
-    stream.setBuffer(data, offile_off_t(size));
-    stream.setEos();
-    DcmFileFormat file;
-    file.transferInit();
-    const OFCondition status = file.read(stream, EXS_Unknown, EGL_noChange, DCM_MaxReadLength);
-    file.transferEnd();
-    return classify(status, file, preamble, "buffer", out);
+    try {
+        DcmFileFormat file;
+        const OFCondition status = file.loadFileUntilTag(path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength,
+                                                         ERM_autoDetect, DCM_PixelData);
+        const Kind k = classify(status, file, preamble, path, out);
+        out.path = path;
+        return k;
+    } catch (const core::Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        // DCMTK 3.6.7 can throw from deep inside its parser on hostile input.
+        throw core::Error(path + ": broken DICOM file (" + e.what() + ")");
+    }
 }
 
 }  // namespace hvx::dicom

@@ -13,8 +13,6 @@ public:
     /// Reads `path`. Returns Kind::NotDicom for files without a DICOM preamble or meta header
     /// that DCMTK cannot parse either; throws core::Error naming the file for broken DICOM.
     static Kind read(const std::string& path, DicomInstance& out);
-    /// Parses an in-memory buffer (used by the fuzzer); same contract as read().
-    static Kind readBuffer(const void* data, std::size_t size, DicomInstance& out);
 };
 
 }  // namespace hvx::dicom

@@ -124,7 +124,7 @@ DicomScanner::Result DicomScanner::scan(const std::vector<std::string>& paths, c
             job.throwIfCancelled();
             try {
                 state[i] = DicomHeaderReader::read(files[i], found[i]) == DicomHeaderReader::Kind::Dicom ? 1 : 2;
-            } catch (const core::Error& err) {
+            } catch (const std::exception& err) {
                 state[i] = 3;
                 reasons[i] = err.what();
             }

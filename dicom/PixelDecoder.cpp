@@ -57,6 +57,19 @@ void decodeJpeg2000(DcmPixelData* pd, E_TransferSyntax xfer, const DicomInstance
 }  // namespace
 
 void PixelDecoder::decode(const DicomInstance& in, std::uint32_t frame, std::vector<std::int32_t>& out) {
+    try {
+        decodeFrame(in, frame, out);
+    } catch (const core::Error&) {
+        impl_->loaded.clear();
+        throw;
+    } catch (const std::exception& e) {
+        // DCMTK and OpenJPEG can throw on hostile input; it is a bad file, not a crash.
+        impl_->loaded.clear();
+        throw core::Error(in.path + ": pixel data does not decode (" + e.what() + ")");
+    }
+}
+
+void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std::vector<std::int32_t>& out) {
     if (!in.hasPixels()) throw core::Error(in.path + ": has no image pixel data");
     if (frame >= in.frames) throw core::Error(in.path + ": frame " + std::to_string(frame) + " does not exist");
     if (in.samplesPerPixel != 1) throw core::Error(in.path + ": colour images are not supported as volumes");
@@ -84,6 +97,11 @@ void PixelDecoder::decode(const DicomInstance& in, std::uint32_t frame, std::vec
         Uint32 frameSize = 0;
         if (pd->getUncompressedFrameSize(ds, frameSize).bad() || frameSize < pixels * (in.bitsAllocated / 8))
             throw core::Error(in.path + ": cannot size the pixel data");
+        // Hostile headers must not make us allocate gigabytes: native data must really be there,
+        // and no frame may exceed 1 GiB.
+        if (frameSize > (1u << 30)) throw core::Error(in.path + ": frame of " + std::to_string(frameSize) + " bytes is too large");
+        if (!DcmXfer(xfer).isEncapsulated() && std::uint64_t(pd->getLength()) < std::uint64_t(frameSize) * (frame + 1))
+            throw core::Error(in.path + ": pixel data is shorter than its header promises (truncated file?)");
         std::vector<std::uint8_t> buf(frameSize + (frameSize & 1));
         Uint32 startFragment = 0;
         OFString colourModel;

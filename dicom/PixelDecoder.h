@@ -25,6 +25,7 @@ public:
     void decode(const DicomInstance& instance, std::uint32_t frame, std::vector<std::int32_t>& out);
 
 private:
+    void decodeFrame(const DicomInstance& instance, std::uint32_t frame, std::vector<std::int32_t>& out);
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

@@ -1,0 +1,85 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+const std::string cli = HVX_CLI;
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+}  // namespace
+
+TEST(CliImport, ImportPrintsTheTableBuildsOctreesAndIsIdempotent) {
+    test::TempDir dir;
+    const std::string db = " --db " + dir.file("db.sqlite");
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 48x40x24 -o " + dir.file("p.nrrd")).exitCode, 0);
+    auto r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " -o " + dir.file("dcm/ct") +
+                              " --patient DOE^JOHN --patient-id PID42 --study 'CT THORAX' --date 20240301");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::filesystem::copy_file("/usr/lib/python3/dist-packages/pydicom/data/test_files/CT_small.dcm",
+                               dir.file("dcm/CT_small.dcm"));
+    std::ofstream(dir.file("dcm/readme.txt")) << "not DICOM";
+    r = test::runCommand(cli + " import " + dir.file("dcm") + db + " --build");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "scanned 26 files: 25 DICOM, 1 not DICOM (skipped), 0 broken")) << r.output;
+    EXPECT_TRUE(contains(r.output, "25 new")) << r.output;
+    EXPECT_TRUE(contains(r.output, "patient DOE^JOHN (PID42)")) << r.output;
+    EXPECT_TRUE(contains(r.output, "study 20240301")) << r.output;
+    EXPECT_TRUE(contains(r.output, "48 x   40 x   24")) << r.output;
+    EXPECT_TRUE(contains(r.output, "built ")) << r.output;
+
+    r = test::runCommand(cli + " import " + dir.file("dcm") + db);
+    EXPECT_TRUE(contains(r.output, "0 new, 25 already known")) << r.output;
+
+    r = test::runCommand(cli + " studies" + db + " --patient 'doe*'");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "CT THORAX")) << r.output;
+    EXPECT_TRUE(contains(r.output, "24 images")) << r.output;
+    EXPECT_TRUE(contains(r.output, "octree: ")) << r.output;
+    EXPECT_TRUE(contains(r.output, "1 studies")) << r.output;
+    r = test::runCommand(cli + " studies" + db + " --from 20240101 --to 20241231 --modality MR");
+    EXPECT_TRUE(contains(r.output, "0 studies")) << r.output;
+
+    // Deleting files is noticed.
+    std::filesystem::remove(dir.file("dcm/CT_small.dcm"));
+    r = test::runCommand(cli + " studies" + db);
+    EXPECT_TRUE(contains(r.output, "1 instances whose files were deleted")) << r.output;
+}
+
+TEST(CliImport, BuildSeriesFromTheDatabase) {
+    test::TempDir dir;
+    const std::string db = " --db " + dir.file("db.sqlite");
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 32x32x16 -o " + dir.file("p.nrrd")).exitCode, 0);
+    ASSERT_EQ(test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " -o " + dir.file("s") +
+                               " --syntax jpeg-ls").exitCode, 0);
+    auto r = test::runCommand(cli + " import " + dir.file("s") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " studies" + db);
+    const auto at = r.output.find("images  ");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const std::string uid = r.output.substr(at + 8, r.output.find_first_of(" \n", at + 8) - at - 8);
+    r = test::runCommand(cli + " build-series " + uid + db + " -o " + dir.file("s.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "32 x 32 x 16 int16")) << r.output;
+    r = test::runCommand(cli + " build-series 1.2.3.4.5" + db + " -o " + dir.file("t.hvo") + " 2>&1");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.output, "series 1.2.3.4.5 is not in the database")) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("t.hvo")));
+}
+
+TEST(CliImport, BrokenFilesAreCountedWithReasonsAndMissingPathsRefused) {
+    test::TempDir dir;
+    std::filesystem::create_directories(dir.file("in"));
+    std::ifstream in("/usr/lib/python3/dist-packages/pydicom/data/test_files/CT_small.dcm", std::ios::binary);
+    std::string all((std::istreambuf_iterator<char>(in)), {});
+    std::ofstream(dir.file("in/cut.dcm"), std::ios::binary) << all.substr(0, 700);
+    auto r = test::runCommand(cli + " import " + dir.file("in") + " --db " + dir.file("db.sqlite"));
+    EXPECT_TRUE(contains(r.output, "1 broken")) << r.output;
+    EXPECT_TRUE(contains(r.output, "broken: " + dir.file("in/cut.dcm"))) << r.output;
+    r = test::runCommand(cli + " import " + dir.file("nowhere") + " --db " + dir.file("db.sqlite") + " 2>&1");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.output, dir.file("nowhere") + ": no such file or folder")) << r.output;
+}
