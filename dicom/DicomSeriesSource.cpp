@@ -68,6 +68,20 @@ void DicomSeriesSource::writeSlice(std::uint32_t z, T* out) {
     if (va.size() < n || vb.size() < n) throw core::Error(describe() + ": slice has fewer pixels than the series");
     const DicomInstance& ia = volume_.instances[slices[a].instance];
     const DicomInstance& ib = volume_.instances[slices[b].instance];
+    if constexpr (!std::is_floating_point_v<T>) {
+        if (a == b && !volume_.applyRescale) {
+            // Stored values straight through (the common case): integer work only.
+            const std::int32_t lo = std::numeric_limits<T>::lowest(), hi = std::numeric_limits<T>::max();
+            const bool pad = ia.pixelPadding.has_value();
+            const auto padValue = pad ? std::int64_t(*ia.pixelPadding) : std::int64_t(0);
+            const auto padTo = std::int32_t(std::clamp<double>(std::round(paddingStored_), lo, hi));
+            for (std::size_t i = 0; i < n; ++i) {
+                const std::int32_t v = va[i];
+                out[i] = T(pad && v == padValue ? padTo : std::clamp(v, lo, hi));
+            }
+            return;
+        }
+    }
     auto value = [&](const DicomInstance& in, const SliceRef& s, std::int32_t v) -> double {
         const bool padded = in.pixelPadding && double(v) == *in.pixelPadding;
         const double stored = padded ? paddingStored_ : double(v);

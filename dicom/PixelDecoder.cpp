@@ -93,7 +93,7 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
     const std::size_t pixels = std::size_t(in.rows) * in.columns;
     if (isJpeg2000(xfer)) {
         decodeJpeg2000(pd, xfer, in, frame, out);
-    } else {
+    } else {  // DCMTK: native, deflate, RLE, JPEG, JPEG-LS
         Uint32 frameSize = 0;
         if (pd->getUncompressedFrameSize(ds, frameSize).bad() || frameSize < pixels * (in.bitsAllocated / 8))
             throw core::Error(in.path + ": cannot size the pixel data");
@@ -112,13 +112,24 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
             throw core::Error(in.path + ": pixel data does not decode (" + std::string(st.text()) + ", " + name + ")");
         }
         out.resize(pixels);
+        const bool full = in.bitsStored == in.bitsAllocated && in.highBit + 1 == in.bitsAllocated;
+        const bool sgn = in.pixelRepresentation == 1;
         if (in.bitsAllocated == 8) {
-            for (std::size_t i = 0; i < pixels; ++i) out[i] = buf[i];
+            for (std::size_t i = 0; i < pixels; ++i) out[i] = full && sgn ? std::int8_t(buf[i]) : buf[i];
         } else if (in.bitsAllocated == 16) {
-            for (std::size_t i = 0; i < pixels; ++i) {
-                std::uint16_t v;
-                std::memcpy(&v, buf.data() + 2 * i, 2);
-                out[i] = v;
+            // The common case (all 16 bits used) converts in one pass the compiler vectorises.
+            if (full && sgn) {
+                for (std::size_t i = 0; i < pixels; ++i) {
+                    std::int16_t v;
+                    std::memcpy(&v, buf.data() + 2 * i, 2);
+                    out[i] = v;
+                }
+            } else {
+                for (std::size_t i = 0; i < pixels; ++i) {
+                    std::uint16_t v;
+                    std::memcpy(&v, buf.data() + 2 * i, 2);
+                    out[i] = v;
+                }
             }
         } else {
             for (std::size_t i = 0; i < pixels; ++i) {
@@ -127,6 +138,7 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
                 out[i] = std::int32_t(v);
             }
         }
+        if (full) return;
     }
     // Mask to BitsStored (at HighBit) and sign-extend signed data.
     const int shift = in.highBit + 1 - in.bitsStored;
