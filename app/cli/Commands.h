@@ -14,4 +14,6 @@ int importCommand(int argc, char** argv);
 int studiesCommand(int argc, char** argv);
 int buildSeriesCommand(int argc, char** argv);
 int exportDicomCommand(int argc, char** argv);
+int pacsCommand(int argc, char** argv);
+int listenCommand(int argc, char** argv);
 }  // namespace hvx::app

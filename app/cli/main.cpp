@@ -24,6 +24,12 @@ void usage() {
         "  build-series SERIES_UID -o OUT.hvo [--db FILE] [--stack N]\n"
         "  export-dicom INPUT -o FOLDER [--syntax explicit-little|implicit-little|explicit-big|deflate|rle|\n"
         "        jpeg-lossless|jpeg-ls] [--enhanced] [--patient NAME] [--patient-id ID] [--study TEXT]\n"
+        "  pacs nodes | add NAME --ae AE --host H --port P [--move] [--default]\n"
+        "  pacs echo NODE\n"
+        "  pacs find NODE [--patient P] [--id I] [--date D|D1-D2] [--modality M] [--accession A]\n"
+        "        [--level study|series|image] [--study UID] [--limit N]\n"
+        "  pacs get|move NODE STUDY_UID [SERIES_UID] [--db FILE] [--no-build]\n"
+        "  listen [--port N] [--ae AE] [--storage DIR] [--allow AE]   storage SCP in the foreground\n"
         "  dicom-info FILE               one-line summary of a DICOM file's header\n"
         "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
         "  version                       versions of Holovox and its libraries");
@@ -47,6 +53,8 @@ int main(int argc, char** argv) {
         if (cmd == "studies") return hvx::app::studiesCommand(argc, argv);
         if (cmd == "build-series") return hvx::app::buildSeriesCommand(argc, argv);
         if (cmd == "export-dicom") return hvx::app::exportDicomCommand(argc, argv);
+        if (cmd == "pacs") return hvx::app::pacsCommand(argc, argv);
+        if (cmd == "listen") return hvx::app::listenCommand(argc, argv);
         if (cmd == "version" || cmd == "--version") return hvx::app::versionCommand(argc, argv);
         std::fprintf(stderr, "holovox-cli: unknown command '%s' (try --help)\n", cmd.c_str());
         return 2;

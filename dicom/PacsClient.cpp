@@ -1,0 +1,254 @@
+#include "dicom/PacsClient.h"
+
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmnet/diutil.h>
+#include <dcmtk/dcmnet/scu.h>
+
+#include <cstring>
+
+#include "core/Error.h"
+#include "dicom/DcmtkSetup.h"
+#include "dicom/IncomingStore.h"
+#include "dicom/PacsProtocol.h"
+
+namespace hvx::dicom {
+
+namespace {
+std::string text(DcmItem* ds, const DcmTagKey& key) {
+    OFString v;
+    if (ds && ds->findAndGetOFStringArray(key, v).good()) return v.c_str();
+    return {};
+}
+int integer(DcmItem* ds, const DcmTagKey& key) {
+    Sint32 v = 0;
+    return ds && ds->findAndGetSint32(key, v).good() ? int(v) : 0;
+}
+
+QueryResult toResult(DcmDataset* ds, QueryLevel level) {
+    QueryResult r;
+    r.level = level;
+    r.patientName = text(ds, DCM_PatientName);
+    r.patientId = text(ds, DCM_PatientID);
+    r.patientBirthDate = text(ds, DCM_PatientBirthDate);
+    r.studyUid = text(ds, DCM_StudyInstanceUID);
+    r.studyDate = text(ds, DCM_StudyDate);
+    r.studyTime = text(ds, DCM_StudyTime);
+    r.studyDescription = text(ds, DCM_StudyDescription);
+    r.accessionNumber = text(ds, DCM_AccessionNumber);
+    r.modalitiesInStudy = text(ds, DCM_ModalitiesInStudy);
+    r.seriesUid = text(ds, DCM_SeriesInstanceUID);
+    r.seriesDescription = text(ds, DCM_SeriesDescription);
+    r.modality = text(ds, DCM_Modality);
+    r.seriesNumber = integer(ds, DCM_SeriesNumber);
+    r.instanceNumber = integer(ds, DCM_InstanceNumber);
+    r.sopInstanceUid = text(ds, DCM_SOPInstanceUID);
+    r.numberOfInstances = integer(ds, level == QueryLevel::Study ? DCM_NumberOfStudyRelatedInstances
+                                                                  : DCM_NumberOfSeriesRelatedInstances);
+    return r;
+}
+
+// DcmSCU with Holovox's handlers: streaming C-FIND answers, sub-operation progress, and C-GET
+// instances received bit-preserving into the IncomingStore.
+class Scu : public DcmSCU {
+public:
+    std::function<bool(const QueryResult&)> onFind;
+    QueryLevel level = QueryLevel::Study;
+    bool cancelled = false;
+    std::size_t delivered = 0;
+    Uint16 finalStatus = 0;
+    IncomingStore* store = nullptr;
+    std::function<void(const DicomInstance&)> onStored;
+    std::function<void(const RetrieveProgress&)> onProgress;
+    RetrieveProgress progress;
+    std::string storeError;
+
+    OFCondition handleFINDResponse(const T_ASC_PresentationContextID presID, QRResponse* r,
+                                   OFBool& waitForNextResponse) override {
+        if (r && DICOM_PENDING_STATUS(r->m_status) && r->m_dataset) {
+            waitForNextResponse = OFTrue;
+            if (!cancelled) {
+                ++delivered;
+                if (onFind && !onFind(toResult(r->m_dataset, level))) {
+                    cancelled = true;
+                    sendCANCELRequest(presID);
+                }
+            }
+            return EC_Normal;
+        }
+        if (r) finalStatus = r->m_status;
+        return DcmSCU::handleFINDResponse(presID, r, waitForNextResponse);
+    }
+    void track(RetrieveResponse* r) {
+        if (!r) return;
+        finalStatus = r->m_status;
+        progress.remaining = r->m_numberOfRemainingSubops;
+        progress.completed = r->m_numberOfCompletedSubops;
+        progress.failed = r->m_numberOfFailedSubops;
+        progress.warning = r->m_numberOfWarningSubops;
+        if (onProgress) onProgress(progress);
+    }
+    OFCondition handleCGETResponse(const T_ASC_PresentationContextID presID, RetrieveResponse* r,
+                                   OFBool& continueSession) override {
+        track(r);
+        return DcmSCU::handleCGETResponse(presID, r, continueSession);
+    }
+    OFCondition handleMOVEResponse(const T_ASC_PresentationContextID presID, RetrieveResponse* r,
+                                   OFBool& waitForNextResponse) override {
+        track(r);
+        return DcmSCU::handleMOVEResponse(presID, r, waitForNextResponse);
+    }
+    OFCondition handleSTORERequestFile(T_ASC_PresentationContextID* presID, const OFString&,
+                                       T_DIMSE_C_StoreRQ* request) override {
+        // DCMTK would name the file after the (untrusted) SOP Instance UID; we receive into a
+        // temporary name and let the IncomingStore place it.
+        if (!store) return EC_IllegalCall;
+        const std::string tmp = store->temporaryPath();
+        OFCondition c = DcmSCU::handleSTORERequestFile(presID, tmp.c_str(), request);
+        if (c.bad()) return c;
+        try {
+            const DicomInstance in = store->finalize(tmp);
+            ++progress.received;
+            if (onStored) onStored(in);
+        } catch (const core::Error& e) {
+            storeError = e.what();
+            return EC_IllegalCall;
+        }
+        return c;
+    }
+    void notifyInstanceStored(const OFString&, const OFString&, const OFString&) const override {}
+};
+}  // namespace
+
+struct PacsClient::Impl {
+    LocalNode local;
+    PacsNode remote;
+
+    std::string where() const {
+        return "PACS '" + remote.name + "' (AE '" + remote.aeTitle + "' at " + remote.host + ":" +
+               std::to_string(remote.port) + ")";
+    }
+
+    void connect(Scu& scu, const std::vector<std::pair<const char*, T_ASC_SC_ROLE>>& contexts,
+                 const std::vector<std::string>& syntaxList) {
+        OFList<OFString> syntaxes;
+        for (const auto& s : syntaxList) syntaxes.push_back(s.c_str());
+        DcmtkSetup::ensure();
+        if (remote.tls)
+            throw core::Error(where() + ": DICOM over TLS is not supported yet; use a plain connection or a TLS tunnel");
+        scu.setAETitle(local.aeTitle.c_str());
+        scu.setPeerHostName(remote.host.c_str());
+        scu.setPeerPort(remote.port);
+        scu.setPeerAETitle(remote.aeTitle.c_str());
+        const Uint32 t = Uint32(std::max(1, local.timeoutSeconds));
+        scu.setACSETimeout(t);
+        scu.setDIMSETimeout(t);
+        scu.setDIMSEBlockingMode(DIMSE_NONBLOCKING);
+        scu.setConnectionTimeout(Sint32(t));
+        scu.setMaxReceivePDULength(ASC_MAXIMUMPDUSIZE);
+        for (const auto& [sop, role] : contexts) scu.addPresentationContext(sop, syntaxes, role);
+        OFCondition c = scu.initNetwork();
+        if (c.bad()) throw core::Error(where() + ": cannot start networking (" + std::string(c.text()) + ")");
+        c = scu.negotiateAssociation();
+        if (c.bad()) throw core::Error(PacsProtocol::describeAssociationFailure(where(), c.text(), local.aeTitle,
+                                                                               remote.aeTitle, local.timeoutSeconds));
+    }
+
+    T_ASC_PresentationContextID context(Scu& scu, const char* sop, const char* what) {
+        const T_ASC_PresentationContextID id = scu.findPresentationContextID(sop, "");
+        if (id == 0) {
+            scu.releaseAssociation();
+            throw core::Error(where() + " does not offer " + what + " (no accepted presentation context)");
+        }
+        return id;
+    }
+};
+
+PacsClient::PacsClient(LocalNode local, PacsNode remote) : impl_(std::make_unique<Impl>()) {
+    impl_->local = std::move(local);
+    impl_->remote = std::move(remote);
+}
+PacsClient::~PacsClient() = default;
+
+void PacsClient::echo() {
+    Scu scu;
+    impl_->connect(scu, {{UID_VerificationSOPClass, ASC_SC_ROLE_DEFAULT}}, PacsProtocol::basicSyntaxes());
+    const OFCondition c = scu.sendECHORequest(impl_->context(scu, UID_VerificationSOPClass, "verification (C-ECHO)"));
+    scu.releaseAssociation();
+    if (c.bad()) throw core::Error(impl_->where() + ": C-ECHO failed (" + std::string(c.text()) + ")");
+}
+
+std::size_t PacsClient::find(QueryLevel level, const QueryKeys& keys,
+                             const std::function<bool(const QueryResult&)>& onResult) {
+    Scu scu;
+    scu.level = level;
+    scu.onFind = onResult;
+    impl_->connect(scu, {{UID_FINDStudyRootQueryRetrieveInformationModel, ASC_SC_ROLE_DEFAULT}},
+                   PacsProtocol::basicSyntaxes());
+    DcmDataset query;
+    PacsProtocol::fillQuery(query, level, keys);
+    const OFCondition c = scu.sendFINDRequest(
+        impl_->context(scu, UID_FINDStudyRootQueryRetrieveInformationModel, "Study Root query (C-FIND)"), &query,
+        nullptr);
+    if (c.bad()) {
+        scu.abortAssociation();
+        throw core::Error(PacsProtocol::describeDimseFailure(impl_->where(), "C-FIND", c.text(), impl_->local.timeoutSeconds));
+    }
+    scu.releaseAssociation();
+    if (!scu.cancelled) PacsProtocol::checkFinalStatus(impl_->where(), "query", scu.finalStatus, impl_->local.aeTitle);
+    return scu.delivered;
+}
+
+RetrieveProgress PacsClient::get(const std::string& studyUid, const std::string& seriesUid,
+                                 const std::string& storageDir,
+                                 const std::function<void(const DicomInstance&)>& onStored,
+                                 const std::function<void(const RetrieveProgress&)>& onProgress) {
+    IncomingStore store(storageDir);
+    Scu scu;
+    scu.store = &store;
+    scu.onStored = onStored;
+    scu.onProgress = onProgress;
+    scu.setStorageMode(DCMSCU_STORAGE_BIT_PRESERVING);
+    scu.setStorageDir(storageDir.c_str());
+    std::vector<std::pair<const char*, T_ASC_SC_ROLE>> contexts{
+        {UID_GETStudyRootQueryRetrieveInformationModel, ASC_SC_ROLE_DEFAULT}};
+    for (const char* sop : PacsProtocol::storageClasses()) contexts.push_back({sop, ASC_SC_ROLE_SCP});
+    impl_->connect(scu, contexts, PacsProtocol::storageSyntaxes());
+    DcmDataset keys;
+    PacsProtocol::fillRetrieve(keys, studyUid, seriesUid);
+    const OFCondition c = scu.sendCGETRequest(
+        impl_->context(scu, UID_GETStudyRootQueryRetrieveInformationModel, "retrieve by C-GET"), &keys, nullptr);
+    if (c.bad()) {
+        scu.abortAssociation();
+        std::string why = PacsProtocol::describeDimseFailure(impl_->where(), "C-GET", c.text(), impl_->local.timeoutSeconds);
+        if (!scu.storeError.empty()) why += "; " + scu.storeError;
+        throw core::Error(why + " (" + std::to_string(scu.progress.received) + " instances were stored completely)");
+    }
+    scu.releaseAssociation();
+    PacsProtocol::checkFinalStatus(impl_->where(), "C-GET", scu.finalStatus, impl_->local.aeTitle);
+    return scu.progress;
+}
+
+RetrieveProgress PacsClient::move(const std::string& studyUid, const std::string& seriesUid,
+                                  const std::string& destinationAe,
+                                  const std::function<void(const RetrieveProgress&)>& onProgress) {
+    Scu scu;
+    scu.onProgress = onProgress;
+    impl_->connect(scu, {{UID_MOVEStudyRootQueryRetrieveInformationModel, ASC_SC_ROLE_DEFAULT}},
+                   PacsProtocol::basicSyntaxes());
+    DcmDataset keys;
+    PacsProtocol::fillRetrieve(keys, studyUid, seriesUid);
+    const OFCondition c = scu.sendMOVERequest(
+        impl_->context(scu, UID_MOVEStudyRootQueryRetrieveInformationModel, "retrieve by C-MOVE"),
+        destinationAe.c_str(), &keys, nullptr);
+    if (c.bad()) {
+        scu.abortAssociation();
+        throw core::Error(PacsProtocol::describeDimseFailure(impl_->where(), "C-MOVE", c.text(), impl_->local.timeoutSeconds));
+    }
+    scu.releaseAssociation();
+    PacsProtocol::checkFinalStatus(impl_->where(), "C-MOVE to '" + destinationAe + "'", scu.finalStatus, destinationAe);
+    return scu.progress;
+}
+
+}  // namespace hvx::dicom

@@ -1,0 +1,106 @@
+#include "dicom/PacsSettings.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "core/AtomicFileWriter.h"
+#include "core/Error.h"
+
+namespace hvx::dicom {
+
+namespace {
+void checkAe(const std::string& ae, const std::string& what) {
+    if (ae.empty() || ae.size() > 16 || ae.find('\\') != std::string::npos)
+        throw core::Error(what + ": AE title '" + ae + "' must be 1 to 16 characters without backslash");
+}
+
+std::string dataHome() {
+    if (const char* x = std::getenv("XDG_DATA_HOME"); x && *x) return x;
+    if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.local/share";
+    return "/tmp";
+}
+}  // namespace
+
+std::string PacsSettings::defaultPath() {
+    if (const char* p = std::getenv("HOLOVOX_PACS_CONFIG"); p && *p) return p;
+    if (const char* x = std::getenv("XDG_CONFIG_HOME"); x && *x) return std::string(x) + "/holovox/pacs.json";
+    if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.config/holovox/pacs.json";
+    return "/tmp/holovox-pacs.json";
+}
+
+PacsSettings PacsSettings::load(const std::string& path) {
+    PacsSettings s;
+    s.local.storageDir = dataHome() + "/holovox/received";
+    std::ifstream in(path);
+    if (!in) return s;
+    nlohmann::json j;
+    try {
+        in >> j;
+        const auto& l = j.at("local");
+        s.local.aeTitle = l.value("aeTitle", s.local.aeTitle);
+        const int port = l.value("port", int(s.local.port));
+        if (port <= 0 || port > 65535) throw core::Error(path + ": local port " + std::to_string(port) + " is invalid");
+        s.local.port = std::uint16_t(port);
+        s.local.storageDir = l.value("storageDir", s.local.storageDir);
+        s.local.allowedCallers = l.value("allowedCallers", std::vector<std::string>{});
+        s.local.timeoutSeconds = l.value("timeoutSeconds", s.local.timeoutSeconds);
+        checkAe(s.local.aeTitle, path);
+        for (const auto& n : j.value("nodes", nlohmann::json::array())) {
+            PacsNode node;
+            node.name = n.at("name").get<std::string>();
+            node.aeTitle = n.at("aeTitle").get<std::string>();
+            node.host = n.at("host").get<std::string>();
+            const int p = n.at("port").get<int>();
+            if (p <= 0 || p > 65535) throw core::Error(path + ": node '" + node.name + "' has an invalid port");
+            node.port = std::uint16_t(p);
+            node.retrieve = n.value("retrieve", std::string("get")) == "move" ? RetrieveMethod::Move : RetrieveMethod::Get;
+            node.tls = n.value("tls", false);
+            checkAe(node.aeTitle, path + ": node '" + node.name + "'");
+            s.nodes.push_back(node);
+        }
+        s.defaultNode = j.value("default", std::string());
+    } catch (const nlohmann::json::exception& e) {
+        throw core::Error(path + ": malformed PACS settings (" + e.what() + ")");
+    }
+    return s;
+}
+
+void PacsSettings::save(const std::string& path) const {
+    nlohmann::json j;
+    j["local"] = {{"aeTitle", local.aeTitle},       {"port", local.port}, {"storageDir", local.storageDir},
+                  {"allowedCallers", local.allowedCallers}, {"timeoutSeconds", local.timeoutSeconds}};
+    j["nodes"] = nlohmann::json::array();
+    for (const auto& n : nodes)
+        j["nodes"].push_back({{"name", n.name}, {"aeTitle", n.aeTitle}, {"host", n.host}, {"port", n.port},
+                              {"retrieve", n.retrieve == RetrieveMethod::Move ? "move" : "get"}, {"tls", n.tls}});
+    j["default"] = defaultNode;
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);
+    const std::string text = j.dump(2) + "\n";
+    core::AtomicFileWriter out(path);
+    out.append(text.data(), text.size());
+    out.commit();
+}
+
+const PacsNode& PacsSettings::node(const std::string& name) const {
+    const std::string want = name.empty() ? defaultNode : name;
+    for (const auto& n : nodes)
+        if (n.name == want) return n;
+    std::string known;
+    for (const auto& n : nodes) known += (known.empty() ? "" : ", ") + n.name;
+    throw core::Error("no PACS node named '" + want + "' (configured: " + (known.empty() ? "none" : known) + ")");
+}
+
+void PacsSettings::upsert(const PacsNode& node) {
+    for (auto& n : nodes)
+        if (n.name == node.name) {
+            n = node;
+            return;
+        }
+    nodes.push_back(node);
+}
+
+}  // namespace hvx::dicom

@@ -1,0 +1,46 @@
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/JobContext.h"
+#include "dicom/PacsClient.h"
+#include "dicom/PacsSettings.h"
+
+namespace hvx::dicom {
+
+class StudyDatabase;
+
+/// Where one series of a retrieve stands.
+struct SeriesRetrieveStatus {
+    std::string seriesUid;
+    std::string description;
+    RetrieveProgress progress;
+    bool retrieved = false;
+    std::string octreePath;  ///< set once its octree is built
+    std::string error;       ///< a failed series says why; the others go on
+};
+
+/// Retrieves a study (or one series) from a PACS series by series, by C-GET or by C-MOVE to
+/// Holovox's own storage SCP (started for the duration), indexes every received instance into
+/// the study database, and builds each finished series' octree in the background while the
+/// next series is still arriving. Progress per series comes from the sub-operation counts.
+///
+/// Threading: run() blocks the calling (job) thread; onUpdate runs on it or on the build thread.
+class RetrieveJob {
+public:
+    RetrieveJob(PacsSettings settings, PacsNode node, StudyDatabase& db, std::string octreeDir);
+    /// Throws core::Error when nothing could be retrieved; per-series failures are reported in
+    /// the returned statuses. Honours job cancellation between series.
+    std::vector<SeriesRetrieveStatus> run(const std::string& studyUid, const std::string& seriesUid, bool buildOctrees,
+                                          core::JobContext& job,
+                                          const std::function<void(const SeriesRetrieveStatus&)>& onUpdate);
+
+private:
+    PacsSettings settings_;
+    PacsNode node_;
+    StudyDatabase& db_;
+    std::string octreeDir_;
+};
+
+}  // namespace hvx::dicom
