@@ -7,9 +7,11 @@
 #include <dcmtk/dcmnet/scu.h>
 
 #include <cstring>
+#include <set>
 
 #include "core/Error.h"
 #include "dicom/DcmtkSetup.h"
+#include "dicom/DicomHeaderReader.h"
 #include "dicom/IncomingStore.h"
 #include "dicom/PacsProtocol.h"
 
@@ -249,6 +251,57 @@ RetrieveProgress PacsClient::move(const std::string& studyUid, const std::string
     scu.releaseAssociation();
     PacsProtocol::checkFinalStatus(impl_->where(), "C-MOVE to '" + destinationAe + "'", scu.finalStatus, destinationAe);
     return scu.progress;
+}
+
+std::size_t PacsClient::store(const std::vector<std::string>& files, const std::function<void(std::size_t)>& onProgress) {
+    // One presentation context per SOP class present, offering the file's own transfer syntax
+    // (so nothing is re-encoded) and explicit little endian.
+    std::vector<DicomInstance> headers;
+    std::set<std::pair<std::string, std::string>> contexts;
+    for (const auto& f : files) {
+        DicomInstance in;
+        if (DicomHeaderReader::read(f, in) != DicomHeaderReader::Kind::Dicom) throw core::Error(f + ": not a DICOM file");
+        contexts.insert({in.sopClassUid, in.transferSyntaxUid});
+        headers.push_back(std::move(in));
+    }
+    Scu scu;
+    DcmtkSetup::ensure();
+    scu.setAETitle(impl_->local.aeTitle.c_str());
+    scu.setPeerHostName(impl_->remote.host.c_str());
+    scu.setPeerPort(impl_->remote.port);
+    scu.setPeerAETitle(impl_->remote.aeTitle.c_str());
+    const Uint32 t = Uint32(std::max(1, impl_->local.timeoutSeconds));
+    scu.setACSETimeout(t);
+    scu.setDIMSETimeout(t);
+    scu.setDIMSEBlockingMode(DIMSE_NONBLOCKING);
+    scu.setConnectionTimeout(Sint32(t));
+    for (const auto& [sop, ts] : contexts) {
+        OFList<OFString> syntaxes;
+        syntaxes.push_back(ts.c_str());
+        if (ts != UID_LittleEndianExplicitTransferSyntax) syntaxes.push_back(UID_LittleEndianExplicitTransferSyntax);
+        scu.addPresentationContext(sop.c_str(), syntaxes);
+    }
+    OFCondition c = scu.initNetwork();
+    if (c.good()) c = scu.negotiateAssociation();
+    if (c.bad())
+        throw core::Error(PacsProtocol::describeAssociationFailure(impl_->where(), c.text(), impl_->local.aeTitle,
+                                                                   impl_->remote.aeTitle, impl_->local.timeoutSeconds));
+    std::size_t accepted = 0;
+    for (std::size_t i = 0; i < headers.size(); ++i) {
+        const T_ASC_PresentationContextID id =
+            scu.findPresentationContextID(headers[i].sopClassUid.c_str(), headers[i].transferSyntaxUid.c_str());
+        Uint16 status = 0;
+        c = scu.sendSTORERequest(id, headers[i].path.c_str(), nullptr, status);
+        if (c.bad()) {
+            scu.abortAssociation();
+            throw core::Error(PacsProtocol::describeDimseFailure(impl_->where(), "C-STORE of " + headers[i].path,
+                                                                 c.text(), impl_->local.timeoutSeconds));
+        }
+        if (status == 0x0000 || (status & 0xF000) == 0xB000) ++accepted;
+        if (onProgress) onProgress(i + 1);
+    }
+    scu.releaseAssociation();
+    return accepted;
 }
 
 }  // namespace hvx::dicom

@@ -2,6 +2,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "dicom/DicomInstance.h"
 #include "dicom/PacsNode.h"
@@ -58,6 +59,10 @@ public:
     /// Asks the node to C-MOVE a study (or series) to `destinationAe`.
     RetrieveProgress move(const std::string& studyUid, const std::string& seriesUid, const std::string& destinationAe,
                           const std::function<void(const RetrieveProgress&)>& onProgress);
+
+    /// Sends files to the node by C-STORE (one association); returns how many it accepted.
+    /// Throws core::Error when the node refuses or the connection fails.
+    std::size_t store(const std::vector<std::string>& files, const std::function<void(std::size_t)>& onProgress);
 
 private:
     struct Impl;

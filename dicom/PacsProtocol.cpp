@@ -112,8 +112,14 @@ void PacsProtocol::checkFinalStatus(const std::string& where, const std::string&
     if (status == 0xB000)
         throw core::Error(operation + " on " + where + " finished with failed sub-operations (status 0xB000): some "
                           "instances did not arrive — retry the retrieve");
-    if (status == 0xA900 || (status & 0xF000) == 0xC000)
-        throw core::Error(where + " could not process the " + operation + " (status " + hex(status) + ")");
+    if (status == 0xA900 || (status & 0xF000) == 0xC000) {
+        // Some archives (Orthanc) answer an unknown move destination with a plain failure.
+        const std::string hint = operation.rfind("C-MOVE", 0) == 0
+                                     ? " — check that the move destination '" + destinationAe +
+                                           "' is registered on the PACS with Holovox's host and port"
+                                     : "";
+        throw core::Error(where + " could not process the " + operation + " (status " + hex(status) + ")" + hint);
+    }
     if ((status & 0xF000) == 0xA000)
         throw core::Error(where + " refused the " + operation + " (status " + hex(status) + ")");
 }

@@ -6,7 +6,10 @@
 #include "app/cli/Commands.h"
 #include "app/cli/OctreeBuildRunner.h"
 #include "core/Error.h"
+#include "app/cli/DemoArchive.h"
 #include "core/VoxelSourceFactory.h"
+#include "dicom/PacsClient.h"
+#include "dicom/PacsSettings.h"
 
 namespace hvx::app {
 
@@ -19,7 +22,7 @@ std::filesystem::path dataDir() {
 }  // namespace
 
 int demoCommand(int argc, char** argv) {
-    const CliArgs args(argc, argv, 2, {"input", "o", "output"}, {});
+    const CliArgs args(argc, argv, 2, {"input", "o", "output", "config"}, {"no-pacs"});
     std::string input = "/usr/share/mricron/templates/ch2better.nii.gz";
     if (const char* env = std::getenv("HOLOVOX_DEMO_DATA"); env && *env) input = env;
     if (const auto i = args.value("input")) input = *i;
@@ -31,6 +34,21 @@ int demoCommand(int argc, char** argv) {
     std::printf("Holovox demo: building the out-of-core octree of the MRI template\n  %s\n", input.c_str());
     auto source = core::VoxelSourceFactory::open(input);
     OctreeBuildRunner::run(*source, out.string(), core::BuildOptions{}, true);
+    if (args.flag("no-pacs")) return 0;
+
+    std::printf("\nHolovox demo: starting the demo archive (a local Orthanc on loopback)\n");
+    DemoArchive::Config archive;
+    archive.folder = (dataDir() / "demo-archive").string();
+    archive.mriTemplate = input;
+    const std::string settings = args.value("config").value_or(dicom::PacsSettings::defaultPath());
+    std::printf("  %s\n", DemoArchive::ensure(archive, settings).c_str());
+    const auto s = dicom::PacsSettings::load(settings);
+    dicom::PacsClient(s.local, s.node("demo")).find(dicom::QueryLevel::Study, {}, [](const dicom::QueryResult& r) {
+        std::printf("  study %-18s %-12s %s %-4s %-34s %d images\n", r.patientName.c_str(), r.patientId.c_str(),
+                    r.studyDate.c_str(), r.modalitiesInStudy.c_str(), r.studyDescription.c_str(), r.numberOfInstances);
+        return true;
+    });
+    std::printf("  try: holovox-cli pacs find demo --patient 'HOLOVOX*'   then   holovox-cli pacs get demo STUDY_UID\n");
     return 0;
 }
 

@@ -146,7 +146,15 @@ int pacsCommand(int argc, char** argv) {
     if (sub == "find") return findCmd(args);
     if (sub == "get") return retrieveCmd(args, dicom::RetrieveMethod::Get);
     if (sub == "move") return retrieveCmd(args, dicom::RetrieveMethod::Move);
-    throw core::Error("usage: holovox-cli pacs nodes|add|echo|find|get|move ...");
+    if (sub == "send") {
+        if (args.positional().size() < 3) throw core::Error("usage: holovox-cli pacs send NODE FILE...");
+        const auto s = loadSettings(args);
+        const std::vector<std::string> files(args.positional().begin() + 2, args.positional().end());
+        const auto n = dicom::PacsClient(s.local, s.node(args.positional()[1])).store(files, {});
+        std::printf("sent %zu files, %zu accepted\n", files.size(), n);
+        return n == files.size() ? 0 : 1;
+    }
+    throw core::Error("usage: holovox-cli pacs nodes|add|echo|find|get|move|send ...");
 }
 
 namespace {

@@ -1,0 +1,132 @@
+#include "app/cli/DemoArchive.h"
+
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "core/Error.h"
+#include "core/JobContext.h"
+#include "core/PhantomVoxelSource.h"
+#include "core/VoxelSourceFactory.h"
+#include "dicom/DicomSeriesWriter.h"
+#include "dicom/PacsClient.h"
+
+namespace fs = std::filesystem;
+
+namespace hvx::app {
+
+namespace {
+bool answers(const dicom::LocalNode& local, const dicom::PacsNode& node) {
+    try {
+        dicom::PacsClient(local, node).echo();
+        return true;
+    } catch (const core::Error&) {
+        return false;
+    }
+}
+
+void startOrthanc(const DemoArchive::Config& c) {
+    fs::create_directories(fs::path(c.folder) / "storage");
+    const std::string config = (fs::path(c.folder) / "orthanc.json").string();
+    std::ofstream(config) << "{\n  \"Name\": \"Holovox demo archive\",\n  \"StorageDirectory\": \"" << c.folder
+                          << "/storage\",\n  \"IndexDirectory\": \"" << c.folder << "/storage\",\n  \"HttpPort\": "
+                          << c.httpPort << ",\n  \"DicomPort\": " << c.dicomPort
+                          << ",\n  \"DicomAet\": \"ORTHANC\",\n  \"RemoteAccessAllowed\": false,\n"
+                             "  \"AuthenticationEnabled\": false,\n  \"DicomAlwaysAllowEcho\": true,\n"
+                             "  \"DicomAlwaysAllowStore\": true,\n  \"DicomCheckModalityHost\": false,\n"
+                             "  \"Plugins\": [],\n  \"DicomModalities\": { \"holovox\": [\"HOLOVOX\", \"127.0.0.1\", "
+                          << c.localPort << "] }\n}\n";
+    const std::string log = (fs::path(c.folder) / "orthanc.log").string();
+    const pid_t pid = ::fork();
+    if (pid < 0) throw core::Error("cannot start Orthanc (fork failed)");
+    if (pid == 0) {
+        ::setsid();  // keeps running after holovox-cli exits
+        const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+        ::dup2(fd, 1);
+        ::dup2(fd, 2);
+        ::execlp("Orthanc", "Orthanc", config.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+}
+
+std::string today() {
+    const std::time_t t = std::time(nullptr);
+    std::tm tm{};
+    localtime_r(&t, &tm);
+    char b[16];
+    std::strftime(b, sizeof b, "%Y%m%d", &tm);
+    return b;
+}
+
+void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dicom::PacsNode& node) {
+    const fs::path dir = fs::path(c.folder) / "seed";
+    core::JobContext job;
+    std::vector<std::string> files;
+    dicom::DicomWriteOptions ct;
+    ct.patientName = "HOLOVOX^PHANTOM";
+    ct.patientId = "HVX-CT-0001";
+    ct.patientBirthDate = "19650412";
+    ct.patientSex = "F";
+    ct.studyDescription = "CT THORAX ABDOMEN WITH CONTRAST";
+    ct.seriesDescription = "Axial 2.0 mm soft tissue";
+    ct.accessionNumber = "HVX000101";
+    ct.studyDate = today();
+    ct.modality = "CT";
+    core::PhantomVoxelSource phantom({256, 256, 160}, 2024);
+    for (auto& f : dicom::DicomSeriesWriter::write(phantom, (dir / "ct").string(), ct, job)) files.push_back(f);
+    if (fs::exists(c.mriTemplate)) {
+        dicom::DicomWriteOptions mr;
+        mr.patientName = "HOLOVOX^BRAIN";
+        mr.patientId = "HVX-MR-0002";
+        mr.patientBirthDate = "19800923";
+        mr.patientSex = "M";
+        mr.studyDescription = "MR HEAD T1 (ch2better template)";
+        mr.seriesDescription = "T1 3D 0.5 mm";
+        mr.accessionNumber = "HVX000102";
+        mr.studyDate = today();
+        mr.modality = "MR";
+        auto mri = core::VoxelSourceFactory::open(c.mriTemplate);
+        for (auto& f : dicom::DicomSeriesWriter::write(*mri, (dir / "mr").string(), mr, job)) files.push_back(f);
+    }
+    dicom::PacsClient(local, node).store(files, {});
+    fs::remove_all(dir);
+}
+}  // namespace
+
+std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath) {
+    auto settings = dicom::PacsSettings::load(settingsPath);
+    settings.local.port = c.localPort;
+    dicom::PacsNode node{"demo", "ORTHANC", "127.0.0.1", c.dicomPort, dicom::RetrieveMethod::Get, false};
+    settings.local.timeoutSeconds = 5;
+    if (!answers(settings.local, node)) {
+        startOrthanc(c);
+        bool up = false;
+        for (int i = 0; i < 150 && !up; ++i) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(200));
+            up = answers(settings.local, node);
+        }
+        if (!up)
+            throw core::Error("the demo archive (Orthanc on port " + std::to_string(c.dicomPort) +
+                              ") did not start; see " + c.folder + "/orthanc.log");
+    }
+    std::size_t studies = dicom::PacsClient(settings.local, node).find(dicom::QueryLevel::Study, {}, {});
+    if (studies == 0) {
+        seed(c, settings.local, node);
+        studies = dicom::PacsClient(settings.local, node).find(dicom::QueryLevel::Study, {}, {});
+    }
+    settings.local.timeoutSeconds = 30;
+    settings.upsert(node);
+    settings.defaultNode = "demo";
+    settings.save(settingsPath);
+    return "Orthanc (AE ORTHANC) on 127.0.0.1:" + std::to_string(c.dicomPort) + " with " + std::to_string(studies) +
+           " demo studies, saved as default node 'demo' in " + settingsPath;
+}
+
+}  // namespace hvx::app

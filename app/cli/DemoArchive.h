@@ -1,0 +1,29 @@
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "dicom/PacsSettings.h"
+
+namespace hvx::app {
+
+/// The embedded demo archive: a local Orthanc (Debian package) on loopback with a throwaway
+/// configuration under the user's data folder, seeded with demo studies (the CT phantom and
+/// the MRI template written as DICOM series with plausible patient and study attributes) and
+/// registered as the default PACS node, so query/retrieve can be tried at once. Orthanc keeps
+/// running after the command; a second run reuses it.
+class DemoArchive {
+public:
+    struct Config {
+        std::string folder;  ///< configuration, storage and logs
+        std::uint16_t dicomPort = 4243;
+        std::uint16_t httpPort = 8043;
+        std::uint16_t localPort = 11112;  ///< Holovox's storage SCP, registered on Orthanc for C-MOVE
+        std::string mriTemplate = "/usr/share/mricron/templates/ch2better.nii.gz";
+    };
+    /// Starts (or finds) the archive, seeds it when empty, saves the "demo" node as default into
+    /// the settings file. Returns a one-line description. Throws core::Error when Orthanc is
+    /// missing or cannot start (the message names the log file).
+    static std::string ensure(const Config& config, const std::string& settingsPath);
+};
+
+}  // namespace hvx::app

@@ -1,0 +1,194 @@
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <mutex>
+#include <random>
+#include <thread>
+
+#include "core/Error.h"
+#include "core/PhantomVoxelSource.h"
+#include "dicom/DicomHeaderReader.h"
+#include "dicom/DicomSeriesWriter.h"
+#include "dicom/PacsClient.h"
+#include "dicom/StorageServer.h"
+#include "tests/support/PacsPeer.h"
+#include "tests/support/ProcessRunner.h"
+
+using namespace hvx;
+
+namespace {
+std::vector<std::string> series(const std::string& dir, dicom::DicomWriteOptions o = {}) {
+    core::PhantomVoxelSource p({16, 16, 4}, 2);
+    core::JobContext job;
+    return dicom::DicomSeriesWriter::write(p, dir, o, job);
+}
+
+std::size_t filesUnder(const std::string& dir) {
+    std::size_t n = 0;
+    std::error_code ec;
+    for (const auto& f : std::filesystem::recursive_directory_iterator(dir, ec)) n += f.is_regular_file();
+    return n;
+}
+
+void sendRaw(std::uint16_t port, const std::string& bytes) {
+    const int s = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    a.sin_port = htons(port);
+    ASSERT_EQ(::connect(s, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+    ::send(s, bytes.data(), bytes.size(), MSG_NOSIGNAL);
+    char buf[256];
+    timeval tv{3, 0};
+    ::setsockopt(s, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+    while (::recv(s, buf, sizeof buf, 0) > 0) {}
+    ::close(s);
+}
+
+struct Listener {
+    test::TempDir dir;
+    dicom::LocalNode local;
+    std::mutex mutex;
+    std::vector<dicom::DicomInstance> got;
+    std::unique_ptr<dicom::StorageServer> server;
+    Listener() {
+        local.port = test::freePort();
+        local.storageDir = dir.file("rx");
+        local.timeoutSeconds = 5;
+        server = std::make_unique<dicom::StorageServer>(local, std::vector<std::string>{"MODALITY1"},
+                                                        [this](const dicom::DicomInstance& in) {
+                                                            std::lock_guard lock(mutex);
+                                                            got.push_back(in);
+                                                        });
+        server->start();
+    }
+    std::string store(const std::string& callingAe, const std::vector<std::string>& files) {
+        std::string cmd = "storescu -aet " + callingAe + " -aec HOLOVOX 127.0.0.1 " + std::to_string(local.port);
+        for (const auto& f : files) cmd += " " + f;
+        const auto r = test::runCommand(cmd + " 2>&1");
+        return r.exitCode == 0 ? "" : r.output;
+    }
+};
+}  // namespace
+
+TEST(StorageServer, AcceptsPushesAndEchoFromAllowedCallers) {
+    Listener l;
+    test::TempDir src;
+    const auto files = series(src.file("s"));
+    EXPECT_EQ(l.store("MODALITY1", files), "");
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_EQ(l.server->received(), 4u);
+    EXPECT_EQ(filesUnder(l.local.storageDir), 4u);
+    {
+        std::lock_guard lock(l.mutex);
+        ASSERT_EQ(l.got.size(), 4u);
+        for (const auto& in : l.got) EXPECT_EQ(in.path.rfind(l.local.storageDir + "/", 0), 0u);
+    }
+    const auto echo = test::runCommand("echoscu -aet MODALITY1 -aec HOLOVOX 127.0.0.1 " + std::to_string(l.local.port));
+    EXPECT_EQ(echo.exitCode, 0) << echo.output;
+}
+
+TEST(StorageServer, RefusesCallingAeTitlesNotOnTheAllowList) {
+    Listener l;
+    test::TempDir src;
+    const auto out = l.store("STRANGER", series(src.file("s")));
+    EXPECT_NE(out.find("Rejected"), std::string::npos) << out;
+    EXPECT_EQ(filesUnder(l.local.storageDir), 0u);
+}
+
+TEST(StorageServer, HostileUidsNeverEscapeTheStorageFolder) {
+    Listener l;
+    test::TempDir src;
+    dicom::DicomWriteOptions o;
+    o.studyUid = "../../../../tmp/evil";
+    o.seriesUid = "..";
+    const auto files = series(src.file("s"), o);
+    l.store("MODALITY1", files);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    std::lock_guard lock(l.mutex);
+    ASSERT_EQ(l.got.size(), 4u);
+    for (const auto& in : l.got) {
+        const auto rel = std::filesystem::relative(in.path, l.local.storageDir).string();
+        EXPECT_EQ(rel.find(".."), rel.find("..")) << rel;
+        EXPECT_EQ(std::filesystem::weakly_canonical(in.path).string().rfind(l.local.storageDir, 0), 0u) << in.path;
+    }
+    EXPECT_FALSE(std::filesystem::exists("/tmp/evil"));
+}
+
+TEST(StorageServer, GarbageAndOversizedPdusDoNotHurtIt) {
+    Listener l;
+    std::mt19937 rng(1);
+    std::string garbage(4096, '\0');
+    for (auto& c : garbage) c = char(rng());
+    sendRaw(l.local.port, garbage);
+    // An A-ASSOCIATE-RQ PDU header that claims 2 GB of payload.
+    sendRaw(l.local.port, std::string("\x01\x00\x7f\xff\xff\xff", 6) + std::string(1000, 'A'));
+    // A P-DATA PDU without any association.
+    sendRaw(l.local.port, std::string("\x04\x00\x00\x00\x00\x10", 6) + std::string(16, '\x01'));
+    test::TempDir src;
+    EXPECT_EQ(l.store("MODALITY1", series(src.file("s"))), "");
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    EXPECT_EQ(l.server->received(), 4u);
+    EXPECT_EQ(filesUnder(l.local.storageDir), 4u);
+}
+
+TEST(StorageServer, PortInUseIsAClearError) {
+    Listener l;
+    dicom::StorageServer second(l.local, {}, {});
+    try {
+        second.start();
+        FAIL();
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("cannot listen on port " + std::to_string(l.local.port)), std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(Dcmqrscp, EchoFindAndGetAgainstDcmtksServer) {
+    test::PacsPeer peer(test::PacsPeer::Kind::Dcmqrscp);
+    peer.start();
+    test::TempDir src;
+    dicom::DicomWriteOptions o;
+    o.patientName = "QR^TEST";
+    o.studyUid = "1.2.826.0.1.3680043.9.7777.40";
+    o.seriesUid = "1.2.826.0.1.3680043.9.7777.41";
+    const auto files = series(src.file("s"), o);
+    peer.seed(files);
+    auto s = peer.settings();
+    dicom::PacsClient client(s.local, s.nodes[0]);
+    EXPECT_NO_THROW(client.echo());
+    std::vector<dicom::QueryResult> found;
+    client.find(dicom::QueryLevel::Study, {"QR*", "", "", "", "", "", "", ""}, [&](const dicom::QueryResult& r) {
+        found.push_back(r);
+        return true;
+    });
+    ASSERT_EQ(found.size(), 1u);
+    EXPECT_EQ(found[0].studyUid, o.studyUid);
+    test::TempDir out;
+    std::size_t stored = 0;
+    const auto p = client.get(o.studyUid, o.seriesUid, out.file("rx"), [&](const dicom::DicomInstance&) { ++stored; }, {});
+    EXPECT_EQ(stored, 4u);
+    EXPECT_EQ(p.failed, 0);
+    // dcmqrscp refuses an unknown move destination with 0xA801.
+    try {
+        client.move(o.studyUid, "", "NOBODY", {});
+        FAIL();
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("move destination 'NOBODY' is unknown"), std::string::npos) << e.what();
+    }
+    // And C-MOVE to a registered destination (our storage SCP) works.
+    test::TempDir rx;
+    s.local.storageDir = rx.file("rx");
+    std::atomic<int> moved{0};
+    dicom::StorageServer server(s.local, {peer.aeTitle()}, [&](const dicom::DicomInstance&) { ++moved; });
+    server.start();
+    const auto m = client.move(o.studyUid, "", "HOLOVOX", {});
+    EXPECT_EQ(m.completed, 4);
+    server.stop();
+    EXPECT_EQ(moved.load(), 4);
+}

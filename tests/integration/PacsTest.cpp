@@ -1,0 +1,304 @@
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cstring>
+#include <map>
+#include <fstream>
+#include <thread>
+
+#include "core/Error.h"
+#include "core/PhantomVoxelSource.h"
+#include "dicom/DicomHeaderReader.h"
+#include "dicom/DicomSeriesWriter.h"
+#include "dicom/PacsClient.h"
+#include "dicom/RetrieveJob.h"
+#include "dicom/StorageServer.h"
+#include "dicom/StudyDatabase.h"
+#include "tests/support/PacsPeer.h"
+#include "tests/support/ProcessRunner.h"
+
+using namespace hvx;
+
+namespace {
+struct Seeded {
+    std::string studyA, studyB, seriesA1, seriesA2, seriesB1;
+    std::vector<std::string> files;
+};
+
+std::vector<std::string> writeSeries(const std::string& dir, std::array<std::uint32_t, 3> dims, dicom::DicomWriteOptions o) {
+    core::PhantomVoxelSource p(dims, 5);
+    core::JobContext job;
+    return dicom::DicomSeriesWriter::write(p, dir, o, job);
+}
+
+Seeded makeStudies(const std::string& dir) {
+    Seeded s;
+    s.studyA = "1.2.826.0.1.3680043.9.7777.10";
+    s.studyB = "1.2.826.0.1.3680043.9.7777.20";
+    s.seriesA1 = "1.2.826.0.1.3680043.9.7777.11";
+    s.seriesA2 = "1.2.826.0.1.3680043.9.7777.12";
+    s.seriesB1 = "1.2.826.0.1.3680043.9.7777.21";
+    dicom::DicomWriteOptions a;
+    a.patientName = "DOE^JANE";
+    a.patientId = "P1";
+    a.studyDate = "20240301";
+    a.studyDescription = "CT CHEST";
+    a.accessionNumber = "ACC1";
+    a.studyUid = s.studyA;
+    a.seriesUid = s.seriesA1;
+    a.modality = "CT";
+    for (auto& f : writeSeries(dir + "/a1", {32, 32, 20}, a)) s.files.push_back(f);
+    a.seriesUid = s.seriesA2;
+    a.seriesNumber = 2;
+    a.seriesDescription = "Bone";
+    for (auto& f : writeSeries(dir + "/a2", {32, 32, 10}, a)) s.files.push_back(f);
+    dicom::DicomWriteOptions b;
+    b.patientName = "ROE^RICHARD";
+    b.patientId = "P2";
+    b.studyDate = "20231115";
+    b.studyDescription = "MR BRAIN";
+    b.studyUid = s.studyB;
+    b.seriesUid = s.seriesB1;
+    b.modality = "MR";
+    for (auto& f : writeSeries(dir + "/b1", {24, 24, 8}, b)) s.files.push_back(f);
+    return s;
+}
+
+// The dataset part of a DICOM file (after the File Meta Information).
+std::string datasetBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string all((std::istreambuf_iterator<char>(in)), {});
+    if (all.size() < 144 || all.compare(128, 4, "DICM") != 0) return all;
+    std::uint32_t groupLength = 0;
+    std::memcpy(&groupLength, all.data() + 140, 4);
+    return all.substr(144 + groupLength);
+}
+
+std::map<std::string, std::string> bySop(const std::vector<std::string>& files) {
+    std::map<std::string, std::string> m;
+    for (const auto& f : files) {
+        dicom::DicomInstance in;
+        dicom::DicomHeaderReader::read(f, in);
+        m[in.sopInstanceUid] = f;
+    }
+    return m;
+}
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const core::Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+class OrthancPeer : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        dir_ = new test::TempDir();
+        peer_ = new test::PacsPeer(test::PacsPeer::Kind::Orthanc);
+        peer_->start();
+        seeded_ = new Seeded(makeStudies(dir_->file("seed")));
+        peer_->seed(seeded_->files);
+    }
+    static void TearDownTestSuite() {
+        delete peer_;
+        delete seeded_;
+        delete dir_;
+    }
+    dicom::PacsClient client(int timeout = 10) {
+        auto s = peer_->settings();
+        s.local.timeoutSeconds = timeout;
+        return dicom::PacsClient(s.local, s.nodes[0]);
+    }
+    static test::TempDir* dir_;
+    static test::PacsPeer* peer_;
+    static Seeded* seeded_;
+};
+test::TempDir* OrthancPeer::dir_ = nullptr;
+test::PacsPeer* OrthancPeer::peer_ = nullptr;
+Seeded* OrthancPeer::seeded_ = nullptr;
+}  // namespace
+
+TEST_F(OrthancPeer, Echo) { EXPECT_NO_THROW(client().echo()); }
+
+TEST_F(OrthancPeer, FindAtEachLevelWithWildcardsDateRangesAndModality) {
+    auto count = [&](dicom::QueryLevel level, dicom::QueryKeys k) {
+        std::vector<dicom::QueryResult> rs;
+        client().find(level, k, [&](const dicom::QueryResult& r) {
+            rs.push_back(r);
+            return true;
+        });
+        return rs;
+    };
+    EXPECT_EQ(count(dicom::QueryLevel::Study, {}).size(), 2u);
+    auto r = count(dicom::QueryLevel::Study, {"DOE*", "", "", "", "", "", "", ""});
+    ASSERT_EQ(r.size(), 1u);
+    EXPECT_EQ(r[0].studyUid, seeded_->studyA);
+    EXPECT_EQ(r[0].studyDescription, "CT CHEST");
+    EXPECT_EQ(r[0].accessionNumber, "ACC1");
+    EXPECT_EQ(r[0].numberOfInstances, 30);
+    EXPECT_EQ(count(dicom::QueryLevel::Study, {"?OE^RICH*", "", "", "", "", "", "", ""}).size(), 1u);
+    EXPECT_EQ(count(dicom::QueryLevel::Study, {"", "P2", "", "", "", "", "", ""}).size(), 1u);
+    EXPECT_EQ(count(dicom::QueryLevel::Study, {"", "", "20240101-20241231", "", "", "", "", ""}).size(), 1u);
+    EXPECT_EQ(count(dicom::QueryLevel::Study, {"", "", "-20231231", "", "", "", "", ""}).size(), 1u);
+    EXPECT_EQ(count(dicom::QueryLevel::Study, {"", "", "20231115", "", "", "", "", ""}).size(), 1u);
+    EXPECT_EQ(count(dicom::QueryLevel::Study, {"", "", "", "MR", "", "", "", ""}).size(), 1u);
+    EXPECT_EQ(count(dicom::QueryLevel::Study, {"", "", "", "", "ACC1", "", "", ""}).size(), 1u);
+    dicom::QueryKeys series;
+    series.studyUid = seeded_->studyA;
+    r = count(dicom::QueryLevel::Series, series);
+    ASSERT_EQ(r.size(), 2u);
+    series.modality = "CT";
+    EXPECT_EQ(count(dicom::QueryLevel::Series, series).size(), 2u);
+    dicom::QueryKeys image;
+    image.studyUid = seeded_->studyA;
+    image.seriesUid = seeded_->seriesA2;
+    EXPECT_EQ(count(dicom::QueryLevel::Image, image).size(), 10u);
+}
+
+TEST_F(OrthancPeer, QueryCanBeCancelled) {
+    dicom::QueryKeys image;
+    image.studyUid = seeded_->studyA;
+    image.seriesUid = seeded_->seriesA1;
+    int seen = 0;
+    const auto n = client().find(dicom::QueryLevel::Image, image, [&](const dicom::QueryResult&) { return ++seen < 3; });
+    EXPECT_EQ(n, 3u);  // results after C-CANCEL are not delivered
+    EXPECT_NO_THROW(client().echo());
+}
+
+TEST_F(OrthancPeer, GetStoresByteIdenticalInstancesUnderSanitizedPaths) {
+    test::TempDir out;
+    std::vector<std::string> stored;
+    std::vector<dicom::RetrieveProgress> progress;
+    const auto p = client().get(seeded_->studyA, seeded_->seriesA2, out.file("rx"),
+                                [&](const dicom::DicomInstance& in) { stored.push_back(in.path); },
+                                [&](const dicom::RetrieveProgress& pr) { progress.push_back(pr); });
+    EXPECT_EQ(p.completed, 10);
+    EXPECT_EQ(p.failed, 0);
+    ASSERT_EQ(stored.size(), 10u);
+    ASSERT_FALSE(progress.empty());
+    const auto originals = bySop(seeded_->files);
+    for (const auto& [sop, path] : bySop(stored)) {
+        ASSERT_TRUE(originals.count(sop)) << sop;
+        EXPECT_EQ(datasetBytes(path), datasetBytes(originals.at(sop))) << path;
+        EXPECT_EQ(path.rfind(out.file("rx/") + seeded_->studyA + "/" + seeded_->seriesA2 + "/", 0), 0u) << path;
+    }
+    EXPECT_TRUE(std::filesystem::is_empty(out.file("rx/.incoming")));
+}
+
+TEST_F(OrthancPeer, MoveToOurStorageScpThenIndexAndBuild) {
+    test::TempDir out;
+    auto s = peer_->settings();
+    s.local.storageDir = out.file("rx");
+    auto node = s.nodes[0];
+    node.retrieve = dicom::RetrieveMethod::Move;
+    dicom::StudyDatabase db(out.file("db.sqlite"));
+    dicom::RetrieveJob job(s, node, db, out.file("octrees"));
+    core::JobContext ctx;
+    std::vector<dicom::SeriesRetrieveStatus> updates;
+    const auto result = job.run(seeded_->studyA, "", true, ctx, [&](const auto& st) { updates.push_back(st); });
+    ASSERT_EQ(result.size(), 2u);
+    for (const auto& r : result) {
+        EXPECT_TRUE(r.retrieved) << r.error;
+        EXPECT_TRUE(r.error.empty()) << r.error;
+        EXPECT_TRUE(std::filesystem::exists(r.octreePath)) << r.seriesUid;
+    }
+    EXPECT_EQ(db.instanceCount(), 30u);
+    EXPECT_EQ(db.findStudies({"DOE*", "", "", ""}).size(), 1u);
+    const auto originals = bySop(seeded_->files);
+    std::size_t identical = 0;
+    for (const auto& f : db.filesOfSeries(seeded_->seriesA1)) {
+        dicom::DicomInstance in;
+        dicom::DicomHeaderReader::read(f, in);
+        identical += datasetBytes(f) == datasetBytes(originals.at(in.sopInstanceUid));
+    }
+    EXPECT_EQ(identical, 20u);
+}
+
+TEST_F(OrthancPeer, UnknownMoveDestinationIsExplained) {
+    const auto e = errorOf([&] { client().move(seeded_->studyB, "", "NOBODY", {}); });
+    // Orthanc answers 0xC000 rather than 0xA801 (dcmqrscp's answer is tested too); either way the
+    // message points at the move destination.
+    EXPECT_NE(e.find("move destination 'NOBODY'"), std::string::npos) << e;
+}
+
+TEST_F(OrthancPeer, WrongCalledAeTitleIsExplained) {
+    auto s = peer_->settings();
+    s.nodes[0].aeTitle = "NOTORTHANC";
+    const auto e = errorOf([&] { dicom::PacsClient(s.local, s.nodes[0]).echo(); });
+    EXPECT_NE(e.find("rejected the association"), std::string::npos) << e;
+    EXPECT_NE(e.find("NOTORTHANC"), std::string::npos) << e;
+}
+
+TEST(PacsFaults, PeerNotRunning) {
+    auto s = test::PacsPeer(test::PacsPeer::Kind::Orthanc).settings();  // configured, never started
+    const auto e = errorOf([&] { dicom::PacsClient(s.local, s.nodes[0]).echo(); });
+    EXPECT_NE(e.find("connection refused"), std::string::npos) << e;
+}
+
+TEST(PacsFaults, StalledPeerTimesOut) {
+    // A listener that accepts and never says a word.
+    const int srv = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ::bind(srv, reinterpret_cast<sockaddr*>(&a), sizeof a);
+    socklen_t len = sizeof a;
+    ::getsockname(srv, reinterpret_cast<sockaddr*>(&a), &len);
+    ::listen(srv, 4);
+    dicom::LocalNode local;
+    local.timeoutSeconds = 2;
+    dicom::PacsNode node{"stalled", "STALLED", "127.0.0.1", ntohs(a.sin_port), dicom::RetrieveMethod::Get, false};
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto e = errorOf([&] { dicom::PacsClient(local, node).echo(); });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ::close(srv);
+    EXPECT_FALSE(e.empty());
+    EXPECT_LT(seconds, 8.0) << e;
+    EXPECT_NE(e.find("stalled"), std::string::npos) << e;
+}
+
+TEST(PacsFaults, PeerKilledMidRetrieveThenRetryCompletes) {
+    test::TempDir seedDir, out;
+    dicom::DicomWriteOptions o;
+    o.studyUid = "1.2.826.0.1.3680043.9.7777.30";
+    o.seriesUid = "1.2.826.0.1.3680043.9.7777.31";
+    const auto files = writeSeries(seedDir.file("s"), {64, 64, 60}, o);
+    auto peer = std::make_unique<test::PacsPeer>(test::PacsPeer::Kind::Orthanc);
+    peer->start();
+    peer->seed(files);
+    auto s = peer->settings();
+    s.local.timeoutSeconds = 5;
+    std::atomic<int> stored{0};
+    std::thread killer([&] {
+        while (stored < 10) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        peer->kill();
+    });
+    const auto e = errorOf([&] {
+        dicom::PacsClient(s.local, s.nodes[0]).get(o.studyUid, "", out.file("rx"),
+                                                   [&](const dicom::DicomInstance&) { ++stored; }, {});
+    });
+    killer.join();
+    EXPECT_NE(e.find("interrupted"), std::string::npos) << e;
+    EXPECT_TRUE(std::filesystem::is_empty(out.file("rx/.incoming"))) << "half-written file left behind";
+    // Every file that is there is complete and valid.
+    for (const auto& f : std::filesystem::recursive_directory_iterator(out.file("rx")))
+        if (f.is_regular_file()) {
+            dicom::DicomInstance in;
+            EXPECT_NO_THROW(dicom::DicomHeaderReader::read(f.path().string(), in)) << f.path();
+        }
+    // The PACS comes back (same storage): the retried retrieve completes.
+    peer->start();
+    const auto p = dicom::PacsClient(s.local, s.nodes[0]).get(o.studyUid, "", out.file("rx"), {}, {});
+    EXPECT_EQ(p.completed, 60);
+    std::size_t n = 0;
+    for (const auto& f : std::filesystem::recursive_directory_iterator(out.file("rx"))) n += f.is_regular_file();
+    EXPECT_EQ(n, 60u);
+}

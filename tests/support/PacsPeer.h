@@ -1,0 +1,50 @@
+#pragma once
+#include <sys/types.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "dicom/PacsSettings.h"
+#include "tests/support/TempDir.h"
+
+namespace hvx::test {
+
+/// A free TCP port on loopback (bound once and released; good enough for tests).
+std::uint16_t freePort();
+/// Waits until something accepts TCP connections on the port; false after `seconds`.
+bool waitForPort(std::uint16_t port, double seconds);
+
+/// A real PACS for tests, started on free loopback ports with a throwaway configuration and
+/// storage: Orthanc (Debian package) or DCMTK's dcmqrscp. Holovox's storage SCP is registered
+/// on the peer as a C-MOVE destination. Stopped and deleted on destruction.
+class PacsPeer {
+public:
+    enum class Kind { Orthanc, Dcmqrscp };
+    explicit PacsPeer(Kind kind);
+    ~PacsPeer();
+    PacsPeer(const PacsPeer&) = delete;
+    PacsPeer& operator=(const PacsPeer&) = delete;
+
+    void start();
+    /// SIGKILL, as a crash or a pulled cable would.
+    void kill();
+    /// Stores files on the peer with DCMTK's storescu; throws on failure.
+    void seed(const std::vector<std::string>& files);
+    /// Settings whose node "peer" is this server and whose local node receives into a folder.
+    dicom::PacsSettings settings() const;
+    std::uint16_t dicomPort() const { return dicomPort_; }
+    std::uint16_t localPort() const { return localPort_; }
+    const std::string& aeTitle() const { return ae_; }
+    std::string receiveDir() const { return dir_.file("received"); }
+    std::string file(const std::string& name) const { return dir_.file(name); }
+
+private:
+    Kind kind_;
+    TempDir dir_;
+    std::string ae_;
+    std::uint16_t dicomPort_, httpPort_, localPort_;
+    pid_t pid_ = -1;
+};
+
+}  // namespace hvx::test
