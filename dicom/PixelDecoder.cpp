@@ -13,6 +13,7 @@
 #include "core/Error.h"
 #include "dicom/DcmtkSetup.h"
 #include "dicom/Jpeg2000Decoder.h"
+#include "dicom/RleDecoder.h"
 
 namespace hvx::dicom {
 
@@ -30,19 +31,21 @@ bool isJpeg2000(E_TransferSyntax x) {
            x == EXS_JPEG2000Multicomponent;
 }
 
-void decodeJpeg2000(DcmPixelData* pd, E_TransferSyntax xfer, const DicomInstance& in, std::uint32_t frame,
-                    std::vector<std::int32_t>& out) {
+// The encapsulated bytes of one frame: all fragments for a single frame, else one fragment
+// per frame.
+std::vector<std::uint8_t> frameFragments(DcmPixelData* pd, E_TransferSyntax xfer, const DicomInstance& in,
+                                         std::uint32_t frame, const char* what) {
     DcmPixelSequence* seq = nullptr;
     if (pd->getEncapsulatedRepresentation(xfer, nullptr, seq).bad() || !seq)
-        throw core::Error(in.path + ": JPEG 2000 pixel data is not encapsulated");
+        throw core::Error(in.path + ": " + what + " pixel data is not encapsulated");
     const unsigned long items = seq->card();
-    if (items < 2) throw core::Error(in.path + ": JPEG 2000 pixel data has no fragments");
+    if (items < 2) throw core::Error(in.path + ": " + what + " pixel data has no fragments");
     std::vector<std::uint8_t> stream;
     auto append = [&](unsigned long i) {
         DcmPixelItem* item = nullptr;
         Uint8* bytes = nullptr;
         if (seq->getItem(item, i).bad() || !item || item->getUint8Array(bytes).bad())
-            throw core::Error(in.path + ": JPEG 2000 fragment " + std::to_string(i) + " is unreadable");
+            throw core::Error(in.path + ": " + what + " fragment " + std::to_string(i) + " is unreadable");
         if (bytes) stream.insert(stream.end(), bytes, bytes + item->getLength());
     };
     if (in.frames == 1) {
@@ -50,8 +53,14 @@ void decodeJpeg2000(DcmPixelData* pd, E_TransferSyntax xfer, const DicomInstance
     } else if (items - 1 == in.frames) {
         append(frame + 1);
     } else {
-        throw core::Error(in.path + ": multi-frame JPEG 2000 with several fragments per frame is not supported");
+        throw core::Error(in.path + ": multi-frame " + what + " with several fragments per frame is not supported");
     }
+    return stream;
+}
+
+void decodeJpeg2000(DcmPixelData* pd, E_TransferSyntax xfer, const DicomInstance& in, std::uint32_t frame,
+                    std::vector<std::int32_t>& out) {
+    const auto stream = frameFragments(pd, xfer, in, frame, "JPEG 2000");
     Jpeg2000Decoder::decode(stream.data(), stream.size(), in.columns, in.rows, out, in.path);
 }
 }  // namespace
@@ -93,7 +102,18 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
     const std::size_t pixels = std::size_t(in.rows) * in.columns;
     if (isJpeg2000(xfer)) {
         decodeJpeg2000(pd, xfer, in, frame, out);
-    } else {  // DCMTK: native, deflate, RLE, JPEG, JPEG-LS
+    } else if (xfer == EXS_RLELossless) {
+        const auto stream = frameFragments(pd, xfer, in, frame, "RLE");
+        std::vector<std::uint8_t> bytes;
+        const int width = in.bitsAllocated / 8;
+        RleDecoder::decode(stream.data(), stream.size(), pixels, width, bytes, in.path);
+        out.resize(pixels);
+        for (std::size_t i = 0; i < pixels; ++i) {
+            std::uint32_t v = 0;
+            for (int b = width; b-- > 0;) v = (v << 8) | bytes[i * std::size_t(width) + std::size_t(b)];
+            out[i] = std::int32_t(v);
+        }
+    } else {  // DCMTK: native, deflate, JPEG, JPEG-LS
         Uint32 frameSize = 0;
         if (pd->getUncompressedFrameSize(ds, frameSize).bad() || frameSize < pixels * (in.bitsAllocated / 8))
             throw core::Error(in.path + ": cannot size the pixel data");

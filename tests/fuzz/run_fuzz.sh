@@ -7,21 +7,27 @@
 # (nothrow) for an element's declared length, up to 4 GiB, before finding the data short;
 # the resident memory limit (-rss_limit_mb) still catches any real blow-up.
 #
-#   bash tests/fuzz/run_fuzz.sh [SECONDS]     (default 30; the test suite runs 20)
+#   bash tests/fuzz/run_fuzz.sh [SECONDS]     explore for SECONDS (default 30)
+#   bash tests/fuzz/run_fuzz.sh --ci          the test suite's run: fixed seed and 6000 inputs,
+#                                             so CI is reproducible (new findings come from
+#                                             exploration runs and land in regressions/)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:-30}
+limits="-max_total_time=$seconds"
+if [ "$seconds" = "--ci" ]; then seconds="fixed"; limits="-seed=1 -runs=6000"; fi
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz --target dicom_fuzzer >/dev/null
 work=$(mktemp -d)
 trap 'rm -rf "$work" /tmp/hvx-fuzz-*.dcm' EXIT
 mkdir -p "$work/corpus"
 find /usr/lib/python3/dist-packages/pydicom/data/test_files -type f -size -2M -exec cp {} "$work/corpus/" \; 2>/dev/null || true
+cp tests/fuzz/regressions/* "$work/corpus/" 2>/dev/null || true  # inputs that once crashed
 n=$(ls "$work/corpus" | wc -l)
-echo "fuzzing with $n seed files for ${seconds}s"
+echo "fuzzing with $n seed files ($limits)"
 set +e
 ASAN_OPTIONS=detect_leaks=0:allocator_may_return_null=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
-  build/fuzz/tests/fuzz/dicom_fuzzer -max_total_time="$seconds" -rss_limit_mb=2560 -malloc_limit_mb=4200 -max_len=262144 \
+  build/fuzz/tests/fuzz/dicom_fuzzer $limits -rss_limit_mb=2560 -malloc_limit_mb=4200 -max_len=262144 \
   -timeout=20 -print_final_stats=1 -artifact_prefix="$work/" "$work/corpus" >"$work/log" 2>&1
 rc=$?
 set -e
