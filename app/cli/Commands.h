@@ -16,4 +16,5 @@ int buildSeriesCommand(int argc, char** argv);
 int exportDicomCommand(int argc, char** argv);
 int pacsCommand(int argc, char** argv);
 int listenCommand(int argc, char** argv);
+int renderCommand(int argc, char** argv);
 }  // namespace hvx::app

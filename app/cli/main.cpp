@@ -33,6 +33,8 @@ void usage() {
         "  pacs send NODE FILE...         C-STORE files to a node\n"
         "  listen [--port N] [--ae AE] [--storage DIR] [--allow AE]   storage SCP in the foreground\n"
         "  dicom-info FILE               one-line summary of a DICOM file's header\n"
+        "  render FILE.hvo --cpu [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] [--tf PRESET]\n"
+        "        [--iso HU] [--size WxH] [--budget BRICKS] [--accuracy VOXELS_PER_PIXEL] -o OUT.png|OUT.exr\n"
         "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
         "  version                       versions of Holovox and its libraries");
 }
@@ -57,6 +59,7 @@ int main(int argc, char** argv) {
         if (cmd == "export-dicom") return hvx::app::exportDicomCommand(argc, argv);
         if (cmd == "pacs") return hvx::app::pacsCommand(argc, argv);
         if (cmd == "listen") return hvx::app::listenCommand(argc, argv);
+        if (cmd == "render") return hvx::app::renderCommand(argc, argv);
         if (cmd == "version" || cmd == "--version") return hvx::app::versionCommand(argc, argv);
         std::fprintf(stderr, "holovox-cli: unknown command '%s' (try --help)\n", cmd.c_str());
         return 2;

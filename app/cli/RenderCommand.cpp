@@ -1,0 +1,105 @@
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "app/cli/CliArgs.h"
+#include "app/cli/Commands.h"
+#include "core/BrickCache.h"
+#include "core/BrickLoader.h"
+#include "core/CpuRayCaster.h"
+#include "core/Error.h"
+#include "core/ImageWriter.h"
+#include "core/OctreeReader.h"
+#include "core/VoxelSourceFactory.h"
+#include "core/WorkingSet.h"
+
+namespace hvx::app {
+
+namespace {
+core::RenderSettings::Mode parseMode(const std::string& m) {
+    if (m == "dvr") return core::RenderSettings::Mode::Dvr;
+    if (m == "iso") return core::RenderSettings::Mode::Iso;
+    if (m == "mip") return core::RenderSettings::Mode::Mip;
+    if (m == "minip") return core::RenderSettings::Mode::MinIp;
+    if (m == "xray" || m == "average") return core::RenderSettings::Mode::Average;
+    throw core::Error("--mode must be dvr, iso, mip, minip or xray");
+}
+}  // namespace
+
+int renderCommand(int argc, char** argv) {
+    const CliArgs args(argc, argv, 2,
+                       {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb"},
+                       {"cpu"});
+    const auto out = args.value("o") ? args.value("o") : args.value("output");
+    if (args.positional().size() != 1 || !out)
+        throw core::Error("usage: holovox-cli render FILE.hvo --cpu [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
+                          "[--tf PRESET] [--size WxH] -o OUT.png|OUT.exr");
+    if (!args.flag("cpu"))
+        throw core::Error("GPU rendering comes with the render module; use --cpu for the CPU reference ray caster");
+    const auto reader = core::OctreeReader::open(args.positional()[0]);
+    const auto& g = reader->geometry();
+    double az = 0, el = 0, zoom = 1;
+    if (const auto v = args.value("view")) {
+        char c1 = 0, c2 = 0;
+        std::istringstream in(*v);
+        if (!(in >> az >> c1 >> el >> c2 >> zoom) || c1 != ',' || c2 != ',' || !(zoom > 0))
+            throw core::Error("--view must be AZIMUTH,ELEVATION,ZOOM in degrees and a positive factor, e.g. 30,15,1.2");
+    }
+    int width = 512, height = 512;
+    if (const auto s = args.value("size")) {
+        const auto d = core::VoxelSourceFactory::parseDims(*s + "x1");
+        width = int(d[0]);
+        height = int(d[1]);
+        if (width > 16384 || height > 16384) throw core::Error("--size is limited to 16384x16384");
+    }
+    core::RenderSettings settings;
+    settings.mode = parseMode(args.value("mode").value_or("dvr"));
+    const std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
+    const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
+    const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
+                                                   space.minSpacing);
+    core::WorkingSetOptions opt;
+    opt.maxBricks = std::size_t(args.integer("budget", 4096, 1, 1 << 20));
+    opt.voxelsPerPixel = args.number("accuracy").value_or(1.0);
+    opt.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
+    if (settings.mode == core::RenderSettings::Mode::Iso) {
+        const double physical = args.number("iso").value_or(g.modality == "CT" ? 300.0 : 0.5 * (g.valueMin + g.valueMax));
+        settings.isoValue = (physical - g.rescaleIntercept) / g.rescaleSlope;
+        opt.isosurface = true;
+        opt.isoValue = settings.isoValue;
+    }
+    // An orbit camera around the volume's centre that frames it.
+    const glm::dvec3 centre = glm::dvec3(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 corner = glm::dvec3(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
+    const double radius = glm::length(centre - corner) / std::tan(glm::radians(15.0)) * 1.05 / zoom;
+    const core::View view = core::View::orbit(centre, radius, az, el, width, height);
+
+    const auto t0 = std::chrono::steady_clock::now();
+    core::BrickCache cache(std::size_t(args.integer("cache-mb", 2048, 16, 1 << 20)) << 20);
+    core::BrickLoader loader(*reader, cache);
+    core::WorkingSet ws(*reader, cache, loader, opt);
+    int frames = 0;
+    // Synchronous mode: load what the cut asks for until it is complete.
+    for (; frames < 64; ++frames) {
+        ws.update({view}, tf);
+        if (ws.stats().requested == 0) break;
+        loader.waitIdle();
+    }
+    const double refineSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    for (const auto& e : loader.errors()) std::fprintf(stderr, "holovox-cli: warning: %s (drawn coarser)\n", e.c_str());
+    const auto t1 = std::chrono::steady_clock::now();
+    const core::CpuRayCaster caster(*reader, ws.index(), ws.slotData(), tf, settings);
+    const auto image = caster.render(view);
+    const double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+    core::ImageWriter::write(image, *out);
+    std::printf("rendered %s (%dx%d, %s, tf %s) on the CPU: cut of %zu bricks (%zu loaded, %zu frames to converge, "
+                "%.2f s), ray casting %.2f s\n",
+                out->c_str(), width, height, args.value("mode").value_or("dvr").c_str(), preset.c_str(),
+                ws.stats().cutNodes, loader.loadedCount(), std::size_t(frames + 1), refineSeconds, renderSeconds);
+    return 0;
+}
+
+}  // namespace hvx::app

@@ -1,0 +1,232 @@
+#include "core/CpuRayCaster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "core/SpatialIndexTraversal.h"
+#include "core/ThreadPool.h"
+
+namespace hvx::core {
+
+CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index,
+                           const std::vector<std::shared_ptr<const std::vector<float>>>& slots,
+                           const TransferFunction& tf, RenderSettings settings)
+    : reader_(reader), index_(index), slots_(slots), tf_(tf), settings_(settings),
+      space_(OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount())) {
+    normalToWorld_ = glm::transpose(glm::inverse(glm::dmat3(space_.octreeToPatient)));
+}
+
+template <class Visitor>
+void CpuRayCaster::walk(const glm::dvec3& ow, const glm::dvec3& dw, Visitor&& visit) const {
+    const glm::dvec3 od = glm::dvec3(space_.patientToOctree * glm::dvec4(ow, 1.0));
+    const glm::dvec3 dd = glm::dmat3(space_.patientToOctree) * dw;
+    // Clip to the volume's box in octree space (t stays in world mm).
+    double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(dd[a]) < 1e-15) {
+            if (od[a] < 0.0 || od[a] > space_.extent[a]) return;
+            continue;
+        }
+        double ta = (0.0 - od[a]) / dd[a], tb = (space_.extent[a] - od[a]) / dd[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    if (!(t1 > t0)) return;
+    const glm::vec3 o(od), d(dd);
+    glm::vec3 inv;
+    for (int a = 0; a < 3; ++a) inv[a] = std::abs(d[a]) > 1e-20f ? 1.0f / d[a] : (d[a] >= 0 ? 1e30f : -1e30f);
+    // Step past a face by a thousandth of a level-0 voxel, far above float resolution.
+    const float nudge = float(1e-3 / space_.rootVoxels / std::max(1e-12, glm::length(dd)));
+    std::uint32_t n = 0;
+    glm::vec3 lo(0.0f), hi(1.0f);
+    glsl::hvxDescend(index_, n, lo, hi, o + (float(t0) + nudge) * d);
+    float tIn = float(t0);
+    for (int guard = 0; guard < 1 << 20; ++guard) {
+        float tExit = 0;
+        const int face = glsl::hvxExitFace(o, inv, lo, hi, tExit);
+        const float tOut = std::min(tExit, float(t1));
+        if (tOut > tIn && !visit(n, lo, tIn, tOut)) return;
+        if (tExit >= float(t1)) return;
+        if (!glsl::hvxNextLeaf(index_, o, d, face, tExit, nudge, n, lo, hi)) return;
+        tIn = std::max(tIn, tExit);
+    }
+}
+
+std::vector<CpuRayCaster::Visit> CpuRayCaster::traverse(const glm::dvec3& origin, const glm::dvec3& direction) const {
+    std::vector<Visit> out;
+    walk(origin, direction, [&](std::uint32_t n, const glm::vec3&, float a, float b) {
+        out.push_back({n, a, b});
+        return true;
+    });
+    return out;
+}
+
+float CpuRayCaster::sample(std::uint32_t node, const glm::vec3& p) const {
+    const auto& nd = index_.nodes[node];
+    const auto& data = *slots_[nd.x];
+    const std::uint32_t depth = nd.y & 0xFFu;
+    const float scale = float(reader_.brickSize()) * float(1u << depth);
+    const int e = int(reader_.brickEdge());
+    // The leaf's grid origin in level voxels, minus the border: brick sample 0.
+    const glm::vec3 lo = glm::floor(p * float(1u << depth)) * float(reader_.brickSize());
+    glm::vec3 u = p * scale - (lo - float(reader_.border())) - 0.5f;
+    u = glm::clamp(u, glm::vec3(0.0f), glm::vec3(float(e - 1)));
+    const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(e - 2 > 0 ? e - 2 : 0));
+    const glm::vec3 f = u - glm::vec3(i0);
+    auto at = [&](int x, int y, int z) { return data[(std::size_t(z) * e + std::size_t(y)) * e + std::size_t(x)]; };
+    const int x1 = std::min(i0.x + 1, e - 1), y1 = std::min(i0.y + 1, e - 1), z1 = std::min(i0.z + 1, e - 1);
+    const float c00 = at(i0.x, i0.y, i0.z) * (1 - f.x) + at(x1, i0.y, i0.z) * f.x;
+    const float c10 = at(i0.x, y1, i0.z) * (1 - f.x) + at(x1, y1, i0.z) * f.x;
+    const float c01 = at(i0.x, i0.y, z1) * (1 - f.x) + at(x1, i0.y, z1) * f.x;
+    const float c11 = at(i0.x, y1, z1) * (1 - f.x) + at(x1, y1, z1) * f.x;
+    return (c00 * (1 - f.y) + c10 * f.y) * (1 - f.z) + (c01 * (1 - f.y) + c11 * f.y) * f.z;
+}
+
+glm::vec3 CpuRayCaster::gradient(std::uint32_t node, const glm::vec3& p) const {
+    const std::uint32_t depth = index_.nodes[node].y & 0xFFu;
+    const float h = 1.0f / (float(reader_.brickSize()) * float(1u << depth));
+    return glm::vec3(sample(node, p + glm::vec3(h, 0, 0)) - sample(node, p - glm::vec3(h, 0, 0)),
+                     sample(node, p + glm::vec3(0, h, 0)) - sample(node, p - glm::vec3(0, h, 0)),
+                     sample(node, p + glm::vec3(0, 0, h)) - sample(node, p - glm::vec3(0, 0, h))) /
+           (2.0f * h);
+}
+
+glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& depth,
+                             std::vector<std::uint32_t>* counts) const {
+    depth = std::numeric_limits<float>::infinity();
+    const glm::vec3 o(space_.patientToOctree * glm::dvec4(ow, 1.0));
+    const glm::vec3 d(glm::dmat3(space_.patientToOctree) * dw);
+    const float octPerMm = glm::length(d);
+    glm::dvec3 color(0.0);
+    double alpha = 0.0, extreme = settings_.mode == RenderSettings::Mode::MinIp ? 1e300 : -1e300, sum = 0.0;
+    double travelled = 0.0;
+    bool hit = false, havePrev = false;
+    float tPrev = 0.0f, sPrev = 0.0f;
+    const auto mode = settings_.mode;
+    auto shade = [&](std::uint32_t n, const glm::vec3& p, const glm::dvec3& base) {
+        if (!settings_.shading) return base;
+        glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(n, p));
+        const double len = glm::length(g);
+        if (len < 1e-9) return base * (settings_.ambient + settings_.diffuse);
+        g /= len;
+        const glm::dvec3 l = -dw;  // headlight
+        const double diff = std::abs(glm::dot(g, l));
+        const double spec = std::pow(std::abs(glm::dot(g, l)), settings_.shininess);
+        return base * (settings_.ambient + settings_.diffuse * diff) + glm::dvec3(settings_.specular * spec);
+    };
+    walk(ow, dw, [&](std::uint32_t n, const glm::vec3&, float tIn, float tOut) {
+        const auto& nd = index_.nodes[n];
+        if (nd.x == SpatialIndex::kNone) {  // empty leaf: nothing to accumulate
+            havePrev = false;
+            return true;
+        }
+        if (counts) ++(*counts)[n];
+        const std::uint32_t depthLevel = nd.y & 0xFFu;
+        const float voxel = 1.0f / (float(reader_.brickSize()) * float(1u << depthLevel));
+        const float dt = float(settings_.stepScale) * voxel / octPerMm;  // world mm
+        float t = havePrev ? tPrev + dt : tIn;
+        if (t < tIn) t = tIn;
+        for (; t <= tOut; t += dt) {
+            const glm::vec3 p = o + t * d;
+            const float s = sample(n, p);
+            if (mode == RenderSettings::Mode::Dvr) {
+                if (havePrev) {
+                    const glm::dvec4 f = tf_.segment(sPrev, s);
+                    const double seg = t - tPrev;
+                    const double a = 1.0 - std::exp(-f.w * seg);
+                    if (a > 1e-6) {
+                        const glm::dvec3 c = shade(n, p, glm::dvec3(f) / f.w);
+                        color += (1.0 - alpha) * a * c;
+                        alpha += (1.0 - alpha) * a;
+                        if (!hit && alpha > 0.02) {
+                            hit = true;
+                            depth = t;
+                        }
+                        if (alpha >= settings_.earlyTermination) return false;
+                    }
+                }
+            } else if (mode == RenderSettings::Mode::Iso) {
+                const double iso = settings_.isoValue;
+                if (havePrev && (sPrev < iso) != (s < iso)) {
+                    float a = tPrev, b = t, sa = sPrev;
+                    for (int k = 0; k < 8; ++k) {  // bisection to the crossing
+                        const float m = 0.5f * (a + b);
+                        const float sm = sample(n, o + m * d);
+                        if ((sa < iso) != (sm < iso)) b = m;
+                        else {
+                            a = m;
+                            sa = sm;
+                        }
+                    }
+                    const float th = 0.5f * (a + b);
+                    const glm::dvec4 f = tf_.sample(iso);
+                    glm::dvec3 base = f.w > 0 ? glm::dvec3(f) / f.w : glm::dvec3(0.9);
+                    if (glm::length(base) < 0.1) base = glm::dvec3(0.9);
+                    color = shade(n, o + th * d, base);
+                    alpha = 1.0;
+                    depth = th;
+                    return false;
+                }
+            } else {
+                extreme = mode == RenderSettings::Mode::MinIp ? std::min(extreme, double(s)) : std::max(extreme, double(s));
+                if (havePrev) {
+                    sum += 0.5 * (s + sPrev) * (t - tPrev);
+                    travelled += t - tPrev;
+                }
+                if (!hit) {
+                    hit = true;
+                    depth = t;
+                }
+            }
+            tPrev = t;
+            sPrev = s;
+            havePrev = true;
+        }
+        return true;
+    });
+    if (mode == RenderSettings::Mode::Mip || mode == RenderSettings::Mode::MinIp || mode == RenderSettings::Mode::Average) {
+        if (!hit) return glm::vec4(0.0f);
+        const double v = mode == RenderSettings::Mode::Average ? (travelled > 0 ? sum / travelled : extreme) : extreme;
+        const float g = float(std::clamp((v - tf_.valueMin()) / (tf_.valueMax() - tf_.valueMin()), 0.0, 1.0));
+        return glm::vec4(g, g, g, 1.0f);
+    }
+    return glm::vec4(glm::vec3(color), float(alpha));
+}
+
+RenderImage CpuRayCaster::render(const View& view) const {
+    RenderImage img;
+    img.width = view.width;
+    img.height = view.height;
+    img.rgba.assign(std::size_t(view.width) * view.height, glm::vec4(0.0f));
+    img.depth.assign(img.rgba.size(), std::numeric_limits<float>::infinity());
+    std::vector<std::vector<std::uint32_t>> counts;
+    const bool count = settings_.countRays;
+    ThreadPool::shared().parallelFor(std::size_t(view.height), [&](std::size_t y0, std::size_t y1) {
+        std::vector<std::uint32_t> local(count ? index_.nodes.size() : 0, 0);
+        for (std::size_t y = y0; y < y1; ++y)
+            for (int x = 0; x < view.width; ++x) {
+                glm::dvec3 o, d;
+                view.ray(x, double(y), o, d);
+                const std::size_t i = y * std::size_t(view.width) + std::size_t(x);
+                img.rgba[i] = cast(o, d, img.depth[i], count ? &local : nullptr);
+            }
+        if (count) {
+            static std::mutex m;
+            std::lock_guard lock(m);
+            counts.push_back(std::move(local));
+        }
+    }, 8);
+    if (count) {
+        img.rayCounts.assign(index_.nodes.size(), 0);
+        for (const auto& c : counts)
+            for (std::size_t i = 0; i < c.size(); ++i) img.rayCounts[i] += c[i];
+    }
+    return img;
+}
+
+}  // namespace hvx::core

@@ -1,0 +1,56 @@
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+namespace hvx::core {
+
+/// A 1D transfer function over stored values: piecewise-linear colour and opacity between
+/// control points, sampled into a 4096-entry table over [valueMin, valueMax]. Colours are
+/// extinction-weighted (thesis §3.2.2): opacity a per reference length d_ref becomes extinction
+/// tau = -ln(1 - a) / d_ref, and k = tau * colour. The table keeps f = (k_r, k_g, k_b, tau) and
+/// its running integral F, so a segment's average attributes follow Eq. 3.1 (pre-integration)
+/// and "is [min, max] empty?" is F(max) - F(min) == 0, in O(1).
+///
+/// Threading: immutable after construction; share freely.
+class TransferFunction {
+public:
+    struct Point {
+        double value;        ///< stored (not rescaled) value
+        glm::dvec4 rgba;     ///< colour and opacity per reference length, each in [0, 1]
+    };
+    static constexpr int kEntries = 4096;
+
+    /// Builds the tables; points need not be sorted. referenceLength is d_ref (world mm).
+    TransferFunction(std::vector<Point> points, double valueMin, double valueMax, double referenceLength = 1.0);
+    /// A preset by name over a value range in physical units converted by (slope, intercept):
+    /// ct-bone, ct-soft-tissue, ct-angio, ct-lung, mr-default, mip-ramp. Throws core::Error.
+    static TransferFunction preset(const std::string& name, double valueMin, double valueMax, double slope,
+                                   double intercept, double referenceLength);
+    static std::vector<std::string> presetNames();
+
+    double valueMin() const { return min_; }
+    double valueMax() const { return max_; }
+    double referenceLength() const { return refLength_; }
+    /// f(s): (k_r, k_g, k_b, tau) at a value, linearly interpolated in the table.
+    glm::dvec4 sample(double value) const;
+    /// Eq. 3.1: the average of f over the segment from value a to value b.
+    glm::dvec4 segment(double a, double b) const;
+    /// True when no value in [lo, hi] has any opacity.
+    bool isEmpty(double lo, double hi) const;
+    const std::vector<Point>& points() const { return points_; }
+
+private:
+    double position(double value) const;  // continuous table index
+    glm::dvec4 integral(double value) const;
+
+    std::vector<Point> points_;
+    double min_, max_, refLength_;
+    std::vector<glm::dvec4> f_;  // kEntries
+    std::vector<glm::dvec4> F_;  // kEntries + 1, F_[i] = integral up to table position i
+};
+
+}  // namespace hvx::core

@@ -1,0 +1,57 @@
+#include "core/View.h"
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace hvx::core {
+
+void View::ray(double x, double y, glm::dvec3& origin, glm::dvec3& direction) const {
+    const glm::dvec3 f = glm::normalize(target - eye);
+    const glm::dvec3 r = glm::normalize(glm::cross(f, up));
+    const glm::dvec3 u = glm::cross(r, f);
+    const double nx = (x + 0.5) / width * 2.0 - 1.0;
+    const double ny = 1.0 - (y + 0.5) / height * 2.0;
+    const double aspect = double(width) / height;
+    if (model == Model::Pinhole) {
+        const double th = std::tan(glm::radians(fovYDegrees) / 2.0);
+        origin = eye;
+        direction = glm::normalize(f + r * (nx * th * aspect) + u * (ny * th));
+    } else {
+        origin = eye + r * (nx * orthoHeight / 2 * aspect) + u * (ny * orthoHeight / 2);
+        direction = f;
+    }
+}
+
+glm::dmat4 View::viewProjection(double nearMm, double farMm) const {
+    const glm::dmat4 v = glm::lookAt(eye, target, up);
+    const double aspect = double(width) / height;
+    glm::dmat4 p;
+    if (model == Model::Pinhole) p = glm::perspective(glm::radians(fovYDegrees), aspect, nearMm, farMm);
+    else p = glm::ortho(-orthoHeight / 2 * aspect, orthoHeight / 2 * aspect, -orthoHeight / 2, orthoHeight / 2, -farMm, farMm);
+    return p * v;
+}
+
+double View::pixelFootprint(const glm::dvec3& point) const {
+    if (model == Model::Orthographic) return orthoHeight / height;
+    const double z = std::max(1e-3, glm::dot(point - eye, glm::normalize(target - eye)));
+    return 2.0 * z * std::tan(glm::radians(fovYDegrees) / 2.0) / height;
+}
+
+View View::orbit(const glm::dvec3& center, double radius, double azimuthDeg, double elevationDeg, int width,
+                 int height, double fovYDegrees) {
+    View v;
+    const double az = glm::radians(azimuthDeg), el = glm::radians(elevationDeg);
+    // Anterior is -y in LPS: azimuth 0 puts the eye in front of the patient.
+    const glm::dvec3 dir(std::sin(az) * std::cos(el), -std::cos(az) * std::cos(el), std::sin(el));
+    v.eye = center + dir * radius;
+    v.target = center;
+    v.up = std::abs(el) > glm::radians(89.0) ? glm::dvec3(0, 1, 0) : glm::dvec3(0, 0, 1);
+    v.width = width;
+    v.height = height;
+    v.fovYDegrees = fovYDegrees;
+    return v;
+}
+
+}  // namespace hvx::core
