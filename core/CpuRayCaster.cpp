@@ -66,14 +66,15 @@ std::vector<CpuRayCaster::Visit> CpuRayCaster::traverse(const glm::dvec3& origin
     return out;
 }
 
-float CpuRayCaster::sample(std::uint32_t node, const glm::vec3& p) const {
+float CpuRayCaster::sample(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p) const {
     const auto& nd = index_.nodes[node];
     const auto& data = *slots_[nd.x];
     const std::uint32_t depth = nd.y & 0xFFu;
     const float scale = float(reader_.brickSize()) * float(1u << depth);
     const int e = int(reader_.brickEdge());
-    // The leaf's grid origin in level voxels, minus the border: brick sample 0.
-    const glm::vec3 lo = glm::floor(p * float(1u << depth)) * float(reader_.brickSize());
+    // The leaf's grid origin in level voxels (from its box, not from p: samples just outside
+    // the leaf read its border).
+    const glm::vec3 lo = glm::floor(leafLo * float(1u << depth) + 0.5f) * float(reader_.brickSize());
     glm::vec3 u = p * scale - (lo - float(reader_.border())) - 0.5f;
     u = glm::clamp(u, glm::vec3(0.0f), glm::vec3(float(e - 1)));
     const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(e - 2 > 0 ? e - 2 : 0));
@@ -87,12 +88,12 @@ float CpuRayCaster::sample(std::uint32_t node, const glm::vec3& p) const {
     return (c00 * (1 - f.y) + c10 * f.y) * (1 - f.z) + (c01 * (1 - f.y) + c11 * f.y) * f.z;
 }
 
-glm::vec3 CpuRayCaster::gradient(std::uint32_t node, const glm::vec3& p) const {
+glm::vec3 CpuRayCaster::gradient(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p) const {
     const std::uint32_t depth = index_.nodes[node].y & 0xFFu;
     const float h = 1.0f / (float(reader_.brickSize()) * float(1u << depth));
-    return glm::vec3(sample(node, p + glm::vec3(h, 0, 0)) - sample(node, p - glm::vec3(h, 0, 0)),
-                     sample(node, p + glm::vec3(0, h, 0)) - sample(node, p - glm::vec3(0, h, 0)),
-                     sample(node, p + glm::vec3(0, 0, h)) - sample(node, p - glm::vec3(0, 0, h))) /
+    return glm::vec3(sample(node, leafLo, p + glm::vec3(h, 0, 0)) - sample(node, leafLo, p - glm::vec3(h, 0, 0)),
+                     sample(node, leafLo, p + glm::vec3(0, h, 0)) - sample(node, leafLo, p - glm::vec3(0, h, 0)),
+                     sample(node, leafLo, p + glm::vec3(0, 0, h)) - sample(node, leafLo, p - glm::vec3(0, 0, h))) /
            (2.0f * h);
 }
 
@@ -108,9 +109,10 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     bool hit = false, havePrev = false;
     float tPrev = 0.0f, sPrev = 0.0f;
     const auto mode = settings_.mode;
+    glm::vec3 leafLo(0.0f);
     auto shade = [&](std::uint32_t n, const glm::vec3& p, const glm::dvec3& base) {
         if (!settings_.shading) return base;
-        glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(n, p));
+        glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(n, leafLo, p));
         const double len = glm::length(g);
         if (len < 1e-9) return base * (settings_.ambient + settings_.diffuse);
         g /= len;
@@ -119,7 +121,10 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         const double spec = std::pow(std::abs(glm::dot(g, l)), settings_.shininess);
         return base * (settings_.ambient + settings_.diffuse * diff) + glm::dvec3(settings_.specular * spec);
     };
-    walk(ow, dw, [&](std::uint32_t n, const glm::vec3&, float tIn, float tOut) {
+    float tStart = -1.0f;
+    walk(ow, dw, [&](std::uint32_t n, const glm::vec3& lo, float tIn, float tOut) {
+        if (tStart < 0.0f) tStart = tIn;
+        leafLo = lo;
         const auto& nd = index_.nodes[n];
         if (nd.x == SpatialIndex::kNone) {  // empty leaf: nothing to accumulate
             havePrev = false;
@@ -129,11 +134,20 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         const std::uint32_t depthLevel = nd.y & 0xFFu;
         const float voxel = 1.0f / (float(reader_.brickSize()) * float(1u << depthLevel));
         const float dt = float(settings_.stepScale) * voxel / octPerMm;  // world mm
-        float t = havePrev ? tPrev + dt : tIn;
-        if (t < tIn) t = tIn;
+        float t = tPrev + dt;
+        if (!havePrev) {
+            // After empty space, resume on the ray's own sampling grid and take the segment
+            // leading into this brick from its border samples, as a dense marcher would.
+            t = tStart + std::ceil((tIn - tStart) / dt) * dt;
+            tPrev = t - dt;
+            if (tPrev >= tStart) {  // not before the ray entered the volume
+                sPrev = sample(n, leafLo, o + tPrev * d);
+                havePrev = mode == RenderSettings::Mode::Dvr || mode == RenderSettings::Mode::Iso;
+            }
+        }
         for (; t <= tOut; t += dt) {
             const glm::vec3 p = o + t * d;
-            const float s = sample(n, p);
+            const float s = sample(n, leafLo, p);
             if (mode == RenderSettings::Mode::Dvr) {
                 if (havePrev) {
                     const glm::dvec4 f = tf_.segment(sPrev, s);
@@ -156,7 +170,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                     float a = tPrev, b = t, sa = sPrev;
                     for (int k = 0; k < 8; ++k) {  // bisection to the crossing
                         const float m = 0.5f * (a + b);
-                        const float sm = sample(n, o + m * d);
+                        const float sm = sample(n, leafLo, o + m * d);
                         if ((sa < iso) != (sm < iso)) b = m;
                         else {
                             a = m;

@@ -61,8 +61,8 @@ private:
                    std::vector<std::uint32_t>* counts) const;
     template <class Visitor>
     void walk(const glm::dvec3& origin, const glm::dvec3& direction, Visitor&& visit) const;
-    float sample(std::uint32_t node, const glm::vec3& p) const;
-    glm::vec3 gradient(std::uint32_t node, const glm::vec3& p) const;
+    float sample(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p) const;
+    glm::vec3 gradient(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p) const;
 
     const OctreeReader& reader_;
     const SpatialIndex& index_;

@@ -23,10 +23,12 @@ using glm::step;
 #define HVX_NODE(i) hvxIndex.nodes[(i)]
 #define HVX_ROPE(i, f) hvxIndex.ropes[std::size_t(i) * 6u + std::size_t(f)]
 #define HVX_INOUT(T) T&
+#define HVX_FN inline
 #include "core/shared/IndexTraversal.glsl"
 #undef HVX_INDEX_PARAM
 #undef HVX_INDEX_ARG
 #undef HVX_NODE
 #undef HVX_ROPE
 #undef HVX_INOUT
+#undef HVX_FN
 }  // namespace hvx::core::glsl

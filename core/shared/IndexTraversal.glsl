@@ -9,16 +9,16 @@
 // depth, HVX_NONE at the domain boundary.
 //
 // The includer defines HVX_NODE(i), HVX_ROPE(i, f), HVX_INDEX_PARAM, HVX_INDEX_ARG and
-// HVX_INOUT(T).
+// HVX_INOUT(T); HVX_FN prefixes every function (inline in C++, empty in GLSL).
 
 #define HVX_NONE 0xFFFFFFFFu
 #define HVX_LEAF_BIT 0x100u
 
-bool hvxIsLeaf(uint depthFlags) { return (depthFlags & HVX_LEAF_BIT) != 0u; }
-uint hvxDepth(uint depthFlags) { return depthFlags & 0xFFu; }
+HVX_FN bool hvxIsLeaf(uint depthFlags) { return (depthFlags & HVX_LEAF_BIT) != 0u; }
+HVX_FN uint hvxDepth(uint depthFlags) { return depthFlags & 0xFFu; }
 
 // From node n with box [lo, hi] containing p, descend to the leaf containing p.
-void hvxDescend(HVX_INDEX_PARAM, HVX_INOUT(uint) n, HVX_INOUT(vec3) lo, HVX_INOUT(vec3) hi, vec3 p) {
+HVX_FN void hvxDescend(HVX_INDEX_PARAM, HVX_INOUT(uint) n, HVX_INOUT(vec3) lo, HVX_INOUT(vec3) hi, vec3 p) {
     for (int guard = 0; guard < 24; ++guard) {
         uvec4 nd = HVX_NODE(n);
         if (hvxIsLeaf(nd.y)) return;
@@ -31,14 +31,14 @@ void hvxDescend(HVX_INDEX_PARAM, HVX_INOUT(uint) n, HVX_INOUT(vec3) lo, HVX_INOU
 }
 
 // The box of the depth-d node containing p.
-void hvxSnapBox(uint depth, vec3 p, HVX_INOUT(vec3) lo, HVX_INOUT(vec3) hi) {
+HVX_FN void hvxSnapBox(uint depth, vec3 p, HVX_INOUT(vec3) lo, HVX_INOUT(vec3) hi) {
     float size = 1.0f / float(1u << depth);
     lo = floor(p / size) * size;
     hi = lo + vec3(size);
 }
 
 // Where the ray o + t*dir leaves the box: returns the face (0..5) and sets tExit.
-int hvxExitFace(vec3 o, vec3 invDir, vec3 lo, vec3 hi, HVX_INOUT(float) tExit) {
+HVX_FN int hvxExitFace(vec3 o, vec3 invDir, vec3 lo, vec3 hi, HVX_INOUT(float) tExit) {
     vec3 t1 = (lo - o) * invDir;
     vec3 t2 = (hi - o) * invDir;
     vec3 tFar = max(t1, t2);
@@ -53,7 +53,7 @@ int hvxExitFace(vec3 o, vec3 invDir, vec3 lo, vec3 hi, HVX_INOUT(float) tExit) {
 // One traversal step: leave leaf n through its exit face at tExit, follow the rope, snap the
 // box to the neighbour's depth and descend to the leaf that contains the next point.
 // Returns false when the ray leaves the octree.
-bool hvxNextLeaf(HVX_INDEX_PARAM, vec3 o, vec3 dir, int face, float tExit, float nudge, HVX_INOUT(uint) n,
+HVX_FN bool hvxNextLeaf(HVX_INDEX_PARAM, vec3 o, vec3 dir, int face, float tExit, float nudge, HVX_INOUT(uint) n,
                  HVX_INOUT(vec3) lo, HVX_INOUT(vec3) hi) {
     uint next = HVX_ROPE(n, face);
     if (next == HVX_NONE) return false;

@@ -121,3 +121,27 @@ TEST(CliBuild, DemoBuildsTheMriTemplate) {
     EXPECT_TRUE(contains(r.output, "direction   i=(-1.000,0.000,0.000)")) << r.output;
     EXPECT_TRUE(std::filesystem::exists(dir.file("demo.hvo")));
 }
+
+TEST(CliRender, CpuRendersPngAndExrOfTheDemoAndRefusesBadViews) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 64x64x64 --quiet -o " + dir.file("p.hvo")).exitCode, 0);
+    auto r = test::runCommand(cli + " render " + dir.file("p.hvo") + " --cpu --size 96x80 --view 20,10,1.2 -o " +
+                              dir.file("a.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_GT(std::filesystem::file_size(dir.file("a.png")), 1000u);
+    for (const char* mode : {"iso", "mip", "minip", "xray"}) {
+        r = test::runCommand(cli + " render " + dir.file("p.hvo") + " --cpu --size 64x64 --mode " + mode + " -o " +
+                             dir.file(std::string(mode) + ".exr"));
+        EXPECT_EQ(r.exitCode, 0) << mode << ": " << r.output;
+        std::ifstream exr(dir.file(std::string(mode) + ".exr"), std::ios::binary);
+        char magic[4] = {};
+        exr.read(magic, 4);
+        EXPECT_EQ(std::string(magic, 4), std::string("\x76\x2f\x31\x01", 4)) << mode;
+    }
+    r = test::runCommand(cli + " render " + dir.file("p.hvo") + " --cpu --view 10,oops -o " + dir.file("b.png") + " 2>&1");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_TRUE(contains(r.output, "--view must be")) << r.output;
+    r = test::runCommand(cli + " render " + dir.file("p.hvo") + " --cpu --tf nosuch -o " + dir.file("b.png") + " 2>&1");
+    EXPECT_TRUE(contains(r.output, "unknown transfer function preset")) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("b.png")));
+}
