@@ -104,10 +104,13 @@ bool WorkingSet::available(std::uint32_t node, double priority) {
         if (slotStamp_[slot] == frame_) return false;  // pool full of this frame's bricks
         nodeSlot_.erase(slotNode_[slot]);
     }
-    auto samples = std::make_shared<std::vector<float>>(std::size_t(brick->edge) * brick->edge * brick->edge);
-    for (std::uint32_t z = 0, i = 0; z < brick->edge; ++z)
-        for (std::uint32_t y = 0; y < brick->edge; ++y)
-            for (std::uint32_t x = 0; x < brick->edge; ++x) (*samples)[i++] = float(brick->value(x, y, z));
+    std::shared_ptr<std::vector<float>> samples;
+    if (options_.cpuMirror) {
+        samples = std::make_shared<std::vector<float>>(std::size_t(brick->edge) * brick->edge * brick->edge);
+        for (std::uint32_t z = 0, i = 0; z < brick->edge; ++z)
+            for (std::uint32_t y = 0; y < brick->edge; ++y)
+                for (std::uint32_t x = 0; x < brick->edge; ++x) (*samples)[i++] = float(brick->value(x, y, z));
+    }
     slotNode_[slot] = node;
     slotStamp_[slot] = frame_;
     slotData_[slot] = std::move(samples);

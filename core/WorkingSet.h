@@ -32,6 +32,7 @@ struct WorkingSetOptions {
     bool isosurface = false;
     double isoValue = 0.0;             ///< stored units
     std::uint32_t visibleRays = 1;     ///< a leaf hit by fewer rays last frame is invisible
+    bool cpuMirror = true;  ///< keep float copies of pool slots for the CPU ray caster (off for GPU-only use)
 };
 
 /// Per frame, refines the cut of the octree (thesis ch. 2–3): from the root, nodes outside the
