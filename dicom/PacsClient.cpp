@@ -5,9 +5,11 @@
 #include <dcmtk/dcmdata/dcuid.h>
 #include <dcmtk/dcmnet/diutil.h>
 #include <dcmtk/dcmnet/scu.h>
+#include <dcmtk/dcmtls/tlslayer.h>
 
 #include <cstring>
 #include <set>
+#include <tuple>
 
 #include "core/Error.h"
 #include "dicom/DcmtkSetup.h"
@@ -120,25 +122,54 @@ public:
         return c;
     }
     void notifyInstanceStored(const OFString&, const OFString&, const OFString&) const override {}
+    /// DcmSCU keeps this protected; call after initNetwork().
+    OFCondition secureWith(DcmTransportLayer* layer) { return useSecureConnection(layer); }
 };
 }  // namespace
 
 struct PacsClient::Impl {
     LocalNode local;
     PacsNode remote;
+    std::unique_ptr<DcmTLSTransportLayer> tls;  // outlives the association it secures
+
+    void secure(Scu& scu) {
+        if (remote.tlsTrustedCertificate.empty())
+            throw core::Error(where() + ": a TLS node needs tlsTrustedCertificate (the PEM file of the CA that signs "
+                                        "its certificate)");
+        tls = std::make_unique<DcmTLSTransportLayer>(NET_REQUESTOR, nullptr, OFTrue);
+        OFCondition c = tls->setTLSProfile(TSP_Profile_BCP195);
+        if (c.good()) c = tls->activateCipherSuites();
+        if (c.good()) c = tls->addTrustedCertificateFile(remote.tlsTrustedCertificate.c_str(), DCF_Filetype_PEM);
+        if (c.bad())
+            throw core::Error(where() + ": cannot set up TLS with " + remote.tlsTrustedCertificate + " (" + c.text() + ")");
+        tls->setCertificateVerification(DCV_requireCertificate);
+        if (!remote.tlsCertificate.empty()) {
+            c = tls->setPrivateKeyFile(remote.tlsPrivateKey.c_str(), DCF_Filetype_PEM);
+            if (c.good()) c = tls->setCertificateFile(remote.tlsCertificate.c_str(), DCF_Filetype_PEM);
+            if (c.bad() || !tls->checkPrivateKeyMatchesCertificate())
+                throw core::Error(where() + ": our TLS certificate or key is unusable (" + remote.tlsCertificate + ")");
+        }
+        c = scu.secureWith(tls.get());
+        if (c.bad()) throw core::Error(where() + ": cannot use TLS (" + std::string(c.text()) + ")");
+    }
 
     std::string where() const {
         return "PACS '" + remote.name + "' (AE '" + remote.aeTitle + "' at " + remote.host + ":" +
                std::to_string(remote.port) + ")";
     }
 
+    using Context = std::tuple<std::string, T_ASC_SC_ROLE, std::vector<std::string>>;
+
     void connect(Scu& scu, const std::vector<std::pair<const char*, T_ASC_SC_ROLE>>& contexts,
-                 const std::vector<std::string>& syntaxList) {
-        OFList<OFString> syntaxes;
-        for (const auto& s : syntaxList) syntaxes.push_back(s.c_str());
+                 const std::vector<std::string>& syntaxes) {
+        std::vector<Context> all;
+        for (const auto& [sop, role] : contexts) all.emplace_back(sop, role, syntaxes);
+        connectWith(scu, all);
+    }
+
+    // Configures, optionally secures, and negotiates one association.
+    void connectWith(Scu& scu, const std::vector<Context>& contexts) {
         DcmtkSetup::ensure();
-        if (remote.tls)
-            throw core::Error(where() + ": DICOM over TLS is not supported yet; use a plain connection or a TLS tunnel");
         scu.setAETitle(local.aeTitle.c_str());
         scu.setPeerHostName(remote.host.c_str());
         scu.setPeerPort(remote.port);
@@ -149,9 +180,14 @@ struct PacsClient::Impl {
         scu.setDIMSEBlockingMode(DIMSE_NONBLOCKING);
         scu.setConnectionTimeout(Sint32(t));
         scu.setMaxReceivePDULength(ASC_MAXIMUMPDUSIZE);
-        for (const auto& [sop, role] : contexts) scu.addPresentationContext(sop, syntaxes, role);
+        for (const auto& [sop, role, syntaxList] : contexts) {
+            OFList<OFString> syntaxes;
+            for (const auto& ts : syntaxList) syntaxes.push_back(ts.c_str());
+            scu.addPresentationContext(sop.c_str(), syntaxes, role);
+        }
         OFCondition c = scu.initNetwork();
         if (c.bad()) throw core::Error(where() + ": cannot start networking (" + std::string(c.text()) + ")");
+        if (remote.tls) secure(scu);
         c = scu.negotiateAssociation();
         if (c.bad()) throw core::Error(PacsProtocol::describeAssociationFailure(where(), c.text(), local.aeTitle,
                                                                                remote.aeTitle, local.timeoutSeconds));
@@ -265,27 +301,14 @@ std::size_t PacsClient::store(const std::vector<std::string>& files, const std::
         headers.push_back(std::move(in));
     }
     Scu scu;
-    DcmtkSetup::ensure();
-    scu.setAETitle(impl_->local.aeTitle.c_str());
-    scu.setPeerHostName(impl_->remote.host.c_str());
-    scu.setPeerPort(impl_->remote.port);
-    scu.setPeerAETitle(impl_->remote.aeTitle.c_str());
-    const Uint32 t = Uint32(std::max(1, impl_->local.timeoutSeconds));
-    scu.setACSETimeout(t);
-    scu.setDIMSETimeout(t);
-    scu.setDIMSEBlockingMode(DIMSE_NONBLOCKING);
-    scu.setConnectionTimeout(Sint32(t));
+    std::vector<Impl::Context> negotiated;
     for (const auto& [sop, ts] : contexts) {
-        OFList<OFString> syntaxes;
-        syntaxes.push_back(ts.c_str());
+        std::vector<std::string> syntaxes{ts};
         if (ts != UID_LittleEndianExplicitTransferSyntax) syntaxes.push_back(UID_LittleEndianExplicitTransferSyntax);
-        scu.addPresentationContext(sop.c_str(), syntaxes);
+        negotiated.emplace_back(sop, ASC_SC_ROLE_DEFAULT, syntaxes);
     }
-    OFCondition c = scu.initNetwork();
-    if (c.good()) c = scu.negotiateAssociation();
-    if (c.bad())
-        throw core::Error(PacsProtocol::describeAssociationFailure(impl_->where(), c.text(), impl_->local.aeTitle,
-                                                                   impl_->remote.aeTitle, impl_->local.timeoutSeconds));
+    impl_->connectWith(scu, negotiated);
+    OFCondition c;
     std::size_t accepted = 0;
     for (std::size_t i = 0; i < headers.size(); ++i) {
         const T_ASC_PresentationContextID id =

@@ -15,7 +15,10 @@ struct PacsNode {
     std::string host;
     std::uint16_t port = 104;
     RetrieveMethod retrieve = RetrieveMethod::Get;
-    bool tls = false;  ///< DICOM over TLS (DCMTK dcmtls)
+    bool tls = false;  ///< DICOM over TLS (DCMTK dcmtls, BCP 195 profile)
+    std::string tlsTrustedCertificate;  ///< PEM file of the CA(s) that sign the node's certificate
+    std::string tlsCertificate;         ///< our PEM certificate, when the node requires one
+    std::string tlsPrivateKey;          ///< our PEM private key (unencrypted), with tlsCertificate
 };
 
 /// Holovox's own node: the AE title it calls with, the port its storage SCP listens on, where

@@ -58,6 +58,9 @@ PacsSettings PacsSettings::load(const std::string& path) {
             node.port = std::uint16_t(p);
             node.retrieve = n.value("retrieve", std::string("get")) == "move" ? RetrieveMethod::Move : RetrieveMethod::Get;
             node.tls = n.value("tls", false);
+            node.tlsTrustedCertificate = n.value("tlsTrustedCertificate", std::string());
+            node.tlsCertificate = n.value("tlsCertificate", std::string());
+            node.tlsPrivateKey = n.value("tlsPrivateKey", std::string());
             checkAe(node.aeTitle, path + ": node '" + node.name + "'");
             s.nodes.push_back(node);
         }
@@ -75,7 +78,9 @@ void PacsSettings::save(const std::string& path) const {
     j["nodes"] = nlohmann::json::array();
     for (const auto& n : nodes)
         j["nodes"].push_back({{"name", n.name}, {"aeTitle", n.aeTitle}, {"host", n.host}, {"port", n.port},
-                              {"retrieve", n.retrieve == RetrieveMethod::Move ? "move" : "get"}, {"tls", n.tls}});
+                              {"retrieve", n.retrieve == RetrieveMethod::Move ? "move" : "get"}, {"tls", n.tls},
+                              {"tlsTrustedCertificate", n.tlsTrustedCertificate},
+                              {"tlsCertificate", n.tlsCertificate}, {"tlsPrivateKey", n.tlsPrivateKey}});
     j["default"] = defaultNode;
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);

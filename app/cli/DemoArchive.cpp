@@ -103,7 +103,11 @@ void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dic
 std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath) {
     auto settings = dicom::PacsSettings::load(settingsPath);
     settings.local.port = c.localPort;
-    dicom::PacsNode node{"demo", "ORTHANC", "127.0.0.1", c.dicomPort, dicom::RetrieveMethod::Get, false};
+    dicom::PacsNode node;
+    node.name = "demo";
+    node.aeTitle = "ORTHANC";
+    node.host = "127.0.0.1";
+    node.port = c.dicomPort;
     settings.local.timeoutSeconds = 5;
     if (!answers(settings.local, node)) {
         startOrthanc(c);

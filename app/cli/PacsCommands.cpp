@@ -46,7 +46,7 @@ int nodesCmd(const CliArgs& args) {
 }
 
 int addCmd(const CliArgs& args) {
-    if (args.positional().size() != 2) throw core::Error("usage: holovox-cli pacs add NAME --ae AE --host HOST --port PORT [--move] [--default]");
+    if (args.positional().size() != 2) throw core::Error("usage: holovox-cli pacs add NAME --ae AE --host HOST --port PORT [--move] [--default] [--tls --tls-ca CA.pem [--tls-cert C.pem --tls-key K.pem]]");
     const std::string path = args.value("config").value_or(dicom::PacsSettings::defaultPath());
     auto s = dicom::PacsSettings::load(path);
     dicom::PacsNode n;
@@ -55,6 +55,11 @@ int addCmd(const CliArgs& args) {
     n.host = args.value("host").value_or("127.0.0.1");
     n.port = std::uint16_t(args.integer("port", 104, 1, 65535));
     n.retrieve = args.flag("move") ? dicom::RetrieveMethod::Move : dicom::RetrieveMethod::Get;
+    n.tls = args.flag("tls");
+    n.tlsTrustedCertificate = args.value("tls-ca").value_or("");
+    n.tlsCertificate = args.value("tls-cert").value_or("");
+    n.tlsPrivateKey = args.value("tls-key").value_or("");
+    if (n.tls && n.tlsTrustedCertificate.empty()) throw core::Error("--tls needs --tls-ca FILE (the CA that signs the node)");
     if (n.aeTitle.empty() || n.aeTitle.size() > 16) throw core::Error("--ae must be 1 to 16 characters");
     s.upsert(n);
     if (args.flag("default") || s.defaultNode.empty()) s.defaultNode = n.name;
@@ -137,8 +142,9 @@ int retrieveCmd(const CliArgs& args, dicom::RetrieveMethod method) {
 int pacsCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"config", "patient", "id", "date", "modality", "accession", "description", "level", "study",
-                        "series", "limit", "db", "ae", "host", "port", "local-ae", "local-port", "storage"},
-                       {"move", "default", "no-build"});
+                        "series", "limit", "db", "ae", "host", "port", "local-ae", "local-port", "storage", "tls-ca",
+                        "tls-cert", "tls-key"},
+                       {"move", "default", "no-build", "tls"});
     const std::string sub = args.positional().empty() ? "" : args.positional()[0];
     if (sub == "nodes") return nodesCmd(args);
     if (sub == "add") return addCmd(args);

@@ -255,7 +255,11 @@ TEST(PacsFaults, StalledPeerTimesOut) {
     ::listen(srv, 4);
     dicom::LocalNode local;
     local.timeoutSeconds = 2;
-    dicom::PacsNode node{"stalled", "STALLED", "127.0.0.1", ntohs(a.sin_port), dicom::RetrieveMethod::Get, false};
+    dicom::PacsNode node;
+    node.name = "stalled";
+    node.aeTitle = "STALLED";
+    node.host = "127.0.0.1";
+    node.port = ntohs(a.sin_port);
     const auto t0 = std::chrono::steady_clock::now();
     const auto e = errorOf([&] { dicom::PacsClient(local, node).echo(); });
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -301,4 +305,25 @@ TEST(PacsFaults, PeerKilledMidRetrieveThenRetryCompletes) {
     std::size_t n = 0;
     for (const auto& f : std::filesystem::recursive_directory_iterator(out.file("rx"))) n += f.is_regular_file();
     EXPECT_EQ(n, 60u);
+}
+
+TEST(PacsTls, EchoAndFindOverTlsAndAnUntrustedServerIsRefused) {
+    test::PacsPeer peer(test::PacsPeer::Kind::Orthanc, true);
+    peer.start();
+    auto s = peer.settings();
+    s.nodes[0].tls = true;
+    s.nodes[0].tlsTrustedCertificate = peer.tlsCa();
+    EXPECT_NO_THROW(dicom::PacsClient(s.local, s.nodes[0]).echo());
+    EXPECT_NO_THROW(dicom::PacsClient(s.local, s.nodes[0]).find(dicom::QueryLevel::Study, {}, {}));
+    // Plain DICOM to the TLS port fails; so does TLS with a CA that did not sign the server.
+    s.nodes[0].tls = false;
+    EXPECT_FALSE(errorOf([&] { dicom::PacsClient(s.local, s.nodes[0]).echo(); }).empty());
+    test::PacsPeer other(test::PacsPeer::Kind::Orthanc, true);  // its CA is a different one
+    s.nodes[0].tls = true;
+    s.nodes[0].tlsTrustedCertificate = other.tlsCa();
+    const auto e = errorOf([&] { dicom::PacsClient(s.local, s.nodes[0]).echo(); });
+    EXPECT_FALSE(e.empty());
+    s.nodes[0].tlsTrustedCertificate = "";
+    EXPECT_NE(errorOf([&] { dicom::PacsClient(s.local, s.nodes[0]).echo(); }).find("tlsTrustedCertificate"),
+              std::string::npos);
 }

@@ -47,11 +47,24 @@ bool waitForPort(std::uint16_t port, double seconds) {
     return false;
 }
 
-PacsPeer::PacsPeer(Kind kind)
-    : kind_(kind), ae_(kind == Kind::Orthanc ? "ORTHANC" : "DCMQR"), dicomPort_(freePort()), httpPort_(freePort()),
+PacsPeer::PacsPeer(Kind kind, bool tls)
+    : kind_(kind), tls_(tls), ae_(kind == Kind::Orthanc ? "ORTHANC" : "DCMQR"), dicomPort_(freePort()), httpPort_(freePort()),
       localPort_(freePort()) {
     std::filesystem::create_directories(dir_.file("storage"));
     std::filesystem::create_directories(dir_.file("index"));
+    std::string tlsConfig;
+    if (tls_) {
+        const std::string d = dir_.path().string();
+        const auto r = runCommand(
+            "cd " + d + " && openssl req -x509 -newkey rsa:2048 -nodes -keyout ca.key -out ca.crt -days 2 "
+            "-subj /CN=HolovoxTestCA && openssl req -newkey rsa:2048 -nodes -keyout server.key -out server.csr "
+            "-subj /CN=127.0.0.1 && openssl x509 -req -in server.csr -CA ca.crt -CAkey ca.key -CAcreateserial "
+            "-out server.crt -days 2 2>&1");
+        if (r.exitCode != 0) throw std::runtime_error("openssl failed: " + r.output);
+        tlsConfig = ", \"DicomTlsEnabled\": true, \"DicomTlsCertificate\": \"" + d + "/server.crt\", "
+                    "\"DicomTlsPrivateKey\": \"" + d + "/server.key\", \"DicomTlsTrustedCertificates\": \"" + d +
+                    "/ca.crt\", \"DicomTlsRemoteCertificateRequired\": false";
+    }
     if (kind_ == Kind::Orthanc) {
         std::ofstream(dir_.file("orthanc.json"))
             << "{ \"Name\": \"HolovoxTest\", \"StorageDirectory\": \"" << dir_.file("storage")
@@ -61,7 +74,7 @@ PacsPeer::PacsPeer(Kind kind)
                " \"DicomCheckCalledAet\": true, \"DicomAlwaysAllowEcho\": true, \"DicomAlwaysAllowStore\": true,"
                " \"DicomCheckModalityHost\": false, \"StorageCompression\": false, \"Plugins\": [],"
                " \"DicomScpTimeout\": 30, \"DicomModalities\": { \"holovox\": [\"HOLOVOX\", \"127.0.0.1\", "
-            << localPort_ << "], \"seeder\": [\"SEEDER\", \"127.0.0.1\", 1] } }\n";
+            << localPort_ << "], \"seeder\": [\"SEEDER\", \"127.0.0.1\", 1] }" << tlsConfig << " }\n";
     } else {
         std::ofstream(dir_.file("dcmqrscp.cfg"))
             << "NetworkTCPPort = " << dicomPort_ << "\nMaxPDUSize = 16384\nMaxAssociations = 16\n"

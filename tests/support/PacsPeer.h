@@ -21,7 +21,9 @@ bool waitForPort(std::uint16_t port, double seconds);
 class PacsPeer {
 public:
     enum class Kind { Orthanc, Dcmqrscp };
-    explicit PacsPeer(Kind kind);
+    /// With `tls`, Orthanc speaks DICOM over TLS only, with a CA and certificate made here by
+    /// openssl (tlsCa() signs the server certificate).
+    explicit PacsPeer(Kind kind, bool tls = false);
     ~PacsPeer();
     PacsPeer(const PacsPeer&) = delete;
     PacsPeer& operator=(const PacsPeer&) = delete;
@@ -38,9 +40,11 @@ public:
     const std::string& aeTitle() const { return ae_; }
     std::string receiveDir() const { return dir_.file("received"); }
     std::string file(const std::string& name) const { return dir_.file(name); }
+    std::string tlsCa() const { return dir_.file("ca.crt"); }
 
 private:
     Kind kind_;
+    bool tls_;
     TempDir dir_;
     std::string ae_;
     std::uint16_t dicomPort_, httpPort_, localPort_;
