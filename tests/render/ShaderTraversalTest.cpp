@@ -1,0 +1,137 @@
+#include <gtest/gtest.h>
+
+#include <epoxy/gl.h>
+
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "core/Error.h"
+#include "core/OctreeBuilder.h"
+#include "core/OctreeReader.h"
+#include "core/OctreeSpace.h"
+#include "core/PhantomVoxelSource.h"
+#include "core/SpatialIndex.h"
+#include "core/SpatialIndexTraversal.h"
+#include "render/ComputeProgram.h"
+#include "render/EglOffscreenContext.h"
+#include "render/ShaderLibrary.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+TEST(ShaderLibrary, CompileErrorsAreMappedToFileAndLine) {
+    render::EglOffscreenContext ctx;
+    const render::ShaderLibrary lib({{"main.comp.glsl", "#version 450\nlayout(local_size_x = 1) in;\n#include \"helper.glsl\"\n"
+                                                        "void main() { helper(); }\n"},
+                                     {"helper.glsl", "// a helper\nvoid helper() { float x = undefined_thing; }\n"}});
+    try {
+        render::ComputeProgram program(lib, "main.comp.glsl");
+        FAIL() << "the broken shader compiled";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("helper.glsl:2"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(lib.expand("missing.glsl"), core::Error);
+}
+
+TEST(ShaderLibrary, EveryEmbeddedShaderVariantCompiles) {
+    render::EglOffscreenContext ctx;
+    const auto& lib = render::ShaderLibrary::embedded();
+    ASSERT_TRUE(lib.has("IndexTraversal.glsl"));
+    for (const char* visits : {"MAX_VISITS 64u", "MAX_VISITS 256u"})
+        EXPECT_NO_THROW(render::ComputeProgram(lib, "traversal_probe.comp.glsl", {visits})) << visits;
+}
+
+TEST(ShaderTraversal, GpuWalksTheIndexExactlyAsTheCppReference) {
+    // The traversal step is one source compiled twice (decision 2): the GPU must visit the same
+    // leaves in the same order as the C++ build of it.
+    test::TempDir dir;
+    core::PhantomVoxelSource phantom({70, 52, 45}, 3);
+    core::BuildOptions opt;
+    opt.brickSize = 4;
+    core::JobContext job;
+    core::OctreeBuilder(opt).build(phantom, dir.file("p.hvo"), job);
+    const auto reader = core::OctreeReader::open(dir.file("p.hvo"));
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<std::uint32_t> cut, todo{0};
+    while (!todo.empty()) {
+        const auto id = todo.back();
+        todo.pop_back();
+        const auto& n = reader->nodes()[id];
+        if (n.level == 0 || u(rng) > 0.65f) {
+            cut.push_back(id);
+            continue;
+        }
+        for (std::uint32_t c = 0; c < std::uint32_t(__builtin_popcount(n.childMask)); ++c) todo.push_back(n.firstChild + c);
+    }
+    const auto idx = core::SpatialIndex::build(*reader, cut, std::vector<std::uint32_t>(cut.size(), 0u));
+    const auto space = core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount());
+    constexpr std::uint32_t rays = 256, maxVisits = 256;
+    const float nudge = 1e-6f;
+    struct Ray {
+        glm::vec4 o, d;
+    };
+    std::vector<Ray> input;
+    for (std::uint32_t r = 0; r < rays; ++r) {
+        const glm::vec3 a(u(rng) * float(space.extent.x), u(rng) * float(space.extent.y), u(rng) * float(space.extent.z));
+        const glm::vec3 b(u(rng) * float(space.extent.x), u(rng) * float(space.extent.y), u(rng) * float(space.extent.z));
+        const glm::vec3 d = glm::normalize(b - a);
+        input.push_back({glm::vec4(a, 0.0f), glm::vec4(d, glm::length(b - a))});
+    }
+    // C++: the same loop as the probe shader.
+    std::vector<std::uint32_t> expected(rays * maxVisits, core::SpatialIndex::kNone);
+    for (std::uint32_t r = 0; r < rays; ++r) {
+        const glm::vec3 o(input[r].o), d(input[r].d);
+        const float t0 = input[r].o.w, t1 = input[r].d.w;
+        glm::vec3 inv;
+        for (int a = 0; a < 3; ++a) inv[a] = std::abs(d[a]) > 1e-20f ? 1.0f / d[a] : (d[a] >= 0 ? 1e30f : -1e30f);
+        std::uint32_t n = 0, count = 0;
+        glm::vec3 lo(0.0f), hi(1.0f);
+        core::glsl::hvxDescend(idx, n, lo, hi, o + (t0 + nudge) * d);
+        float tIn = t0;
+        for (int guard = 0; guard < 4096 && count + 1 < maxVisits; ++guard) {
+            float tExit = 0;
+            const int face = core::glsl::hvxExitFace(o, inv, lo, hi, tExit);
+            if (std::min(tExit, t1) > tIn) expected[r * maxVisits + count++] = n;
+            if (tExit >= t1) break;
+            if (!core::glsl::hvxNextLeaf(idx, o, d, face, tExit, nudge, n, lo, hi)) break;
+            tIn = std::max(tIn, tExit);
+        }
+        expected[r * maxVisits + count] = core::SpatialIndex::kNone;
+    }
+    // GPU.
+    render::EglOffscreenContext ctx;
+    render::ComputeProgram probe(render::ShaderLibrary::embedded(), "traversal_probe.comp.glsl", {"MAX_VISITS 256u"});
+    GLuint buffers[4];
+    glCreateBuffers(4, buffers);
+    glNamedBufferData(buffers[0], GLsizeiptr(idx.nodes.size() * sizeof(glm::uvec4)), idx.nodes.data(), GL_STATIC_DRAW);
+    glNamedBufferData(buffers[1], GLsizeiptr(idx.ropes.size() * 4), idx.ropes.data(), GL_STATIC_DRAW);
+    glNamedBufferData(buffers[2], GLsizeiptr(input.size() * sizeof(Ray)), input.data(), GL_STATIC_DRAW);
+    glNamedBufferData(buffers[3], GLsizeiptr(expected.size() * 4), nullptr, GL_DYNAMIC_READ);
+    for (GLuint b = 0; b < 4; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers[b]);
+    probe.use();
+    glUniform1ui(probe.uniform("rayCount"), rays);
+    glUniform1f(probe.uniform("nudge"), nudge);
+    glDispatchCompute(rays / 64, 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<std::uint32_t> got(expected.size());
+    glGetNamedBufferSubData(buffers[3], 0, GLsizeiptr(got.size() * 4), got.data());
+    glDeleteBuffers(4, buffers);
+    ASSERT_EQ(glGetError(), GLenum(GL_NO_ERROR));
+    std::size_t differing = 0, visits = 0;
+    for (std::uint32_t r = 0; r < rays; ++r) {
+        for (std::uint32_t k = 0; k < maxVisits; ++k) {
+            const auto e = expected[r * maxVisits + k];
+            if (got[r * maxVisits + k] != e) {
+                ++differing;
+                break;
+            }
+            if (e == core::SpatialIndex::kNone) break;
+            ++visits;
+        }
+    }
+    std::printf("GPU traversal: %zu leaf visits over %u rays, %zu rays differ from C++\n", visits, rays, differing);
+    EXPECT_GT(visits, rays * 2u);
+    EXPECT_EQ(differing, 0u);
+}
