@@ -15,6 +15,8 @@
 #include "core/OctreeReader.h"
 #include "core/VoxelSourceFactory.h"
 #include "core/WorkingSet.h"
+#include "render/EglOffscreenContext.h"
+#include "render/GpuRayCaster.h"
 
 namespace hvx::app {
 
@@ -35,10 +37,8 @@ int renderCommand(int argc, char** argv) {
                        {"cpu"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
-        throw core::Error("usage: holovox-cli render FILE.hvo --cpu [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
+        throw core::Error("usage: holovox-cli render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
                           "[--tf PRESET] [--size WxH] -o OUT.png|OUT.exr");
-    if (!args.flag("cpu"))
-        throw core::Error("GPU rendering comes with the render module; use --cpu for the CPU reference ray caster");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
@@ -91,14 +91,23 @@ int renderCommand(int argc, char** argv) {
     const double refineSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     for (const auto& e : loader.errors()) std::fprintf(stderr, "holovox-cli: warning: %s (drawn coarser)\n", e.c_str());
     const auto t1 = std::chrono::steady_clock::now();
-    const core::CpuRayCaster caster(*reader, ws.index(), ws.slotData(), tf, settings);
-    const auto image = caster.render(view);
+    core::RenderImage image;
+    std::string device = "the CPU";
+    if (args.flag("cpu")) {
+        image = core::CpuRayCaster(*reader, ws.index(), ws.slotData(), tf, settings).render(view);
+    } else {
+        render::EglOffscreenContext context;  // headless: EGL surfaceless (Mesa) or an EGL device
+        render::GpuRayCaster gpu;
+        image = gpu.render(*reader, ws.index(), ws.slotData(), tf, settings, view);
+        device = "the GPU (" + context.info().renderer + ")";
+    }
     const double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     core::ImageWriter::write(image, *out);
-    std::printf("rendered %s (%dx%d, %s, tf %s) on the CPU: cut of %zu bricks (%zu loaded, %zu frames to converge, "
+    std::printf("rendered %s (%dx%d, %s, tf %s) on %s: cut of %zu bricks (%zu loaded, %zu frames to converge, "
                 "%.2f s), ray casting %.2f s\n",
                 out->c_str(), width, height, args.value("mode").value_or("dvr").c_str(), preset.c_str(),
-                ws.stats().cutNodes, loader.loadedCount(), std::size_t(frames + 1), refineSeconds, renderSeconds);
+                device.c_str(), ws.stats().cutNodes, loader.loadedCount(), std::size_t(frames + 1), refineSeconds,
+                renderSeconds);
     return 0;
 }
 

@@ -135,3 +135,70 @@ TEST(ShaderTraversal, GpuWalksTheIndexExactlyAsTheCppReference) {
     EXPECT_GT(visits, rays * 2u);
     EXPECT_EQ(differing, 0u);
 }
+
+#include "core/BrickCache.h"
+#include "core/BrickLoader.h"
+#include "core/CpuRayCaster.h"
+#include "core/ImageWriter.h"
+#include "core/WorkingSet.h"
+#include "render/GpuRayCaster.h"
+
+namespace {
+// PSNR (dB) of the GPU image against the CPU reference, over premultiplied RGBA in [0, 1].
+double psnr(const core::RenderImage& a, const core::RenderImage& b) {
+    double se = 0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i) {
+        const glm::vec4 d = glm::clamp(a.rgba[i], 0.0f, 1.0f) - glm::clamp(b.rgba[i], 0.0f, 1.0f);
+        se += double(glm::dot(d, d)) / 4.0;
+    }
+    const double mse = se / double(a.rgba.size());
+    return mse > 0 ? 10.0 * std::log10(1.0 / mse) : 99.0;
+}
+}  // namespace
+
+TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
+    test::TempDir dir;
+    core::PhantomVoxelSource phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0);
+    core::JobContext job;
+    core::OctreeBuilder(core::BuildOptions{}).build(phantom, dir.file("p.hvo"), job);
+    const auto reader = core::OctreeReader::open(dir.file("p.hvo"));
+    const auto& g = reader->geometry();
+    const auto tf = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1, 0, 4.0);
+    core::BrickCache cache(1u << 30);
+    core::BrickLoader loader(*reader, cache);
+    core::WorkingSetOptions opt;
+    opt.cullByTransferFunction = false;
+    core::WorkingSet ws(*reader, cache, loader, opt);
+    const auto space = ws.space();
+    const glm::dvec3 c(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const auto view = core::View::orbit(c, 1100.0, 30.0, 15.0, 96, 80);
+    for (int i = 0; i < 32; ++i) {
+        ws.update({view}, tf);
+        if (ws.stats().requested == 0) break;
+        loader.waitIdle();
+    }
+    render::EglOffscreenContext ctx;
+    render::GpuRayCaster gpu;
+    for (auto mode : {core::RenderSettings::Mode::Dvr, core::RenderSettings::Mode::Iso, core::RenderSettings::Mode::Mip,
+                      core::RenderSettings::Mode::MinIp, core::RenderSettings::Mode::Average}) {
+        core::RenderSettings rs;
+        rs.mode = mode;
+        rs.isoValue = 300;
+        const auto want = core::CpuRayCaster(*reader, ws.index(), ws.slotData(), tf, rs).render(view);
+        const auto got = gpu.render(*reader, ws.index(), ws.slotData(), tf, rs, view);
+        const double db = psnr(got, want);
+        std::printf("mode %d: GPU vs CPU reference PSNR %.1f dB\n", int(mode), db);
+        if (db < 40.0) {
+            core::ImageWriter::write(got, dir.file("gpu.png"));
+            core::ImageWriter::write(want, dir.file("cpu.png"));
+            std::filesystem::create_directories(HVX_BINARY_DIR "/test-artifacts");
+            std::filesystem::copy_file(dir.file("gpu.png"), HVX_BINARY_DIR "/test-artifacts/gpu-mode" +
+                                                                std::to_string(int(mode)) + ".png",
+                                       std::filesystem::copy_options::overwrite_existing);
+            std::filesystem::copy_file(dir.file("cpu.png"), HVX_BINARY_DIR "/test-artifacts/cpu-mode" +
+                                                                std::to_string(int(mode)) + ".png",
+                                       std::filesystem::copy_options::overwrite_existing);
+        }
+        EXPECT_GT(db, 40.0) << "mode " << int(mode) << " (images in test-artifacts/)";
+    }
+}

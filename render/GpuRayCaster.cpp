@@ -1,0 +1,138 @@
+#include "render/GpuRayCaster.h"
+
+#include <epoxy/gl.h>
+
+#include <cmath>
+#include <cstring>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/Error.h"
+#include "core/OctreeSpace.h"
+
+namespace hvx::render {
+
+namespace {
+struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
+    glm::mat4 patientToOctree;
+    glm::vec4 eye, forward, right, up, extent, tfRange, shading, extra;
+    glm::uvec4 brick, image;
+};
+static_assert(sizeof(FrameBlock) == 64 + 8 * 16 + 2 * 16, "std140 layout of Frame");
+}  // namespace
+
+GpuRayCaster::GpuRayCaster() { glCreateBuffers(7, buffers_); }
+
+GpuRayCaster::~GpuRayCaster() {
+    glDeleteBuffers(7, buffers_);
+    if (pool_) glDeleteTextures(1, &pool_);
+}
+
+void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const std::vector<float>>>& slots, std::uint32_t edge) {
+    uploaded_ = 0;
+    const auto count = std::uint32_t(std::max<std::size_t>(1, slots.size()));
+    // A near-cubic grid of slots, rebuilt only when it must grow.
+    if (!pool_ || edge != poolEdge_ || count > poolRow_ * poolRow_ * poolLayers_) {
+        if (pool_) glDeleteTextures(1, &pool_);
+        GLint maxSize = 2048;
+        glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
+        const auto perAxis = std::uint32_t(maxSize) / edge;
+        poolRow_ = std::min(perAxis, std::max(1u, std::uint32_t(std::ceil(std::cbrt(double(count) * 1.25)))));
+        poolLayers_ = (count + poolRow_ * poolRow_ - 1) / (poolRow_ * poolRow_);
+        if (poolLayers_ > perAxis) throw core::Error("the brick pool does not fit in a 3D texture");
+        poolLayer_ = poolRow_ * poolRow_;
+        poolEdge_ = edge;
+        glCreateTextures(GL_TEXTURE_3D, 1, &pool_);
+        glTextureStorage3D(pool_, 1, GL_R32F, GLsizei(poolRow_ * edge), GLsizei(poolRow_ * edge),
+                           GLsizei(poolLayers_ * edge));
+        glTextureParameteri(pool_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(pool_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        poolContent_.assign(poolRow_ * poolRow_ * poolLayers_, nullptr);
+    }
+    for (std::size_t s = 0; s < slots.size(); ++s) {
+        const void* data = slots[s] ? slots[s]->data() : nullptr;
+        if (!data || poolContent_[s] == data) continue;  // unchanged since the last upload
+        const auto slot = std::uint32_t(s);
+        glTextureSubImage3D(pool_, 0, GLint(slot % poolRow_ * edge), GLint(slot / poolRow_ % poolRow_ * edge),
+                            GLint(slot / poolLayer_ * edge), GLsizei(edge), GLsizei(edge), GLsizei(edge), GL_RED,
+                            GL_FLOAT, data);
+        poolContent_[s] = data;
+        uploaded_ += std::size_t(edge) * edge * edge * sizeof(float);
+    }
+}
+
+core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const core::SpatialIndex& index,
+                                       const std::vector<std::shared_ptr<const std::vector<float>>>& slots,
+                                       const core::TransferFunction& tf, const core::RenderSettings& settings,
+                                       const core::View& view) {
+    const int mode = int(settings.mode);
+    auto& program = programs_[mode];
+    if (!program)
+        program = std::make_unique<ComputeProgram>(ShaderLibrary::embedded(), "raycast.comp.glsl",
+                                                   std::vector<std::string>{"MODE " + std::to_string(mode)});
+    uploadPool(slots, reader.brickEdge());
+    glNamedBufferData(buffers_[0], GLsizeiptr(index.nodes.size() * sizeof(glm::uvec4)), index.nodes.data(), GL_STREAM_DRAW);
+    glNamedBufferData(buffers_[1], GLsizeiptr(index.ropes.size() * 4), index.ropes.data(), GL_STREAM_DRAW);
+    if (tfUploaded_ != &tf) {
+        std::vector<glm::vec4> f(core::TransferFunction::kEntries), F(core::TransferFunction::kEntries + 1);
+        // Rebuild the tables from the function itself (same values the CPU reference uses).
+        const double lo = tf.valueMin(), hi = tf.valueMax();
+        glm::dvec4 acc(0.0);
+        F[0] = glm::vec4(0.0f);
+        for (int i = 0; i < core::TransferFunction::kEntries; ++i) {
+            const glm::dvec4 v = tf.sample(lo + (hi - lo) * (i + 0.5) / core::TransferFunction::kEntries);
+            f[std::size_t(i)] = glm::vec4(v);
+            acc += v;
+            F[std::size_t(i) + 1] = glm::vec4(acc);
+        }
+        glNamedBufferData(buffers_[2], GLsizeiptr(f.size() * sizeof(glm::vec4)), f.data(), GL_STATIC_DRAW);
+        glNamedBufferData(buffers_[3], GLsizeiptr(F.size() * sizeof(glm::vec4)), F.data(), GL_STATIC_DRAW);
+        tfUploaded_ = &tf;
+    }
+    const std::size_t pixels = std::size_t(view.width) * std::size_t(view.height);
+    glNamedBufferData(buffers_[4], GLsizeiptr(pixels * sizeof(glm::vec4)), nullptr, GL_STREAM_READ);
+    glNamedBufferData(buffers_[5], GLsizeiptr(pixels * sizeof(float)), nullptr, GL_STREAM_READ);
+
+    const auto space = core::OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount());
+    FrameBlock fb{};
+    fb.patientToOctree = glm::mat4(space.patientToOctree);
+    const glm::dvec3 f = glm::normalize(view.target - view.eye);
+    const glm::dvec3 r = glm::normalize(glm::cross(f, view.up));
+    const glm::dvec3 u = glm::cross(r, f);
+    const bool pinhole = view.model == core::View::Model::Pinhole;
+    fb.eye = glm::vec4(glm::vec3(view.eye), pinhole ? 1.0f : 0.0f);
+    fb.forward = glm::vec4(glm::vec3(f), pinhole ? float(std::tan(glm::radians(view.fovYDegrees) / 2.0))
+                                                 : float(view.orthoHeight / 2.0));
+    fb.right = glm::vec4(glm::vec3(r), float(view.width) / float(view.height));
+    fb.up = glm::vec4(glm::vec3(u), 0.0f);
+    fb.extent = glm::vec4(glm::vec3(space.extent), float(1.0 / space.rootVoxels));
+    fb.tfRange = glm::vec4(float(tf.valueMin()), float(tf.valueMax()), float(settings.earlyTermination),
+                           float(settings.stepScale));
+    fb.shading = glm::vec4(float(settings.ambient), float(settings.diffuse), float(settings.specular),
+                           float(settings.shininess));
+    fb.extra = glm::vec4(float(settings.isoValue), settings.shading ? 1.0f : 0.0f, 0.0f, 0.0f);
+    fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), poolRow_);
+    fb.image = glm::uvec4(std::uint32_t(view.width), std::uint32_t(view.height), poolLayer_, 0u);
+    glNamedBufferData(buffers_[6], sizeof fb, &fb, GL_STREAM_DRAW);
+
+    program->use();
+    for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[6]);
+    glBindTextureUnit(0, pool_);
+    glDispatchCompute(GLuint((view.width + 7) / 8), GLuint((view.height + 7) / 8), 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+
+    core::RenderImage img;
+    img.width = view.width;
+    img.height = view.height;
+    img.rgba.resize(pixels);
+    img.depth.resize(pixels);
+    glGetNamedBufferSubData(buffers_[4], 0, GLsizeiptr(pixels * sizeof(glm::vec4)), img.rgba.data());
+    glGetNamedBufferSubData(buffers_[5], 0, GLsizeiptr(pixels * sizeof(float)), img.depth.data());
+    const GLenum err = glGetError();
+    if (err != GL_NO_ERROR) throw core::Error("OpenGL error " + std::to_string(err) + " while ray casting");
+    return img;
+}
+
+}  // namespace hvx::render

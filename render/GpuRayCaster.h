@@ -1,0 +1,44 @@
+#pragma once
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "core/CpuRayCaster.h"
+#include "render/ComputeProgram.h"
+
+namespace hvx::render {
+
+/// The single-pass GPU ray caster: a compute shader per mode (static variants) that walks the
+/// spatial index with the shared traversal step and samples a brick pool texture. The pool is
+/// one 3D R32F texture split into edge^3 slots, updated from the working set's slots; the index
+/// and the transfer-function tables are uploaded as storage buffers each frame.
+///
+/// Threading: GL thread only, with a current OpenGL 4.5 context.
+class GpuRayCaster {
+public:
+    GpuRayCaster();
+    ~GpuRayCaster();
+    GpuRayCaster(const GpuRayCaster&) = delete;
+    GpuRayCaster& operator=(const GpuRayCaster&) = delete;
+
+    /// Renders one view and reads the image back (offscreen rendering, tests, CLI).
+    core::RenderImage render(const core::OctreeReader& reader, const core::SpatialIndex& index,
+                             const std::vector<std::shared_ptr<const std::vector<float>>>& slots,
+                             const core::TransferFunction& tf, const core::RenderSettings& settings,
+                             const core::View& view);
+    /// Bytes uploaded to the brick pool by the last render().
+    std::size_t lastUploadBytes() const { return uploaded_; }
+
+private:
+    void uploadPool(const std::vector<std::shared_ptr<const std::vector<float>>>& slots, std::uint32_t edge);
+
+    std::map<int, std::unique_ptr<ComputeProgram>> programs_;
+    unsigned buffers_[7] = {};  // nodes, ropes, tf f, tf F, colour, depth, frame
+    unsigned pool_ = 0;
+    std::uint32_t poolEdge_ = 0, poolRow_ = 0, poolLayer_ = 0, poolLayers_ = 0;
+    std::vector<const void*> poolContent_;
+    const void* tfUploaded_ = nullptr;
+    std::size_t uploaded_ = 0;
+};
+
+}  // namespace hvx::render

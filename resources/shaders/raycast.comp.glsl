@@ -1,0 +1,31 @@
+// Single-pass ray casting over the spatial index, one invocation per pixel (thesis ch. 2–3).
+// It mirrors core/CpuRayCaster.cpp step for step; MODE selects a static variant
+// (0 DVR, 1 isosurface, 2 MIP, 3 MinIP, 4 average).
+layout(local_size_x = 8, local_size_y = 8) in;
+
+#include "index_buffers.glsl"
+#include "IndexTraversal.glsl"
+#include "raycast_inputs.glsl"
+#include "transfer_function.glsl"
+#include "brick_sampling.glsl"
+#include "raycast_march.glsl"
+
+void main() {
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    if (px.x >= int(image.x) || px.y >= int(image.y)) return;
+    float nx = (float(px.x) + 0.5) / float(image.x) * 2.0 - 1.0;
+    float ny = 1.0 - (float(px.y) + 0.5) / float(image.y) * 2.0;
+    vec3 ow, dw;
+    if (eye.w > 0.5) {  // pinhole
+        ow = eye.xyz;
+        dw = normalize(forward.xyz + right.xyz * (nx * forward.w * right.w) + up.xyz * (ny * forward.w));
+    } else {            // orthographic
+        ow = eye.xyz + right.xyz * (nx * forward.w * right.w) + up.xyz * (ny * forward.w);
+        dw = forward.xyz;
+    }
+    float depth;
+    vec4 c = castRay(ow, dw, depth);
+    uint i = uint(px.y) * image.x + uint(px.x);
+    outColor[i] = c;
+    outDepth[i] = depth;
+}

@@ -1,0 +1,19 @@
+// Inputs and outputs of the ray caster (bindings shared with render/GpuRayCaster.cpp).
+layout(std140, binding = 0) uniform Frame {
+    mat4 patientToOctree;
+    vec4 eye;        // xyz; w: 1 pinhole, 0 orthographic
+    vec4 forward;    // xyz; w: tan(fovY/2) or half the ortho height
+    vec4 right;      // xyz; w: aspect
+    vec4 up;
+    vec4 extent;     // xyz: the volume's box in octree space; w: 1 / rootVoxels
+    vec4 tfRange;    // valueMin, valueMax, early termination, step scale
+    vec4 shading;    // ambient, diffuse, specular, shininess
+    vec4 extra;      // iso value, shading on, unused, unused
+    uvec4 brick;     // brick size, border, edge, slots per row
+    uvec4 image;     // width, height, slots per layer, unused
+};
+layout(std430, binding = 2) readonly buffer TfTable { vec4 tfF[]; };      // 4096 entries
+layout(std430, binding = 3) readonly buffer TfIntegral { vec4 tfI[]; };   // 4097 entries
+layout(std430, binding = 4) writeonly buffer OutColor { vec4 outColor[]; };
+layout(std430, binding = 5) writeonly buffer OutDepth { float outDepth[]; };
+layout(binding = 0) uniform sampler3D brickPool;  // R32F, slot s at cell (s % row, s / row % rows, s / layer)

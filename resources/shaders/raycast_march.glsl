@@ -1,0 +1,123 @@
+// The ray march: clip to the volume, walk the index leaf by leaf (shared traversal step),
+// sample each non-empty leaf at its voxel size and composite. Same order of operations as
+// core/CpuRayCaster.cpp.
+#ifndef MODE
+#define MODE 0
+#endif
+
+vec3 shadeSample(uint n, vec3 leafLo, vec3 p, vec3 base, vec3 dw) {
+    if (extra.y < 0.5) return base;
+    vec3 g = transpose(mat3(patientToOctree)) * brickGradient(n, leafLo, p);
+    float len = length(g);
+    if (len < 1e-9) return base * (shading.x + shading.y);
+    g /= len;
+    float ndl = abs(dot(g, -dw));
+    return base * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w));
+}
+
+vec4 castRay(vec3 ow, vec3 dw, out float depth) {
+    depth = 1.0 / 0.0;
+    vec3 o = (patientToOctree * vec4(ow, 1.0)).xyz;
+    vec3 d = mat3(patientToOctree) * dw;
+    float t0 = 0.0, t1 = 1e30;
+    for (int a = 0; a < 3; ++a) {
+        if (abs(d[a]) < 1e-15) {
+            if (o[a] < 0.0 || o[a] > extent[a]) return vec4(0.0);
+            continue;
+        }
+        float ta = (0.0 - o[a]) / d[a], tb = (extent[a] - o[a]) / d[a];
+        t0 = max(t0, min(ta, tb));
+        t1 = min(t1, max(ta, tb));
+    }
+    if (!(t1 > t0)) return vec4(0.0);
+    vec3 inv = vec3(abs(d.x) > 1e-20 ? 1.0 / d.x : (d.x >= 0.0 ? 1e30 : -1e30),
+                    abs(d.y) > 1e-20 ? 1.0 / d.y : (d.y >= 0.0 ? 1e30 : -1e30),
+                    abs(d.z) > 1e-20 ? 1.0 / d.z : (d.z >= 0.0 ? 1e30 : -1e30));
+    float octPerMm = length(d);
+    float nudge = 1e-3 * extent.w / max(1e-12, octPerMm);
+    uint n = 0u;
+    vec3 lo = vec3(0.0), hi = vec3(1.0);
+    hvxDescend(HVX_INDEX_ARG, n, lo, hi, o + (t0 + nudge) * d);
+
+    vec3 color = vec3(0.0);
+    float alpha = 0.0, sum = 0.0, travelled = 0.0;
+    float extreme = MODE == 3 ? 1e30 : -1e30;
+    bool hit = false, havePrev = false, done = false;
+    float tPrev = 0.0, sPrev = 0.0;
+    float tIn = t0;
+    for (int guard = 0; guard < 65536 && !done; ++guard) {
+        float tExit = 0.0;
+        int face = hvxExitFace(o, inv, lo, hi, tExit);
+        float tOut = min(tExit, t1);
+        if (tOut > tIn) {
+            uvec4 nd = hvxNodes[n];
+            if (nd.x == HVX_NONE) {
+                havePrev = false;
+            } else {
+                float voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
+                float dt = tfRange.w * voxel / octPerMm;
+                float t = tPrev + dt;
+                if (!havePrev) {
+                    t = t0 + ceil((tIn - t0) / dt) * dt;
+                    tPrev = t - dt;
+                    if (tPrev >= t0) {
+                        sPrev = brickSample(n, lo, o + tPrev * d);
+                        havePrev = MODE == 0 || MODE == 1;
+                    }
+                }
+                for (; t <= tOut && !done; t += dt) {
+                    vec3 p = o + t * d;
+                    float s = brickSample(n, lo, p);
+#if MODE == 0
+                    if (havePrev) {
+                        vec4 f = tfSegment(sPrev, s);
+                        float a = 1.0 - exp(-f.w * (t - tPrev));
+                        if (a > 1e-6) {
+                            vec3 c = shadeSample(n, lo, p, f.rgb / f.w, dw);
+                            color += (1.0 - alpha) * a * c;
+                            alpha += (1.0 - alpha) * a;
+                            if (!hit && alpha > 0.02) { hit = true; depth = t; }
+                            if (alpha >= tfRange.z) done = true;
+                        }
+                    }
+#elif MODE == 1
+                    if (havePrev && ((sPrev < extra.x) != (s < extra.x))) {
+                        float ta = tPrev, tb = t, sa = sPrev;
+                        for (int k = 0; k < 8; ++k) {
+                            float m = 0.5 * (ta + tb);
+                            float sm = brickSample(n, lo, o + m * d);
+                            if ((sa < extra.x) != (sm < extra.x)) tb = m; else { ta = m; sa = sm; }
+                        }
+                        float th = 0.5 * (ta + tb);
+                        vec4 f = tfSample(extra.x);
+                        vec3 base = f.w > 0.0 ? f.rgb / f.w : vec3(0.9);
+                        if (length(base) < 0.1) base = vec3(0.9);
+                        color = shadeSample(n, lo, o + th * d, base, dw);
+                        alpha = 1.0;
+                        depth = th;
+                        done = true;
+                    }
+#else
+                    extreme = MODE == 3 ? min(extreme, s) : max(extreme, s);
+                    if (havePrev) { sum += 0.5 * (s + sPrev) * (t - tPrev); travelled += t - tPrev; }
+                    if (!hit) { hit = true; depth = t; }
+#endif
+                    tPrev = t;
+                    sPrev = s;
+                    havePrev = true;
+                }
+            }
+        }
+        if (done || tExit >= t1) break;
+        if (!hvxNextLeaf(HVX_INDEX_ARG, o, d, face, tExit, nudge, n, lo, hi)) break;
+        tIn = max(tIn, tExit);
+    }
+#if MODE >= 2
+    if (!hit) return vec4(0.0);
+    float v = MODE == 4 ? (travelled > 0.0 ? sum / travelled : extreme) : extreme;
+    float g = clamp((v - tfRange.x) / (tfRange.y - tfRange.x), 0.0, 1.0);
+    return vec4(g, g, g, 1.0);
+#else
+    return vec4(color, alpha);
+#endif
+}

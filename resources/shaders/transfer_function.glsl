@@ -1,0 +1,21 @@
+// Pre-integrated transfer function (thesis Eq. 3.1) from the tables of core/TransferFunction.
+float tfPosition(float v) { return clamp((v - tfRange.x) / (tfRange.y - tfRange.x) * 4096.0, 0.0, 4096.0); }
+
+vec4 tfSample(float v) {
+    float p = clamp(tfPosition(v) - 0.5, 0.0, 4095.0);
+    int i = int(p);
+    int j = min(i + 1, 4095);
+    return mix(tfF[i], tfF[j], p - float(i));
+}
+
+vec4 tfIntegralAt(float v) {
+    float p = tfPosition(v);
+    int i = min(int(p), 4095);
+    return tfI[i] + tfF[i] * (p - float(i));
+}
+
+vec4 tfSegment(float a, float b) {
+    float pa = tfPosition(a), pb = tfPosition(b);
+    if (abs(pb - pa) > 1e-3) return (tfIntegralAt(b) - tfIntegralAt(a)) / (pb - pa);
+    return tfSample(0.5 * (a + b));
+}
