@@ -22,10 +22,10 @@ struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
 static_assert(sizeof(FrameBlock) == 64 + 8 * 16 + 2 * 16, "std140 layout of Frame");
 }  // namespace
 
-GpuRayCaster::GpuRayCaster() { glCreateBuffers(7, buffers_); }
+GpuRayCaster::GpuRayCaster() { glCreateBuffers(8, buffers_); }
 
 GpuRayCaster::~GpuRayCaster() {
-    glDeleteBuffers(7, buffers_);
+    glDeleteBuffers(8, buffers_);
     if (pool_) glDeleteTextures(1, &pool_);
 }
 
@@ -93,6 +93,8 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     const std::size_t pixels = std::size_t(view.width) * std::size_t(view.height);
     glNamedBufferData(buffers_[4], GLsizeiptr(pixels * sizeof(glm::vec4)), nullptr, GL_STREAM_READ);
     glNamedBufferData(buffers_[5], GLsizeiptr(pixels * sizeof(float)), nullptr, GL_STREAM_READ);
+    std::vector<std::uint32_t> zeros(settings.countRays ? index.nodes.size() : 1, 0u);
+    glNamedBufferData(buffers_[6], GLsizeiptr(zeros.size() * 4), zeros.data(), GL_STREAM_READ);
 
     const auto space = core::OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount());
     FrameBlock fb{};
@@ -111,14 +113,15 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
                            float(settings.stepScale));
     fb.shading = glm::vec4(float(settings.ambient), float(settings.diffuse), float(settings.specular),
                            float(settings.shininess));
-    fb.extra = glm::vec4(float(settings.isoValue), settings.shading ? 1.0f : 0.0f, 0.0f, 0.0f);
+    fb.extra = glm::vec4(float(settings.isoValue), settings.shading ? 1.0f : 0.0f, settings.countRays ? 1.0f : 0.0f,
+                         0.0f);
     fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), poolRow_);
     fb.image = glm::uvec4(std::uint32_t(view.width), std::uint32_t(view.height), poolLayer_, 0u);
-    glNamedBufferData(buffers_[6], sizeof fb, &fb, GL_STREAM_DRAW);
+    glNamedBufferData(buffers_[7], sizeof fb, &fb, GL_STREAM_DRAW);
 
     program->use();
-    for (GLuint b = 0; b < 6; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
-    glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[6]);
+    for (GLuint b = 0; b < 7; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
     glBindTextureUnit(0, pool_);
     glDispatchCompute(GLuint((view.width + 7) / 8), GLuint((view.height + 7) / 8), 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -130,6 +133,10 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     img.depth.resize(pixels);
     glGetNamedBufferSubData(buffers_[4], 0, GLsizeiptr(pixels * sizeof(glm::vec4)), img.rgba.data());
     glGetNamedBufferSubData(buffers_[5], 0, GLsizeiptr(pixels * sizeof(float)), img.depth.data());
+    if (settings.countRays) {
+        img.rayCounts.resize(index.nodes.size());
+        glGetNamedBufferSubData(buffers_[6], 0, GLsizeiptr(img.rayCounts.size() * 4), img.rayCounts.data());
+    }
     const GLenum err = glGetError();
     if (err != GL_NO_ERROR) throw core::Error("OpenGL error " + std::to_string(err) + " while ray casting");
     return img;

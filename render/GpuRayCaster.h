@@ -11,7 +11,9 @@ namespace hvx::render {
 /// The single-pass GPU ray caster: a compute shader per mode (static variants) that walks the
 /// spatial index with the shared traversal step and samples a brick pool texture. The pool is
 /// one 3D R32F texture split into edge^3 slots, updated from the working set's slots; the index
-/// and the transfer-function tables are uploaded as storage buffers each frame.
+/// and the transfer-function tables are uploaded as storage buffers each frame. With
+/// RenderSettings::countRays, rays per index node are counted with SSBO atomics and returned
+/// for the working set's visibility feedback.
 ///
 /// Threading: GL thread only, with a current OpenGL 4.5 context.
 class GpuRayCaster {
@@ -33,7 +35,7 @@ private:
     void uploadPool(const std::vector<std::shared_ptr<const std::vector<float>>>& slots, std::uint32_t edge);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
-    unsigned buffers_[7] = {};  // nodes, ropes, tf f, tf F, colour, depth, frame
+    unsigned buffers_[8] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame
     unsigned pool_ = 0;
     std::uint32_t poolEdge_ = 0, poolRow_ = 0, poolLayer_ = 0, poolLayers_ = 0;
     std::vector<const void*> poolContent_;

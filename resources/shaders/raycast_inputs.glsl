@@ -8,7 +8,7 @@ layout(std140, binding = 0) uniform Frame {
     vec4 extent;     // xyz: the volume's box in octree space; w: 1 / rootVoxels
     vec4 tfRange;    // valueMin, valueMax, early termination, step scale
     vec4 shading;    // ambient, diffuse, specular, shininess
-    vec4 extra;      // iso value, shading on, unused, unused
+    vec4 extra;      // iso value, shading on, count rays (1/0), unused
     uvec4 brick;     // brick size, border, edge, slots per row
     uvec4 image;     // width, height, slots per layer, unused
 };
@@ -17,3 +17,4 @@ layout(std430, binding = 3) readonly buffer TfIntegral { vec4 tfI[]; };   // 409
 layout(std430, binding = 4) writeonly buffer OutColor { vec4 outColor[]; };
 layout(std430, binding = 5) writeonly buffer OutDepth { float outDepth[]; };
 layout(binding = 0) uniform sampler3D brickPool;  // R32F, slot s at cell (s % row, s / row % rows, s / layer)
+layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per index node (feedback)

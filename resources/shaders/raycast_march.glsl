@@ -54,6 +54,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
             if (nd.x == HVX_NONE) {
                 havePrev = false;
             } else {
+                if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);  // visibility feedback
                 float voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
                 float dt = tfRange.w * voxel / octPerMm;
                 float t = tPrev + dt;

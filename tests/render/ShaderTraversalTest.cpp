@@ -202,3 +202,83 @@ TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
         EXPECT_GT(db, 40.0) << "mode " << int(mode) << " (images in test-artifacts/)";
     }
 }
+
+namespace {
+struct Scene {
+    test::TempDir dir;
+    std::unique_ptr<core::OctreeReader> reader;
+    Scene() {
+        core::PhantomVoxelSource phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0);
+        core::JobContext job;
+        core::OctreeBuilder(core::BuildOptions{}).build(phantom, dir.file("p.hvo"), job);
+        reader = core::OctreeReader::open(dir.file("p.hvo"));
+    }
+    core::RenderImage render(render::GpuRayCaster& gpu, const core::TransferFunction& tf, core::WorkingSetOptions opt,
+                             core::RenderSettings rs, std::size_t* cut = nullptr) {
+        core::BrickCache cache(1u << 30);
+        core::BrickLoader loader(*reader, cache);
+        core::WorkingSet ws(*reader, cache, loader, opt);
+        const auto space = ws.space();
+        const glm::dvec3 c(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+        const auto view = core::View::orbit(c, 1100.0, -40.0, 10.0, 80, 80);
+        for (int i = 0; i < 32; ++i) {
+            ws.update({view}, tf);
+            if (ws.stats().requested == 0) break;
+            loader.waitIdle();
+        }
+        if (cut) *cut = ws.stats().cutNodes;
+        return gpu.render(*reader, ws.index(), ws.slotData(), tf, rs, view);
+    }
+};
+
+double coverage(const core::RenderImage& img) {
+    double a = 0;
+    for (const auto& p : img.rgba) a += p.a;
+    return a / double(img.rgba.size());
+}
+}  // namespace
+
+TEST(GpuRayCaster, EmptySpaceSkippingChangesNothingAndATinyBudgetIsOnlyCoarser) {
+    Scene s;
+    const auto& g = s.reader->geometry();
+    const auto tf = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1, 0, 4.0);
+    render::EglOffscreenContext ctx;
+    render::GpuRayCaster gpu;
+    core::WorkingSetOptions culled, unculled;
+    unculled.cullByTransferFunction = false;
+    std::size_t fullCut = 0, tinyCut = 0;
+    const auto a = s.render(gpu, tf, culled, {}, &fullCut);
+    const auto b = s.render(gpu, tf, unculled, {});
+    EXPECT_GT(psnr(a, b), 60.0) << "skipping empty bricks changed the image";
+    // Soft tissue survives averaging (thin bone does not): the body must stay whole.
+    const auto soft = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
+    const auto full = s.render(gpu, soft, culled, {}, &fullCut);
+    core::WorkingSetOptions tiny;
+    tiny.maxBricks = 8;
+    const auto c = s.render(gpu, soft, tiny, {}, &tinyCut);
+    EXPECT_LE(tinyCut, 8u);
+    EXPECT_LT(tinyCut, fullCut);
+    EXPECT_GT(coverage(c), 0.8 * coverage(full)) << "a tiny budget must still show the whole volume, coarser";
+    EXPECT_GT(psnr(c, full), 15.0);
+}
+
+TEST(GpuRayCaster, CountsRaysPerLeafForVisibilityFeedbackWithoutGlErrors) {
+    Scene s;
+    const auto& g = s.reader->geometry();
+    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
+    render::EglOffscreenContext ctx(true);  // debug context: collect every GL message
+    static std::vector<std::string> messages;
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+    glDebugMessageCallback([](GLenum, GLenum type, GLuint, GLenum severity, GLsizei, const GLchar* m, const void*) {
+        if (type == GL_DEBUG_TYPE_ERROR || severity == GL_DEBUG_SEVERITY_HIGH) messages.emplace_back(m);
+    }, nullptr);
+    render::GpuRayCaster gpu;
+    core::RenderSettings rs;
+    rs.countRays = true;
+    const auto img = s.render(gpu, tf, {}, rs);
+    ASSERT_FALSE(img.rayCounts.empty());
+    std::uint64_t total = 0;
+    for (auto c : img.rayCounts) total += c;
+    EXPECT_GT(total, 80u * 80u / 4u);
+    EXPECT_TRUE(messages.empty()) << messages.front();
+}
