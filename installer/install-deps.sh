@@ -6,7 +6,7 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config git clang clang-format clang-tidy
-  libclang-rt-14-dev time file dpkg-dev
+  libclang-rt-14-dev time file dpkg-dev openssl bc
   # core
   libglm-dev libzstd-dev liblz4-dev libxxhash-dev libopenexr-dev libpng-dev zlib1g-dev
   libvtk9-dev
