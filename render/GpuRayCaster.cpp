@@ -51,13 +51,13 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const std::vecto
         poolContent_.assign(poolRow_ * poolRow_ * poolLayers_, nullptr);
     }
     for (std::size_t s = 0; s < slots.size(); ++s) {
-        const void* data = slots[s] ? slots[s]->data() : nullptr;
-        if (!data || poolContent_[s] == data) continue;  // unchanged since the last upload
+        if (!slots[s] || poolContent_[s] == slots[s]) continue;  // unchanged since the last upload
+        const void* data = slots[s]->data();
         const auto slot = std::uint32_t(s);
         glTextureSubImage3D(pool_, 0, GLint(slot % poolRow_ * edge), GLint(slot / poolRow_ % poolRow_ * edge),
                             GLint(slot / poolLayer_ * edge), GLsizei(edge), GLsizei(edge), GLsizei(edge), GL_RED,
                             GL_FLOAT, data);
-        poolContent_[s] = data;
+        poolContent_[s] = slots[s];
         uploaded_ += std::size_t(edge) * edge * edge * sizeof(float);
     }
 }

@@ -38,7 +38,9 @@ private:
     unsigned buffers_[8] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame
     unsigned pool_ = 0;
     std::uint32_t poolEdge_ = 0, poolRow_ = 0, poolLayer_ = 0, poolLayers_ = 0;
-    std::vector<const void*> poolContent_;
+    // What each slot holds; keeping the reference stops a freed brick's address from being
+    // reused by a new brick and mistaken for it.
+    std::vector<std::shared_ptr<const std::vector<float>>> poolContent_;
     const void* tfUploaded_ = nullptr;
     std::size_t uploaded_ = 0;
 };

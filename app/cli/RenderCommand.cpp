@@ -85,7 +85,7 @@ int renderCommand(int argc, char** argv) {
     // Synchronous mode: load what the cut asks for until it is complete.
     for (; frames < 64; ++frames) {
         ws.update({view}, tf);
-        if (ws.stats().requested == 0) break;
+        if (ws.stats().settled()) break;
         loader.waitIdle();
     }
     const double refineSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

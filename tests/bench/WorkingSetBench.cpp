@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
     for (; coldFrames < 3000; ++coldFrames) {
         const auto f0 = Clock::now();
         ws.update({viewAt(0)}, tf);
-        if (ws.stats().requested == 0) break;
+        if (ws.stats().settled()) break;
         if (coldFrames % 25 == 0)
             std::fprintf(stderr, "  frame %d: %zu bricks, %zu requested, refine %.1f ms, %zu loaded\n", coldFrames,
                          ws.stats().cutNodes, ws.stats().requested, ws.stats().refineMs, loader.loadedCount());

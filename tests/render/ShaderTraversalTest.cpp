@@ -174,7 +174,7 @@ TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
     const auto view = core::View::orbit(c, 1100.0, 30.0, 15.0, 96, 80);
     for (int i = 0; i < 32; ++i) {
         ws.update({view}, tf);
-        if (ws.stats().requested == 0) break;
+        if (ws.stats().settled()) break;
         loader.waitIdle();
     }
     render::EglOffscreenContext ctx;
@@ -223,7 +223,7 @@ struct Scene {
         const auto view = core::View::orbit(c, 1100.0, -40.0, 10.0, 80, 80);
         for (int i = 0; i < 32; ++i) {
             ws.update({view}, tf);
-            if (ws.stats().requested == 0) break;
+            if (ws.stats().settled()) break;
             loader.waitIdle();
         }
         if (cut) *cut = ws.stats().cutNodes;

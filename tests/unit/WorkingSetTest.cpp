@@ -44,7 +44,7 @@ void converge(core::WorkingSet& ws, core::BrickLoader& loader, const std::vector
               const core::TransferFunction& tf) {
     for (int i = 0; i < 64; ++i) {
         ws.update(views, tf);
-        if (ws.stats().requested == 0) return;
+        if (ws.stats().settled()) return;
         loader.waitIdle();
     }
 }
