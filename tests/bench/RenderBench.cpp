@@ -1,0 +1,191 @@
+// Rendering benchmark (not a test): Holovox's GPU ray caster (EGL) and CPU reference against
+// VTK's vtkGPUVolumeRayCastMapper and vtkFixedPointVolumeRayCastMapper, in one run, with the
+// same volume, transfer function control points, camera and image size. VTK needs an X display
+// (run under xvfb-run); Holovox renders headless.
+//
+//   xvfb-run -a build/release/tests/bench/hvx_bench_render INPUT [--size 512] [--frames 8]
+//   INPUT: a volume file or phantom:XxYxZ (loaded whole for VTK; Holovox streams its octree)
+#include <vtkColorTransferFunction.h>
+#include <vtkFixedPointVolumeRayCastMapper.h>
+#include <vtkGPUVolumeRayCastMapper.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkPointData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkCamera.h>
+#include <vtkShortArray.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+#include <vtkMatrix4x4.h>
+
+#include <chrono>
+#include <cstdio>
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/BrickCache.h"
+#include "core/BrickLoader.h"
+#include "core/CpuRayCaster.h"
+#include "core/OctreeBuilder.h"
+#include "core/OctreeReader.h"
+#include "core/VoxelSourceFactory.h"
+#include "core/WorkingSet.h"
+#include "render/EglOffscreenContext.h"
+#include "render/GpuRayCaster.h"
+
+using namespace hvx;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: %s INPUT [--size N] [--frames N] [--tf PRESET]\n", argv[0]);
+        return 2;
+    }
+    int size = 512, frames = 8;
+    std::string preset = "ct-bone";
+    for (int i = 2; i + 1 < argc; i += 2) {
+        if (!std::strcmp(argv[i], "--size")) size = std::stoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--frames")) frames = std::stoi(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--tf")) preset = argv[i + 1];
+    }
+    auto source = core::VoxelSourceFactory::open(argv[1]);
+    const auto g0 = source->geometry();
+    if (g0.modality != "CT" && preset == "ct-bone") preset = "mr-default";
+    const std::string hvo = (std::filesystem::temp_directory_path() / "hvx-bench-render.hvo").string();
+    core::JobContext job;
+    core::OctreeBuilder(core::BuildOptions{}).build(*source, hvo, job);
+    const auto reader = core::OctreeReader::open(hvo);
+    const auto& g = reader->geometry();
+    const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
+    const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
+                                                   space.minSpacing);
+    const glm::dvec3 centre(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
+    const double radius = glm::length(centre - corner) / std::tan(glm::radians(15.0)) * 1.05;
+    auto viewAt = [&](int f) { return core::View::orbit(centre, radius, 30.0 + 10.0 * f, 15.0, size, size); };
+
+    // Holovox: working set for the first view (all views see the whole volume), then frames.
+    core::BrickCache cache(4ull << 30);
+    core::BrickLoader loader(*reader, cache);
+    core::WorkingSet ws(*reader, cache, loader, {});
+    for (int i = 0; i < 64; ++i) {
+        ws.update({viewAt(0)}, tf);
+        if (ws.stats().settled()) break;
+        loader.waitIdle();
+    }
+    double gpuMs = 0, cpuMs = 0;
+    {
+        render::EglOffscreenContext ctx;
+        render::GpuRayCaster gpu;
+        gpu.render(*reader, ws.index(), ws.slotData(), tf, {}, viewAt(0));  // compile + upload
+        const auto t = Clock::now();
+        for (int f = 1; f <= frames; ++f) gpu.render(*reader, ws.index(), ws.slotData(), tf, {}, viewAt(f));
+        gpuMs = seconds(t) * 1000.0 / frames;
+        std::printf("Holovox GPU ray caster (%s): %.1f ms/frame\n", ctx.info().renderer.c_str(), gpuMs);
+    }
+    {
+        const core::CpuRayCaster cpu(*reader, ws.index(), ws.slotData(), tf, {});
+        const auto t = Clock::now();
+        for (int f = 1; f <= frames; ++f) cpu.render(viewAt(f));
+        cpuMs = seconds(t) * 1000.0 / frames;
+        std::printf("Holovox CPU reference: %.1f ms/frame\n", cpuMs);
+    }
+
+    // VTK: the whole volume in memory, physical values, same TF points, same camera.
+    vtkNew<vtkImageData> image;
+    image->SetDimensions(int(g0.dims[0]), int(g0.dims[1]), int(g0.dims[2]));
+    image->SetSpacing(g0.spacing.x, g0.spacing.y, g0.spacing.z);
+    image->SetOrigin(0, 0, 0);
+    image->AllocateScalars(VTK_FLOAT, 1);
+    {
+        const std::size_t slice = std::size_t(g0.dims[0]) * g0.dims[1];
+        std::vector<char> buf(slice * core::scalarSize(g0.scalarType));
+        auto* out = static_cast<float*>(image->GetScalarPointer());
+        for (std::uint32_t z = 0; z < g0.dims[2]; ++z) {
+            source->readSlices(z, 1, buf.data());
+            core::dispatchScalar(g0.scalarType, [&](auto tag) {
+                using T = decltype(tag);
+                const T* in = reinterpret_cast<const T*>(buf.data());
+                for (std::size_t i = 0; i < slice; ++i) out[z * slice + i] = float(in[i]);
+            });
+        }
+    }
+    vtkNew<vtkMatrix4x4> placement;  // direction cosines and origin: VTK applies the spacing itself
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) placement->SetElement(r, c, g0.direction[c][r]);
+        placement->SetElement(r, 3, g0.origin[r]);
+    }
+    vtkNew<vtkColorTransferFunction> colours;
+    vtkNew<vtkPiecewiseFunction> opacity;
+    for (const auto& p : tf.points()) {
+        colours->AddRGBPoint(p.value, p.rgba.r, p.rgba.g, p.rgba.b);
+        opacity->AddPoint(p.value, p.rgba.a);
+    }
+    vtkNew<vtkVolumeProperty> property;
+    property->SetColor(colours);
+    property->SetScalarOpacity(opacity);
+    property->SetScalarOpacityUnitDistance(tf.referenceLength());
+    property->SetInterpolationTypeToLinear();
+    property->ShadeOn();
+    property->SetAmbient(0.35);
+    property->SetDiffuse(0.65);
+    property->SetSpecular(0.25);
+    property->SetSpecularPower(24.0);
+    auto timeVtk = [&](vtkVolumeMapper* mapper, const char* name) {
+        mapper->SetInputData(image);
+        vtkNew<vtkVolume> volume;
+        volume->SetMapper(mapper);
+        volume->SetProperty(property);
+        volume->SetUserMatrix(placement);
+        vtkNew<vtkRenderer> renderer;
+        renderer->AddVolume(volume);
+        renderer->SetBackground(0, 0, 0);
+        vtkNew<vtkRenderWindow> window;
+        window->SetOffScreenRendering(1);
+        window->SetSize(size, size);
+        window->AddRenderer(renderer);
+        auto place = [&](int f) {
+            const auto v = viewAt(f);
+            vtkCamera* cam = renderer->GetActiveCamera();
+            cam->SetPosition(v.eye.x, v.eye.y, v.eye.z);
+            cam->SetFocalPoint(v.target.x, v.target.y, v.target.z);
+            cam->SetViewUp(v.up.x, v.up.y, v.up.z);
+            cam->SetViewAngle(v.fovYDegrees);
+            renderer->ResetCameraClippingRange();
+        };
+        place(0);
+        window->Render();  // upload
+        const auto t = Clock::now();
+        for (int f = 1; f <= frames; ++f) {
+            place(f);
+            window->Render();
+        }
+        const double ms = seconds(t) * 1000.0 / frames;
+        std::printf("%s: %.1f ms/frame\n", name, ms);
+        return ms;
+    };
+    vtkNew<vtkGPUVolumeRayCastMapper> vtkGpu;
+    vtkGpu->SetAutoAdjustSampleDistances(0);
+    vtkGpu->SetSampleDistance(float(std::min({g0.spacing.x, g0.spacing.y, g0.spacing.z})));
+    const double vtkGpuMs = timeVtk(vtkGpu, "VTK vtkGPUVolumeRayCastMapper");
+    vtkNew<vtkFixedPointVolumeRayCastMapper> vtkCpu;
+    vtkCpu->SetAutoAdjustSampleDistances(0);
+    vtkCpu->SetSampleDistance(float(std::min({g0.spacing.x, g0.spacing.y, g0.spacing.z})));
+    const double vtkCpuMs = timeVtk(vtkCpu, "VTK vtkFixedPointVolumeRayCastMapper");
+    std::printf("%s %ux%ux%u, %dx%d, %d frames: Holovox GPU / VTK GPU = %.2f (target <= 0.5), "
+                "Holovox CPU / VTK fixed-point = %.2f\n",
+                argv[1], g0.dims[0], g0.dims[1], g0.dims[2], size, size, frames, gpuMs / vtkGpuMs, cpuMs / vtkCpuMs);
+    std::filesystem::remove(hvo);
+    return 0;
+}
