@@ -46,8 +46,11 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const std::vecto
         glCreateTextures(GL_TEXTURE_3D, 1, &pool_);
         glTextureStorage3D(pool_, 1, GL_R32F, GLsizei(poolRow_ * edge), GLsizei(poolRow_ * edge),
                            GLsizei(poolLayers_ * edge));
-        glTextureParameteri(pool_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(pool_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(pool_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(pool_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(pool_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(pool_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(pool_, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
         poolContent_.assign(poolRow_ * poolRow_ * poolLayers_, nullptr);
     }
     for (std::size_t s = 0; s < slots.size(); ++s) {
