@@ -78,10 +78,16 @@ double WorkingSet::error(std::uint32_t node, const std::vector<View>& views, con
     return voxel / std::max(allowed, 1e-9);
 }
 
+void WorkingSet::stamp(std::uint32_t slot) {
+    slotsByStamp_.erase({slotStamp_[slot], slot});
+    slotStamp_[slot] = frame_;
+    slotsByStamp_.insert({frame_, slot});
+}
+
 bool WorkingSet::available(std::uint32_t node, double priority) {
     auto it = nodeSlot_.find(node);
     if (it != nodeSlot_.end()) {
-        slotStamp_[it->second] = frame_;
+        stamp(it->second);
         return true;
     }
     auto brick = cache_.get(node);
@@ -98,9 +104,10 @@ bool WorkingSet::available(std::uint32_t node, double priority) {
         slot = std::uint32_t(slotNode_.size());
         slotNode_.push_back(SpatialIndex::kNone);
         slotStamp_.push_back(0);
+        slotsByStamp_.insert({0, slot});
         slotData_.push_back(nullptr);
     } else {
-        slot = std::uint32_t(std::min_element(slotStamp_.begin(), slotStamp_.end()) - slotStamp_.begin());
+        slot = slotsByStamp_.begin()->second;  // least recently used
         if (slotStamp_[slot] == frame_) return false;  // pool full of this frame's bricks
         nodeSlot_.erase(slotNode_[slot]);
     }
@@ -112,7 +119,7 @@ bool WorkingSet::available(std::uint32_t node, double priority) {
                 for (std::uint32_t x = 0; x < brick->edge; ++x) (*samples)[i++] = float(brick->value(x, y, z));
     }
     slotNode_[slot] = node;
-    slotStamp_[slot] = frame_;
+    stamp(slot);
     slotData_[slot] = std::move(samples);
     nodeSlot_[node] = slot;
     changed_.push_back(slot);

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <set>
 #include <unordered_map>
 #include <vector>
 
@@ -85,6 +86,8 @@ private:
     std::vector<std::uint32_t> cut_;
     std::vector<std::uint32_t> slotNode_;
     std::vector<std::uint64_t> slotStamp_;
+    std::set<std::pair<std::uint64_t, std::uint32_t>> slotsByStamp_;  // least recently used first
+    void stamp(std::uint32_t slot);
     std::vector<std::shared_ptr<const std::vector<float>>> slotData_;
     std::unordered_map<std::uint32_t, std::uint32_t> nodeSlot_;
     std::vector<std::uint32_t> changed_;
