@@ -42,6 +42,10 @@ public:
     /// True when no value in [lo, hi] has any opacity.
     bool isEmpty(double lo, double hi) const;
     const std::vector<Point>& points() const { return points_; }
+    /// The table f (kEntries values) and its running integral F (kEntries + 1), as the GPU
+    /// uploads them.
+    const std::vector<glm::dvec4>& table() const { return f_; }
+    const std::vector<glm::dvec4>& integralTable() const { return F_; }
 
 private:
     double position(double value) const;  // continuous table index

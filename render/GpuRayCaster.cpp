@@ -77,22 +77,11 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     uploadPool(slots, reader.brickEdge());
     glNamedBufferData(buffers_[0], GLsizeiptr(index.nodes.size() * sizeof(glm::uvec4)), index.nodes.data(), GL_STREAM_DRAW);
     glNamedBufferData(buffers_[1], GLsizeiptr(index.ropes.size() * 4), index.ropes.data(), GL_STREAM_DRAW);
-    if (tfUploaded_ != &tf) {
-        std::vector<glm::vec4> f(core::TransferFunction::kEntries), F(core::TransferFunction::kEntries + 1);
-        // Rebuild the tables from the function itself (same values the CPU reference uses).
-        const double lo = tf.valueMin(), hi = tf.valueMax();
-        glm::dvec4 acc(0.0);
-        F[0] = glm::vec4(0.0f);
-        for (int i = 0; i < core::TransferFunction::kEntries; ++i) {
-            const glm::dvec4 v = tf.sample(lo + (hi - lo) * (i + 0.5) / core::TransferFunction::kEntries);
-            f[std::size_t(i)] = glm::vec4(v);
-            acc += v;
-            F[std::size_t(i) + 1] = glm::vec4(acc);
-        }
-        glNamedBufferData(buffers_[2], GLsizeiptr(f.size() * sizeof(glm::vec4)), f.data(), GL_STATIC_DRAW);
-        glNamedBufferData(buffers_[3], GLsizeiptr(F.size() * sizeof(glm::vec4)), F.data(), GL_STATIC_DRAW);
-        tfUploaded_ = &tf;
-    }
+    // The transfer function's own tables (128 KiB), uploaded every frame: cheap, and never stale.
+    const std::vector<glm::vec4> table(tf.table().begin(), tf.table().end());
+    const std::vector<glm::vec4> integral(tf.integralTable().begin(), tf.integralTable().end());
+    glNamedBufferData(buffers_[2], GLsizeiptr(table.size() * sizeof(glm::vec4)), table.data(), GL_STREAM_DRAW);
+    glNamedBufferData(buffers_[3], GLsizeiptr(integral.size() * sizeof(glm::vec4)), integral.data(), GL_STREAM_DRAW);
     const std::size_t pixels = std::size_t(view.width) * std::size_t(view.height);
     glNamedBufferData(buffers_[4], GLsizeiptr(pixels * sizeof(glm::vec4)), nullptr, GL_STREAM_READ);
     glNamedBufferData(buffers_[5], GLsizeiptr(pixels * sizeof(float)), nullptr, GL_STREAM_READ);

@@ -41,7 +41,6 @@ private:
     // What each slot holds; keeping the reference stops a freed brick's address from being
     // reused by a new brick and mistaken for it.
     std::vector<std::shared_ptr<const std::vector<float>>> poolContent_;
-    const void* tfUploaded_ = nullptr;
     std::size_t uploaded_ = 0;
 };
 

@@ -6,7 +6,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -56,15 +55,6 @@ void startOrthanc(const DemoArchive::Config& c) {
     }
 }
 
-std::string today() {
-    const std::time_t t = std::time(nullptr);
-    std::tm tm{};
-    localtime_r(&t, &tm);
-    char b[16];
-    std::strftime(b, sizeof b, "%Y%m%d", &tm);
-    return b;
-}
-
 void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dicom::PacsNode& node) {
     const fs::path dir = fs::path(c.folder) / "seed";
     core::JobContext job;
@@ -77,7 +67,6 @@ void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dic
     ct.studyDescription = "CT THORAX ABDOMEN WITH CONTRAST";
     ct.seriesDescription = "Axial 2.0 mm soft tissue";
     ct.accessionNumber = "HVX000101";
-    ct.studyDate = today();
     ct.modality = "CT";
     core::PhantomVoxelSource phantom({256, 256, 160}, 2024);
     for (auto& f : dicom::DicomSeriesWriter::write(phantom, (dir / "ct").string(), ct, job)) files.push_back(f);
@@ -90,7 +79,6 @@ void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dic
         mr.studyDescription = "MR HEAD T1 (ch2better template)";
         mr.seriesDescription = "T1 3D 0.5 mm";
         mr.accessionNumber = "HVX000102";
-        mr.studyDate = today();
         mr.modality = "MR";
         auto mri = core::VoxelSourceFactory::open(c.mriTemplate);
         for (auto& f : dicom::DicomSeriesWriter::write(*mri, (dir / "mr").string(), mr, job)) files.push_back(f);
