@@ -16,6 +16,7 @@
 #include "render/ComputeProgram.h"
 #include "render/EglOffscreenContext.h"
 #include "render/ShaderLibrary.h"
+#include "tests/support/RandomCut.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;
@@ -54,17 +55,7 @@ TEST(ShaderTraversal, GpuWalksTheIndexExactlyAsTheCppReference) {
     const auto reader = core::OctreeReader::open(dir.file("p.hvo"));
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
-    std::vector<std::uint32_t> cut, todo{0};
-    while (!todo.empty()) {
-        const auto id = todo.back();
-        todo.pop_back();
-        const auto& n = reader->nodes()[id];
-        if (n.level == 0 || u(rng) > 0.65f) {
-            cut.push_back(id);
-            continue;
-        }
-        for (std::uint32_t c = 0; c < std::uint32_t(__builtin_popcount(n.childMask)); ++c) todo.push_back(n.firstChild + c);
-    }
+    const auto cut = test::randomCut(*reader, rng, 0.65);
     const auto idx = core::SpatialIndex::build(*reader, cut, std::vector<std::uint32_t>(cut.size(), 0u));
     const auto space = core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount());
     constexpr std::uint32_t rays = 256, maxVisits = 256;

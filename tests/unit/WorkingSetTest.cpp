@@ -14,6 +14,7 @@
 #include "core/SpatialIndexTraversal.h"
 #include "core/WorkingSet.h"
 #include "tests/support/MemoryVoxelSource.h"
+#include "tests/support/RandomCut.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;
@@ -109,19 +110,7 @@ TEST(SpatialIndexTraversal, VisitsExactlyTheLeavesABruteForceRayBoxTestFindsInOr
     const auto tf = boneTf(*r);
     std::size_t rays = 0, leaves = 0;
     for (int trial = 0; trial < 20; ++trial) {
-        // A random cut: from the root, refine each node with probability 0.6.
-        std::vector<std::uint32_t> cut;
-        std::vector<std::uint32_t> todo{0};
-        while (!todo.empty()) {
-            const auto id = todo.back();
-            todo.pop_back();
-            const auto& n = r->nodes()[id];
-            if (n.level == 0 || u(rng) > 0.6) {
-                cut.push_back(id);
-                continue;
-            }
-            for (std::uint32_t c = 0; c < std::uint32_t(__builtin_popcount(n.childMask)); ++c) todo.push_back(n.firstChild + c);
-        }
+        const auto cut = test::randomCut(*r, rng, 0.6);
         std::vector<std::uint32_t> slots(cut.size(), core::SpatialIndex::kNone);
         const auto idx = core::SpatialIndex::build(*r, cut, slots);
         const core::CpuRayCaster caster(*r, idx, noSlots, tf, {});
