@@ -106,6 +106,7 @@ bool WorkingSet::available(std::uint32_t node, double priority) {
         slotStamp_.push_back(0);
         slotsByStamp_.insert({0, slot});
         slotData_.push_back(nullptr);
+        slotBricks_.push_back(nullptr);
     } else {
         slot = slotsByStamp_.begin()->second;  // least recently used
         if (slotStamp_[slot] == frame_) return false;  // pool full of this frame's bricks
@@ -121,6 +122,7 @@ bool WorkingSet::available(std::uint32_t node, double priority) {
     slotNode_[slot] = node;
     stamp(slot);
     slotData_[slot] = std::move(samples);
+    slotBricks_[slot] = brick;
     nodeSlot_[node] = slot;
     changed_.push_back(slot);
     uploadLeft_ -= bytes;

@@ -64,6 +64,8 @@ public:
     const SpatialIndex& index() const { return index_; }
     /// Pool slot contents as float samples (edge^3 each); the CPU mirror of the GPU pool.
     const std::vector<std::shared_ptr<const std::vector<float>>>& slotData() const { return slotData_; }
+    /// Pool slot contents as decoded bricks in their stored type (what the GPU pool uploads).
+    const std::vector<std::shared_ptr<const Brick>>& slotBricks() const { return slotBricks_; }
     /// Slots whose contents changed in the last update (to upload to the GPU).
     const std::vector<std::uint32_t>& changedSlots() const { return changed_; }
     const FrameStats& stats() const { return stats_; }
@@ -89,6 +91,7 @@ private:
     std::set<std::pair<std::uint64_t, std::uint32_t>> slotsByStamp_;  // least recently used first
     void stamp(std::uint32_t slot);
     std::vector<std::shared_ptr<const std::vector<float>>> slotData_;
+    std::vector<std::shared_ptr<const Brick>> slotBricks_;
     std::unordered_map<std::uint32_t, std::uint32_t> nodeSlot_;
     std::vector<std::uint32_t> changed_;
     std::vector<char> invisible_;

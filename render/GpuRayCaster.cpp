@@ -22,18 +22,32 @@ struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
 static_assert(sizeof(FrameBlock) == 64 + 8 * 16 + 2 * 16, "std140 layout of Frame");
 }  // namespace
 
-GpuRayCaster::GpuRayCaster() { glCreateBuffers(8, buffers_); }
+GpuRayCaster::GpuRayCaster() { glCreateBuffers(9, buffers_); }
 
 GpuRayCaster::~GpuRayCaster() {
-    glDeleteBuffers(8, buffers_);
+    glDeleteBuffers(9, buffers_);
     if (pool_) glDeleteTextures(1, &pool_);
 }
 
-void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const std::vector<float>>>& slots, std::uint32_t edge) {
+namespace {
+/// The pool's texture format for a volume's stored type: its own precision, never more.
+GLenum poolFormat(core::ScalarType type) {
+    switch (type) {
+    case core::ScalarType::UInt8: return GL_R8;
+    case core::ScalarType::Int16:
+    case core::ScalarType::UInt16: return GL_R16;
+    case core::ScalarType::Float32: break;
+    }
+    return GL_R32F;
+}
+}  // namespace
+
+void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Brick>>& slots, std::uint32_t edge,
+                              core::ScalarType type) {
     uploaded_ = 0;
     const auto count = std::uint32_t(std::max<std::size_t>(1, slots.size()));
-    // A near-cubic grid of slots, rebuilt only when it must grow.
-    if (!pool_ || edge != poolEdge_ || count > poolRow_ * poolRow_ * poolLayers_) {
+    // A near-cubic grid of slots, rebuilt only when it must grow or the volume's type changes.
+    if (!pool_ || edge != poolEdge_ || type != poolType_ || count > poolRow_ * poolRow_ * poolLayers_) {
         if (pool_) glDeleteTextures(1, &pool_);
         GLint maxSize = 2048;
         glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
@@ -43,8 +57,9 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const std::vecto
         if (poolLayers_ > perAxis) throw core::Error("the brick pool does not fit in a 3D texture");
         poolLayer_ = poolRow_ * poolRow_;
         poolEdge_ = edge;
+        poolType_ = type;
         glCreateTextures(GL_TEXTURE_3D, 1, &pool_);
-        glTextureStorage3D(pool_, 1, GL_R32F, GLsizei(poolRow_ * edge), GLsizei(poolRow_ * edge),
+        glTextureStorage3D(pool_, 1, poolFormat(type), GLsizei(poolRow_ * edge), GLsizei(poolRow_ * edge),
                            GLsizei(poolLayers_ * edge));
         glTextureParameteri(pool_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(pool_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -52,21 +67,53 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const std::vecto
         glTextureParameteri(pool_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         glTextureParameteri(pool_, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
         poolContent_.assign(poolRow_ * poolRow_ * poolLayers_, nullptr);
+        slotDecode_.assign(poolContent_.size() * 2, 0.0f);
+        poolBytes_ = poolContent_.size() * std::size_t(edge) * edge * edge * core::scalarSize(type);
     }
+    std::vector<std::uint16_t> biased;
     for (std::size_t s = 0; s < slots.size(); ++s) {
-        if (!slots[s] || poolContent_[s] == slots[s]) continue;  // unchanged since the last upload
-        const void* data = slots[s]->data();
+        const auto& brick = slots[s];
+        if (!brick || poolContent_[s] == brick) continue;  // unchanged since the last upload
+        if (brick->edge != edge) throw core::Error("a brick does not match the pool's slot size");
+        // The texel format converts to normalised floats; the slot's affine map gives stored values back.
+        GLenum format = GL_FLOAT;
+        const void* data = brick->data.data();
+        float scale = 1.0f, offset = 0.0f;
+        if (brick->lossy8) {
+            format = GL_UNSIGNED_BYTE;
+            scale = brick->quantMax - brick->quantMin;
+            offset = brick->quantMin;
+        } else if (brick->type == core::ScalarType::UInt8) {
+            format = GL_UNSIGNED_BYTE;
+            scale = 255.0f;
+        } else if (brick->type == core::ScalarType::UInt16) {
+            format = GL_UNSIGNED_SHORT;
+            scale = 65535.0f;
+        } else if (brick->type == core::ScalarType::Int16) {
+            // Biased to unsigned so that -32768 (often the padding value) stays exact; a signed
+            // normalised format would clamp it to -32767.
+            const auto* v = brick->as<std::int16_t>();
+            biased.resize(brick->data.size() / 2);
+            for (std::size_t i = 0; i < biased.size(); ++i) biased[i] = std::uint16_t(std::int32_t(v[i]) + 32768);
+            format = GL_UNSIGNED_SHORT;
+            data = biased.data();
+            scale = 65535.0f;
+            offset = -32768.0f;
+        }
         const auto slot = std::uint32_t(s);
         glTextureSubImage3D(pool_, 0, GLint(slot % poolRow_ * edge), GLint(slot / poolRow_ % poolRow_ * edge),
                             GLint(slot / poolLayer_ * edge), GLsizei(edge), GLsizei(edge), GLsizei(edge), GL_RED,
-                            GL_FLOAT, data);
-        poolContent_[s] = slots[s];
-        uploaded_ += std::size_t(edge) * edge * edge * sizeof(float);
+                            format, data);
+        poolContent_[s] = brick;
+        slotDecode_[2 * s] = scale;
+        slotDecode_[2 * s + 1] = offset;
+        uploaded_ += brick->data.size();
     }
+    glNamedBufferData(buffers_[8], GLsizeiptr(slotDecode_.size() * sizeof(float)), slotDecode_.data(), GL_STREAM_DRAW);
 }
 
 core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const core::SpatialIndex& index,
-                                       const std::vector<std::shared_ptr<const std::vector<float>>>& slots,
+                                       const std::vector<std::shared_ptr<const core::Brick>>& slots,
                                        const core::TransferFunction& tf, const core::RenderSettings& settings,
                                        const core::View& view) {
     const int mode = int(settings.mode);
@@ -74,7 +121,7 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     if (!program)
         program = std::make_unique<ComputeProgram>(ShaderLibrary::embedded(), "raycast.comp.glsl",
                                                    std::vector<std::string>{"MODE " + std::to_string(mode)});
-    uploadPool(slots, reader.brickEdge());
+    uploadPool(slots, reader.brickEdge(), reader.geometry().scalarType);
     glNamedBufferData(buffers_[0], GLsizeiptr(index.nodes.size() * sizeof(glm::uvec4)), index.nodes.data(), GL_STREAM_DRAW);
     glNamedBufferData(buffers_[1], GLsizeiptr(index.ropes.size() * 4), index.ropes.data(), GL_STREAM_DRAW);
     // The transfer function's own tables (128 KiB), uploaded every frame: cheap, and never stale.
@@ -113,6 +160,7 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
 
     program->use();
     for (GLuint b = 0; b < 7; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffers_[8]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
     glBindTextureUnit(0, pool_);
     glDispatchCompute(GLuint((view.width + 7) / 8), GLuint((view.height + 7) / 8), 1);

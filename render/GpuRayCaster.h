@@ -3,6 +3,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/Brick.h"
 #include "core/CpuRayCaster.h"
 #include "render/ComputeProgram.h"
 
@@ -10,8 +11,10 @@ namespace hvx::render {
 
 /// The single-pass GPU ray caster: a compute shader per mode (static variants) that walks the
 /// spatial index with the shared traversal step and samples a brick pool texture. The pool is
-/// one 3D R32F texture split into edge^3 slots, updated from the working set's slots; the index
-/// and the transfer-function tables are uploaded as storage buffers each frame. With
+/// one 3D texture split into edge^3 slots in the volume's own precision (R8 for 8-bit, R16 for
+/// 16-bit, R32F for float volumes), updated from the working set's slots; each slot carries the
+/// affine map from its normalised texels to stored values (lossy 8-bit bricks keep their codes).
+/// The index and the transfer-function tables are uploaded as storage buffers each frame. With
 /// RenderSettings::countRays, rays per index node are counted with SSBO atomics and returned
 /// for the working set's visibility feedback.
 ///
@@ -25,23 +28,28 @@ public:
 
     /// Renders one view and reads the image back (offscreen rendering, tests, CLI).
     core::RenderImage render(const core::OctreeReader& reader, const core::SpatialIndex& index,
-                             const std::vector<std::shared_ptr<const std::vector<float>>>& slots,
+                             const std::vector<std::shared_ptr<const core::Brick>>& slots,
                              const core::TransferFunction& tf, const core::RenderSettings& settings,
                              const core::View& view);
     /// Bytes uploaded to the brick pool by the last render().
     std::size_t lastUploadBytes() const { return uploaded_; }
+    /// Bytes the pool texture occupies on the GPU.
+    std::size_t poolBytes() const { return poolBytes_; }
 
 private:
-    void uploadPool(const std::vector<std::shared_ptr<const std::vector<float>>>& slots, std::uint32_t edge);
+    void uploadPool(const std::vector<std::shared_ptr<const core::Brick>>& slots, std::uint32_t edge,
+                    core::ScalarType type);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
-    unsigned buffers_[8] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame
+    unsigned buffers_[9] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot decode
     unsigned pool_ = 0;
     std::uint32_t poolEdge_ = 0, poolRow_ = 0, poolLayer_ = 0, poolLayers_ = 0;
     // What each slot holds; keeping the reference stops a freed brick's address from being
     // reused by a new brick and mistaken for it.
-    std::vector<std::shared_ptr<const std::vector<float>>> poolContent_;
-    std::size_t uploaded_ = 0;
+    std::vector<std::shared_ptr<const core::Brick>> poolContent_;
+    std::vector<float> slotDecode_;  // per slot: stored value = texel * [2s] + [2s+1]
+    core::ScalarType poolType_ = core::ScalarType::Float32;
+    std::size_t uploaded_ = 0, poolBytes_ = 0;
 };
 
 }  // namespace hvx::render

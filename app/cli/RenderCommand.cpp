@@ -64,6 +64,7 @@ int renderCommand(int argc, char** argv) {
     core::WorkingSetOptions opt;
     opt.maxBricks = std::size_t(args.integer("budget", 4096, 1, 1 << 20));
     opt.voxelsPerPixel = args.number("accuracy").value_or(1.0);
+    opt.cpuMirror = args.flag("cpu");  // the GPU pool takes bricks in their stored type
     opt.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
     if (settings.mode == core::RenderSettings::Mode::Iso) {
         const double physical = args.number("iso").value_or(g.modality == "CT" ? 300.0 : 0.5 * (g.valueMin + g.valueMax));
@@ -98,7 +99,7 @@ int renderCommand(int argc, char** argv) {
     } else {
         render::EglOffscreenContext context;  // headless: EGL surfaceless (Mesa) or an EGL device
         render::GpuRayCaster gpu;
-        image = gpu.render(*reader, ws.index(), ws.slotData(), tf, settings, view);
+        image = gpu.render(*reader, ws.index(), ws.slotBricks(), tf, settings, view);
         device = "the GPU (" + context.info().renderer + ")";
     }
     const double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();

@@ -10,7 +10,8 @@ float brickSample(uint node, vec3 leafLo, vec3 p) {
     // Hardware trilinear filtering inside the slot: u stays within the brick's sample centres
     // (the border replicates neighbours), so the filter never reads another slot.
     ivec3 cell = ivec3(int(slot % brick.w), int((slot / brick.w) % (image.z / brick.w)), int(slot / image.z)) * e;
-    return texture(brickPool, (vec3(cell) + u + 0.5) / vec3(textureSize(brickPool, 0))).r;
+    vec2 decode = slotDecode[slot];  // normalised texel -> stored value (linear, so after filtering)
+    return texture(brickPool, (vec3(cell) + u + 0.5) / vec3(textureSize(brickPool, 0))).r * decode.x + decode.y;
 }
 
 vec3 brickGradient(uint node, vec3 leafLo, vec3 p) {

@@ -16,5 +16,6 @@ layout(std430, binding = 2) readonly buffer TfTable { vec4 tfF[]; };      // 409
 layout(std430, binding = 3) readonly buffer TfIntegral { vec4 tfI[]; };   // 4097 entries
 layout(std430, binding = 4) writeonly buffer OutColor { vec4 outColor[]; };
 layout(std430, binding = 5) writeonly buffer OutDepth { float outDepth[]; };
-layout(binding = 0) uniform sampler3D brickPool;  // R32F, slot s at cell (s % row, s / row % rows, s / layer)
+layout(binding = 0) uniform sampler3D brickPool;  // R8/R16/R32F, slot s at cell (s % row, s / row % rows, s / layer)
+layout(std430, binding = 7) readonly buffer SlotDecode { vec2 slotDecode[]; };  // stored = texel * x + y
 layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per index node (feedback)

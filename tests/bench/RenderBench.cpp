@@ -88,9 +88,9 @@ int main(int argc, char** argv) {
     {
         render::EglOffscreenContext ctx;
         render::GpuRayCaster gpu;
-        gpu.render(*reader, ws.index(), ws.slotData(), tf, {}, viewAt(0));  // compile + upload
+        gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, viewAt(0));  // compile + upload
         const auto t = Clock::now();
-        for (int f = 1; f <= frames; ++f) gpu.render(*reader, ws.index(), ws.slotData(), tf, {}, viewAt(f));
+        for (int f = 1; f <= frames; ++f) gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, viewAt(f));
         gpuMs = seconds(t) * 1000.0 / frames;
         std::printf("Holovox GPU ray caster (%s): %.1f ms/frame\n", ctx.info().renderer.c_str(), gpuMs);
     }

@@ -101,7 +101,7 @@ void checkBaselines(const std::string& dataset, const core::OctreeReader& reader
             if (ws.stats().settled()) break;
             loader.waitIdle();
         }
-        const auto image = gpu.render(reader, ws.index(), ws.slotData(), tf, rs, view);
+        const auto image = gpu.render(reader, ws.index(), ws.slotBricks(), tf, rs, view);
         const std::string name = dataset + "-" + modeName(mode) + ".png";
         const std::string actualPath = artifacts + name;
         core::ImageWriter::writePng(image, actualPath);

@@ -176,7 +176,7 @@ TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
         rs.mode = mode;
         rs.isoValue = 300;
         const auto want = core::CpuRayCaster(*reader, ws.index(), ws.slotData(), tf, rs).render(view);
-        const auto got = gpu.render(*reader, ws.index(), ws.slotData(), tf, rs, view);
+        const auto got = gpu.render(*reader, ws.index(), ws.slotBricks(), tf, rs, view);
         const double db = psnr(got, want);
         std::printf("mode %d: GPU vs CPU reference PSNR %.1f dB\n", int(mode), db);
         if (db < 40.0) {
@@ -218,7 +218,7 @@ struct Scene {
             loader.waitIdle();
         }
         if (cut) *cut = ws.stats().cutNodes;
-        return gpu.render(*reader, ws.index(), ws.slotData(), tf, rs, view);
+        return gpu.render(*reader, ws.index(), ws.slotBricks(), tf, rs, view);
     }
 };
 
