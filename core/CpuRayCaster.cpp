@@ -110,16 +110,24 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     float tPrev = 0.0f, sPrev = 0.0f;
     const auto mode = settings_.mode;
     glm::vec3 leafLo(0.0f);
-    auto shade = [&](std::uint32_t n, const glm::vec3& p, const glm::dvec3& base) {
-        if (!settings_.shading) return base;
+    // Shades a sample and scales its opacity `a` by boundary enhancement and view-dependent
+    // transparency; the gradient is taken once for both.
+    const bool enhance = settings_.boundary > 0.0 || settings_.viewTransparency > 0.0;
+    const double strengthPerGradient = space_.minSpacing / (tf_.valueMax() - tf_.valueMin()) / kBoundaryGradientFraction;
+    auto shade = [&](std::uint32_t n, const glm::vec3& p, const glm::dvec3& base, double& a) {
+        if (!settings_.shading && !enhance) return base;
         glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(n, leafLo, p));
         const double len = glm::length(g);
+        const double facing = len < 1e-9 ? 0.0 : std::abs(glm::dot(g / len, -dw));  // headlight: L = V
+        if (enhance) {
+            const double strength = std::min(1.0, len * strengthPerGradient);
+            a *= (1.0 - settings_.boundary + settings_.boundary * strength) *
+                 (1.0 - settings_.viewTransparency * strength * facing);
+        }
+        if (!settings_.shading) return base;
         if (len < 1e-9) return base * (settings_.ambient + settings_.diffuse);
-        g /= len;
-        const glm::dvec3 l = -dw;  // headlight
-        const double diff = std::abs(glm::dot(g, l));
-        const double spec = std::pow(std::abs(glm::dot(g, l)), settings_.shininess);
-        return base * (settings_.ambient + settings_.diffuse * diff) + glm::dvec3(settings_.specular * spec);
+        return base * (settings_.ambient + settings_.diffuse * facing) +
+               glm::dvec3(settings_.specular * std::pow(facing, settings_.shininess));
     };
     float tStart = -1.0f;
     walk(ow, dw, [&](std::uint32_t n, const glm::vec3& lo, float tIn, float tOut) {
@@ -152,9 +160,9 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                 if (havePrev) {
                     const glm::dvec4 f = tf_.segment(sPrev, s);
                     const double seg = t - tPrev;
-                    const double a = 1.0 - std::exp(-f.w * seg);
+                    double a = 1.0 - std::exp(-f.w * seg);
                     if (a > 1e-6) {
-                        const glm::dvec3 c = shade(n, p, glm::dvec3(f) / f.w);
+                        const glm::dvec3 c = shade(n, p, glm::dvec3(f) / f.w, a);
                         color += (1.0 - alpha) * a * c;
                         alpha += (1.0 - alpha) * a;
                         if (!hit && alpha > 0.02) {
@@ -181,7 +189,8 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                     const glm::dvec4 f = tf_.sample(iso);
                     glm::dvec3 base = f.w > 0 ? glm::dvec3(f) / f.w : glm::dvec3(0.9);
                     if (glm::length(base) < 0.1) base = glm::dvec3(0.9);
-                    color = shade(n, o + th * d, base);
+                    double opaque = 1.0;
+                    color = shade(n, o + th * d, base, opaque);
                     alpha = 1.0;
                     depth = th;
                     return false;

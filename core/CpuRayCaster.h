@@ -20,10 +20,21 @@ struct RenderSettings {
     double isoValue = 0.0;           ///< stored units
     bool shading = true;             ///< Phong with central-difference gradients (DVR, iso)
     double ambient = 0.35, diffuse = 0.65, specular = 0.25, shininess = 24.0;
+    /// Boundary enhancement (Rheingans & Ebert, as in Bruckner's illustrative DVR): opacity is
+    /// scaled by (1 - b + b·|∇f|^), so homogeneous regions fade and boundaries stay. 0 = off.
+    double boundary = 0.0;
+    /// View-dependent transparency: opacity is scaled by (1 - v·|∇f|^·|n·V|), so boundaries
+    /// facing the viewer turn transparent and silhouettes stay. 0 = off.
+    double viewTransparency = 0.0;
     double earlyTermination = 0.99;
     double stepScale = 1.0;          ///< step = stepScale × the local voxel size
     bool countRays = false;          ///< fill RenderImage::rayCounts (visibility feedback)
 };
+
+/// |∇f|^ above: the gradient's strength in [0, 1], the value change per finest voxel as a
+/// fraction of the transfer function's range, where 10% of the range per voxel counts as a full
+/// boundary.
+constexpr double kBoundaryGradientFraction = 0.1;
 
 /// A rendered frame: premultiplied RGBA (linear floats), depth (world mm along the ray to the
 /// first significant sample, +inf when none) and, on request, rays per index node.

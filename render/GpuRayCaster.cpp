@@ -16,10 +16,10 @@ namespace hvx::render {
 namespace {
 struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
     glm::mat4 patientToOctree;
-    glm::vec4 eye, forward, right, up, extent, tfRange, shading, extra;
+    glm::vec4 eye, forward, right, up, extent, tfRange, shading, extra, enhance;
     glm::uvec4 brick, image;
 };
-static_assert(sizeof(FrameBlock) == 64 + 8 * 16 + 2 * 16, "std140 layout of Frame");
+static_assert(sizeof(FrameBlock) == 64 + 9 * 16 + 2 * 16, "std140 layout of Frame");
 }  // namespace
 
 GpuRayCaster::GpuRayCaster() { glCreateBuffers(9, buffers_); }
@@ -154,6 +154,8 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
                            float(settings.shininess));
     fb.extra = glm::vec4(float(settings.isoValue), settings.shading ? 1.0f : 0.0f, settings.countRays ? 1.0f : 0.0f,
                          0.0f);
+    fb.enhance = glm::vec4(float(settings.boundary), float(settings.viewTransparency),
+                           float(space.minSpacing / (tf.valueMax() - tf.valueMin()) / core::kBoundaryGradientFraction), 0.0f);
     fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), poolRow_);
     fb.image = glm::uvec4(std::uint32_t(view.width), std::uint32_t(view.height), poolLayer_, 0u);
     glNamedBufferData(buffers_[7], sizeof fb, &fb, GL_STREAM_DRAW);

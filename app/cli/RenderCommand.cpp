@@ -33,12 +33,13 @@ core::RenderSettings::Mode parseMode(const std::string& m) {
 
 int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
-                       {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb"},
+                       {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
+                        "view-transparency"},
                        {"cpu"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
-                          "[--tf PRESET] [--size WxH] -o OUT.png|OUT.exr");
+                          "[--tf PRESET] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] -o OUT.png|OUT.exr");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
@@ -57,6 +58,10 @@ int renderCommand(int argc, char** argv) {
     }
     core::RenderSettings settings;
     settings.mode = parseMode(args.value("mode").value_or("dvr"));
+    settings.boundary = args.number("boundary").value_or(0.0);
+    settings.viewTransparency = args.number("view-transparency").value_or(0.0);
+    if (!(settings.boundary >= 0 && settings.boundary <= 1) || !(settings.viewTransparency >= 0 && settings.viewTransparency <= 1))
+        throw core::Error("--boundary and --view-transparency must be between 0 and 1");
     const std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
     const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,

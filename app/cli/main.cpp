@@ -34,6 +34,7 @@ void usage() {
         "  listen [--port N] [--ae AE] [--storage DIR] [--allow AE]   storage SCP in the foreground\n"
         "  dicom-info FILE               one-line summary of a DICOM file's header\n"
         "  render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] [--tf PRESET]\n"
+        "        [--boundary 0..1] [--view-transparency 0..1]\n"
         "        [--iso HU] [--size WxH] [--budget BRICKS] [--accuracy VOXELS_PER_PIXEL] -o OUT.png|OUT.exr\n"
         "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
         "  version                       versions of Holovox and its libraries");

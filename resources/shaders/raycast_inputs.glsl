@@ -9,6 +9,7 @@ layout(std140, binding = 0) uniform Frame {
     vec4 tfRange;    // valueMin, valueMax, early termination, step scale
     vec4 shading;    // ambient, diffuse, specular, shininess
     vec4 extra;      // iso value, shading on, count rays (1/0), unused
+    vec4 enhance;    // boundary enhancement, view-dependent transparency, strength per gradient, unused
     uvec4 brick;     // brick size, border, edge, slots per row
     uvec4 image;     // width, height, slots per layer, unused
 };

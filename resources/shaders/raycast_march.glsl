@@ -5,13 +5,20 @@
 #define MODE 0
 #endif
 
-vec3 shadeSample(uint n, vec3 leafLo, vec3 p, vec3 base, vec3 dw) {
-    if (extra.y < 0.5) return base;
+// Shades a sample and scales its opacity `a` by boundary enhancement and view-dependent
+// transparency (core::RenderSettings), with one gradient for both.
+vec3 shadeSample(uint n, vec3 leafLo, vec3 p, vec3 base, vec3 dw, inout float a) {
+    bool enhanceOn = enhance.x > 0.0 || enhance.y > 0.0;
+    if (extra.y < 0.5 && !enhanceOn) return base;
     vec3 g = transpose(mat3(patientToOctree)) * brickGradient(n, leafLo, p);
     float len = length(g);
+    float ndl = len < 1e-9 ? 0.0 : abs(dot(g / len, -dw));  // headlight: L = V
+    if (enhanceOn) {
+        float strength = min(1.0, len * enhance.z);
+        a *= (1.0 - enhance.x + enhance.x * strength) * (1.0 - enhance.y * strength * ndl);
+    }
+    if (extra.y < 0.5) return base;
     if (len < 1e-9) return base * (shading.x + shading.y);
-    g /= len;
-    float ndl = abs(dot(g, -dw));
     return base * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w));
 }
 
@@ -74,7 +81,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                         vec4 f = tfSegment(sPrev, s);
                         float a = 1.0 - exp(-f.w * (t - tPrev));
                         if (a > 1e-6) {
-                            vec3 c = shadeSample(n, lo, p, f.rgb / f.w, dw);
+                            vec3 c = shadeSample(n, lo, p, f.rgb / f.w, dw, a);
                             color += (1.0 - alpha) * a * c;
                             alpha += (1.0 - alpha) * a;
                             if (!hit && alpha > 0.02) { hit = true; depth = t; }
@@ -93,7 +100,8 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                         vec4 f = tfSample(extra.x);
                         vec3 base = f.w > 0.0 ? f.rgb / f.w : vec3(0.9);
                         if (length(base) < 0.1) base = vec3(0.9);
-                        color = shadeSample(n, lo, o + th * d, base, dw);
+                        float opaque = 1.0;
+                        color = shadeSample(n, lo, o + th * d, base, dw, opaque);
                         alpha = 1.0;
                         depth = th;
                         done = true;

@@ -170,11 +170,20 @@ TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
     }
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
+    std::vector<core::RenderSettings> variants;
     for (auto mode : {core::RenderSettings::Mode::Dvr, core::RenderSettings::Mode::Iso, core::RenderSettings::Mode::Mip,
                       core::RenderSettings::Mode::MinIp, core::RenderSettings::Mode::Average}) {
         core::RenderSettings rs;
         rs.mode = mode;
         rs.isoValue = 300;
+        variants.push_back(rs);
+    }
+    core::RenderSettings enhanced;  // DVR with boundary enhancement and view-dependent transparency
+    enhanced.boundary = 0.8;
+    enhanced.viewTransparency = 0.7;
+    variants.push_back(enhanced);
+    for (const auto& rs : variants) {
+        const auto mode = rs.mode;
         const auto want = core::CpuRayCaster(*reader, ws.index(), ws.slotData(), tf, rs).render(view);
         const auto got = gpu.render(*reader, ws.index(), ws.slotBricks(), tf, rs, view);
         const double db = psnr(got, want);
