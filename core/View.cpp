@@ -1,5 +1,6 @@
 #include "core/View.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -51,6 +52,13 @@ View View::orbit(const glm::dvec3& center, double radius, double azimuthDeg, dou
     v.width = width;
     v.height = height;
     v.fovYDegrees = fovYDegrees;
+    return v;
+}
+
+View View::scaled(double scale) const {
+    View v = *this;
+    v.width = std::max(1, int(std::lround(width * scale)));
+    v.height = std::max(1, int(std::lround(height * scale)));
     return v;
 }
 

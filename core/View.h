@@ -23,6 +23,9 @@ struct View {
     glm::dmat4 viewProjection(double nearMm = 1.0, double farMm = 1e5) const;
     /// Width in mm of one pixel at a point (its distance along the view axis for a pinhole).
     double pixelFootprint(const glm::dvec3& point) const;
+    /// The same camera at `scale` times the pixel count per axis (at least 1×1): reduced
+    /// resolution while interacting.
+    View scaled(double scale) const;
     /// An orbit camera around `center`: azimuth 0 / elevation 0 looks from the patient's front
     /// (anterior) towards the back with superior up, so the patient's left is on the image right.
     static View orbit(const glm::dvec3& center, double radius, double azimuthDeg, double elevationDeg, int width,
