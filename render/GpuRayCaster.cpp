@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -22,7 +23,16 @@ struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
 static_assert(sizeof(FrameBlock) == 64 + 9 * 16 + 2 * 16, "std140 layout of Frame");
 }  // namespace
 
-GpuRayCaster::GpuRayCaster() { glCreateBuffers(9, buffers_); }
+GpuRayCaster::GpuRayCaster(PoolPrecision precision) {
+    glCreateBuffers(9, buffers_);
+    if (precision == PoolPrecision::Auto) {
+        const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        const std::string name = renderer ? renderer : "";
+        floatPool_ = name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+    } else {
+        floatPool_ = precision == PoolPrecision::Float;
+    }
+}
 
 GpuRayCaster::~GpuRayCaster() {
     glDeleteBuffers(9, buffers_);
@@ -121,7 +131,7 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     if (!program)
         program = std::make_unique<ComputeProgram>(ShaderLibrary::embedded(), "raycast.comp.glsl",
                                                    std::vector<std::string>{"MODE " + std::to_string(mode)});
-    uploadPool(slots, reader.brickEdge(), reader.geometry().scalarType);
+    uploadPool(slots, reader.brickEdge(), floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
     glNamedBufferData(buffers_[0], GLsizeiptr(index.nodes.size() * sizeof(glm::uvec4)), index.nodes.data(), GL_STREAM_DRAW);
     glNamedBufferData(buffers_[1], GLsizeiptr(index.ropes.size() * 4), index.ropes.data(), GL_STREAM_DRAW);
     // The transfer function's own tables (128 KiB), uploaded every frame: cheap, and never stale.

@@ -7,10 +7,10 @@
 
 // Shades a sample and scales its opacity `a` by boundary enhancement and view-dependent
 // transparency (core::RenderSettings), with one gradient for both.
-vec3 shadeSample(uint n, vec3 leafLo, vec3 p, vec3 base, vec3 dw, inout float a) {
+vec3 shadeSample(LeafSampler L, vec3 p, vec3 base, vec3 dw, inout float a) {
     bool enhanceOn = enhance.x > 0.0 || enhance.y > 0.0;
     if (extra.y < 0.5 && !enhanceOn) return base;
-    vec3 g = transpose(mat3(patientToOctree)) * brickGradient(n, leafLo, p);
+    vec3 g = transpose(mat3(patientToOctree)) * leafGradient(L, p);
     float len = length(g);
     float ndl = len < 1e-9 ? 0.0 : abs(dot(g / len, -dw));  // headlight: L = V
     if (enhanceOn) {
@@ -62,6 +62,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                 havePrev = false;
             } else {
                 if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);  // visibility feedback
+                LeafSampler L = leafSampler(n, lo);
                 float voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
                 float dt = tfRange.w * voxel / octPerMm;
                 float t = tPrev + dt;
@@ -69,19 +70,19 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                     t = t0 + ceil((tIn - t0) / dt) * dt;
                     tPrev = t - dt;
                     if (tPrev >= t0) {
-                        sPrev = brickSample(n, lo, o + tPrev * d);
+                        sPrev = leafSample(L, o + tPrev * d);
                         havePrev = MODE == 0 || MODE == 1;
                     }
                 }
                 for (; t <= tOut && !done; t += dt) {
                     vec3 p = o + t * d;
-                    float s = brickSample(n, lo, p);
+                    float s = leafSample(L, p);
 #if MODE == 0
                     if (havePrev) {
                         vec4 f = tfSegment(sPrev, s);
                         float a = 1.0 - exp(-f.w * (t - tPrev));
                         if (a > 1e-6) {
-                            vec3 c = shadeSample(n, lo, p, f.rgb / f.w, dw, a);
+                            vec3 c = shadeSample(L, p, f.rgb / f.w, dw, a);
                             color += (1.0 - alpha) * a * c;
                             alpha += (1.0 - alpha) * a;
                             if (!hit && alpha > 0.02) { hit = true; depth = t; }
@@ -93,7 +94,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                         float ta = tPrev, tb = t, sa = sPrev;
                         for (int k = 0; k < 8; ++k) {
                             float m = 0.5 * (ta + tb);
-                            float sm = brickSample(n, lo, o + m * d);
+                            float sm = leafSample(L, o + m * d);
                             if ((sa < extra.x) != (sm < extra.x)) tb = m; else { ta = m; sa = sm; }
                         }
                         float th = 0.5 * (ta + tb);
@@ -101,7 +102,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                         vec3 base = f.w > 0.0 ? f.rgb / f.w : vec3(0.9);
                         if (length(base) < 0.1) base = vec3(0.9);
                         float opaque = 1.0;
-                        color = shadeSample(n, lo, o + th * d, base, dw, opaque);
+                        color = shadeSample(L, o + th * d, base, dw, opaque);
                         alpha = 1.0;
                         depth = th;
                         done = true;

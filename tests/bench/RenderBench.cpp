@@ -4,7 +4,9 @@
 // (run under xvfb-run); Holovox renders headless.
 //
 //   xvfb-run -a build/release/tests/bench/hvx_bench_render INPUT [--size 512] [--frames 8]
-//   INPUT: a volume file or phantom:XxYxZ (loaded whole for VTK; Holovox streams its octree)
+//   INPUT: a volume file or phantom:XxYxZ (loaded whole for VTK; Holovox streams its octree),
+//          or an existing FILE.hvo larger than RAM: Holovox alone, within its memory budget
+//          (VTK must hold the whole volume, and cannot).
 #include <vtkColorTransferFunction.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkGPUVolumeRayCastMapper.h>
@@ -27,12 +29,15 @@
 #include <filesystem>
 #include <string>
 
+#include <sys/resource.h>
+
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "core/BrickCache.h"
 #include "core/BrickLoader.h"
 #include "core/CpuRayCaster.h"
+#include "core/InteractiveQuality.h"
 #include "core/OctreeBuilder.h"
 #include "core/OctreeReader.h"
 #include "core/VoxelSourceFactory.h"
@@ -59,14 +64,19 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--frames")) frames = std::stoi(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--tf")) preset = argv[i + 1];
     }
-    auto source = core::VoxelSourceFactory::open(argv[1]);
-    const auto g0 = source->geometry();
-    if (g0.modality != "CT" && preset == "ct-bone") preset = "mr-default";
-    const std::string hvo = (std::filesystem::temp_directory_path() / "hvx-bench-render.hvo").string();
-    core::JobContext job;
-    core::OctreeBuilder(core::BuildOptions{}).build(*source, hvo, job);
+    const bool octreeOnly = std::string(argv[1]).ends_with(".hvo");
+    std::unique_ptr<core::VoxelSource> source;
+    std::string hvo = argv[1];
+    if (!octreeOnly) {
+        source = core::VoxelSourceFactory::open(argv[1]);
+        hvo = (std::filesystem::temp_directory_path() / "hvx-bench-render.hvo").string();
+        core::JobContext job;
+        core::OctreeBuilder(core::BuildOptions{}).build(*source, hvo, job);
+    }
     const auto reader = core::OctreeReader::open(hvo);
     const auto& g = reader->geometry();
+    const auto g0 = g;
+    if (g0.modality != "CT" && preset == "ct-bone") preset = "mr-default";
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
     const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
                                                    space.minSpacing);
@@ -76,9 +86,11 @@ int main(int argc, char** argv) {
     auto viewAt = [&](int f) { return core::View::orbit(centre, radius, 30.0 + 10.0 * f, 15.0, size, size); };
 
     // Holovox: working set for the first view (all views see the whole volume), then frames.
-    core::BrickCache cache(4ull << 30);
+    core::BrickCache cache(octreeOnly ? 1ull << 30 : 4ull << 30);
     core::BrickLoader loader(*reader, cache);
-    core::WorkingSet ws(*reader, cache, loader, {});
+    core::WorkingSetOptions options;
+    options.cpuMirror = !octreeOnly;
+    core::WorkingSet ws(*reader, cache, loader, options);
     for (int i = 0; i < 64; ++i) {
         ws.update({viewAt(0)}, tf);
         if (ws.stats().settled()) break;
@@ -92,7 +104,29 @@ int main(int argc, char** argv) {
         const auto t = Clock::now();
         for (int f = 1; f <= frames; ++f) gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, viewAt(f));
         gpuMs = seconds(t) * 1000.0 / frames;
-        std::printf("Holovox GPU ray caster (%s): %.1f ms/frame\n", ctx.info().renderer.c_str(), gpuMs);
+        std::printf("Holovox GPU ray caster (%s): %.1f ms/frame (pool %.0f MiB)\n", ctx.info().renderer.c_str(), gpuMs,
+                    double(gpu.poolBytes()) / double(1 << 20));
+        // While the camera moves: reduced resolution and doubled step, sized to 40 ms frames.
+        core::InteractiveQuality quality;
+        quality.frameDone({}, gpuMs);
+        const auto level = quality.next(true);
+        core::RenderSettings moving;
+        moving.stepScale = level.stepScale;
+        const auto tm = Clock::now();
+        for (int f = 1; f <= frames; ++f)
+            gpu.render(*reader, ws.index(), ws.slotBricks(), tf, moving, viewAt(f).scaled(level.resolution));
+        std::printf("Holovox GPU while moving: %.1f ms/frame (resolution x%.2f, step x%.0f)\n",
+                    seconds(tm) * 1000.0 / frames, level.resolution, level.stepScale);
+    }
+    if (octreeOnly) {
+        rusage ru{};
+        getrusage(RUSAGE_SELF, &ru);
+        std::printf("%s: %ux%ux%u (%.1f GiB of voxels): Holovox GPU %.1f ms/frame at %dx%d, peak RSS %.0f MiB; VTK "
+                    "would have to hold all %.1f GiB (as float: %.1f GiB) in RAM\n",
+                    argv[1], g.dims[0], g.dims[1], g.dims[2], double(g.byteSize()) / double(1ull << 30), gpuMs, size,
+                    size, double(ru.ru_maxrss) / 1024.0, double(g.byteSize()) / double(1ull << 30),
+                    double(g.voxelCount()) * 4.0 / double(1ull << 30));
+        return 0;
     }
     {
         const core::CpuRayCaster cpu(*reader, ws.index(), ws.slotData(), tf, {});
