@@ -1,0 +1,50 @@
+#include "dicom/SeriesOctree.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/Error.h"
+#include "core/OctreeBuilder.h"
+#include "dicom/DicomScanner.h"
+#include "dicom/DicomSeriesSource.h"
+#include "dicom/SeriesAssembler.h"
+#include "dicom/StudyDatabase.h"
+#include "dicom/UidPath.h"
+
+namespace hvx::dicom {
+
+std::string SeriesOctree::folderFor(const std::string& dbPath) {
+    return (std::filesystem::path(dbPath).parent_path() / "octrees").string();
+}
+
+std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
+                                std::vector<std::string>* warnings, std::string outPath) {
+    const auto files = db.filesOfSeries(seriesUid);
+    if (files.empty()) throw core::Error("series " + seriesUid + " is not in the database (import it first)");
+    core::JobContext scanJob;  // header scanning is quick next to building; progress comes from the build
+    const auto scan = DicomScanner::scan(files, scanJob);
+    job.throwIfCancelled();
+    std::vector<std::string> notes;
+    auto volumes = SeriesAssembler::assemble(scan.instances, notes);
+    volumes.erase(std::remove_if(volumes.begin(), volumes.end(),
+                                 [&](const SeriesVolume& v) { return v.seriesUid != seriesUid; }),
+                  volumes.end());
+    if (volumes.empty()) throw core::Error("series " + seriesUid + " has no image volume to build");
+    std::size_t pick = 0;
+    for (std::size_t i = 1; i < volumes.size(); ++i)
+        if (volumes[i].slices.size() > volumes[pick].slices.size()) pick = i;
+    if (warnings) {
+        warnings->insert(warnings->end(), notes.begin(), notes.end());
+        warnings->insert(warnings->end(), volumes[pick].warnings.begin(), volumes[pick].warnings.end());
+    }
+    if (outPath.empty()) {
+        std::filesystem::create_directories(folderFor(db.path()));
+        outPath = (std::filesystem::path(folderFor(db.path())) / (UidPath::component(seriesUid) + ".hvo")).string();
+    }
+    DicomSeriesSource source(volumes[pick]);
+    core::OctreeBuilder(core::BuildOptions{}).build(source, outPath, job);
+    db.setSeriesOctree(seriesUid, outPath);
+    return outPath;
+}
+
+}  // namespace hvx::dicom

@@ -1,0 +1,27 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/JobContext.h"
+
+namespace hvx::dicom {
+
+class StudyDatabase;
+
+/// Builds the octree of one imported series from its files in the study database: scan the
+/// headers, assemble the volume (the largest stack when a series holds several), stream it into
+/// an .hvo and record it in the database. Shared by the GUI's open-series job and the CLI.
+///
+/// Threading: call from a job thread with its own StudyDatabase connection.
+class SeriesOctree {
+public:
+    /// Where octrees of the database at `dbPath` are kept: `<its folder>/octrees`.
+    static std::string folderFor(const std::string& dbPath);
+    /// Builds `seriesUid` into `outPath` (default: folderFor(db)/<uid>.hvo) and returns the
+    /// path; warnings of assembly (gaps, tilt...) are appended to `warnings`. Throws core::Error
+    /// for an unknown series or one with no image volume; core::Cancelled when cancelled.
+    static std::string build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
+                             std::vector<std::string>* warnings = nullptr, std::string outPath = {});
+};
+
+}  // namespace hvx::dicom
