@@ -1,0 +1,52 @@
+#pragma once
+#include <QObject>
+#include <QString>
+
+#include <functional>
+#include <map>
+#include <memory>
+
+#include "core/JobContext.h"
+
+namespace hvx::ui {
+
+/// Runs background jobs (import, build, retrieve) on worker threads and reports them on the
+/// GUI thread: progress (fraction, ETA, stage), completion and errors. Each job gets a
+/// core::JobContext whose observer is bound to Qt's event loop (DESIGN.md decision 6: the
+/// post-to-main hook); cancel() asks the job to stop at its next check.
+///
+/// Threading: create, start and cancel on the GUI thread; signals arrive on the GUI thread.
+class JobManager : public QObject {
+    Q_OBJECT
+public:
+    /// The work of a job: runs on a worker thread; throws core::Error to fail and
+    /// core::Cancelled when cancelled. Its return value is the result message shown when done.
+    using Work = std::function<QString(core::JobContext&)>;
+    /// Called on the GUI thread when the job ends well (with the work's message).
+    using Done = std::function<void(const QString&)>;
+
+    explicit JobManager(QObject* parent = nullptr);
+    ~JobManager() override;
+
+    /// Starts a job; returns its id.
+    int start(const QString& title, Work work, Done done = {});
+    /// Asks a job to stop.
+    void cancel(int id);
+    /// Jobs still running.
+    int runningCount() const { return int(jobs_.size()); }
+    /// Blocks (processing events) until no job runs or `timeoutMs` passes; true when idle (tests, quit).
+    bool waitIdle(int timeoutMs);
+
+signals:
+    void started(int id, const QString& title);
+    void progressed(int id, double fraction, double etaSeconds, const QString& stage);
+    /// state: "done", "failed" or "cancelled"; message: the result or the error in plain words.
+    void finished(int id, const QString& state, const QString& message);
+
+private:
+    struct Job;
+    std::map<int, std::shared_ptr<Job>> jobs_;
+    int nextId_ = 1;
+};
+
+}  // namespace hvx::ui
