@@ -101,3 +101,21 @@ TEST(SliceSampler, CoarsePixelsReadACoarseLevelThatAveragesTheSameValues) {
     const glm::dvec3 p = centre + 0.5 * 1.7 * glm::dvec3(1, 0, 0) + 0.5 * 1.7 * glm::dvec3(0, 0, -1);
     EXPECT_NEAR(v, grid.expected(p), 10000.0 * 0.5 + 100) << "within half a coarse slice";
 }
+
+#include "core/VolumeHistogram.h"
+
+TEST(VolumeHistogram, CountsEveryVoxelOfTheChosenLevelOnce) {
+    Grid grid;  // values i + 100 j + 10000 k over 50 x 40 x 30 voxels
+    const auto full = core::VolumeHistogram::compute(*grid.reader, 30, 1000000);
+    EXPECT_EQ(full.level, 0);
+    std::uint64_t total = 0;
+    for (auto c : full.counts) total += c;
+    EXPECT_EQ(total, 50u * 40u * 30u);
+    // 30 bins over [0, 293949]: bin b holds the slices k with 10000 k in it; one slice per bin.
+    for (auto c : full.counts) EXPECT_GT(c, 0u);
+    const auto coarse = core::VolumeHistogram::compute(*grid.reader, 30, 4);
+    EXPECT_GT(coarse.level, 0);
+    total = 0;
+    for (auto c : coarse.counts) total += c;
+    EXPECT_EQ(total, 25u * 20u * 15u) << "level 1 has half the voxels per axis";
+}

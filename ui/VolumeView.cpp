@@ -1,0 +1,361 @@
+#include "ui/VolumeView.h"
+
+#include <epoxy/gl.h>
+
+#include <QKeyEvent>
+#include <QMouseEvent>
+#include <QNativeGestureEvent>
+#include <QPainter>
+#include <QPainterPath>
+#include <QWheelEvent>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "core/BrickCache.h"
+#include "core/BrickLoader.h"
+#include "core/Error.h"
+#include "core/ImageWriter.h"
+#include "core/OctreeSpace.h"
+#include "core/WorkingSet.h"
+#include "render/GpuRayCaster.h"
+
+namespace hvx::ui {
+
+/// Everything that belongs to one open volume, in construction order.
+struct VolumeView::Scene {
+    std::shared_ptr<const core::OctreeReader> reader;
+    core::BrickCache cache;
+    core::BrickLoader loader;
+    core::WorkingSet ws;
+    core::OctreeSpace space;
+    Scene(std::shared_ptr<const core::OctreeReader> r, core::WorkingSetOptions options)
+        : reader(std::move(r)), cache(std::size_t(2) << 30), loader(*reader, cache), ws(*reader, cache, loader, options),
+          space(core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount())) {}
+};
+
+namespace {
+// Linear [0, 1] -> 8-bit sRGB, as core::ImageWriter encodes PNGs.
+const std::array<std::uint8_t, 4096>& srgbTable() {
+    static const auto table = [] {
+        std::array<std::uint8_t, 4096> t{};
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            const double c = double(i) / double(t.size() - 1);
+            const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+            t[i] = std::uint8_t(std::lround(std::clamp(s, 0.0, 1.0) * 255.0));
+        }
+        return t;
+    }();
+    return table;
+}
+
+QImage toImage(const core::RenderImage& img) {
+    QImage out(img.width, img.height, QImage::Format_RGB32);
+    const auto& lut = srgbTable();
+    for (int y = 0; y < img.height; ++y) {
+        auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
+        for (int x = 0; x < img.width; ++x) {
+            const auto& p = img.rgba[std::size_t(y) * std::size_t(img.width) + std::size_t(x)];
+            auto c = [&](float v) { return lut[std::size_t(std::clamp(v, 0.0f, 1.0f) * 4095.0f)]; };
+            row[x] = qRgb(c(p.r), c(p.g), c(p.b));  // premultiplied over black
+        }
+    }
+    return out;
+}
+}  // namespace
+
+VolumeView::VolumeView(QWidget* parent) : QOpenGLWidget(parent) {
+    setFocusPolicy(Qt::StrongFocus);
+    setMinimumSize(200, 200);
+    setToolTip(tr("Left drag: rotate \u2022 Middle or Shift+drag: pan \u2022 Right drag or wheel: zoom\n"
+                  "A P L R S I: standard views \u2022 Home: reset"));
+    settle_.setSingleShot(true);
+    settle_.setInterval(200);
+    connect(&settle_, &QTimer::timeout, this, qOverload<>(&VolumeView::update));
+    refine_.setSingleShot(true);
+    refine_.setInterval(15);
+    connect(&refine_, &QTimer::timeout, this, qOverload<>(&VolumeView::update));
+}
+
+VolumeView::~VolumeView() {
+    makeCurrent();
+    gpu_.reset();
+    doneCurrent();
+    scene_.reset();
+}
+
+void VolumeView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
+    scene_.reset();
+    error_.clear();
+    if (reader) {
+        core::WorkingSetOptions options;
+        options.cpuMirror = false;
+        options.voxelsPerPixel = accuracy_;
+        scene_ = std::make_unique<Scene>(std::move(reader), options);
+        setRenderSettings(settings_);
+        resetView();
+    }
+    update();
+}
+
+bool VolumeView::hasVolume() const { return scene_ != nullptr; }
+
+void VolumeView::setTransferFunction(const core::TransferFunction& tf) {
+    tf_ = std::make_unique<core::TransferFunction>(tf);
+    update();
+}
+
+void VolumeView::setRenderSettings(const core::RenderSettings& settings) {
+    settings_ = settings;
+    if (scene_) {
+        auto& o = scene_->ws.options();
+        o.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
+        o.isosurface = settings.mode == core::RenderSettings::Mode::Iso;
+        o.isoValue = settings.isoValue;
+    }
+    update();
+}
+
+void VolumeView::setAccuracy(double voxelsPerPixel) {
+    accuracy_ = std::clamp(voxelsPerPixel, 0.25, 16.0);
+    if (scene_) scene_->ws.options().voxelsPerPixel = accuracy_;
+    update();
+}
+
+void VolumeView::setStandardView(core::OrbitCamera::Standard view) {
+    camera_.setStandard(view);
+    update();
+}
+
+void VolumeView::resetView() {
+    if (scene_) {
+        const auto& s = scene_->space;
+        const glm::dvec3 centre(s.octreeToPatient * glm::dvec4(s.extent * 0.5, 1.0));
+        const glm::dvec3 corner(s.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
+        camera_.frame(centre, glm::length(centre - corner));
+    }
+    camera_.setStandard(core::OrbitCamera::Standard::Anterior);
+    update();
+}
+
+QStringList VolumeView::orientationLabels() const {
+    return {QString::fromStdString(core::OrbitCamera::patientLabel(-camera_.right())),
+            QString::fromStdString(core::OrbitCamera::patientLabel(camera_.right())),
+            QString::fromStdString(core::OrbitCamera::patientLabel(camera_.up())),
+            QString::fromStdString(core::OrbitCamera::patientLabel(-camera_.up()))};
+}
+
+void VolumeView::initializeGL() {
+    try {
+        gpu_ = std::make_unique<render::GpuRayCaster>();
+    } catch (const std::exception& e) {
+        error_ = QString::fromStdString(e.what());
+    }
+}
+
+core::RenderImage VolumeView::renderFrame(const core::View& view, const core::RenderSettings& rs, bool converge) {
+    auto& ws = scene_->ws;
+    for (int i = 0; i < (converge ? 64 : 1); ++i) {
+        ws.update({view}, *tf_);
+        if (!converge || ws.stats().settled()) break;
+        scene_->loader.waitIdle();
+    }
+    auto img = gpu_->render(*scene_->reader, ws.index(), ws.slotBricks(), *tf_, rs, view);
+    // Leave the GL state as QPainter's engine expects it.
+    glUseProgram(0);
+    glBindTextureUnit(0, 0);
+    return img;
+}
+
+void VolumeView::paintGL() {
+    QPainter painter(this);
+    painter.fillRect(rect(), Qt::black);
+    const int w = int(width() * devicePixelRatioF()), h = int(height() * devicePixelRatioF());
+    if (scene_ && tf_ && gpu_ && error_.isEmpty()) {
+        painter.beginNativePainting();
+        try {
+            const bool moving = dragging_ || settle_.isActive();
+            const auto level = quality_.next(moving);
+            core::RenderSettings rs = settings_;
+            rs.stepScale *= level.stepScale;
+            rs.countRays = true;
+            const auto view = camera_.view(w, h);
+            QElapsedTimer t;
+            t.start();
+            auto img = renderFrame(view.scaled(level.resolution), rs, false);
+            // The cut was refined for the reduced view; refine it for the full one next frame.
+            scene_->ws.setRayCounts(img.rayCounts);
+            const double ms = double(t.nsecsElapsed()) / 1e6;
+            quality_.frameDone(level, ms);
+            frame_ = toImage(img).scaled(w, h, Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
+            ++frames_;
+            const auto& st = scene_->ws.stats();
+            readouts_.frameMs = ms;
+            readouts_.fps = 1000.0 / std::max(ms, 1e-3);
+            readouts_.residentBricks = st.cutNodes;
+            readouts_.poolSlots = st.slotsUsed;
+            readouts_.cacheBytes = scene_->cache.bytes();
+            readouts_.cacheBudget = scene_->cache.budget();
+            readouts_.resolution = level.resolution;
+            readouts_.complete = st.complete;
+            if (!st.settled() || !level.full()) refine_.start();  // bricks still arriving, or not yet full quality
+        } catch (const std::exception& e) {
+            error_ = QString::fromStdString(e.what());
+            emit failed(error_);
+        }
+        painter.endNativePainting();
+        if (!frame_.isNull()) painter.drawImage(rect(), frame_);
+    }
+    paintOverlays(painter);
+    painter.end();
+    if (scene_ && error_.isEmpty()) emit frameRendered();
+}
+
+void VolumeView::paintOverlays(QPainter& p) {
+    p.setRenderHint(QPainter::Antialiasing);
+    if (!error_.isEmpty()) {
+        p.setPen(QColor(255, 120, 100));
+        p.drawText(rect().adjusted(12, 12, -12, -12), Qt::AlignCenter | Qt::TextWordWrap, error_);
+        return;
+    }
+    if (!scene_) {
+        p.setPen(QColor(170, 170, 170));
+        p.drawText(rect(), Qt::AlignCenter, tr("Open a series from the study browser, or File \u2192 Open"));
+        return;
+    }
+    // Patient-orientation labels at the edges.
+    const auto labels = orientationLabels();
+    QFont f = font();
+    f.setPointSizeF(f.pointSizeF() * 1.4);
+    f.setBold(true);
+    p.setFont(f);
+    p.setPen(QColor(255, 230, 120));
+    const QRect r = rect().adjusted(8, 6, -8, -6);
+    p.drawText(r, Qt::AlignLeft | Qt::AlignVCenter, labels[0]);
+    p.drawText(r, Qt::AlignRight | Qt::AlignVCenter, labels[1]);
+    p.drawText(r, Qt::AlignTop | Qt::AlignHCenter, labels[2]);
+    p.drawText(r, Qt::AlignBottom | Qt::AlignHCenter, labels[3]);
+    // Orientation cube (bottom left): faces towards the viewer, lettered in patient terms.
+    const double s = 26.0;
+    const QPointF c(14 + s * 1.3, height() - 14 - s * 1.3);
+    auto project = [&](const glm::dvec3& v) {
+        return c + QPointF(glm::dot(v, camera_.right()) * s, -glm::dot(v, camera_.up()) * s);
+    };
+    struct Face {
+        glm::dvec3 n;
+        const char* letter;
+    };
+    const Face faces[] = {{{1, 0, 0}, "L"}, {{-1, 0, 0}, "R"}, {{0, 1, 0}, "P"},
+                          {{0, -1, 0}, "A"}, {{0, 0, 1}, "S"}, {{0, 0, -1}, "I"}};
+    QFont small = font();
+    small.setBold(true);
+    p.setFont(small);
+    for (const auto& face : faces) {
+        const double facing = glm::dot(face.n, camera_.back());
+        if (facing <= 0.05) continue;
+        glm::dvec3 a = glm::abs(face.n.x) > 0 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+        glm::dvec3 b = glm::cross(face.n, a);
+        QPainterPath path;
+        path.moveTo(project(face.n + a + b));
+        path.lineTo(project(face.n + a - b));
+        path.lineTo(project(face.n - a - b));
+        path.lineTo(project(face.n - a + b));
+        path.closeSubpath();
+        const int shade = int(70 + 120 * facing);
+        p.fillPath(path, QColor(shade / 2, shade / 2, shade));
+        p.setPen(QColor(220, 220, 220));
+        p.drawPath(path);
+        const QPointF centre = project(face.n);
+        p.drawText(QRectF(centre.x() - 10, centre.y() - 10, 20, 20), Qt::AlignCenter, face.letter);
+    }
+}
+
+void VolumeView::capture(const QString& path, int width, int height) {
+    if (!scene_ || !tf_ || !gpu_) throw core::Error("nothing to capture: no volume is open");
+    if (width < 1 || height < 1 || width > 16384 || height > 16384)
+        throw core::Error("capture size must be between 1x1 and 16384x16384");
+    makeCurrent();
+    try {
+        core::RenderSettings rs = settings_;
+        const auto img = renderFrame(camera_.view(width, height), rs, true);
+        doneCurrent();
+        core::ImageWriter::write(img, path.toStdString());
+    } catch (...) {
+        doneCurrent();
+        throw;
+    }
+    update();
+}
+
+void VolumeView::interacted() {
+    settle_.start();
+    update();
+}
+
+void VolumeView::mousePressEvent(QMouseEvent* e) {
+    dragging_ = true;
+    dragButton_ = e->button();
+    lastPos_ = e->position().toPoint();
+}
+
+void VolumeView::mouseMoveEvent(QMouseEvent* e) {
+    if (!dragging_) return;
+    const QPoint pos = e->position().toPoint();
+    const QPoint d = pos - lastPos_;
+    lastPos_ = pos;
+    const bool pan = dragButton_ == Qt::MiddleButton || (dragButton_ == Qt::LeftButton && (e->modifiers() & Qt::ShiftModifier));
+    if (pan) camera_.pan(d.x(), d.y(), height());
+    else if (dragButton_ == Qt::RightButton) camera_.zoom(std::pow(1.005, -d.y()));
+    else if (dragButton_ == Qt::LeftButton) camera_.rotate(d.x(), d.y(), height());
+    update();
+}
+
+void VolumeView::mouseReleaseEvent(QMouseEvent*) {
+    dragging_ = false;
+    update();  // the next frame is full quality
+}
+
+void VolumeView::wheelEvent(QWheelEvent* e) {
+    const double steps = !e->pixelDelta().isNull() ? e->pixelDelta().y() / 60.0 : e->angleDelta().y() / 120.0;
+    camera_.zoom(std::pow(1.1, steps));
+    interacted();
+}
+
+bool VolumeView::event(QEvent* e) {
+    if (e->type() == QEvent::NativeGesture) {  // touchpad pinch
+        auto* g = static_cast<QNativeGestureEvent*>(e);
+        if (g->gestureType() == Qt::ZoomNativeGesture) {
+            camera_.zoom(1.0 + g->value());
+            interacted();
+            return true;
+        }
+    }
+    return QOpenGLWidget::event(e);
+}
+
+void VolumeView::keyPressEvent(QKeyEvent* e) {
+    using S = core::OrbitCamera::Standard;
+    switch (e->key()) {
+    case Qt::Key_A: camera_.setStandard(S::Anterior); break;
+    case Qt::Key_P: camera_.setStandard(S::Posterior); break;
+    case Qt::Key_L: camera_.setStandard(S::Left); break;
+    case Qt::Key_R: camera_.setStandard(S::Right); break;
+    case Qt::Key_S: camera_.setStandard(S::Superior); break;
+    case Qt::Key_I: camera_.setStandard(S::Inferior); break;
+    case Qt::Key_Home: resetView(); break;
+    case Qt::Key_Left: camera_.rotate(-height() / 36.0, 0, height()); break;
+    case Qt::Key_Right: camera_.rotate(height() / 36.0, 0, height()); break;
+    case Qt::Key_Up: camera_.rotate(0, -height() / 36.0, height()); break;
+    case Qt::Key_Down: camera_.rotate(0, height() / 36.0, height()); break;
+    case Qt::Key_Plus:
+    case Qt::Key_Equal: camera_.zoom(1.1); break;
+    case Qt::Key_Minus: camera_.zoom(1.0 / 1.1); break;
+    default: QOpenGLWidget::keyPressEvent(e); return;
+    }
+    interacted();
+}
+
+}  // namespace hvx::ui

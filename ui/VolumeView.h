@@ -1,0 +1,103 @@
+#pragma once
+#include <QElapsedTimer>
+#include <QImage>
+#include <QOpenGLWidget>
+#include <QTimer>
+
+#include <memory>
+
+#include "core/CpuRayCaster.h"
+#include "core/InteractiveQuality.h"
+#include "core/OctreeReader.h"
+#include "core/OrbitCamera.h"
+#include "core/TransferFunction.h"
+
+namespace hvx::render {
+class GpuRayCaster;
+}
+
+namespace hvx::ui {
+
+/// The 3D view: a QOpenGLWidget hosting the render module. Each frame refines the working set
+/// for the camera, ray casts it on the GPU and shows the image, with patient-orientation labels
+/// and an orientation cube. Navigation: left drag rotates (trackball), middle or Shift+left drag
+/// pans, right drag or the wheel (or a pinch) zooms; keys A P L R S I pick the standard views,
+/// Home resets, the arrows rotate and +/- zoom. While the camera moves, frames are drawn at a
+/// reduced resolution and step (core::InteractiveQuality); a still camera gets full quality.
+///
+/// Threading: GUI thread; GL calls happen only in the widget's context.
+class VolumeView : public QOpenGLWidget {
+    Q_OBJECT
+public:
+    struct Readouts {
+        double fps = 0, frameMs = 0;
+        std::size_t residentBricks = 0, poolSlots = 0, cacheBytes = 0, cacheBudget = 0;
+        double resolution = 1.0;
+        bool complete = false;
+    };
+
+    explicit VolumeView(QWidget* parent = nullptr);
+    ~VolumeView() override;
+
+    /// Shows a volume (framed in the anterior view); nullptr clears the view.
+    void setVolume(std::shared_ptr<const core::OctreeReader> reader);
+    bool hasVolume() const;
+    void setTransferFunction(const core::TransferFunction& tf);
+    void setRenderSettings(const core::RenderSettings& settings);
+    const core::RenderSettings& renderSettings() const { return settings_; }
+    /// Quality/accuracy: voxels per pixel of the working set (1 = full, larger is coarser).
+    void setAccuracy(double voxelsPerPixel);
+    double accuracy() const { return accuracy_; }
+    void setStandardView(core::OrbitCamera::Standard view);
+    void resetView();
+    core::OrbitCamera& camera() { return camera_; }
+
+    /// Renders the current view at full quality at width x height and writes a PNG or EXR.
+    /// Throws core::Error naming the file on failure.
+    void capture(const QString& path, int width, int height);
+    /// The last image shown (the ray-cast frame, without overlays), at the widget's size.
+    QImage lastFrame() const { return frame_; }
+    int frameCount() const { return frames_; }
+    const Readouts& readouts() const { return readouts_; }
+    /// The labels drawn at the left, right, top and bottom edges (e.g. "R", "L", "S", "I").
+    QStringList orientationLabels() const;
+
+signals:
+    void frameRendered();
+    void failed(const QString& message);
+
+protected:
+    void initializeGL() override;
+    void paintGL() override;
+    void mousePressEvent(QMouseEvent* e) override;
+    void mouseMoveEvent(QMouseEvent* e) override;
+    void mouseReleaseEvent(QMouseEvent* e) override;
+    void wheelEvent(QWheelEvent* e) override;
+    void keyPressEvent(QKeyEvent* e) override;
+    bool event(QEvent* e) override;
+
+private:
+    struct Scene;
+    core::RenderImage renderFrame(const core::View& view, const core::RenderSettings& rs, bool converge);
+    void paintOverlays(QPainter& p);
+    void interacted();
+
+    std::unique_ptr<Scene> scene_;
+    std::unique_ptr<render::GpuRayCaster> gpu_;
+    std::unique_ptr<core::TransferFunction> tf_;
+    core::RenderSettings settings_;
+    core::OrbitCamera camera_;
+    core::InteractiveQuality quality_;
+    double accuracy_ = 1.0;
+    QImage frame_;
+    QString error_;
+    int frames_ = 0;
+    Readouts readouts_;
+    bool dragging_ = false;
+    Qt::MouseButton dragButton_ = Qt::NoButton;
+    QPoint lastPos_;
+    QTimer settle_;     // wheel/keys: moving until it fires
+    QTimer refine_;     // keeps drawing while bricks arrive
+};
+
+}  // namespace hvx::ui
