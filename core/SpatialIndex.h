@@ -30,16 +30,16 @@ struct SpatialIndex {
     static SpatialIndex build(const OctreeReader& reader, const std::vector<std::uint32_t>& cut, SlotOf slotOf);
     /// Non-template core of build(): slots[i] belongs to cut[i].
     static SpatialIndex build(const OctreeReader& reader, const std::vector<std::uint32_t>& cut,
-                              const std::vector<std::uint32_t>& slots);
+                              const std::vector<std::uint32_t>& slotIds);
     std::size_t leafCount() const;
 };
 
 template <class SlotOf>
 SpatialIndex SpatialIndex::build(const OctreeReader& reader, const std::vector<std::uint32_t>& cut, SlotOf slotOf) {
-    std::vector<std::uint32_t> slots;
-    slots.reserve(cut.size());
-    for (auto id : cut) slots.push_back(slotOf(id));
-    return build(reader, cut, slots);
+    std::vector<std::uint32_t> slotIds;  // not `slots`: a Qt macro where ui/ includes this header
+    slotIds.reserve(cut.size());
+    for (auto id : cut) slotIds.push_back(slotOf(id));
+    return build(reader, cut, slotIds);
 }
 
 }  // namespace hvx::core

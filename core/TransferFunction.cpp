@@ -66,7 +66,7 @@ bool TransferFunction::isEmpty(double lo, double hi) const {
 }
 
 std::vector<std::string> TransferFunction::presetNames() {
-    return {"ct-bone", "ct-soft-tissue", "ct-angio", "ct-lung", "mr-default", "mip-ramp"};
+    return {"ct-bone", "ct-soft-tissue", "ct-angio", "ct-lung", "ct-muscle", "mr-default", "mr-angio", "mip-ramp"};
 }
 
 TransferFunction TransferFunction::preset(const std::string& name, double valueMin, double valueMax, double slope,
@@ -99,6 +99,19 @@ TransferFunction TransferFunction::preset(const std::string& name, double valueM
         add(-800, 0.6, 0.7, 0.9, 0.08);
         add(-500, 0.9, 0.9, 1.0, 0.2);
         add(-200, 0.9, 0.6, 0.5, 0);
+    } else if (name == "ct-muscle") {
+        add(-1024, 0, 0, 0, 0);
+        add(-155, 0.55, 0.25, 0.15, 0);
+        add(217, 0.88, 0.6, 0.29, 0.68);
+        add(420, 1.0, 0.94, 0.95, 0.83);
+        add(1500, 0.83, 0.66, 1.0, 0.8);
+    } else if (name == "mr-angio") {  // bright flow on a dark background (TOF / contrast MRA)
+        const double span = (valueMax - valueMin) * slope;
+        const double lo = valueMin * slope + intercept;
+        add(lo, 0, 0, 0, 0);
+        add(lo + 0.3 * span, 0.6, 0.1, 0.05, 0);
+        add(lo + 0.5 * span, 0.95, 0.35, 0.25, 0.5);
+        add(lo + span, 1, 0.95, 0.9, 0.9);
     } else if (name == "mr-default") {
         const double span = (valueMax - valueMin) * slope;
         const double lo = valueMin * slope + intercept;

@@ -27,7 +27,8 @@ public:
     /// Builds the tables; points need not be sorted. referenceLength is d_ref (world mm).
     TransferFunction(std::vector<Point> points, double valueMin, double valueMax, double referenceLength = 1.0);
     /// A preset by name over a value range in physical units converted by (slope, intercept):
-    /// ct-bone, ct-soft-tissue, ct-angio, ct-lung, mr-default, mip-ramp. Throws core::Error.
+    /// ct-bone, ct-soft-tissue, ct-angio, ct-lung, ct-muscle, mr-default, mr-angio, mip-ramp.
+    /// Throws core::Error.
     static TransferFunction preset(const std::string& name, double valueMin, double valueMax, double slope,
                                    double intercept, double referenceLength);
     static std::vector<std::string> presetNames();

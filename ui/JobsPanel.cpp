@@ -97,6 +97,7 @@ void JobsPanel::onFinished(int id, const QString& state, const QString& message)
     const QString text = state == "done" ? tr("done") : state == "cancelled" ? tr("cancelled") : tr("failed: %1").arg(message);
     table_->item(row, 2)->setText(text);
     table_->item(row, 2)->setToolTip(message);
+    if (auto* cancel = table_->cellWidget(row, 3)) cancel->hide();  // gone at once, deleted by the table
     table_->removeCellWidget(row, 3);
     table_->setItem(row, 3, new QTableWidgetItem(QString()));
     updateStatus();

@@ -2,52 +2,314 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QCloseEvent>
+#include <QDockWidget>
 #include <QFileDialog>
-#include <QFontDatabase>
+#include <QFileInfo>
+#include <QHBoxLayout>
+#include <QInputDialog>
 #include <QKeySequence>
+#include <QLabel>
 #include <QMenuBar>
-#include <QPlainTextEdit>
+#include <QMessageBox>
+#include <QPointer>
+#include <QSettings>
 #include <QStatusBar>
+#include <QTimer>
+#include <QTreeWidget>
+#include <QTreeWidgetItemIterator>
 
 #include "core/Error.h"
-#include "core/OctreeReader.h"
-#include "core/OctreeSummary.h"
+#include "core/OctreeSpace.h"
+#include "core/VolumeHistogram.h"
+#include "dicom/PacsSettings.h"
+#include "dicom/SeriesOctree.h"
+#include "dicom/StudyDatabase.h"
+#include "ui/JobManager.h"
+#include "ui/JobsPanel.h"
+#include "ui/PacsPanel.h"
+#include "ui/RenderControls.h"
+#include "ui/SliceView.h"
+#include "ui/StudyBrowser.h"
+#include "ui/TransferFunctionEditor.h"
+#include "ui/VolumeView.h"
 
 namespace hvx::ui {
 
-MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent), summary_(new QPlainTextEdit(this)) {
+namespace {
+QLabel* placeholder(const QString& text) {
+    auto* l = new QLabel(text);
+    l->setWordWrap(true);
+    l->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+    l->setMargin(8);
+    l->setEnabled(false);
+    return l;
+}
+}  // namespace
+
+MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* parent)
+    : QMainWindow(parent), jobs_(std::make_unique<JobManager>()), view_(new VolumeView(this)), readouts_(new QLabel) {
     setWindowTitle(tr("Holovox"));
-    summary_->setReadOnly(true);
-    summary_->setFont(QFontDatabase::systemFont(QFontDatabase::FixedFont));
-    summary_->setPlaceholderText(tr("File \u2192 Open an .hvo octree (Ctrl+O)"));
-    setCentralWidget(summary_);
-    QMenu* file = menuBar()->addMenu(tr("&File"));
-    QAction* open = file->addAction(tr("&Open octree\u2026"), this, &MainWindow::chooseFile);
-    open->setShortcut(QKeySequence::Open);
-    open->setToolTip(tr("Open a Holovox .hvo multiresolution octree"));
-    QAction* quit = file->addAction(tr("&Quit"), qApp, &QApplication::quit);
-    quit->setShortcut(QKeySequence::Quit);
-    resize(900, 600);
+    setObjectName("mainWindow");
+    if (databasePath.isEmpty()) databasePath = QString::fromStdString(dicom::StudyDatabase::defaultPath());
+    if (pacsSettingsPath.isEmpty()) pacsSettingsPath = QString::fromStdString(dicom::PacsSettings::defaultPath());
+    setCentralWidget(view_);
+    setDockNestingEnabled(true);
+
+    browser_ = new StudyBrowser(*jobs_, databasePath);
+    pacs_ = new PacsPanel(*jobs_, pacsSettingsPath, databasePath);
+    jobsPanel_ = new JobsPanel(*jobs_);
+    tfEditor_ = new TransferFunctionEditor;
+    controls_ = new RenderControls;
+    auto* slicesWidget = new QWidget;
+    auto* slicesLayout = new QHBoxLayout(slicesWidget);
+    slicesLayout->setContentsMargins(2, 2, 2, 2);
+    for (int i = 0; i < 3; ++i) {
+        slices_[i] = new SliceView(core::SlicePlane::Orientation(i));
+        slicesLayout->addWidget(slices_[i]);
+    }
+    auto* studies = addDock(tr("Studies"), "studiesDock", browser_, Qt::LeftDockWidgetArea);
+    auto* pacsDock = addDock(tr("PACS"), "pacsDock", pacs_, Qt::LeftDockWidgetArea);
+    tabifyDockWidget(studies, pacsDock);
+    studies->raise();
+    auto* tfDock = addDock(tr("Transfer function"), "tfDock", tfEditor_, Qt::RightDockWidgetArea);
+    auto* renderDock = addDock(tr("Rendering"), "renderDock", controls_, Qt::RightDockWidgetArea);
+    // Tools and output of later work, present so the layout is stable.
+    auto* probes = addDock(tr("Probes"), "probesDock", placeholder(tr("Focal and context-preserving probes")), Qt::RightDockWidgetArea);
+    auto* clip = addDock(tr("Clip plane"), "clipDock", placeholder(tr("View-dependent clip plane")), Qt::RightDockWidgetArea);
+    auto* band = addDock(tr("Band picker"), "bandDock", placeholder(tr("Band picker and importance")), Qt::RightDockWidgetArea);
+    auto* lf = addDock(tr("Light field"), "lightFieldDock", placeholder(tr("Light-field display output")), Qt::RightDockWidgetArea);
+    tabifyDockWidget(renderDock, probes);
+    tabifyDockWidget(probes, clip);
+    tabifyDockWidget(clip, band);
+    tabifyDockWidget(band, lf);
+    renderDock->raise();
+    (void)tfDock;
+    addDock(tr("Slices"), "slicesDock", slicesWidget, Qt::BottomDockWidgetArea);
+    auto* jobsDock = addDock(tr("Jobs"), "jobsDock", jobsPanel_, Qt::BottomDockWidgetArea);
+    (void)jobsDock;
+    statusBar()->addPermanentWidget(jobsPanel_->statusWidget());
+    statusBar()->addPermanentWidget(readouts_);
+    buildMenus();
+
+    connect(browser_, &StudyBrowser::openSeries, this, &MainWindow::openSeries);
+    connect(browser_, &StudyBrowser::imported, this, [this](const QString& s) { statusBar()->showMessage(tr("Imported: %1").arg(s), 8000); });
+    connect(browser_, &StudyBrowser::failed, this, &MainWindow::showError);
+    connect(pacs_, &PacsPanel::retrieved, browser_, &StudyBrowser::refresh);
+    connect(tfEditor_, &TransferFunctionEditor::changed, this, &MainWindow::applyTransferFunction);
+    connect(tfEditor_, &TransferFunctionEditor::failed, this, &MainWindow::showError);
+    connect(controls_, &RenderControls::changed, this, [this] {
+        view_->setRenderSettings(controls_->settings());
+        view_->setAccuracy(controls_->accuracy());
+    });
+    connect(view_, &VolumeView::frameRendered, this, &MainWindow::updateReadouts);
+    connect(view_, &VolumeView::failed, this, &MainWindow::showError);
+    connect(jobs_.get(), &JobManager::finished, this, [this](int, const QString& state, const QString& message) {
+        if (state == "failed") showError(message);
+    });
+    for (auto* s : slices_)
+        connect(s, &SliceView::pointChanged, this, [this, s](const glm::dvec3& p) {
+            for (auto* other : slices_)
+                if (other != s) other->setPoint(p);
+        });
+
+    resize(1400, 900);
+    QSettings settings;
+    restoreGeometry(settings.value("window/geometry").toByteArray());
+    restoreState(settings.value("window/state").toByteArray());
+    if (settings.contains("render/mode")) {
+        auto rs = controls_->settings();
+        rs.mode = core::RenderSettings::Mode(std::clamp(settings.value("render/mode").toInt(), 0, 4));
+        controls_->setSettings(rs);
+    }
     statusBar()->showMessage(tr("Ready"));
 }
 
-void MainWindow::chooseFile() {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open octree"), {}, tr("Holovox octrees (*.hvo)"));
-    if (!path.isEmpty()) openOctree(path);
+MainWindow::~MainWindow() { jobs_->waitIdle(0); }
+
+QDockWidget* MainWindow::addDock(const QString& title, const QString& name, QWidget* widget, Qt::DockWidgetArea area) {
+    auto* dock = new QDockWidget(title, this);
+    dock->setObjectName(name);
+    dock->setWidget(widget);
+    addDockWidget(area, dock);
+    docks_ << dock;
+    return dock;
 }
 
-bool MainWindow::openOctree(const QString& path) {
-    try {
-        const auto reader = core::OctreeReader::open(path.toStdString());
-        summary_->setPlainText(QString::fromStdString(core::OctreeSummary::of(*reader).format(*reader)));
-        statusBar()->showMessage(tr("Opened %1").arg(path));
-        setWindowTitle(tr("Holovox \u2014 %1").arg(path));
-        return true;
-    } catch (const core::Error& e) {
-        summary_->setPlainText(QString::fromStdString(e.what()));
-        statusBar()->showMessage(tr("Could not open %1").arg(path));
+void MainWindow::buildMenus() {
+    QMenu* file = menuBar()->addMenu(tr("&File"));
+    QAction* open = file->addAction(tr("&Open volume\u2026"), this, &MainWindow::chooseOpen);
+    open->setShortcut(QKeySequence::Open);
+    open->setToolTip(tr("Open a Holovox .hvo octree or a DICOM file"));
+    QAction* import = file->addAction(tr("&Import folder / DICOMDIR\u2026"), this, &MainWindow::chooseImport);
+    import->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_I));
+    QAction* shot = file->addAction(tr("Save &screenshot\u2026"), this, &MainWindow::saveScreenshot);
+    shot->setShortcut(QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_S));
+    file->addSeparator();
+    QAction* quit = file->addAction(tr("&Quit"), this, &QWidget::close);
+    quit->setShortcut(QKeySequence::Quit);
+
+    QMenu* viewMenu = menuBar()->addMenu(tr("&View"));
+    using S = core::OrbitCamera::Standard;
+    const std::pair<QString, S> standards[] = {{tr("&Anterior"), S::Anterior}, {tr("&Posterior"), S::Posterior},
+                                               {tr("&Left"), S::Left},         {tr("&Right"), S::Right},
+                                               {tr("&Superior"), S::Superior}, {tr("&Inferior"), S::Inferior}};
+    for (const auto& [name, s] : standards) viewMenu->addAction(name, this, [this, s = s] { view_->setStandardView(s); });
+    QAction* reset = viewMenu->addAction(tr("Reset view"), view_, &VolumeView::resetView);
+    reset->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_R));
+    viewMenu->addSeparator();
+    for (auto* d : docks_) viewMenu->addAction(d->toggleViewAction());
+
+    QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(tr("&About Holovox"), this, [this] {
+        QMessageBox::about(this, tr("About Holovox"),
+                           tr("Holovox \u2014 out-of-core volume ray casting for medical imaging.\n"
+                              "Not for diagnostic use unless validated for it at your site."));
+    });
+}
+
+bool MainWindow::openPath(const QString& path) {
+    const QFileInfo info(path);
+    if (!info.exists()) {
+        showError(tr("%1 does not exist").arg(path));
         return false;
     }
+    if (info.isFile() && path.endsWith(".hvo", Qt::CaseInsensitive)) return openOctree(path);
+    // DICOM: import, then open the first series found there.
+    const int id = browser_->importPaths({path});
+    QPointer<MainWindow> self(this);
+    connect(jobs_.get(), &JobManager::finished, this, [self, id](int done, const QString& state, const QString&) {
+        if (!self || done != id || state != "done") return;
+        auto* tree = self->browser_->tree();
+        for (QTreeWidgetItemIterator it(tree); *it; ++it)
+            if (!(*it)->data(0, Qt::UserRole + 1).toString().isEmpty()) {
+                emit tree->itemActivated(*it, 0);
+                break;
+            }
+    });
+    return true;
+}
+
+bool MainWindow::openOctree(const QString& path, const QString& label) {
+    try {
+        std::shared_ptr<const core::OctreeReader> reader = core::OctreeReader::open(path.toStdString());
+        reader_ = reader;
+        const auto& g = reader->geometry();
+        const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
+        referenceLength_ = space.minSpacing;
+        openLabel_ = label.isEmpty() ? QFileInfo(path).fileName() : label;
+        setWindowTitle(tr("Holovox \u2014 %1").arg(openLabel_));
+        const double pMin = g.valueMin * g.rescaleSlope + g.rescaleIntercept, pMax = g.valueMax * g.rescaleSlope + g.rescaleIntercept;
+        controls_->setVolume(g.rescaleSlope, g.rescaleIntercept, std::min(pMin, pMax), std::max(pMin, pMax), g.modality == "CT");
+        tfEditor_->setVolume(g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept, g.modality, {});
+        view_->setVolume(reader);
+        view_->setRenderSettings(controls_->settings());
+        applyTransferFunction();
+        for (auto* s : slices_) s->setVolume(reader);
+        // The histogram reads a few hundred bricks: in the background.
+        QPointer<MainWindow> self(this);
+        auto histogram = std::make_shared<core::VolumeHistogram>();
+        jobs_->start(tr("Histogram of %1").arg(openLabel_),
+                     [reader, histogram](core::JobContext&) {
+                         *histogram = core::VolumeHistogram::compute(*reader);
+                         return QString();
+                     },
+                     [self, reader, histogram](const QString&) {
+                         if (self && self->reader_ == reader) {
+                             const auto& geo = reader->geometry();
+                             const auto spec = self->tfEditor_->spec();
+                             self->tfEditor_->setVolume(geo.valueMin, geo.valueMax, geo.rescaleSlope, geo.rescaleIntercept, geo.modality, *histogram);
+                             self->tfEditor_->setSpec(spec);  // keep what the user chose meanwhile
+                         }
+                     });
+        statusBar()->showMessage(tr("Opened %1").arg(openLabel_), 5000);
+        return true;
+    } catch (const core::Error& e) {
+        showError(QString::fromStdString(e.what()));
+        return false;
+    }
+}
+
+void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath, const QString& label) {
+    if (!octreePath.isEmpty()) {
+        openOctree(octreePath, label);
+        return;
+    }
+    const std::string db = browser_->databasePath().toStdString(), uid = seriesUid.toStdString();
+    QPointer<MainWindow> self(this);
+    jobs_->start(
+        tr("Build octree: %1").arg(label),
+        [db, uid](core::JobContext& job) {
+            dicom::StudyDatabase database(db);
+            std::vector<std::string> warnings;
+            return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, &warnings));
+        },
+        [self, label](const QString& path) {
+            if (!self) return;
+            self->browser_->refresh();
+            self->openOctree(path, label);
+        });
+    statusBar()->showMessage(tr("Building the octree of %1 in the background\u2026").arg(label), 5000);
+}
+
+void MainWindow::applyTransferFunction() {
+    if (!reader_) return;
+    try {
+        view_->setTransferFunction(tfEditor_->transferFunction(referenceLength_));
+    } catch (const core::Error& e) {
+        showError(QString::fromStdString(e.what()));
+    }
+}
+
+void MainWindow::showError(const QString& message) {
+    lastError_ = message;
+    statusBar()->showMessage(message, 15000);
+}
+
+void MainWindow::updateReadouts() {
+    const auto& r = view_->readouts();
+    readouts_->setText(tr("%1 fps \u2022 %2 bricks \u2022 cache %3/%4 MiB%5")
+                           .arg(r.fps, 0, 'f', 1)
+                           .arg(r.residentBricks)
+                           .arg(double(r.cacheBytes) / double(1 << 20), 0, 'f', 0)
+                           .arg(double(r.cacheBudget) / double(1 << 20), 0, 'f', 0)
+                           .arg(r.resolution < 1.0 ? tr(" \u2022 interactive") : QString()));
+}
+
+void MainWindow::saveScreenshot() {
+    if (!view_->hasVolume()) return showError(tr("Open a volume first"));
+    const QString path = QFileDialog::getSaveFileName(this, tr("Save screenshot"), {}, tr("PNG image (*.png);;OpenEXR (*.exr)"));
+    if (path.isEmpty()) return;
+    bool ok = false;
+    const QString size = QInputDialog::getText(this, tr("Screenshot size"), tr("Width x height:"), QLineEdit::Normal,
+                                               QStringLiteral("%1x%2").arg(view_->width()).arg(view_->height()), &ok);
+    if (!ok) return;
+    const auto parts = size.split('x');
+    try {
+        if (parts.size() != 2) throw core::Error("the size must be WIDTHxHEIGHT, e.g. 1920x1080");
+        view_->capture(path, parts[0].toInt(), parts[1].toInt());
+        statusBar()->showMessage(tr("Saved %1").arg(path), 5000);
+    } catch (const core::Error& e) {
+        showError(QString::fromStdString(e.what()));
+    }
+}
+
+void MainWindow::chooseImport() {
+    const QString dir = QFileDialog::getExistingDirectory(this, tr("Import a folder (or the folder of a DICOMDIR)"));
+    if (!dir.isEmpty()) browser_->importPaths({dir});
+}
+
+void MainWindow::chooseOpen() {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open volume"), {}, tr("Holovox octrees (*.hvo);;DICOM files (*)"));
+    if (!path.isEmpty()) openPath(path);
+}
+
+void MainWindow::closeEvent(QCloseEvent* e) {
+    QSettings settings;
+    settings.setValue("window/geometry", saveGeometry());
+    settings.setValue("window/state", saveState());
+    settings.setValue("render/mode", int(controls_->settings().mode));
+    e->accept();
 }
 
 }  // namespace hvx::ui

@@ -1,24 +1,83 @@
 #pragma once
 #include <QMainWindow>
 
-class QPlainTextEdit;
+#include <memory>
+
+#include "core/OctreeReader.h"
+
+class QLabel;
+class QDockWidget;
 
 namespace hvx::ui {
 
-/// The workstation's main window. For now it opens .hvo octrees and shows their summary;
-/// the study browser, PACS panel, jobs and 3D view dock into it in later issues.
+class JobManager;
+class JobsPanel;
+class PacsPanel;
+class RenderControls;
+class SliceView;
+class StudyBrowser;
+class TransferFunctionEditor;
+class VolumeView;
+
+/// The workstation's main window. It arranges the docks (study browser, PACS, jobs, transfer
+/// function, render controls, slices, and the tool and light-field docks) around the 3D view,
+/// wires them together, and keeps the layout and preferences in QSettings. The docks implement
+/// themselves; this class only connects them.
 ///
 /// Threading: GUI thread only.
 class MainWindow : public QMainWindow {
     Q_OBJECT
 public:
-    explicit MainWindow(QWidget* parent = nullptr);
-    /// Opens an .hvo file and shows its summary; shows the error in the window otherwise.
-    bool openOctree(const QString& path);
+    /// databasePath / pacsSettingsPath: empty for the defaults ($HOLOVOX_DB, $HOLOVOX_PACS_CONFIG).
+    explicit MainWindow(QString databasePath = {}, QString pacsSettingsPath = {}, QWidget* parent = nullptr);
+    ~MainWindow() override;
+
+    /// Opens what a user names on the command line: an .hvo file, a DICOM folder or DICOMDIR, or
+    /// a DICOM file (imported, then its series opened). Returns false with the error shown.
+    bool openPath(const QString& path);
+    /// Opens an .hvo octree in the 3D and slice views.
+    bool openOctree(const QString& path, const QString& label = {});
+    /// Opens an imported series, building its octree in the background when missing.
+    void openSeries(const QString& seriesUid, const QString& octreePath, const QString& label);
+
+    VolumeView* view() const { return view_; }
+    StudyBrowser* browser() const { return browser_; }
+    PacsPanel* pacs() const { return pacs_; }
+    JobManager* jobs() const { return jobs_.get(); }
+    JobsPanel* jobsPanel() const { return jobsPanel_; }
+    TransferFunctionEditor* tfEditor() const { return tfEditor_; }
+    RenderControls* renderControls() const { return controls_; }
+    SliceView* slice(int i) const { return slices_[i]; }
+    const QString& openLabel() const { return openLabel_; }
+    /// The last error shown in the status bar.
+    QString lastError() const { return lastError_; }
+
+protected:
+    void closeEvent(QCloseEvent* e) override;
 
 private:
-    void chooseFile();
-    QPlainTextEdit* summary_;
+    QDockWidget* addDock(const QString& title, const QString& name, QWidget* widget, Qt::DockWidgetArea area);
+    void buildMenus();
+    void applyTransferFunction();
+    void showError(const QString& message);
+    void updateReadouts();
+    void saveScreenshot();
+    void chooseImport();
+    void chooseOpen();
+
+    std::unique_ptr<JobManager> jobs_;
+    VolumeView* view_;
+    StudyBrowser* browser_;
+    PacsPanel* pacs_;
+    JobsPanel* jobsPanel_;
+    TransferFunctionEditor* tfEditor_;
+    RenderControls* controls_;
+    SliceView* slices_[3];
+    QLabel* readouts_;
+    std::shared_ptr<const core::OctreeReader> reader_;
+    double referenceLength_ = 1.0;
+    QString openLabel_, lastError_;
+    QList<QDockWidget*> docks_;
 };
 
 }  // namespace hvx::ui

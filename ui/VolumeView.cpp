@@ -1,6 +1,7 @@
-#include "ui/VolumeView.h"
-
+// epoxy first: it must precede any desktop GL header (Qt's included).
 #include <epoxy/gl.h>
+
+#include "ui/VolumeView.h"
 
 #include <QKeyEvent>
 #include <QMouseEvent>
@@ -201,7 +202,10 @@ void VolumeView::paintGL() {
             readouts_.cacheBudget = scene_->cache.budget();
             readouts_.resolution = level.resolution;
             readouts_.complete = st.complete;
-            if (!st.settled() || !level.full()) refine_.start();  // bricks still arriving, or not yet full quality
+            // Keep drawing while bricks arrive or the frame is not yet full quality, but never
+            // forever: a cut that cannot settle (pool too small for the view) stops after a while.
+            unsettledFrames_ = st.settled() ? 0 : unsettledFrames_ + 1;
+            if ((!st.settled() && unsettledFrames_ < 400) || !level.full()) refine_.start();
         } catch (const std::exception& e) {
             error_ = QString::fromStdString(e.what());
             emit failed(error_);

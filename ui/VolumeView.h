@@ -92,6 +92,7 @@ private:
     QImage frame_;
     QString error_;
     int frames_ = 0;
+    int unsettledFrames_ = 0;
     Readouts readouts_;
     bool dragging_ = false;
     Qt::MouseButton dragButton_ = Qt::NoButton;

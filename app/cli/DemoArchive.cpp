@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <thread>
@@ -119,6 +120,12 @@ std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath
     settings.save(settingsPath);
     return "Orthanc (AE ORTHANC) on 127.0.0.1:" + std::to_string(c.dicomPort) + " with " + std::to_string(studies) +
            " demo studies, saved as default node 'demo' in " + settingsPath;
+}
+
+std::string DemoArchive::dataFolder() {
+    if (const char* x = std::getenv("XDG_DATA_HOME"); x && *x) return (std::filesystem::path(x) / "holovox").string();
+    if (const char* h = std::getenv("HOME"); h && *h) return (std::filesystem::path(h) / ".local/share/holovox").string();
+    return (std::filesystem::temp_directory_path() / "holovox").string();
 }
 
 }  // namespace hvx::app

@@ -24,6 +24,8 @@ public:
     /// the settings file. Returns a one-line description. Throws core::Error when Orthanc is
     /// missing or cannot start (the message names the log file).
     static std::string ensure(const Config& config, const std::string& settingsPath);
+    /// Holovox's data folder: $XDG_DATA_HOME/holovox, else ~/.local/share/holovox.
+    static std::string dataFolder();
 };
 
 }  // namespace hvx::app

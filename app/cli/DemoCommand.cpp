@@ -14,11 +14,7 @@
 namespace hvx::app {
 
 namespace {
-std::filesystem::path dataDir() {
-    if (const char* x = std::getenv("XDG_DATA_HOME"); x && *x) return std::filesystem::path(x) / "holovox";
-    if (const char* h = std::getenv("HOME"); h && *h) return std::filesystem::path(h) / ".local/share/holovox";
-    return std::filesystem::temp_directory_path() / "holovox";
-}
+std::filesystem::path dataDir() { return DemoArchive::dataFolder(); }
 }  // namespace
 
 int demoCommand(int argc, char** argv) {

@@ -1,37 +1,99 @@
+// holovox: the workstation GUI. `holovox [FILE.hvo|DICOM-FOLDER|DICOMDIR|DICOM-FILE]` opens
+// directly; `holovox --demo` starts the demo archive, connects it and opens the demo study.
 #include <QApplication>
 #include <QCommandLineParser>
-#include <QFile>
-#include <QPlainTextEdit>
-#include <QScreen>
+#include <QDir>
+#include <QFileInfo>
+#include <QPointer>
+#include <QSurfaceFormat>
 #include <QTimer>
 
+#include <filesystem>
+
+#include "app/cli/DemoArchive.h"
+#include "core/OctreeBuilder.h"
+#include "core/VoxelSourceFactory.h"
+#include "dicom/PacsSettings.h"
+#include "ui/JobManager.h"
 #include "ui/MainWindow.h"
+#include "ui/PacsPanel.h"
+#include "ui/VolumeView.h"
+
+namespace {
+// The demo: the MRI template's octree (built once) and the demo archive, both in the background.
+void startDemo(hvx::ui::MainWindow& window, const QString& pacsConfig) {
+    const std::filesystem::path data = hvx::app::DemoArchive::dataFolder();
+    std::string input = "/usr/share/mricron/templates/ch2better.nii.gz";
+    if (const char* env = std::getenv("HOLOVOX_DEMO_DATA"); env && *env) input = env;
+    const std::string octree = (data / "demo" / "ch2better.hvo").string();
+    QPointer<hvx::ui::MainWindow> w(&window);
+    window.jobs()->start(
+        QObject::tr("Demo study"),
+        [input, octree](hvx::core::JobContext& job) {
+            if (!std::filesystem::exists(octree)) {
+                std::filesystem::create_directories(std::filesystem::path(octree).parent_path());
+                auto source = hvx::core::VoxelSourceFactory::open(input);
+                hvx::core::OctreeBuilder(hvx::core::BuildOptions{}).build(*source, octree, job);
+            }
+            return QString::fromStdString(octree);
+        },
+        [w](const QString& path) {
+            if (w) w->openOctree(path, QObject::tr("Demo: MRI template (ch2better)"));
+        });
+    const std::string settings = pacsConfig.isEmpty() ? hvx::dicom::PacsSettings::defaultPath() : pacsConfig.toStdString();
+    window.jobs()->start(
+        QObject::tr("Demo archive (Orthanc)"),
+        [input, data, settings](hvx::core::JobContext&) {
+            hvx::app::DemoArchive::Config archive;
+            archive.folder = (data / "demo-archive").string();
+            archive.mriTemplate = input;
+            return QString::fromStdString(hvx::app::DemoArchive::ensure(archive, settings));
+        },
+        [w](const QString&) {
+            if (w) w->pacs()->reloadSettings();
+        });
+}
+}  // namespace
 
 int main(int argc, char** argv) {
+    // The render module needs OpenGL 4.5 core (compute shaders, direct state access).
+    QSurfaceFormat format;
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    QSurfaceFormat::setDefaultFormat(format);
     QApplication app(argc, argv);
     QApplication::setApplicationName("Holovox");
     QApplication::setOrganizationName("Holovox");
+    QApplication::setApplicationVersion(HVX_VERSION);
     QCommandLineParser parser;
     parser.setApplicationDescription("Holovox medical volume workstation");
     parser.addHelpOption();
-    parser.addPositionalArgument("file", "An .hvo octree to open");
-    const QCommandLineOption screenshot("screenshot", "Save a PNG of the window once shown, then quit.", "png");
-    const QCommandLineOption dumpSummary("dump-summary", "Write the shown summary text to a file (tests).", "txt");
+    parser.addVersionOption();
+    parser.addPositionalArgument("file", "An .hvo octree, a DICOM folder or DICOMDIR, or a DICOM file to open");
+    const QCommandLineOption demo("demo", "Start the demo archive, connect it and open the demo study.");
+    const QCommandLineOption db("db", "The study database (default: $HOLOVOX_DB or the user's data folder).", "file");
+    const QCommandLineOption pacs("pacs-config", "The PACS settings file (default: $HOLOVOX_PACS_CONFIG).", "file");
+    const QCommandLineOption screenshot("screenshot", "Once the first frame is shown, save a PNG of the window and quit.", "png");
+    parser.addOption(demo);
+    parser.addOption(db);
+    parser.addOption(pacs);
     parser.addOption(screenshot);
-    parser.addOption(dumpSummary);
     parser.process(app);
-    hvx::ui::MainWindow window;
-    if (!parser.positionalArguments().isEmpty()) window.openOctree(parser.positionalArguments().first());
+
+    hvx::ui::MainWindow window(parser.value(db), parser.value(pacs));
     window.show();
+    if (parser.isSet(demo)) startDemo(window, parser.value(pacs));
+    else if (!parser.positionalArguments().isEmpty()) window.openPath(parser.positionalArguments().first());
     if (parser.isSet(screenshot)) {
-        QTimer::singleShot(500, &window, [&] {
-            window.grab().save(parser.value(screenshot));
-            if (parser.isSet(dumpSummary)) {
-                QFile f(parser.value(dumpSummary));
-                if (f.open(QIODevice::WriteOnly)) f.write(window.findChild<QPlainTextEdit*>()->toPlainText().toUtf8());
-            }
+        const QString out = parser.value(screenshot);
+        auto grab = [&window, out] {
+            window.grab().save(out);
             QApplication::quit();
-        });
+        };
+        // After the first frame (or 60 s when nothing opens).
+        QObject::connect(window.view(), &hvx::ui::VolumeView::frameRendered, &window, [grab] { QTimer::singleShot(300, grab); },
+                         Qt::SingleShotConnection);
+        QTimer::singleShot(60000, &window, grab);
     }
     return QApplication::exec();
 }

@@ -1,0 +1,272 @@
+// GUI smoke tests of the workstation under Xvfb (Qt Test): start the main window, import a
+// generated series, open it and wait for the first frame, rotate with synthetic mouse events,
+// change the TF preset, switch modes, take screenshots; a PACS round trip against a real Orthanc;
+// cancelling a running build from the jobs panel. Assertions look at pixels. Screenshots are
+// kept under <build>/test-artifacts/gui/.
+#include <QApplication>
+#include <QComboBox>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QSurfaceFormat>
+#include <QTest>
+#include <QTreeWidget>
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/OctreeBuilder.h"
+#include "core/PhantomVoxelSource.h"
+#include "dicom/DicomSeriesWriter.h"
+#include "tests/support/PacsPeer.h"
+#include "tests/support/TempDir.h"
+#include "ui/JobManager.h"
+#include "ui/JobsPanel.h"
+#include "ui/MainWindow.h"
+#include "ui/PacsPanel.h"
+#include "ui/RenderControls.h"
+#include "ui/SliceView.h"
+#include "ui/StudyBrowser.h"
+#include "ui/TransferFunctionEditor.h"
+#include "ui/VolumeView.h"
+
+using namespace hvx;
+
+namespace {
+const QString kArtifacts = QStringLiteral(HVX_BINARY_DIR "/test-artifacts/gui");
+
+// Fraction of pixels that are not black.
+double coverage(const QImage& img) {
+    std::size_t lit = 0;
+    for (int y = 0; y < img.height(); ++y)
+        for (int x = 0; x < img.width(); ++x) lit += (img.pixel(x, y) & 0xFFFFFF) != 0;
+    return double(lit) / double(std::max(1, img.width() * img.height()));
+}
+
+// Mean absolute difference per channel (0..255) of two images of the same size.
+double difference(const QImage& a, const QImage& b) {
+    if (a.size() != b.size()) return 255.0;
+    double sum = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
+            sum += std::abs(qRed(p) - qRed(q)) + std::abs(qGreen(p) - qGreen(q)) + std::abs(qBlue(p) - qBlue(q));
+        }
+    return sum / (3.0 * a.width() * a.height());
+}
+
+std::vector<std::string> writeSeries(const std::string& folder, const std::string& patient, unsigned seed) {
+    core::PhantomVoxelSource phantom({64, 64, 48}, seed, {400, 400, 400}, 5.0);
+    dicom::DicomWriteOptions o;
+    o.patientName = patient;
+    o.patientId = patient.substr(0, 8);
+    o.studyDescription = "GUI test";
+    o.seriesDescription = "Phantom";
+    core::JobContext job;
+    return dicom::DicomSeriesWriter::write(phantom, folder, o, job);
+}
+}  // namespace
+
+class WorkstationTest : public QObject {
+    Q_OBJECT
+    test::TempDir dir_;
+    std::unique_ptr<ui::MainWindow> window_;
+
+    ui::VolumeView* view() const { return window_->view(); }
+    // Waits until the view has drawn a complete, full-quality frame after the last change.
+    QImage settledFrame() {
+        const int start = view()->frameCount();
+        view()->update();
+        [&] { QTRY_VERIFY_WITH_TIMEOUT(view()->frameCount() > start && view()->readouts().complete &&
+                                           view()->readouts().resolution >= 1.0, 60000); }();
+        QTest::qWait(300);  // bricks still arriving are drawn by the view's own timer
+        return view()->lastFrame();
+    }
+    void saveArtifact(const QString& name) { window_->grab().save(kArtifacts + "/" + name); }
+
+private slots:
+    void initTestCase() {
+        QDir().mkpath(kArtifacts);
+        window_ = std::make_unique<ui::MainWindow>(QString::fromStdString(dir_.file("db/studies.sqlite")),
+                                                   QString::fromStdString(dir_.file("pacs.json")));
+        window_->resize(1400, 900);
+        window_->show();
+        QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
+    }
+
+    void importsAGeneratedSeriesAndOpensItToAFirstFrame() {
+        QElapsedTimer clock;
+        clock.start();
+        writeSeries(dir_.file("dicom"), "GUI^IMPORT", 3);
+        qInfo() << "series written" << clock.elapsed() << "ms";
+        QSignalSpy imported(window_->browser(), &ui::StudyBrowser::imported);
+        window_->browser()->importPaths({QString::fromStdString(dir_.file("dicom"))});
+        QTRY_COMPARE_WITH_TIMEOUT(imported.count(), 1, 60000);
+        qInfo() << "imported" << clock.elapsed() << "ms";
+        auto* tree = window_->browser()->tree();
+        QTreeWidgetItem* series = nullptr;
+        for (QTreeWidgetItemIterator it(tree); *it; ++it)
+            if (!(*it)->data(0, Qt::UserRole + 1).toString().isEmpty()) series = *it;
+        QVERIFY2(series, "the imported series is listed in the study browser");
+        QVERIFY(tree->topLevelItem(0)->text(0).contains("GUI IMPORT"));
+        // Double-click: the octree is built in the background, then the view opens it.
+        tree->scrollToItem(series);
+        const QRect r = tree->visualItemRect(series);
+        QSignalSpy open(window_->browser(), &ui::StudyBrowser::openSeries);
+        QTest::mouseClick(tree->viewport(), Qt::LeftButton, {}, r.center());  // the press an activation needs
+        QTest::mouseDClick(tree->viewport(), Qt::LeftButton, {}, r.center());
+        QCOMPARE(open.count(), 1);
+        QTRY_VERIFY2_WITH_TIMEOUT(view()->hasVolume(), qPrintable(window_->lastError()), 60000);
+        const QImage first = settledFrame();
+        QVERIFY2(coverage(first) > 0.05, "the first frame shows the volume (not blank)");
+        QVERIFY(!window_->slice(0)->image().isNull());
+        QVERIFY(coverage(window_->slice(0)->image()) > 0.05);
+        saveArtifact("opened.png");
+    }
+
+    void orientationLabelsAreDrawnInPatientTerms() {
+        QCOMPARE(view()->orientationLabels(), (QStringList{"R", "L", "S", "I"}));
+        // The labels are painted: label-coloured pixels near the middle of the left edge.
+        const QImage shot = view()->grab().toImage();
+        int labelPixels = 0;
+        for (int y = shot.height() / 2 - 12; y < shot.height() / 2 + 12; ++y)
+            for (int x = 0; x < 30; ++x) {
+                const QColor c = shot.pixelColor(x, y);
+                labelPixels += c.red() > 200 && c.green() > 180 && c.blue() < 170;
+            }
+        QVERIFY2(labelPixels > 5, "the R label is drawn at the left edge");
+    }
+
+    void rotatesWithTheMouse() {
+        const QImage before = settledFrame();
+        const QPoint c = view()->rect().center();
+        QTest::mousePress(view(), Qt::LeftButton, {}, c);
+        for (int i = 1; i <= 10; ++i) QTest::mouseMove(view(), c + QPoint(12 * i, 0), 10);
+        QTest::mouseRelease(view(), Qt::LeftButton, {}, c + QPoint(120, 0));
+        const QImage after = settledFrame();
+        QVERIFY2(difference(before, after) > 1.0, "rotating changes the image");
+        QVERIFY(view()->orientationLabels() != (QStringList{"R", "L", "S", "I"}));
+        saveArtifact("rotated.png");
+    }
+
+    void changingTheTransferFunctionPresetChangesTheImage() {
+        const QImage before = settledFrame();
+        auto* presets = window_->tfEditor()->presets();
+        presets->setFocus();
+        QTest::keyClick(presets, Qt::Key_Down);  // ct-bone -> ct-soft-tissue
+        QCOMPARE(presets->currentText(), QString("ct-soft-tissue"));
+        const QImage after = settledFrame();
+        QVERIFY2(difference(before, after) > 1.0, "the image changes with the transfer function");
+        saveArtifact("soft-tissue.png");
+    }
+
+    void switchesRenderModes() {
+        const QImage dvr = settledFrame();
+        auto* mode = window_->renderControls()->mode();
+        mode->setFocus();
+        QTest::keyClick(mode, Qt::Key_Down);
+        QTest::keyClick(mode, Qt::Key_Down);  // DVR -> Isosurface -> MIP
+        QCOMPARE(mode->currentIndex(), 2);
+        const QImage mip = settledFrame();
+        QVERIFY(difference(dvr, mip) > 1.0);
+        QVERIFY(coverage(mip) > 0.05);
+        int grey = 0, lit = 0;
+        for (int y = 0; y < mip.height(); y += 3)
+            for (int x = 0; x < mip.width(); x += 3) {
+                const QRgb p = mip.pixel(x, y);
+                if ((p & 0xFFFFFF) == 0) continue;
+                ++lit;
+                grey += qRed(p) == qGreen(p) && qGreen(p) == qBlue(p);
+            }
+        QVERIFY2(grey == lit, "MIP is a grey-scale projection");
+        saveArtifact("mip.png");
+        QTest::keyClick(mode, Qt::Key_Up);
+        QTest::keyClick(mode, Qt::Key_Up);
+    }
+
+    void takesScreenshotsAtTheViewsSizeOrLarger() {
+        const QString png = QString::fromStdString(dir_.file("capture.png"));
+        const QString exr = QString::fromStdString(dir_.file("capture.exr"));
+        view()->capture(png, 800, 600);
+        view()->capture(exr, 320, 240);
+        const QImage shot(png);
+        QCOMPARE(shot.size(), QSize(800, 600));
+        QVERIFY(coverage(shot) > 0.05);
+        QVERIFY(QFileInfo(exr).size() > 1000);
+        QFile::remove(kArtifacts + "/capture-800x600.png");
+        QFile::copy(png, kArtifacts + "/capture-800x600.png");
+        saveArtifact("main-window.png");
+    }
+
+    void jobsPanelCancelsARunningBuild() {
+        const std::string out = dir_.file("big.hvo");
+        const int id = window_->jobs()->start("Build octree: phantom 512^3", [out](core::JobContext& job) {
+            core::PhantomVoxelSource phantom({512, 512, 512}, 1, {400, 400, 400}, 10.0);
+            core::OctreeBuilder(core::BuildOptions{}).build(phantom, out, job);
+            return QString::fromStdString(out);
+        });
+        QSignalSpy finished(window_->jobs(), &ui::JobManager::finished);
+        QTest::qWait(300);
+        auto* cancel = window_->jobsPanel()->findChild<QPushButton*>(QStringLiteral("cancelJob%1").arg(id));
+        QVERIFY(cancel);
+        QTest::mouseClick(cancel, Qt::LeftButton);
+        QTRY_VERIFY_WITH_TIMEOUT(!finished.isEmpty() && finished.last().at(0).toInt() == id, 60000);
+        QCOMPARE(finished.last().at(1).toString(), QString("cancelled"));
+        QCOMPARE(window_->jobsPanel()->cellText(id, 2), QString("cancelled"));
+        QVERIFY2(!std::filesystem::exists(out), "a cancelled build leaves no output");
+    }
+
+    void pacsRoundTripAgainstOrthanc() {
+        test::PacsPeer peer(test::PacsPeer::Kind::Orthanc);
+        peer.start();
+        peer.seed(writeSeries(dir_.file("pacs-series"), "PACS^ROUNDTRIP", 5));
+        peer.settings().save(dir_.file("pacs.json"));
+        auto* pacs = window_->pacs();
+        pacs->reloadSettings();
+        pacs->nodes()->setCurrentText("peer");
+        QTest::keyClicks(pacs->patientField(), "PACS*");
+        QTest::mouseClick(pacs->findChild<QPushButton*>("pacsSearch"), Qt::LeftButton);
+        QTRY_COMPARE_WITH_TIMEOUT(pacs->results()->topLevelItemCount(), 1, 30000);
+        QVERIFY(pacs->results()->topLevelItem(0)->text(0).contains("PACS ROUNDTRIP"));
+        pacs->results()->topLevelItem(0)->setSelected(true);
+        QSignalSpy retrieved(pacs, &ui::PacsPanel::retrieved);
+        QTest::mouseClick(pacs->findChild<QPushButton*>("pacsRetrieve"), Qt::LeftButton);
+        QTRY_COMPARE_WITH_TIMEOUT(retrieved.count(), 1, 120000);
+        bool listed = false;
+        auto* tree = window_->browser()->tree();
+        for (int i = 0; i < tree->topLevelItemCount(); ++i) listed |= tree->topLevelItem(i)->text(0).contains("PACS ROUNDTRIP");
+        QVERIFY2(listed, "the retrieved study appears in the study browser");
+        // A wrong port gives plain words.
+        auto s = peer.settings();
+        s.nodes[0].port = std::uint16_t(peer.dicomPort() + 1000);
+        s.save(dir_.file("pacs.json"));
+        pacs->reloadSettings();
+        pacs->nodes()->setCurrentText("peer");
+        pacs->search();
+        QTRY_VERIFY_WITH_TIMEOUT(!pacs->errorText().isEmpty() && !pacs->errorText().startsWith("Searching"), 60000);
+        QVERIFY2(pacs->errorText().contains("port", Qt::CaseInsensitive), qPrintable(pacs->errorText()));
+        saveArtifact("pacs.png");
+    }
+
+    void cleanupTestCase() {
+        window_->jobs()->waitIdle(30000);
+        window_.reset();
+    }
+};
+
+int main(int argc, char** argv) {
+    QSurfaceFormat format;
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    QSurfaceFormat::setDefaultFormat(format);
+    // Keep the tests' window layout out of the user's settings.
+    qputenv("XDG_CONFIG_HOME", QByteArray(HVX_BINARY_DIR "/test-artifacts/gui-config"));
+    QApplication app(argc, argv);
+    QApplication::setOrganizationName("HolovoxTests");
+    WorkstationTest t;
+    return QTest::qExec(&t, argc, argv);
+}
+
+#include "WorkstationTest.moc"

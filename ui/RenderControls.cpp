@@ -1,0 +1,111 @@
+#include "ui/RenderControls.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QSlider>
+
+#include <cmath>
+
+namespace hvx::ui {
+
+namespace {
+QDoubleSpinBox* spin(double lo, double hi, double step, double value, QWidget* parent) {
+    auto* s = new QDoubleSpinBox(parent);
+    s->setRange(lo, hi);
+    s->setSingleStep(step);
+    s->setValue(value);
+    s->setKeyboardTracking(false);
+    return s;
+}
+QSlider* slider(int lo, int hi, int value, QWidget* parent) {
+    auto* s = new QSlider(Qt::Horizontal, parent);
+    s->setRange(lo, hi);
+    s->setValue(value);
+    return s;
+}
+}  // namespace
+
+RenderControls::RenderControls(QWidget* parent)
+    : QWidget(parent), mode_(new QComboBox(this)), shading_(new QCheckBox(tr("Phong shading"), this)),
+      ambient_(spin(0, 1, 0.05, 0.35, this)), diffuse_(spin(0, 1, 0.05, 0.65, this)), specular_(spin(0, 1, 0.05, 0.25, this)),
+      shininess_(spin(1, 128, 1, 24, this)), iso_(spin(-1e6, 1e6, 10, 300, this)), boundary_(slider(0, 100, 0, this)),
+      viewTransparency_(slider(0, 100, 0, this)), quality_(slider(0, 100, 100, this)) {
+    mode_->setObjectName("renderMode");
+    mode_->addItems({tr("DVR"), tr("Isosurface"), tr("MIP"), tr("MinIP"), tr("X-ray (average)")});
+    mode_->setToolTip(tr("Direct volume rendering, first-hit isosurface, maximum/minimum intensity projection, average"));
+    shading_->setChecked(true);
+    boundary_->setToolTip(tr("Boundary enhancement: fades homogeneous regions, keeps boundaries"));
+    viewTransparency_->setToolTip(tr("View-dependent transparency: boundaries facing you turn transparent, silhouettes stay"));
+    quality_->setToolTip(tr("Accuracy: right is one voxel per pixel; left is coarser and faster"));
+    quality_->setObjectName("quality");
+    iso_->setToolTip(tr("Isovalue in physical units (HU for CT)"));
+    auto* form = new QFormLayout(this);
+    form->addRow(tr("Mode"), mode_);
+    form->addRow(QString(), shading_);
+    form->addRow(tr("Ambient"), ambient_);
+    form->addRow(tr("Diffuse"), diffuse_);
+    form->addRow(tr("Specular"), specular_);
+    form->addRow(tr("Shininess"), shininess_);
+    form->addRow(tr("Boundary"), boundary_);
+    form->addRow(tr("View transparency"), viewTransparency_);
+    form->addRow(tr("Isovalue"), iso_);
+    form->addRow(tr("Quality"), quality_);
+    connect(mode_, &QComboBox::currentIndexChanged, this, [this](int m) {
+        iso_->setEnabled(m == 1);
+        emit changed();
+    });
+    iso_->setEnabled(false);
+    connect(shading_, &QCheckBox::toggled, this, &RenderControls::changed);
+    for (auto* s : {ambient_, diffuse_, specular_, shininess_, iso_})
+        connect(s, &QDoubleSpinBox::valueChanged, this, &RenderControls::changed);
+    for (auto* s : {boundary_, viewTransparency_, quality_}) connect(s, &QSlider::valueChanged, this, &RenderControls::changed);
+}
+
+void RenderControls::setVolume(double slope, double intercept, double physicalMin, double physicalMax, bool ct) {
+    slope_ = slope;
+    intercept_ = intercept;
+    iso_->setRange(physicalMin, physicalMax);
+    iso_->setValue(ct ? 300.0 : 0.5 * (physicalMin + physicalMax));
+}
+
+core::RenderSettings RenderControls::settings() const {
+    core::RenderSettings s;
+    s.mode = core::RenderSettings::Mode(mode_->currentIndex());
+    s.shading = shading_->isChecked();
+    s.ambient = ambient_->value();
+    s.diffuse = diffuse_->value();
+    s.specular = specular_->value();
+    s.shininess = shininess_->value();
+    s.boundary = boundary_->value() / 100.0;
+    s.viewTransparency = viewTransparency_->value() / 100.0;
+    s.isoValue = (iso_->value() - intercept_) / slope_;
+    return s;
+}
+
+void RenderControls::setSettings(const core::RenderSettings& s) {
+    {
+        const QSignalBlocker b(this);
+        mode_->setCurrentIndex(int(s.mode));
+        shading_->setChecked(s.shading);
+        ambient_->setValue(s.ambient);
+        diffuse_->setValue(s.diffuse);
+        specular_->setValue(s.specular);
+        shininess_->setValue(s.shininess);
+        boundary_->setValue(int(std::lround(s.boundary * 100)));
+        viewTransparency_->setValue(int(std::lround(s.viewTransparency * 100)));
+    }
+    emit changed();
+}
+
+double RenderControls::accuracy() const {
+    // 100 -> 1 voxel per pixel, 0 -> 8 (three octree levels coarser).
+    return std::pow(2.0, 3.0 * (100 - quality_->value()) / 100.0);
+}
+
+void RenderControls::setAccuracy(double voxelsPerPixel) {
+    quality_->setValue(100 - int(std::lround(std::log2(std::max(1.0, voxelsPerPixel)) / 3.0 * 100)));
+}
+
+}  // namespace hvx::ui

@@ -1,0 +1,42 @@
+#pragma once
+#include <QWidget>
+
+#include "core/CpuRayCaster.h"
+
+class QComboBox;
+class QCheckBox;
+class QDoubleSpinBox;
+class QSlider;
+
+namespace hvx::ui {
+
+/// The 3D view's controls: render mode (DVR, isosurface, MIP, MinIP, X-ray), Phong shading
+/// parameters, boundary enhancement and view-dependent transparency, the isovalue (physical
+/// units) and a quality/accuracy slider. Emits changed() on every edit.
+///
+/// Threading: GUI thread only.
+class RenderControls : public QWidget {
+    Q_OBJECT
+public:
+    explicit RenderControls(QWidget* parent = nullptr);
+    /// The value conversion and range of the open volume (for the isovalue field).
+    void setVolume(double slope, double intercept, double physicalMin, double physicalMax, bool ct);
+    core::RenderSettings settings() const;
+    void setSettings(const core::RenderSettings& s);
+    /// Voxels per pixel of the working set (quality slider: 1 is full accuracy).
+    double accuracy() const;
+    void setAccuracy(double voxelsPerPixel);
+    QComboBox* mode() const { return mode_; }
+
+signals:
+    void changed();
+
+private:
+    QComboBox* mode_;
+    QCheckBox* shading_;
+    QDoubleSpinBox *ambient_, *diffuse_, *specular_, *shininess_, *iso_;
+    QSlider *boundary_, *viewTransparency_, *quality_;
+    double slope_ = 1, intercept_ = 0;
+};
+
+}  // namespace hvx::ui

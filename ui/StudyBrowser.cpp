@@ -1,0 +1,179 @@
+#include "ui/StudyBrowser.h"
+
+#include <QComboBox>
+#include <QFileInfo>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QImage>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPixmap>
+#include <QPushButton>
+#include <QRegularExpressionValidator>
+#include <QTreeWidget>
+#include <QVBoxLayout>
+
+#include <cmath>
+
+#include "core/BrickCache.h"
+#include "core/Error.h"
+#include "core/OctreeReader.h"
+#include "core/SliceSampler.h"
+#include "dicom/DicomScanner.h"
+#include "dicom/StudyDatabase.h"
+#include "ui/JobManager.h"
+
+namespace hvx::ui {
+
+namespace {
+enum Role { SeriesUidRole = Qt::UserRole + 1, OctreeRole, LabelRole };
+
+// A 64-pixel axial thumbnail from the octree's coarse levels (a few bricks).
+QIcon thumbnail(const std::string& octreePath) {
+    try {
+        const auto reader = core::OctreeReader::open(octreePath);
+        core::BrickCache cache(32u << 20);
+        const core::SliceSampler sampler(*reader, cache);
+        const auto& g = reader->geometry();
+        const glm::dvec3 centre(sampler.space().octreeToPatient * glm::dvec4(sampler.space().extent * 0.5, 1.0));
+        const double extent = std::max(g.dims[0] * g.spacing.x, g.dims[1] * g.spacing.y);
+        const auto img = sampler.sample(core::SlicePlane::standard(core::SlicePlane::Orientation::Axial, centre, extent / 64, 64, 64));
+        QImage q(64, 64, QImage::Format_Grayscale8);
+        const double lo = g.modality == "CT" ? (-160 - g.rescaleIntercept) / g.rescaleSlope : g.valueMin;
+        const double hi = g.modality == "CT" ? (240 - g.rescaleIntercept) / g.rescaleSlope : g.valueMax;
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                const float v = img.values[std::size_t(y * 64 + x)];
+                const double t = std::isnan(v) ? 0.0 : std::clamp((v - lo) / (hi - lo), 0.0, 1.0);
+                q.scanLine(y)[x] = std::uint8_t(t * 255);
+            }
+        return QIcon(QPixmap::fromImage(q));
+    } catch (const std::exception&) {
+        return {};
+    }
+}
+}  // namespace
+
+StudyBrowser::StudyBrowser(JobManager& jobs, QString databasePath, QWidget* parent)
+    : QWidget(parent), jobs_(jobs), dbPath_(std::move(databasePath)), text_(new QLineEdit(this)),
+      from_(new QLineEdit(this)), to_(new QLineEdit(this)), modality_(new QComboBox(this)),
+      tree_(new QTreeWidget(this)), count_(new QLabel(this)) {
+    text_->setPlaceholderText(tr("Patient name or ID (* and ? allowed)"));
+    text_->setClearButtonEnabled(true);
+    const auto* date = new QRegularExpressionValidator(QRegularExpression("\\d{0,8}"), this);
+    from_->setPlaceholderText(tr("from YYYYMMDD"));
+    to_->setPlaceholderText(tr("to YYYYMMDD"));
+    from_->setValidator(date);
+    to_->setValidator(date);
+    modality_->addItems({tr("Any"), "CT", "MR", "PT", "NM", "US", "XA", "CR", "DX", "MG", "RTDOSE"});
+    modality_->setToolTip(tr("Studies with at least one series of this modality"));
+    tree_->setHeaderLabels({tr("Patient / study / series"), tr("ID / date"), tr("Modality"), tr("Images")});
+    tree_->header()->setStretchLastSection(false);
+    tree_->header()->setSectionResizeMode(0, QHeaderView::Stretch);
+    for (int c = 1; c < 4; ++c) tree_->header()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
+    tree_->setIconSize(QSize(40, 40));
+    tree_->setAlternatingRowColors(true);
+    tree_->setToolTip(tr("Double-click a series to open it"));
+    auto* refreshButton = new QPushButton(tr("Search"), this);
+    auto* filters = new QHBoxLayout;
+    filters->addWidget(from_);
+    filters->addWidget(to_);
+    filters->addWidget(modality_);
+    filters->addWidget(refreshButton);
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(4, 4, 4, 4);
+    layout->addWidget(text_);
+    layout->addLayout(filters);
+    layout->addWidget(tree_, 1);
+    layout->addWidget(count_);
+    connect(refreshButton, &QPushButton::clicked, this, &StudyBrowser::refresh);
+    connect(text_, &QLineEdit::returnPressed, this, &StudyBrowser::refresh);
+    connect(modality_, &QComboBox::activated, this, &StudyBrowser::refresh);
+    connect(tree_, &QTreeWidget::itemActivated, this, &StudyBrowser::activated);
+    refresh();
+}
+
+void StudyBrowser::refresh() {
+    tree_->clear();
+    try {
+        dicom::StudyDatabase db(dbPath_.toStdString());
+        dicom::StudyQuery q;
+        q.text = text_->text().toStdString();
+        q.dateFrom = from_->text().toStdString();
+        q.dateTo = to_->text().toStdString();
+        q.modality = modality_->currentIndex() == 0 ? std::string() : modality_->currentText().toStdString();
+        const auto studies = db.findStudies(q);
+        QTreeWidgetItem* patient = nullptr;
+        QString lastPatient;
+        for (const auto& s : studies) {
+            const QString key = QString::fromStdString(s.patientId + "\x1f" + s.patientName);
+            if (!patient || key != lastPatient) {
+                patient = new QTreeWidgetItem(tree_, {QString::fromStdString(s.patientName).replace('^', ' '),
+                                                      QString::fromStdString(s.patientId), {}, {}});
+                patient->setToolTip(0, tr("Born %1, sex %2").arg(QString::fromStdString(s.patientBirthDate),
+                                                                  QString::fromStdString(s.patientSex)));
+                lastPatient = key;
+            }
+            auto* study = new QTreeWidgetItem(patient, {QString::fromStdString(s.description.empty() ? "(no description)" : s.description),
+                                                        QString::fromStdString(s.date), QString::fromStdString(s.modalities),
+                                                        QString::number(s.seriesCount)});
+            study->setToolTip(0, tr("Accession %1").arg(QString::fromStdString(s.accession)));
+            for (const auto& se : db.seriesOfStudy(s.studyUid)) {
+                const QString label = QStringLiteral("%1 %2").arg(se.number).arg(QString::fromStdString(se.description));
+                auto* item = new QTreeWidgetItem(study, {label, QString::fromStdString(se.bodyPart),
+                                                         QString::fromStdString(se.modality), QString::number(se.instanceCount)});
+                item->setData(0, SeriesUidRole, QString::fromStdString(se.seriesUid));
+                item->setData(0, OctreeRole, QString::fromStdString(se.octreePath));
+                item->setData(0, LabelRole, QString::fromStdString(s.patientName) + " \u2014 " + label);
+                if (!se.octreePath.empty() && QFileInfo::exists(QString::fromStdString(se.octreePath)))
+                    item->setIcon(0, thumbnail(se.octreePath));
+                item->setToolTip(0, se.octreePath.empty() ? tr("No octree yet: opening builds it in the background")
+                                                          : tr("Octree: %1").arg(QString::fromStdString(se.octreePath)));
+            }
+        }
+        tree_->expandAll();
+        count_->setText(tr("%n studies", nullptr, int(studies.size())));
+    } catch (const core::Error& e) {
+        count_->setText(QString::fromStdString(e.what()));
+        emit failed(QString::fromStdString(e.what()));
+    }
+}
+
+QTreeWidgetItem* StudyBrowser::seriesItem(const QString& seriesUid) const {
+    for (QTreeWidgetItemIterator it(tree_); *it; ++it)
+        if ((*it)->data(0, SeriesUidRole).toString() == seriesUid) return *it;
+    return nullptr;
+}
+
+void StudyBrowser::activated(QTreeWidgetItem* item) {
+    const QString uid = item->data(0, SeriesUidRole).toString();
+    if (uid.isEmpty()) return;
+    QString octree = item->data(0, OctreeRole).toString();
+    if (!octree.isEmpty() && !QFileInfo::exists(octree)) octree.clear();
+    emit openSeries(uid, octree, item->data(0, LabelRole).toString());
+}
+
+int StudyBrowser::importPaths(const QStringList& paths) {
+    std::vector<std::string> list;
+    for (const auto& p : paths) list.push_back(p.toStdString());
+    const std::string db = dbPath_.toStdString();
+    return jobs_.start(
+        tr("Import %1").arg(paths.size() == 1 ? QFileInfo(paths.first()).fileName() : tr("%n items", nullptr, int(paths.size()))),
+        [list, db](core::JobContext& job) {
+            const auto scan = dicom::DicomScanner::scan(list, job);
+            dicom::StudyDatabase database(db);
+            const auto stats = database.addInstances(scan.instances);
+            if (scan.instances.empty())
+                throw core::Error(scan.broken ? "no readable DICOM found: " + std::to_string(scan.broken) + " broken files"
+                                              : std::string("no DICOM files found there"));
+            return QObject::tr("%1 DICOM files (%2 new), %3 not DICOM, %4 broken")
+                .arg(scan.instances.size()).arg(stats.added).arg(scan.notDicom).arg(scan.broken);
+        },
+        [this](const QString& summary) {
+            refresh();
+            emit imported(summary);
+        });
+}
+
+}  // namespace hvx::ui

@@ -1,0 +1,52 @@
+#pragma once
+#include <QWidget>
+
+class QComboBox;
+class QLineEdit;
+class QTreeWidget;
+class QTreeWidgetItem;
+class QLabel;
+
+namespace hvx::ui {
+
+class JobManager;
+
+/// The study browser: the local study database as a patient -> study -> series tree, filtered
+/// by name or ID (wildcards), date range and modality, with thumbnails of series whose octree
+/// exists. Importing folders or DICOMDIRs runs as a background job; double-clicking a series
+/// asks to open it.
+///
+/// Threading: GUI thread; the database is read here and written only by jobs (own connection).
+class StudyBrowser : public QWidget {
+    Q_OBJECT
+public:
+    StudyBrowser(JobManager& jobs, QString databasePath, QWidget* parent = nullptr);
+    const QString& databasePath() const { return dbPath_; }
+    /// Scans and indexes files, folders or DICOMDIRs in the background; returns the job id.
+    int importPaths(const QStringList& paths);
+    /// Re-reads the database with the current filters.
+    void refresh();
+    QTreeWidget* tree() const { return tree_; }
+    /// The series item of a UID (tests), nullptr when not listed.
+    QTreeWidgetItem* seriesItem(const QString& seriesUid) const;
+
+signals:
+    /// octreePath is empty when the series has no octree yet.
+    void openSeries(const QString& seriesUid, const QString& octreePath, const QString& label);
+    void imported(const QString& summary);
+    void failed(const QString& message);
+
+private:
+    void activated(QTreeWidgetItem* item);
+
+    JobManager& jobs_;
+    QString dbPath_;
+    QLineEdit* text_;
+    QLineEdit* from_;
+    QLineEdit* to_;
+    QComboBox* modality_;
+    QTreeWidget* tree_;
+    QLabel* count_;
+};
+
+}  // namespace hvx::ui

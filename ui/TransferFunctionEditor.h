@@ -1,0 +1,61 @@
+#pragma once
+#include <QWidget>
+
+#include <optional>
+
+#include "core/TransferFunctionSpec.h"
+#include "core/VolumeHistogram.h"
+
+class QComboBox;
+
+namespace hvx::ui {
+
+class TransferFunctionCanvas;
+
+/// The transfer-function editor dock: a log-scaled histogram of the volume under a
+/// piecewise-linear opacity curve (drag points, click to add, right-click or Delete to remove;
+/// the end points move only vertically), a colour bar with stops (click to add, double-click for
+/// the colour picker, right-click to remove), a window/level drag (middle or Ctrl+drag: left/
+/// right shifts, up/down widens or narrows the whole function), presets, load/save, and import
+/// of 3D Slicer presets.xml and ParaView colour maps. Every edit emits changed() at once.
+///
+/// Threading: GUI thread only.
+class TransferFunctionEditor : public QWidget {
+    Q_OBJECT
+public:
+    explicit TransferFunctionEditor(QWidget* parent = nullptr);
+
+    /// A volume's value range (stored units), rescale and histogram; resets to `preset`.
+    void setVolume(double valueMin, double valueMax, double slope, double intercept, const std::string& modality,
+                   const core::VolumeHistogram& histogram);
+    /// Applies a built-in preset by name (core::TransferFunction::presetNames()).
+    void applyPreset(const QString& name);
+    /// The edited curves in stored units.
+    const core::TransferFunctionSpec& spec() const;
+    void setSpec(const core::TransferFunctionSpec& storedUnits);
+    /// The transfer function to render with.
+    core::TransferFunction transferFunction(double referenceLength) const;
+    TransferFunctionCanvas* canvas() const { return canvas_; }
+    QComboBox* presets() const { return presets_; }
+
+    void load(const QString& path);
+    void save(const QString& path) const;
+    /// Imports the named preset of a Slicer presets.xml (the first when `name` is empty).
+    void importSlicer(const QString& path, const QString& name = {});
+    void importParaView(const QString& path);
+
+signals:
+    void changed();
+    void failed(const QString& message);
+
+private:
+    void chooseAndLoad();
+    void chooseAndSave();
+    void chooseAndImport();
+
+    TransferFunctionCanvas* canvas_;
+    QComboBox* presets_;
+    double slope_ = 1, intercept_ = 0;
+};
+
+}  // namespace hvx::ui
