@@ -122,7 +122,10 @@ void SliceView::paintEvent(QPaintEvent*) {
     p.drawText(r, Qt::AlignBottom | Qt::AlignHCenter, labels[3]);
     static const char* names[] = {"Axial", "Coronal", "Sagittal"};
     p.setPen(QColor(200, 200, 200));
-    p.drawText(r, Qt::AlignBottom | Qt::AlignLeft, QStringLiteral("%1  W %2 L %3").arg(names[int(orientation_)])
+    QFont info = font();
+    info.setPointSizeF(info.pointSizeF() * 0.85);
+    p.setFont(info);
+    p.drawText(r, Qt::AlignBottom | Qt::AlignLeft, QStringLiteral("%1\nW %2\nL %3").arg(names[int(orientation_)])
                                                      .arg(width_, 0, 'f', 0).arg(centre_, 0, 'f', 0));
 }
 

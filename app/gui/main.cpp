@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
     const QCommandLineOption demo("demo", "Start the demo archive, connect it and open the demo study.");
     const QCommandLineOption db("db", "The study database (default: $HOLOVOX_DB or the user's data folder).", "file");
     const QCommandLineOption pacs("pacs-config", "The PACS settings file (default: $HOLOVOX_PACS_CONFIG).", "file");
-    const QCommandLineOption screenshot("screenshot", "Once the first frame is shown, save a PNG of the window and quit.", "png");
+    const QCommandLineOption screenshot("screenshot", "Once a complete frame is shown, save a PNG of the window and quit.", "png");
     parser.addOption(demo);
     parser.addOption(db);
     parser.addOption(pacs);
@@ -90,9 +90,15 @@ int main(int argc, char** argv) {
             window.grab().save(out);
             QApplication::quit();
         };
-        // After the first frame (or 60 s when nothing opens).
-        QObject::connect(window.view(), &hvx::ui::VolumeView::frameRendered, &window, [grab] { QTimer::singleShot(300, grab); },
-                         Qt::SingleShotConnection);
+        // Once a complete, full-quality frame is shown (or after 60 s when nothing opens).
+        auto* view = window.view();
+        QObject::connect(view, &hvx::ui::VolumeView::frameRendered, &window, [view, grab] {
+            static bool done = false;
+            if (!done && view->readouts().complete && view->readouts().resolution >= 1.0) {
+                done = true;
+                QTimer::singleShot(500, grab);
+            }
+        });
         QTimer::singleShot(60000, &window, grab);
     }
     return QApplication::exec();
