@@ -3,7 +3,10 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfMultiPartOutputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfOutputPart.h>
+#include <ImfPartType.h>
 #include <png.h>
 
 #include <algorithm>
@@ -75,26 +78,60 @@ void ImageWriter::writePng(const RenderImage& image, const std::string& path) {
     commit(tmp, path);
 }
 
+namespace {
+Imf::Header exrHeader(const RenderImage& image, const std::string& partName) {
+    Imf::Header header(image.width, image.height);
+    for (const char* c : {"R", "G", "B", "A", "Z"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    if (!partName.empty()) {
+        header.setName(partName);
+        header.setType(Imf::SCANLINEIMAGE);
+    }
+    return header;
+}
+
+Imf::FrameBuffer exrFrameBuffer(const RenderImage& image) {
+    Imf::FrameBuffer fb;
+    const std::size_t px = sizeof(glm::vec4);
+    char* base = reinterpret_cast<char*>(const_cast<glm::vec4*>(image.rgba.data()));
+    fb.insert("R", Imf::Slice(Imf::FLOAT, base + 0, px, px * std::size_t(image.width)));
+    fb.insert("G", Imf::Slice(Imf::FLOAT, base + 4, px, px * std::size_t(image.width)));
+    fb.insert("B", Imf::Slice(Imf::FLOAT, base + 8, px, px * std::size_t(image.width)));
+    fb.insert("A", Imf::Slice(Imf::FLOAT, base + 12, px, px * std::size_t(image.width)));
+    fb.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(image.depth.data())),
+                              sizeof(float), sizeof(float) * std::size_t(image.width)));
+    return fb;
+}
+}  // namespace
+
 void ImageWriter::writeExr(const RenderImage& image, const std::string& path) {
     const std::string tmp = temporaryName(path);
     try {
-        Imf::Header header(image.width, image.height);
-        for (const char* c : {"R", "G", "B", "A", "Z"}) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
-        Imf::OutputFile file(tmp.c_str(), header);
-        Imf::FrameBuffer fb;
-        const std::size_t px = sizeof(glm::vec4);
-        char* base = reinterpret_cast<char*>(const_cast<glm::vec4*>(image.rgba.data()));
-        fb.insert("R", Imf::Slice(Imf::FLOAT, base + 0, px, px * std::size_t(image.width)));
-        fb.insert("G", Imf::Slice(Imf::FLOAT, base + 4, px, px * std::size_t(image.width)));
-        fb.insert("B", Imf::Slice(Imf::FLOAT, base + 8, px, px * std::size_t(image.width)));
-        fb.insert("A", Imf::Slice(Imf::FLOAT, base + 12, px, px * std::size_t(image.width)));
-        fb.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(image.depth.data())),
-                                  sizeof(float), sizeof(float) * std::size_t(image.width)));
-        file.setFrameBuffer(fb);
+        Imf::OutputFile file(tmp.c_str(), exrHeader(image, {}));
+        file.setFrameBuffer(exrFrameBuffer(image));
         file.writePixels(image.height);
     } catch (const std::exception& e) {
         std::remove(tmp.c_str());
         throw Error(path + ": cannot write EXR (" + e.what() + ")");
+    }
+    commit(tmp, path);
+}
+
+void ImageWriter::writeExrParts(const std::vector<RenderImage>& images, const std::vector<std::string>& names,
+                                const std::string& path) {
+    if (images.empty() || images.size() != names.size()) throw Error(path + ": a multi-part EXR needs one name per image");
+    const std::string tmp = temporaryName(path);
+    try {
+        std::vector<Imf::Header> headers;
+        for (std::size_t i = 0; i < images.size(); ++i) headers.push_back(exrHeader(images[i], names[i]));
+        Imf::MultiPartOutputFile file(tmp.c_str(), headers.data(), int(headers.size()));
+        for (std::size_t i = 0; i < images.size(); ++i) {
+            Imf::OutputPart part(file, int(i));
+            part.setFrameBuffer(exrFrameBuffer(images[i]));
+            part.writePixels(images[i].height);
+        }
+    } catch (const std::exception& e) {
+        std::remove(tmp.c_str());
+        throw Error(path + ": cannot write multi-part EXR (" + e.what() + ")");
     }
     commit(tmp, path);
 }

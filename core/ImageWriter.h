@@ -1,5 +1,6 @@
 #pragma once
 #include <string>
+#include <vector>
 
 #include "core/CpuRayCaster.h"
 
@@ -14,6 +15,9 @@ public:
     static void write(const RenderImage& image, const std::string& path);
     static void writePng(const RenderImage& image, const std::string& path);
     static void writeExr(const RenderImage& image, const std::string& path);
+    /// One OpenEXR file with one part per image (light-field views), each part named.
+    static void writeExrParts(const std::vector<RenderImage>& images, const std::vector<std::string>& names,
+                              const std::string& path);
 };
 
 }  // namespace hvx::core

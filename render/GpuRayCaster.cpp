@@ -18,9 +18,10 @@ namespace {
 struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
     glm::mat4 patientToOctree;
     glm::vec4 eye, forward, right, up, extent, tfRange, shading, extra, enhance;
+    glm::vec4 screenCentre, screenRight, screenUp, screenViewer, screenProjector;
     glm::uvec4 brick, image;
 };
-static_assert(sizeof(FrameBlock) == 64 + 9 * 16 + 2 * 16, "std140 layout of Frame");
+static_assert(sizeof(FrameBlock) == 64 + 14 * 16 + 2 * 16, "std140 layout of Frame");
 }  // namespace
 
 GpuRayCaster::GpuRayCaster(PoolPrecision precision) {
@@ -152,7 +153,13 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     const glm::dvec3 r = glm::normalize(glm::cross(f, view.up));
     const glm::dvec3 u = glm::cross(r, f);
     const bool pinhole = view.model == core::View::Model::Pinhole;
-    fb.eye = glm::vec4(glm::vec3(view.eye), pinhole ? 1.0f : 0.0f);
+    const bool screen = view.model == core::View::Model::Screen;
+    fb.eye = glm::vec4(glm::vec3(view.eye), screen ? 2.0f : pinhole ? 1.0f : 0.0f);
+    fb.screenCentre = glm::vec4(glm::vec3(view.screen.centre), float(view.screen.eta));
+    fb.screenRight = glm::vec4(glm::vec3(glm::normalize(view.screen.right)), float(view.screen.widthMm));
+    fb.screenUp = glm::vec4(glm::vec3(glm::normalize(view.screen.up)), float(view.screen.heightMm));
+    fb.screenViewer = glm::vec4(glm::vec3(view.screen.viewer), 0.0f);
+    fb.screenProjector = glm::vec4(glm::vec3(view.screen.projector), 0.0f);
     fb.forward = glm::vec4(glm::vec3(f), pinhole ? float(std::tan(glm::radians(view.fovYDegrees) / 2.0))
                                                  : float(view.orthoHeight / 2.0));
     fb.right = glm::vec4(glm::vec3(r), float(view.width) / float(view.height));

@@ -17,4 +17,5 @@ int exportDicomCommand(int argc, char** argv);
 int pacsCommand(int argc, char** argv);
 int listenCommand(int argc, char** argv);
 int renderCommand(int argc, char** argv);
+int lightFieldCommand(int argc, char** argv);
 }  // namespace hvx::app

@@ -36,6 +36,8 @@ void usage() {
         "  render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] [--tf PRESET]\n"
         "        [--boundary 0..1] [--view-transparency 0..1]\n"
         "        [--iso HU] [--size WxH] [--budget BRICKS] [--accuracy VOXELS_PER_PIXEL] -o OUT.png|OUT.exr\n"
+        "  lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo] [--eta 0..1]\n"
+        "        [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--cpu] | --list\n"
         "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
         "  version                       versions of Holovox and its libraries");
 }
@@ -61,6 +63,7 @@ int main(int argc, char** argv) {
         if (cmd == "pacs") return hvx::app::pacsCommand(argc, argv);
         if (cmd == "listen") return hvx::app::listenCommand(argc, argv);
         if (cmd == "render") return hvx::app::renderCommand(argc, argv);
+        if (cmd == "lightfield") return hvx::app::lightFieldCommand(argc, argv);
         if (cmd == "version" || cmd == "--version") return hvx::app::versionCommand(argc, argv);
         std::fprintf(stderr, "holovox-cli: unknown command '%s' (try --help)\n", cmd.c_str());
         return 2;

@@ -16,7 +16,17 @@ void main() {
     float nx = (float(px.x) + 0.5) / float(image.x) * 2.0 - 1.0;
     float ny = 1.0 - (float(px.y) + 0.5) / float(image.y) * 2.0;
     vec3 ow, dw;
-    if (eye.w > 0.5) {  // pinhole
+    if (eye.w > 1.5) {  // screen: rays through the screen point, origins by Eq. 5.1 (core::View::ray)
+        vec3 S = vec3((float(px.x) + 0.5) / float(image.x) - 0.5, 0.5 - (float(px.y) + 0.5) / float(image.y), 0.0) *
+                 vec3(screenRight.w, screenUp.w, 0.0);
+        vec3 E = screenProjector.xyz, V = screenViewer.xyz;
+        float parallax = E.x + (S.x - E.x) / (S.z - E.z) * (V.z - E.z);
+        vec3 O = vec3((1.0 - screenCentre.w) * V.x + screenCentre.w * parallax, V.y, V.z);
+        vec3 n = normalize(cross(screenRight.xyz, screenUp.xyz));
+        mat3 axes = mat3(screenRight.xyz, screenUp.xyz, n);
+        ow = screenCentre.xyz + axes * O;
+        dw = normalize(axes * (S - O));
+    } else if (eye.w > 0.5) {  // pinhole
         ow = eye.xyz;
         dw = normalize(forward.xyz + right.xyz * (nx * forward.w * right.w) + up.xyz * (ny * forward.w));
     } else {            // orthographic

@@ -1,7 +1,7 @@
 // Inputs and outputs of the ray caster (bindings shared with render/GpuRayCaster.cpp).
 layout(std140, binding = 0) uniform Frame {
     mat4 patientToOctree;
-    vec4 eye;        // xyz; w: 1 pinhole, 0 orthographic
+    vec4 eye;        // xyz; w: 1 pinhole, 0 orthographic, 2 screen (MCOP, thesis Eq. 5.1)
     vec4 forward;    // xyz; w: tan(fovY/2) or half the ortho height
     vec4 right;      // xyz; w: aspect
     vec4 up;
@@ -10,6 +10,11 @@ layout(std140, binding = 0) uniform Frame {
     vec4 shading;    // ambient, diffuse, specular, shininess
     vec4 extra;      // iso value, shading on, count rays (1/0), unused
     vec4 enhance;    // boundary enhancement, view-dependent transparency, strength per gradient, unused
+    vec4 screenCentre;     // screen model: xyz centre (patient); w: eta
+    vec4 screenRight;      // xyz unit; w: width mm
+    vec4 screenUp;         // xyz unit; w: height mm
+    vec4 screenViewer;     // xyz: V in display coordinates
+    vec4 screenProjector;  // xyz: E in display coordinates
     uvec4 brick;     // brick size, border, edge, slots per row
     uvec4 image;     // width, height, slots per layer, unused
 };

@@ -1,0 +1,192 @@
+// holovox-cli lightfield: all views of a multi-view display frame from one working set.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "app/cli/CliArgs.h"
+#include "app/cli/Commands.h"
+#include "core/BrickCache.h"
+#include "core/BrickLoader.h"
+#include "core/DisplayModel.h"
+#include "core/Error.h"
+#include "core/ImageWriter.h"
+#include "core/LightFieldSimulator.h"
+#include "core/OctreeReader.h"
+#include "core/QuiltLayout.h"
+#include "core/VoxelSourceFactory.h"
+#include "core/WorkingSet.h"
+#include "render/EglOffscreenContext.h"
+#include "render/LightFieldRenderer.h"
+
+namespace hvx::app {
+
+namespace {
+glm::dvec3 parseTriple(const std::string& text, const char* what) {
+    glm::dvec3 v;
+    char c1 = 0, c2 = 0;
+    std::istringstream in(text);
+    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',')
+        throw core::Error(std::string(what) + " must be three numbers X,Y,Z");
+    return v;
+}
+
+// Stereo layouts of two views: side by side, red-cyan anaglyph, or columns interleaved.
+core::RenderImage combineStereo(const core::DisplayModel& d, const core::RenderImage& l, const core::RenderImage& r) {
+    core::RenderImage out;
+    const bool sbs = d.layout == core::DisplayModel::StereoLayout::SideBySide;
+    out.width = sbs ? 2 * l.width : l.width;
+    out.height = l.height;
+    out.rgba.assign(std::size_t(out.width) * std::size_t(out.height), glm::vec4(0.0f));
+    out.depth.assign(out.rgba.size(), INFINITY);
+    for (int y = 0; y < l.height; ++y)
+        for (int x = 0; x < out.width; ++x) {
+            const std::size_t o = std::size_t(y) * std::size_t(out.width) + std::size_t(x);
+            if (sbs) {
+                const auto& src = x < l.width ? l : r;
+                const std::size_t i = std::size_t(y) * std::size_t(l.width) + std::size_t(x % l.width);
+                out.rgba[o] = src.rgba[i];
+                out.depth[o] = src.depth[i];
+            } else if (d.layout == core::DisplayModel::StereoLayout::Anaglyph) {
+                const std::size_t i = std::size_t(y) * std::size_t(l.width) + std::size_t(x);
+                const float lg = 0.299f * l.rgba[i].r + 0.587f * l.rgba[i].g + 0.114f * l.rgba[i].b;
+                out.rgba[o] = glm::vec4(lg, r.rgba[i].g, r.rgba[i].b, std::max(l.rgba[i].a, r.rgba[i].a));
+                out.depth[o] = std::min(l.depth[i], r.depth[i]);
+            } else {  // even columns: left eye
+                const auto& src = x % 2 == 0 ? l : r;
+                const std::size_t i = std::size_t(y) * std::size_t(l.width) + std::size_t(x);
+                out.rgba[o] = src.rgba[i];
+                out.depth[o] = src.depth[i];
+            }
+        }
+    return out;
+}
+}  // namespace
+
+int lightFieldCommand(int argc, char** argv) {
+    const CliArgs args(argc, argv, 2,
+                       {"display", "o", "output", "format", "eta", "view", "zoom", "tf", "mode", "size", "observer",
+                        "simulate", "budget", "cache-mb"},
+                       {"cpu", "list"});
+    if (args.flag("list")) {
+        for (const auto& n : core::DisplayModel::builtInNames()) {
+            const auto d = core::DisplayModel::load(n);
+            std::printf("%-28s %-60s %d views of %dx%d\n", n.c_str(), d.name.c_str(), d.viewCount(), d.viewWidthPx(),
+                        d.viewHeightPx());
+        }
+        return 0;
+    }
+    const auto out = args.value("o") ? args.value("o") : args.value("output");
+    if (args.positional().size() != 1 || !out || !args.value("display"))
+        throw core::Error("usage: holovox-cli lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr] "
+                          "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--cpu]");
+    const auto display = core::DisplayModel::load(*args.value("display"));
+    const auto reader = core::OctreeReader::open(args.positional()[0]);
+    const auto& g = reader->geometry();
+    const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
+    const double eta = args.number("eta").value_or(1.0);
+    double az = 0, el = 0;
+    if (const auto v = args.value("view")) {
+        const auto t = parseTriple(*v + ",0", "--view AZ,EL");
+        az = t.x;
+        el = t.y;
+    }
+    int width = 0, height = 0;
+    if (const auto s = args.value("size")) {
+        const auto d = core::VoxelSourceFactory::parseDims(*s + "x1");
+        width = int(d[0]);
+        height = int(d[1]);
+    }
+    // The volume's centre on the screen centre, seen from azimuth/elevation like `render`.
+    const glm::dvec3 centre(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
+    const core::View orbit = core::View::orbit(centre, 1000.0, az, el, 8, 8);
+    const glm::dvec3 f = glm::normalize(orbit.target - orbit.eye);
+    const glm::dvec3 right = glm::normalize(glm::cross(f, orbit.up));
+    const glm::dvec3 up = glm::cross(right, f);
+    // Default scale: the volume's bounding sphere fills 90% of the screen's smaller side.
+    const double radius = glm::length(centre - corner);
+    const double scale = args.number("zoom").value_or(1.0) * 0.9 * std::min(display.screenWidthMm, display.screenHeightMm) / (2.0 * radius);
+    const auto views = display.views(centre, right, up, eta, width, height, scale);
+
+    core::RenderSettings settings;
+    const std::string mode = args.value("mode").value_or("dvr");
+    if (mode == "mip") settings.mode = core::RenderSettings::Mode::Mip;
+    else if (mode != "dvr") throw core::Error("--mode must be dvr or mip for light-field output");
+    const std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
+    const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
+                                                   space.minSpacing);
+    core::WorkingSetOptions opt;
+    opt.maxBricks = std::size_t(args.integer("budget", 8192, 1, 1 << 20));
+    opt.cpuMirror = args.flag("cpu");
+    opt.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
+    core::BrickCache cache(std::size_t(args.integer("cache-mb", 2048, 16, 1 << 20)) << 20);
+    core::BrickLoader loader(*reader, cache);
+    core::WorkingSet ws(*reader, cache, loader, opt);
+    render::LightFieldRenderer::Stats stats;
+    std::vector<core::RenderImage> images;
+    std::string device = "the CPU";
+    std::unique_ptr<render::EglOffscreenContext> context;
+    std::unique_ptr<render::GpuRayCaster> gpu;
+    if (!args.flag("cpu")) {
+        context = std::make_unique<render::EglOffscreenContext>();
+        gpu = std::make_unique<render::GpuRayCaster>();
+        device = "the GPU (" + context->info().renderer + ")";
+    }
+    images = render::LightFieldRenderer::render(*reader, ws, loader, tf, settings, views, display.accuracyFunction(scale),
+                                                gpu.get(), true, &stats);
+
+    const std::string format = args.value("format").value_or(
+        display.kind == core::DisplayModel::Kind::Lenticular ? "quilt"
+        : display.kind == core::DisplayModel::Kind::Stereo  ? "stereo"
+                                                            : "projectors");
+    std::string written;
+    if (format == "exr") {
+        std::vector<std::string> names;
+        for (std::size_t i = 0; i < images.size(); ++i) names.push_back("view" + std::to_string(i));
+        core::ImageWriter::writeExrParts(images, names, *out);
+        written = *out + " (" + std::to_string(images.size()) + " parts)";
+    } else if (format == "quilt") {
+        if (display.kind != core::DisplayModel::Kind::Lenticular) throw core::Error("--format quilt needs a lenticular display");
+        core::QuiltLayout q{display.quiltColumns, display.quiltRows, images.front().width, images.front().height, display.aspect};
+        const std::string path = q.fileName(*out);
+        core::ImageWriter::write(q.assemble(images), path);
+        std::ofstream meta(path.substr(0, path.size() - 4) + ".json");
+        meta << "{\"quilt\": {\"columns\": " << q.columns << ", \"rows\": " << q.rows << ", \"aspect\": " << q.aspect
+             << ", \"tileWidth\": " << q.tileWidth << ", \"tileHeight\": " << q.tileHeight << ", \"viewConeDegrees\": "
+             << display.viewConeDegrees << ", \"view0\": \"bottom-left, leftmost\"}, \"display\": \"" << display.name << "\"}\n";
+        written = path;
+    } else if (format == "stereo") {
+        if (display.kind != core::DisplayModel::Kind::Stereo) throw core::Error("--format stereo needs a stereo display");
+        core::ImageWriter::write(combineStereo(display, images[0], images[1]), *out);
+        written = *out;
+    } else if (format == "projectors") {
+        std::filesystem::create_directories(*out);
+        for (std::size_t i = 0; i < images.size(); ++i) {
+            char name[32];
+            std::snprintf(name, sizeof name, "view_%03zu.png", i);
+            core::ImageWriter::write(images[i], (std::filesystem::path(*out) / name).string());
+        }
+        written = *out + "/view_*.png (" + std::to_string(images.size()) + " images)";
+    } else {
+        throw core::Error("--format must be quilt, projectors, exr or stereo");
+    }
+    if (const auto sim = args.value("simulate")) {
+        const glm::dvec3 observer = args.value("observer") ? parseTriple(*args.value("observer"), "--observer")
+                                                           : glm::dvec3(0, display.observerHeightMm, display.observerDistanceMm);
+        core::ImageWriter::write(core::LightFieldSimulator::observe(display, images, observer), *sim);
+        written += ", simulated view " + *sim;
+    }
+    const double beams = double(images.size()) * images.front().width * images.front().height;
+    std::printf("%s: %zu views of %dx%d on %s, one cut of %zu bricks (%d frames, %.0f ms), ray casting %.0f ms "
+                "(%.1f views/s, %.2f Mbeams/s); wrote %s\n",
+                display.name.c_str(), images.size(), images.front().width, images.front().height, device.c_str(),
+                stats.cutNodes, stats.refineFrames, stats.refineMs, stats.renderMs,
+                double(images.size()) / (stats.renderMs / 1000.0), beams / 1e6 / (stats.renderMs / 1000.0), written.c_str());
+    return 0;
+}
+
+}  // namespace hvx::app

@@ -1,0 +1,33 @@
+#pragma once
+#include <vector>
+
+#include "core/BrickLoader.h"
+#include "core/CpuRayCaster.h"
+#include "core/DisplayModel.h"
+#include "core/WorkingSet.h"
+#include "render/GpuRayCaster.h"
+
+namespace hvx::render {
+
+/// Draws all views of a multi-view display frame from one working set: the cut is refined
+/// once for every view together with the display's accuracy function s(z) (DESIGN.md decision
+/// 4), then each view is ray cast from that same index and pool (a dispatch per view). With
+/// `gpu` null the CPU reference draws (the working set must keep its CPU mirror).
+///
+/// Threading: the GL thread when `gpu` is given.
+class LightFieldRenderer {
+public:
+    struct Stats {
+        std::size_t cutNodes = 0, loaded = 0;
+        int refineFrames = 0;
+        double refineMs = 0, renderMs = 0;
+    };
+    /// `converge`: load until the cut is final (synchronous mode) before drawing.
+    static std::vector<core::RenderImage> render(const core::OctreeReader& reader, core::WorkingSet& ws,
+                                                 core::BrickLoader& loader, const core::TransferFunction& tf,
+                                                 const core::RenderSettings& settings, const std::vector<core::View>& views,
+                                                 const core::AccuracyFunction& accuracy, GpuRayCaster* gpu,
+                                                 bool converge, Stats* stats = nullptr);
+};
+
+}  // namespace hvx::render

@@ -1,0 +1,169 @@
+// Display models: MCOP ray geometry (thesis Eq. 5.1), off-axis views, s(z), quilt layout and
+// naming, built-in profiles, and bad profiles or impossible sizes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+#include "core/DisplayModel.h"
+#include "core/Error.h"
+#include "core/QuiltLayout.h"
+
+using namespace hvx;
+
+namespace {
+core::View::ScreenRays displayFrame() {
+    core::View::ScreenRays s;
+    s.centre = {10, 20, 30};
+    s.right = {1, 0, 0};
+    s.up = {0, 0, 1};  // display z (towards the viewer) is then -y: anterior
+    s.widthMm = 400;
+    s.heightMm = 300;
+    s.viewer = {0, 50, 1000};
+    s.projector = {-120, 0, -700};
+    return s;
+}
+}  // namespace
+
+TEST(DisplayModel, McopRayOriginsFollowEquation51) {
+    auto s = displayFrame();
+    for (double eta : {1.0, 0.5}) {
+        s.eta = eta;
+        const auto v = core::View::screenView(s, 40, 30);
+        for (int x : {0, 17, 39})
+            for (int y : {0, 29}) {
+                glm::dvec3 o, d;
+                v.ray(x, y, o, d);
+                // By hand: S on the screen, O by Eq. 5.1 (display coordinates), then to patient space.
+                const glm::dvec3 S(((x + 0.5) / 40 - 0.5) * 400, (0.5 - (y + 0.5) / 30) * 300, 0);
+                const glm::dvec3 E = s.projector, V = s.viewer;
+                const double ox = (1 - eta) * V.x + eta * (E.x + (S.x - E.x) / (S.z - E.z) * (V.z - E.z));
+                const glm::dvec3 O(ox, V.y, V.z);
+                const glm::dvec3 want = s.centre + s.right * O.x + s.up * O.y + s.normal() * O.z;
+                EXPECT_NEAR(glm::length(o - want), 0.0, 1e-9) << "eta " << eta << " pixel " << x << "," << y;
+                // The ray passes through the screen point S.
+                const glm::dvec3 Sw = s.centre + s.right * S.x + s.up * S.y;
+                EXPECT_NEAR(glm::length(glm::cross(Sw - o, d)), 0.0, 1e-6);
+            }
+    }
+    // With eta = 1 the horizontal ray lies on the projector's beam E -> S, extended to the viewer line.
+    s.eta = 1.0;
+    const auto v = core::View::screenView(s, 40, 30);
+    glm::dvec3 o, d;
+    v.ray(5, 10, o, d);
+    const glm::dvec3 E = s.centre + s.right * s.projector.x + s.normal() * s.projector.z;
+    const glm::dvec3 beam = glm::normalize(glm::dvec3(glm::dot(o - E, s.right), 0, glm::dot(o - E, s.normal())));
+    const glm::dvec3 ray = glm::normalize(glm::dvec3(glm::dot(d, s.right), 0, glm::dot(d, s.normal())));
+    EXPECT_NEAR(std::abs(glm::dot(beam, ray)), 1.0, 1e-9);
+}
+
+TEST(DisplayModel, EtaZeroIsAPinholeAtTheViewer) {
+    auto s = displayFrame();
+    s.eta = 0.0;
+    const auto v = core::View::screenView(s, 40, 30);
+    const glm::dvec3 V = s.centre + s.right * s.viewer.x + s.up * s.viewer.y + s.normal() * s.viewer.z;
+    for (int x : {0, 20, 39})
+        for (int y : {0, 15, 29}) {
+            glm::dvec3 o, d;
+            v.ray(x, y, o, d);
+            EXPECT_NEAR(glm::length(o - V), 0.0, 1e-9) << "every ray starts at V";
+        }
+    // An on-axis viewer gives the plain pinhole of the same field of view.
+    s.viewer = {0, 0, 1000};
+    const auto c = core::View::screenView(s, 40, 30);
+    core::View p = c;
+    p.model = core::View::Model::Pinhole;
+    p.fovYDegrees = glm::degrees(2 * std::atan(150.0 / 1000.0));
+    for (int x : {0, 20, 39}) {
+        glm::dvec3 o1, d1, o2, d2;
+        c.ray(x, 7, o1, d1);
+        p.ray(x, 7, o2, d2);
+        EXPECT_NEAR(glm::length(d1 - d2), 0.0, 1e-9);
+    }
+}
+
+TEST(DisplayModel, BuiltInProfilesMatchTheThesisDisplays) {
+    const auto small = core::DisplayModel::load("holovizio-96");
+    EXPECT_EQ(small.viewCount(), 96);
+    EXPECT_EQ(small.viewWidthPx(), 320);
+    EXPECT_DOUBLE_EQ(small.pixelSizeMm, 1.25);
+    EXPECT_DOUBLE_EQ(small.beamAngleDegrees, 0.8);
+    const auto large = core::DisplayModel::load("holovizio-72");
+    EXPECT_EQ(large.viewCount(), 72);
+    EXPECT_EQ(large.viewWidthPx() * large.viewHeightPx() * large.viewCount(), 800 * 600 * 72);  // 35 megapixels
+    EXPECT_DOUBLE_EQ(large.screenWidthMm, 1600);
+    EXPECT_DOUBLE_EQ(large.fieldOfViewDegrees, 50);
+    // s(z) = s0 + 2|z| tan(phi/2)
+    EXPECT_DOUBLE_EQ(large.accuracy(0), 1.5);
+    EXPECT_NEAR(large.accuracy(-200), 1.5 + 400 * std::tan(glm::radians(0.4)), 1e-12);
+    EXPECT_EQ(large.accuracy(200), large.accuracy(-200));
+    for (const auto& name : {"looking-glass-go", "looking-glass-portrait", "looking-glass-16", "looking-glass-32",
+                             "looking-glass-65", "stereo-side-by-side", "stereo-anaglyph", "stereo-column-interleave"})
+        EXPECT_NO_THROW(core::DisplayModel::load(name)) << name;
+    // Projectors span the field of view, symmetric about the screen centre.
+    EXPECT_NEAR(large.projectorPosition(0).x, -large.projectorPosition(71).x, 1e-9);
+    EXPECT_LT(large.projectorPosition(0).z, 0.0);
+}
+
+TEST(DisplayModel, QuiltViewsAreShiftedLeftToRightAndTilesStartBottomLeft) {
+    const auto lg = core::DisplayModel::load("looking-glass-portrait");
+    const auto views = lg.views({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 1.0, 42, 56);
+    ASSERT_EQ(views.size(), 48u);
+    for (std::size_t i = 1; i < views.size(); ++i) {
+        EXPECT_GT(views[i].screen.viewer.x, views[i - 1].screen.viewer.x) << "view 0 is the leftmost";
+        EXPECT_EQ(views[i].screen.centre, views[0].screen.centre) << "shifted frustums share the screen, never toed in";
+    }
+    core::QuiltLayout q{8, 6, 4, 3, 0.75};
+    std::vector<core::RenderImage> tiles;
+    for (int i = 0; i < 48; ++i) {
+        core::RenderImage t;
+        t.width = 4;
+        t.height = 3;
+        t.rgba.assign(12, glm::vec4(float(i) / 47.0f, 0, 0, 1));
+        t.depth.assign(12, float(i));
+        tiles.push_back(t);
+    }
+    const auto quilt = q.assemble(tiles);
+    ASSERT_EQ(quilt.width, 32);
+    ASSERT_EQ(quilt.height, 18);
+    auto viewAt = [&](int x, int y) { return int(std::lround(quilt.depth[std::size_t(y) * 32 + std::size_t(x)])); };
+    EXPECT_EQ(viewAt(0, 17), 0) << "view 0: bottom-left tile";
+    EXPECT_EQ(viewAt(31, 17), 7) << "first row runs left to right";
+    EXPECT_EQ(viewAt(0, 14), 8) << "then the row above";
+    EXPECT_EQ(viewAt(31, 0), 47) << "last view: top-right";
+    EXPECT_EQ(q.fileName("/tmp/brain.png"), "/tmp/brain_qs8x6a0.75.png");
+    EXPECT_EQ((core::QuiltLayout{5, 9, 1, 1, 1.7778}.fileName("x")), "x_qs5x9a1.7778.png");
+    tiles.pop_back();
+    EXPECT_THROW(q.assemble(tiles), core::Error);
+}
+
+TEST(DisplayModel, BadProfilesAndImpossibleSizesGiveClearErrors) {
+    auto expectError = [](const std::string& json, const std::string& words) {
+        try {
+            core::DisplayModel::parse(json, "test.json");
+            ADD_FAILURE() << "accepted: " << json;
+        } catch (const core::Error& e) {
+            EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("test.json"), std::string::npos) << e.what();
+        }
+    };
+    expectError("{", "not valid JSON");
+    expectError("[1,2]", "JSON object");
+    expectError(R"({"kind":"hologram","screenSizeMm":[1,1]})", "kind must be");
+    expectError(R"({"kind":"projector-array","screenSizeMm":[500,300]})", "projectors is missing");
+    expectError(R"({"kind":"projector-array","screenSizeMm":[500,300],"projectors":0,"projectorResolution":[320,240],
+                   "pixelSizeMm":1,"beamAngleDegrees":1,"fieldOfViewDegrees":50,"projectorDistanceMm":700})",
+                "projectors must be between");
+    expectError(R"({"kind":"projector-array","screenSizeMm":[500],"projectors":4})", "screenSizeMm must be a pair");
+    expectError(R"({"kind":"lenticular","screenSizeMm":[100,100],"quilt":[8,6],"quiltSize":[4,4],"aspect":1,"viewConeDegrees":40})",
+                "too small");
+    expectError(R"({"kind":"stereo","screenSizeMm":[100,100],"layout":"wiggle","viewSize":[10,10],"eyeSeparationMm":63})",
+                "layout must be");
+    EXPECT_THROW(core::DisplayModel::load("no-such-display"), core::Error);
+    const auto d = core::DisplayModel::load("holovizio-72");
+    EXPECT_THROW(d.views({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 1.5), core::Error) << "eta outside [0, 1]";
+    EXPECT_THROW(d.views({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 1.0, 100000, 100000), core::Error) << "impossible size";
+    EXPECT_THROW(d.views({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 1.0, 0, 0, -1.0), core::Error) << "negative scale";
+}
