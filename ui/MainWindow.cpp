@@ -27,6 +27,7 @@
 #include "dicom/StudyDatabase.h"
 #include "ui/JobManager.h"
 #include "ui/JobsPanel.h"
+#include "ui/LightFieldPanel.h"
 #include "ui/PacsPanel.h"
 #include "ui/RenderControls.h"
 #include "ui/SliceView.h"
@@ -78,7 +79,8 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     auto* probes = addDock(tr("Probes"), "probesDock", placeholder(tr("Focal and context-preserving probes")), Qt::RightDockWidgetArea);
     auto* clip = addDock(tr("Clip plane"), "clipDock", placeholder(tr("View-dependent clip plane")), Qt::RightDockWidgetArea);
     auto* band = addDock(tr("Band picker"), "bandDock", placeholder(tr("Band picker and importance")), Qt::RightDockWidgetArea);
-    auto* lf = addDock(tr("Light field"), "lightFieldDock", placeholder(tr("Light-field display output")), Qt::RightDockWidgetArea);
+    lightField_ = new LightFieldPanel(*view_);
+    auto* lf = addDock(tr("Light field"), "lightFieldDock", lightField_, Qt::RightDockWidgetArea);
     tabifyDockWidget(renderDock, probes);
     tabifyDockWidget(probes, clip);
     tabifyDockWidget(clip, band);

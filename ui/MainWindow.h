@@ -12,6 +12,7 @@ namespace hvx::ui {
 
 class JobManager;
 class JobsPanel;
+class LightFieldPanel;
 class PacsPanel;
 class RenderControls;
 class SliceView;
@@ -47,6 +48,7 @@ public:
     JobsPanel* jobsPanel() const { return jobsPanel_; }
     TransferFunctionEditor* tfEditor() const { return tfEditor_; }
     RenderControls* renderControls() const { return controls_; }
+    LightFieldPanel* lightField() const { return lightField_; }
     SliceView* slice(int i) const { return slices_[i]; }
     const QString& openLabel() const { return openLabel_; }
     /// The last error shown in the status bar.
@@ -72,6 +74,7 @@ private:
     JobsPanel* jobsPanel_;
     TransferFunctionEditor* tfEditor_;
     RenderControls* controls_;
+    LightFieldPanel* lightField_;
     SliceView* slices_[3];
     QLabel* readouts_;
     std::shared_ptr<const core::OctreeReader> reader_;

@@ -23,6 +23,7 @@
 #include "core/OctreeSpace.h"
 #include "core/WorkingSet.h"
 #include "render/GpuRayCaster.h"
+#include "render/LightFieldRenderer.h"
 
 namespace hvx::ui {
 
@@ -292,6 +293,36 @@ void VolumeView::capture(const QString& path, int width, int height) {
         throw;
     }
     update();
+}
+
+std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel& display, double eta, double zoom,
+                                                       double maxBeams) {
+    if (!scene_ || !tf_ || !gpu_) throw core::Error("open a volume first");
+    const auto& s = scene_->space;
+    const glm::dvec3 centre(s.octreeToPatient * glm::dvec4(s.extent * 0.5, 1.0));
+    const glm::dvec3 corner(s.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
+    const double scale = zoom * 0.9 * std::min(display.screenWidthMm, display.screenHeightMm) / (2.0 * glm::length(centre - corner));
+    const double beams = double(display.viewCount()) * display.viewWidthPx() * display.viewHeightPx();
+    const double shrink = beams > maxBeams ? std::sqrt(maxBeams / beams) : 1.0;
+    const auto views = display.views(camera_.target(), camera_.right(), camera_.up(), eta,
+                                     std::max(1, int(display.viewWidthPx() * shrink)),
+                                     std::max(1, int(display.viewHeightPx() * shrink)), scale);
+    makeCurrent();
+    try {
+        core::WorkingSetOptions options = scene_->ws.options();
+        options.cpuMirror = false;
+        core::WorkingSet ws(*scene_->reader, scene_->cache, scene_->loader, options);
+        auto images = render::LightFieldRenderer::render(*scene_->reader, ws, scene_->loader, *tf_, settings_, views,
+                                                         display.accuracyFunction(scale), gpu_.get(), true);
+        glUseProgram(0);
+        glBindTextureUnit(0, 0);
+        doneCurrent();
+        update();
+        return images;
+    } catch (...) {
+        doneCurrent();
+        throw;
+    }
 }
 
 void VolumeView::interacted() {

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/CpuRayCaster.h"
+#include "core/DisplayModel.h"
 #include "core/InteractiveQuality.h"
 #include "core/OctreeReader.h"
 #include "core/OrbitCamera.h"
@@ -55,6 +56,12 @@ public:
     /// Renders the current view at full quality at width x height and writes a PNG or EXR.
     /// Throws core::Error naming the file on failure.
     void capture(const QString& path, int width, int height);
+    /// Renders every view of a multi-view display from one working set with the display's
+    /// accuracy s(z), the screen centred on the camera's target and facing the camera; `zoom`
+    /// scales the volume's default fit. Views are shrunk so the frame holds at most `maxBeams`
+    /// rays. Throws core::Error when no volume is open.
+    std::vector<core::RenderImage> renderViews(const core::DisplayModel& display, double eta, double zoom,
+                                               double maxBeams = 8e6);
     /// The last image shown (the ray-cast frame, without overlays), at the widget's size.
     QImage lastFrame() const { return frame_; }
     int frameCount() const { return frames_; }

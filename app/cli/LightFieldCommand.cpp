@@ -16,7 +16,9 @@
 #include "core/ImageWriter.h"
 #include "core/LightFieldSimulator.h"
 #include "core/OctreeReader.h"
+#include "core/DviPacker.h"
 #include "core/QuiltLayout.h"
+#include "core/StereoComposer.h"
 #include "core/VoxelSourceFactory.h"
 #include "core/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
@@ -34,36 +36,6 @@ glm::dvec3 parseTriple(const std::string& text, const char* what) {
     return v;
 }
 
-// Stereo layouts of two views: side by side, red-cyan anaglyph, or columns interleaved.
-core::RenderImage combineStereo(const core::DisplayModel& d, const core::RenderImage& l, const core::RenderImage& r) {
-    core::RenderImage out;
-    const bool sbs = d.layout == core::DisplayModel::StereoLayout::SideBySide;
-    out.width = sbs ? 2 * l.width : l.width;
-    out.height = l.height;
-    out.rgba.assign(std::size_t(out.width) * std::size_t(out.height), glm::vec4(0.0f));
-    out.depth.assign(out.rgba.size(), INFINITY);
-    for (int y = 0; y < l.height; ++y)
-        for (int x = 0; x < out.width; ++x) {
-            const std::size_t o = std::size_t(y) * std::size_t(out.width) + std::size_t(x);
-            if (sbs) {
-                const auto& src = x < l.width ? l : r;
-                const std::size_t i = std::size_t(y) * std::size_t(l.width) + std::size_t(x % l.width);
-                out.rgba[o] = src.rgba[i];
-                out.depth[o] = src.depth[i];
-            } else if (d.layout == core::DisplayModel::StereoLayout::Anaglyph) {
-                const std::size_t i = std::size_t(y) * std::size_t(l.width) + std::size_t(x);
-                const float lg = 0.299f * l.rgba[i].r + 0.587f * l.rgba[i].g + 0.114f * l.rgba[i].b;
-                out.rgba[o] = glm::vec4(lg, r.rgba[i].g, r.rgba[i].b, std::max(l.rgba[i].a, r.rgba[i].a));
-                out.depth[o] = std::min(l.depth[i], r.depth[i]);
-            } else {  // even columns: left eye
-                const auto& src = x % 2 == 0 ? l : r;
-                const std::size_t i = std::size_t(y) * std::size_t(l.width) + std::size_t(x);
-                out.rgba[o] = src.rgba[i];
-                out.depth[o] = src.depth[i];
-            }
-        }
-    return out;
-}
 }  // namespace
 
 int lightFieldCommand(int argc, char** argv) {
@@ -81,7 +53,7 @@ int lightFieldCommand(int argc, char** argv) {
     }
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out || !args.value("display"))
-        throw core::Error("usage: holovox-cli lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr] "
+        throw core::Error("usage: holovox-cli lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] "
                           "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--cpu]");
     const auto display = core::DisplayModel::load(*args.value("display"));
     const auto reader = core::OctreeReader::open(args.positional()[0]);
@@ -161,18 +133,27 @@ int lightFieldCommand(int argc, char** argv) {
         written = path;
     } else if (format == "stereo") {
         if (display.kind != core::DisplayModel::Kind::Stereo) throw core::Error("--format stereo needs a stereo display");
-        core::ImageWriter::write(combineStereo(display, images[0], images[1]), *out);
+        core::ImageWriter::write(core::StereoComposer::compose(display.layout, images[0], images[1]), *out);
         written = *out;
     } else if (format == "projectors") {
         std::filesystem::create_directories(*out);
         for (std::size_t i = 0; i < images.size(); ++i) {
-            char name[32];
+            char name[48];
             std::snprintf(name, sizeof name, "view_%03zu.png", i);
             core::ImageWriter::write(images[i], (std::filesystem::path(*out) / name).string());
         }
         written = *out + "/view_*.png (" + std::to_string(images.size()) + " images)";
+    } else if (format == "dvi") {
+        const auto frames = core::DviPacker::pack(images);
+        std::filesystem::create_directories(*out);
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            char name[48];
+            std::snprintf(name, sizeof name, "dvi_frame_%02zu.png", i);
+            core::ImageWriter::write(frames[i], (std::filesystem::path(*out) / name).string());
+        }
+        written = *out + "/dvi_frame_*.png (" + std::to_string(frames.size()) + " frames of 1280x1024)";
     } else {
-        throw core::Error("--format must be quilt, projectors, exr or stereo");
+        throw core::Error("--format must be quilt, projectors, exr, stereo or dvi");
     }
     if (const auto sim = args.value("simulate")) {
         const glm::dvec3 observer = args.value("observer") ? parseTriple(*args.value("observer"), "--observer")

@@ -9,6 +9,7 @@
 #include <QElapsedTimer>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QSlider>
 #include <QSignalSpy>
 #include <QSurfaceFormat>
 #include <QTest>
@@ -24,6 +25,8 @@
 #include "tests/support/TempDir.h"
 #include "ui/JobManager.h"
 #include "ui/JobsPanel.h"
+#include "ui/LightFieldPanel.h"
+#include "ui/LightFieldWindow.h"
 #include "ui/MainWindow.h"
 #include "ui/PacsPanel.h"
 #include "ui/RenderControls.h"
@@ -198,6 +201,27 @@ private slots:
         QFile::remove(kArtifacts + "/capture-800x600.png");
         QFile::copy(png, kArtifacts + "/capture-800x600.png");
         saveArtifact("main-window.png");
+    }
+
+    void lightFieldDockRendersPreviewsAndDrivesTheOutputWindow() {
+        auto* lf = window_->lightField();
+        lf->profiles()->setCurrentText("holovizio-96");
+        QVERIFY(lf->renderFrame());
+        QCOMPARE(lf->frame().size(), QSize(16 * 320, 6 * 240));  // 96 projector images
+        QVERIFY(coverage(lf->preview()) > 0.02);
+        const QImage centre = lf->preview();
+        auto sliders = lf->findChildren<QSlider*>();
+        QVERIFY(sliders.size() >= 2);
+        sliders.last()->setValue(-80);  // the observer walks to the left
+        QVERIFY2(difference(centre, lf->preview()) > 0.5, "another observer sees another view");
+        lf->profiles()->setCurrentText("looking-glass-portrait");
+        QVERIFY(lf->renderFrame());
+        QVERIFY(coverage(lf->frame()) > 0.01);
+        lf->frame().save(kArtifacts + "/quilt_qs8x6a0.75.png");
+        lf->openOutputWindow();
+        QTRY_VERIFY(lf->outputWindow()->isVisible());
+        QCOMPARE(lf->outputWindow()->frame().size(), lf->frame().size());
+        lf->outputWindow()->close();
     }
 
     void jobsPanelCancelsARunningBuild() {

@@ -167,3 +167,55 @@ TEST(DisplayModel, BadProfilesAndImpossibleSizesGiveClearErrors) {
     EXPECT_THROW(d.views({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 1.0, 100000, 100000), core::Error) << "impossible size";
     EXPECT_THROW(d.views({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 1.0, 0, 0, -1.0), core::Error) << "negative scale";
 }
+
+#include "core/DviPacker.h"
+#include "core/StereoComposer.h"
+
+namespace {
+core::RenderImage flat(int w, int h, glm::vec4 c) {
+    core::RenderImage im;
+    im.width = w;
+    im.height = h;
+    im.rgba.assign(std::size_t(w) * std::size_t(h), c);
+    im.depth.assign(im.rgba.size(), 1.0f);
+    return im;
+}
+}  // namespace
+
+TEST(DisplayModel, StereoLayoutsPutEachEyeWhereTheDisplayExpectsIt) {
+    const auto left = flat(4, 2, {1, 0, 0, 1}), right = flat(4, 2, {0, 0, 1, 1});
+    using L = core::DisplayModel::StereoLayout;
+    const auto sbs = core::StereoComposer::compose(L::SideBySide, left, right);
+    EXPECT_EQ(sbs.width, 8);
+    EXPECT_EQ(sbs.rgba[0], left.rgba[0]);
+    EXPECT_EQ(sbs.rgba[7], right.rgba[0]);
+    const auto cols = core::StereoComposer::compose(L::ColumnInterleave, left, right);
+    EXPECT_EQ(cols.rgba[0], left.rgba[0]) << "even columns: left eye";
+    EXPECT_EQ(cols.rgba[1], right.rgba[0]);
+    const auto ana = core::StereoComposer::compose(L::Anaglyph, flat(4, 2, {1, 1, 1, 1}), flat(4, 2, {0, 0.5f, 0.25f, 1}));
+    EXPECT_NEAR(ana.rgba[0].r, 1.0f, 1e-6) << "red: the left eye's luminance";
+    EXPECT_EQ(ana.rgba[0].g, 0.5f);
+    EXPECT_EQ(ana.rgba[0].b, 0.25f);
+    EXPECT_THROW(core::StereoComposer::compose(L::SideBySide, left, flat(3, 2, {})), core::Error);
+    // The stereo views are the two eyes, 63 mm apart, left first.
+    const auto pair = core::DisplayModel::load("stereo-side-by-side").views({0, 0, 0}, {1, 0, 0}, {0, 0, 1});
+    ASSERT_EQ(pair.size(), 2u);
+    EXPECT_NEAR(pair[1].screen.viewer.x - pair[0].screen.viewer.x, 63.0, 1e-9);
+}
+
+TEST(DisplayModel, DviLayoutPacksSixteenProjectorsPerFrameWithTheirIdsInTheHeader) {
+    std::vector<core::RenderImage> projectors;
+    for (int i = 0; i < 20; ++i) projectors.push_back(flat(320, 240, {float(i) / 20.0f, 0.5f, 0.25f, 1}));
+    const auto frames = core::DviPacker::pack(projectors);
+    ASSERT_EQ(frames.size(), 2u);
+    EXPECT_EQ(frames[0].width, 1280);
+    EXPECT_EQ(frames[0].height, 1024);
+    EXPECT_EQ(core::DviPacker::decodeId(frames[0], 0), 0);
+    EXPECT_EQ(core::DviPacker::decodeId(frames[0], 15), 15);
+    EXPECT_EQ(core::DviPacker::decodeId(frames[1], 3), 19);
+    EXPECT_EQ(core::DviPacker::decodeId(frames[1], 4), -1) << "unused block";
+    // Tile 5 of frame 0 (row 1, column 1) holds projector 5.
+    EXPECT_EQ(frames[0].rgba[std::size_t(64 + 240 + 10) * 1280 + 320 + 10], projectors[5].rgba[0]);
+    projectors.push_back(flat(100, 100, {}));
+    EXPECT_THROW(core::DviPacker::pack(projectors), core::Error);
+}

@@ -1,0 +1,156 @@
+#include "ui/LightFieldPanel.h"
+
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QGuiApplication>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QPainter>
+#include <QPushButton>
+#include <QScreen>
+#include <QSlider>
+#include <QVBoxLayout>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/trigonometric.hpp>
+
+#include "core/Error.h"
+#include "core/LightFieldSimulator.h"
+#include "core/QuiltLayout.h"
+#include "core/StereoComposer.h"
+#include "ui/LightFieldWindow.h"
+#include "ui/VolumeView.h"
+
+namespace hvx::ui {
+
+namespace {
+QImage toQImage(const core::RenderImage& img) {
+    QImage out(img.width, img.height, QImage::Format_RGB32);
+    for (int y = 0; y < img.height; ++y) {
+        auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
+        for (int x = 0; x < img.width; ++x) {
+            const auto& p = img.rgba[std::size_t(y) * std::size_t(img.width) + std::size_t(x)];
+            auto c = [](float v) {
+                const double l = std::clamp(double(v), 0.0, 1.0);
+                return int(std::lround(255.0 * (l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1 / 2.4) - 0.055)));
+            };
+            row[x] = qRgb(c(p.r), c(p.g), c(p.b));
+        }
+    }
+    return out;
+}
+}  // namespace
+
+LightFieldPanel::LightFieldPanel(VolumeView& view, QWidget* parent)
+    : QWidget(parent), view_(view), profiles_(new QComboBox(this)), eta_(new QSlider(Qt::Horizontal, this)),
+      zoom_(new QDoubleSpinBox(this)), observer_(new QSlider(Qt::Horizontal, this)), screens_(new QComboBox(this)),
+      depth_(new QLabel(this)), previewLabel_(new QLabel(this)), status_(new QLabel(this)) {
+    profiles_->setObjectName("lightFieldProfile");
+    for (const auto& n : core::DisplayModel::builtInNames()) profiles_->addItem(QString::fromStdString(n));
+    profiles_->setCurrentText("holovizio-96");
+    eta_->setRange(0, 100);
+    eta_->setValue(100);
+    eta_->setToolTip(tr("MCOP blend: 0 = one perspective, 1 = full horizontal parallax (thesis Eq. 5.1)"));
+    zoom_->setRange(0.1, 10.0);
+    zoom_->setValue(1.0);
+    zoom_->setSingleStep(0.1);
+    zoom_->setToolTip(tr("Scale of the volume on the display (1 fits it to the screen)"));
+    observer_->setRange(-100, 100);
+    observer_->setValue(0);
+    observer_->setToolTip(tr("Preview: the observer's horizontal position across the display's field of view"));
+    for (auto* s : QGuiApplication::screens()) screens_->addItem(s->name());
+    previewLabel_->setMinimumSize(200, 150);
+    previewLabel_->setAlignment(Qt::AlignCenter);
+    previewLabel_->setStyleSheet("background: black");
+    status_->setWordWrap(true);
+    auto* render = new QPushButton(tr("Render frame"), this);
+    render->setObjectName("lightFieldRender");
+    auto* output = new QPushButton(tr("Output window"), this);
+    output->setToolTip(tr("Show the frame full screen on the chosen screen (the display's input)"));
+    auto* form = new QFormLayout;
+    form->addRow(tr("Display"), profiles_);
+    form->addRow(tr("\u03b7"), eta_);
+    form->addRow(tr("Scale"), zoom_);
+    form->addRow(tr("Depth range"), depth_);
+    form->addRow(tr("Observer"), observer_);
+    form->addRow(tr("Screen"), screens_);
+    auto* buttons = new QHBoxLayout;
+    buttons->addWidget(render);
+    buttons->addWidget(output);
+    auto* layout = new QVBoxLayout(this);
+    layout->setContentsMargins(4, 4, 4, 4);
+    layout->addLayout(form);
+    layout->addLayout(buttons);
+    layout->addWidget(previewLabel_, 1);
+    layout->addWidget(status_);
+    connect(render, &QPushButton::clicked, this, &LightFieldPanel::renderFrame);
+    connect(output, &QPushButton::clicked, this, &LightFieldPanel::openOutputWindow);
+    connect(observer_, &QSlider::valueChanged, this, &LightFieldPanel::updatePreview);
+    connect(profiles_, &QComboBox::currentTextChanged, this, &LightFieldPanel::updateDepthRange);
+    updateDepthRange();
+}
+
+LightFieldPanel::~LightFieldPanel() = default;
+
+void LightFieldPanel::updateDepthRange() {
+    try {
+        const auto d = core::DisplayModel::load(profiles_->currentText().toStdString());
+        // Where the display keeps at least half its on-screen resolution: s(z) <= 2 s(0).
+        const double s0 = d.accuracy(0.0);
+        const double z = s0 / (d.accuracy(1.0) - s0);
+        depth_->setText(tr("\u00b1%1 mm (s(z) \u2264 2\u00b7%2 mm)").arg(z, 0, 'f', 0).arg(s0, 0, 'f', 2));
+    } catch (const core::Error& e) {
+        depth_->setText(QString::fromStdString(e.what()));
+    }
+}
+
+bool LightFieldPanel::renderFrame() {
+    try {
+        display_ = core::DisplayModel::load(profiles_->currentText().toStdString());
+        views_ = view_.renderViews(display_, eta_->value() / 100.0, zoom_->value());
+        const auto& v = views_.front();
+        if (display_.kind == core::DisplayModel::Kind::Lenticular) {
+            core::QuiltLayout q{display_.quiltColumns, display_.quiltRows, v.width, v.height, display_.aspect};
+            frame_ = toQImage(q.assemble(views_));
+        } else if (display_.kind == core::DisplayModel::Kind::Stereo) {
+            frame_ = toQImage(core::StereoComposer::compose(display_.layout, views_[0], views_[1]));
+        } else {  // projector images side by side in rows of 16
+            const int cols = std::min<int>(16, int(views_.size())), rows = (int(views_.size()) + cols - 1) / cols;
+            frame_ = QImage(cols * v.width, rows * v.height, QImage::Format_RGB32);
+            frame_.fill(Qt::black);
+            QPainter p(&frame_);
+            for (int i = 0; i < int(views_.size()); ++i) p.drawImage((i % cols) * v.width, (i / cols) * v.height, toQImage(views_[std::size_t(i)]));
+        }
+        status_->setText(tr("%1: %2 views of %3x%4").arg(QString::fromStdString(display_.name)).arg(views_.size()).arg(v.width).arg(v.height));
+        updatePreview();
+        if (window_ && window_->isVisible()) window_->setFrame(frame_);
+        return true;
+    } catch (const core::Error& e) {
+        status_->setText(QString::fromStdString(e.what()));
+        return false;
+    }
+}
+
+void LightFieldPanel::updatePreview() {
+    if (views_.empty()) return;
+    if (display_.kind == core::DisplayModel::Kind::ProjectorArray) {
+        // What an observer at the virtual viewer's height and distance sees, moved sideways.
+        const double half = display_.observerDistanceMm * std::tan(glm::radians(display_.fieldOfViewDegrees) / 2.0);
+        const glm::dvec3 observer(half * observer_->value() / 100.0, display_.observerHeightMm, display_.observerDistanceMm);
+        preview_ = toQImage(core::LightFieldSimulator::observe(display_, views_, observer));
+    } else {
+        preview_ = frame_;
+    }
+    previewLabel_->setPixmap(QPixmap::fromImage(preview_).scaled(previewLabel_->size(), Qt::KeepAspectRatio, Qt::SmoothTransformation));
+}
+
+void LightFieldPanel::openOutputWindow() {
+    if (!window_) window_ = std::make_unique<LightFieldWindow>();
+    window_->setFrame(frame_);
+    window_->showOnScreen(screens_->currentIndex());
+}
+
+}  // namespace hvx::ui
