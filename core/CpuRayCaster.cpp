@@ -18,6 +18,8 @@ CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index
     : reader_(reader), index_(index), slots_(slots), tf_(tf), settings_(settings),
       space_(OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount())) {
     normalToWorld_ = glm::transpose(glm::inverse(glm::dmat3(space_.octreeToPatient)));
+    settings_.tools.validate();
+    packedTools = packTools(settings_.tools, {settings_.ambient, settings_.diffuse, settings_.specular, settings_.shininess});
 }
 
 template <class Visitor>
@@ -88,9 +90,9 @@ float CpuRayCaster::sample(std::uint32_t node, const glm::vec3& leafLo, const gl
     return (c00 * (1 - f.y) + c10 * f.y) * (1 - f.z) + (c01 * (1 - f.y) + c11 * f.y) * f.z;
 }
 
-glm::vec3 CpuRayCaster::gradient(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p) const {
+glm::vec3 CpuRayCaster::gradient(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p, float spread) const {
     const std::uint32_t depth = index_.nodes[node].y & 0xFFu;
-    const float h = 1.0f / (float(reader_.brickSize()) * float(1u << depth));
+    const float h = spread / (float(reader_.brickSize()) * float(1u << depth));
     return glm::vec3(sample(node, leafLo, p + glm::vec3(h, 0, 0)) - sample(node, leafLo, p - glm::vec3(h, 0, 0)),
                      sample(node, leafLo, p + glm::vec3(0, h, 0)) - sample(node, leafLo, p - glm::vec3(0, h, 0)),
                      sample(node, leafLo, p + glm::vec3(0, 0, h)) - sample(node, leafLo, p - glm::vec3(0, 0, h))) /
@@ -129,6 +131,14 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         return base * (settings_.ambient + settings_.diffuse * facing) +
                glm::dvec3(settings_.specular * std::pow(facing, settings_.shininess));
     };
+    // Tools: per-ray state (focal probe cone, entry) and the MImDA accumulator.
+    const int toolBits = settings_.mode == RenderSettings::Mode::Dvr ? settings_.tools.variantBits() : 0;
+    const float strengthPerGradientF = float(strengthPerGradient);
+    const float gamma = packedTools.bandAxis.w;
+    const float hTheta = (toolBits & HVX_FOCAL_BIT) ? glsl::hvxFocalAngle(packedTools, glm::vec3(ow), glm::vec3(dw)) : 1.0f;
+    bool enteredProbe = false;
+    glm::vec4 accum(0.0f);
+    float importanceMax = 0.0f;
     float tStart = -1.0f;
     walk(ow, dw, [&](std::uint32_t n, const glm::vec3& lo, float tIn, float tOut) {
         if (tStart < 0.0f) tStart = tIn;
@@ -161,7 +171,50 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                     const glm::dvec4 f = tf_.segment(sPrev, s);
                     const double seg = t - tPrev;
                     double a = 1.0 - std::exp(-f.w * seg);
-                    if (a > 1e-6) {
+                    if (a > 1e-6 && toolBits) {
+                        // Enhancers (core/shared/Enhancers.glsl), then shading and MImDA
+                        // compositing, in the shader's order and precision.
+                        const glm::vec3 gOct = gradient(n, leafLo, p);
+                        const glm::vec3 g = glm::vec3(normalToWorld_ * glm::dvec3(gOct));
+                        glsl::HvxSample x;
+                        x.p = glm::vec3(ow + double(t) * dw);
+                        x.v = glm::vec3(dw);
+                        x.g = g;
+                        x.gn = std::min(1.0f, glm::length(g) * strengthPerGradientF);
+                        x.s = s;
+                        x.c = glm::vec3(glm::dvec3(f) / f.w);
+                        x.a = float(a);
+                        x.lit = 1.0f;
+                        x.importance = 1.0f - std::exp(-float(f.w) * float(tf_.referenceLength()));
+                        const glm::vec3 gSmooth = (toolBits & HVX_FOCAL_BIT)
+                                                      ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(n, leafLo, p, 2.0f)))
+                                                      : g;
+                        bool enteredNow = enteredProbe;
+                        glsl::hvxEnhance(x, packedTools, toolBits, gSmooth, hTheta, enteredNow);
+                        if (enteredNow && !enteredProbe) {  // clip what lies in front of the focal probe
+                            accum = glm::vec4(0.0f);
+                            importanceMax = 0.0f;
+                            enteredProbe = true;
+                        }
+                        glm::vec3 colour = x.c;
+                        if (x.lit >= 0.0f) {
+                            const float gl2 = glm::dot(x.g, x.g);
+                            const float ndl = gl2 > 0.0f ? std::abs(glm::dot(x.g, -x.v)) / std::sqrt(gl2) : 1.0f;
+                            const glm::vec3 phong = settings_.shading
+                                                        ? x.c * float(settings_.ambient + settings_.diffuse * ndl) +
+                                                              glm::vec3(float(settings_.specular) *
+                                                                        std::pow(ndl, float(settings_.shininess)))
+                                                        : x.c;
+                            colour = glm::mix(x.c * float(settings_.ambient + kEmphasisEmission), phong, x.lit);
+                        }
+                        glsl::hvxMimda(accum, importanceMax, colour * x.a, x.a, x.importance, gamma);
+                        if (!hit && accum.w > 0.02f) {
+                            hit = true;
+                            depth = t;
+                        }
+                        if (glsl::hvxMimdaFutureDelta(accum.w, importanceMax, gamma) < 1.0f - float(settings_.earlyTermination))
+                            return false;
+                    } else if (a > 1e-6) {
                         const glm::dvec3 c = shade(n, p, glm::dvec3(f) / f.w, a);
                         color += (1.0 - alpha) * a * c;
                         alpha += (1.0 - alpha) * a;
@@ -218,6 +271,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         const float g = float(std::clamp((v - tf_.valueMin()) / (tf_.valueMax() - tf_.valueMin()), 0.0, 1.0));
         return glm::vec4(g, g, g, 1.0f);
     }
+    if (toolBits) return accum;
     return glm::vec4(glm::vec3(color), float(alpha));
 }
 

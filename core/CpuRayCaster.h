@@ -5,7 +5,9 @@
 
 #include <glm/vec4.hpp>
 
+#include "core/Enhancers.h"
 #include "core/OctreeReader.h"
+#include "core/ToolSet.h"
 #include "core/OctreeSpace.h"
 #include "core/SpatialIndex.h"
 #include "core/TransferFunction.h"
@@ -29,7 +31,11 @@ struct RenderSettings {
     double earlyTermination = 0.99;
     double stepScale = 1.0;          ///< step = stepScale × the local voxel size
     bool countRays = false;          ///< fill RenderImage::rayCounts (visibility feedback)
+    ToolSet tools;                   ///< illustrative tools (DVR only)
 };
+
+/// Emission added to ambient light where a tool emphasises tissue (the clip plane's slab).
+constexpr double kEmphasisEmission = 0.5;
 
 /// |∇f|^ above: the gradient's strength in [0, 1], the value change per finest voxel as a
 /// fraction of the transfer function's range, where 10% of the range per voxel counts as a full
@@ -73,7 +79,7 @@ private:
     template <class Visitor>
     void walk(const glm::dvec3& origin, const glm::dvec3& direction, Visitor&& visit) const;
     float sample(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p) const;
-    glm::vec3 gradient(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p) const;
+    glm::vec3 gradient(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p, float spread = 1.0f) const;
 
     const OctreeReader& reader_;
     const SpatialIndex& index_;
@@ -82,6 +88,7 @@ private:
     RenderSettings settings_;
     OctreeSpace space_;
     glm::dmat3 normalToWorld_;
+    glsl::HvxTools packedTools;
 };
 
 }  // namespace hvx::core

@@ -25,7 +25,7 @@ static_assert(sizeof(FrameBlock) == 64 + 14 * 16 + 2 * 16, "std140 layout of Fra
 }  // namespace
 
 GpuRayCaster::GpuRayCaster(PoolPrecision precision) {
-    glCreateBuffers(9, buffers_);
+    glCreateBuffers(10, buffers_);
     if (precision == PoolPrecision::Auto) {
         const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         const std::string name = renderer ? renderer : "";
@@ -36,7 +36,7 @@ GpuRayCaster::GpuRayCaster(PoolPrecision precision) {
 }
 
 GpuRayCaster::~GpuRayCaster() {
-    glDeleteBuffers(9, buffers_);
+    glDeleteBuffers(10, buffers_);
     if (pool_) glDeleteTextures(1, &pool_);
 }
 
@@ -128,10 +128,16 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
                                        const core::TransferFunction& tf, const core::RenderSettings& settings,
                                        const core::View& view) {
     const int mode = int(settings.mode);
-    auto& program = programs_[mode];
+    const int tools = settings.mode == core::RenderSettings::Mode::Dvr ? settings.tools.variantBits() : 0;
+    if (tools) settings.tools.validate();
+    auto& program = programs_[mode + 8 * tools];  // a static variant per mode and tool combination
     if (!program)
-        program = std::make_unique<ComputeProgram>(ShaderLibrary::embedded(), "raycast.comp.glsl",
-                                                   std::vector<std::string>{"MODE " + std::to_string(mode)});
+        program = std::make_unique<ComputeProgram>(
+            ShaderLibrary::embedded(), "raycast.comp.glsl",
+            std::vector<std::string>{"MODE " + std::to_string(mode), "HVX_TOOLS " + std::to_string(tools)});
+    const auto packed = core::packTools(settings.tools, {settings.ambient, settings.diffuse, settings.specular, settings.shininess});
+    static_assert(sizeof(packed) == 16 * 16, "std140 layout of HvxTools");
+    glNamedBufferData(buffers_[9], sizeof packed, &packed, GL_STREAM_DRAW);
     uploadPool(slots, reader.brickEdge(), floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
     glNamedBufferData(buffers_[0], GLsizeiptr(index.nodes.size() * sizeof(glm::uvec4)), index.nodes.data(), GL_STREAM_DRAW);
     glNamedBufferData(buffers_[1], GLsizeiptr(index.ropes.size() * 4), index.ropes.data(), GL_STREAM_DRAW);
@@ -170,7 +176,7 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     fb.shading = glm::vec4(float(settings.ambient), float(settings.diffuse), float(settings.specular),
                            float(settings.shininess));
     fb.extra = glm::vec4(float(settings.isoValue), settings.shading ? 1.0f : 0.0f, settings.countRays ? 1.0f : 0.0f,
-                         0.0f);
+                         float(tf.referenceLength()));
     fb.enhance = glm::vec4(float(settings.boundary), float(settings.viewTransparency),
                            float(space.minSpacing / (tf.valueMax() - tf.valueMin()) / core::kBoundaryGradientFraction), 0.0f);
     fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), poolRow_);
@@ -181,6 +187,7 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     for (GLuint b = 0; b < 7; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffers_[8]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
+    glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers_[9]);
     glBindTextureUnit(0, pool_);
     glDispatchCompute(GLuint((view.width + 7) / 8), GLuint((view.height + 7) / 8), 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);

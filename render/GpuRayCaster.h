@@ -47,7 +47,7 @@ private:
                     core::ScalarType type);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
-    unsigned buffers_[9] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot decode
+    unsigned buffers_[10] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot decode, tools
     unsigned pool_ = 0;
     std::uint32_t poolEdge_ = 0, poolRow_ = 0, poolLayer_ = 0, poolLayers_ = 0;
     // What each slot holds; keeping the reference stops a freed brick's address from being

@@ -38,9 +38,12 @@ float leafSample(LeafSampler L, vec3 p) {
     return texture(brickPool, L.cellTex + u * L.texelSize).r * L.decode.x + L.decode.y;
 }
 
-vec3 leafGradient(LeafSampler L, vec3 p) {
-    float h = L.h;
+// Central differences `spread` voxels apart (2: the smoothed normal of relief shading).
+vec3 leafGradientSpread(LeafSampler L, vec3 p, float spread) {
+    float h = L.h * spread;
     return vec3(leafSample(L, p + vec3(h, 0, 0)) - leafSample(L, p - vec3(h, 0, 0)),
                 leafSample(L, p + vec3(0, h, 0)) - leafSample(L, p - vec3(0, h, 0)),
                 leafSample(L, p + vec3(0, 0, h)) - leafSample(L, p - vec3(0, 0, h))) / (2.0 * h);
 }
+
+vec3 leafGradient(LeafSampler L, vec3 p) { return leafGradientSpread(L, p, 1.0); }

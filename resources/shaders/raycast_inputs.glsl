@@ -8,7 +8,7 @@ layout(std140, binding = 0) uniform Frame {
     vec4 extent;     // xyz: the volume's box in octree space; w: 1 / rootVoxels
     vec4 tfRange;    // valueMin, valueMax, early termination, step scale
     vec4 shading;    // ambient, diffuse, specular, shininess
-    vec4 extra;      // iso value, shading on, count rays (1/0), unused
+    vec4 extra;      // iso value, shading on, count rays (1/0), TF reference length (mm)
     vec4 enhance;    // boundary enhancement, view-dependent transparency, strength per gradient, unused
     vec4 screenCentre;     // screen model: xyz centre (patient); w: eta
     vec4 screenRight;      // xyz unit; w: width mm
@@ -25,3 +25,11 @@ layout(std430, binding = 5) writeonly buffer OutDepth { float outDepth[]; };
 layout(binding = 0) uniform sampler3D brickPool;  // R8/R16/R32F, slot s at cell (s % row, s / row % rows, s / layer)
 layout(std430, binding = 7) readonly buffer SlotDecode { vec2 slotDecode[]; };  // stored = texel * x + y
 layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per index node (feedback)
+#ifndef HVX_TOOLS
+#define HVX_TOOLS 0
+#endif
+#define HVX_FN
+#define HVX_INOUT(T) inout T
+#define HVX_TOOL_ON(bit) ((HVX_TOOLS & (bit)) != 0)
+#include "Enhancers.glsl"
+layout(std140, binding = 1) uniform Tools { HvxTools tools; };  // core::packTools

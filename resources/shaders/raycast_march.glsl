@@ -4,6 +4,7 @@
 #ifndef MODE
 #define MODE 0
 #endif
+#define HVX_EMPHASIS_EMISSION 0.5  // core::kEmphasisEmission
 
 // Shades a sample and scales its opacity `a` by boundary enhancement and view-dependent
 // transparency (core::RenderSettings), with one gradient for both.
@@ -52,6 +53,13 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     bool hit = false, havePrev = false, done = false;
     float tPrev = 0.0, sPrev = 0.0;
     float tIn = t0;
+#if MODE == 0 && HVX_TOOLS != 0
+    // Tools: the focal probe's cone for this ray, its entry, and the MImDA accumulator.
+    float hTheta = HVX_TOOL_ON(HVX_FOCAL_BIT) ? hvxFocalAngle(tools, ow, dw) : 1.0;
+    bool entered = false;
+    vec4 accum = vec4(0.0);
+    float importanceMax = 0.0;
+#endif
     for (int guard = 0; guard < 65536 && !done; ++guard) {
         float tExit = 0.0;
         int face = hvxExitFace(o, inv, lo, hi, tExit);
@@ -77,7 +85,46 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                 for (; t <= tOut && !done; t += dt) {
                     vec3 p = o + t * d;
                     float s = leafSample(L, p);
-#if MODE == 0
+#if MODE == 0 && HVX_TOOLS != 0
+                    if (havePrev) {  // enhancers, shading and MImDA as core/CpuRayCaster.cpp
+                        vec4 f = tfSegment(sPrev, s);
+                        float a = 1.0 - exp(-f.w * (t - tPrev));
+                        if (a > 1e-6) {
+                            vec3 g = transpose(mat3(patientToOctree)) * leafGradient(L, p);
+                            HvxSample x;
+                            x.p = ow + t * dw;
+                            x.v = dw;
+                            x.g = g;
+                            x.gn = min(1.0, length(g) * enhance.z);
+                            x.s = s;
+                            x.c = f.rgb / f.w;
+                            x.a = a;
+                            x.lit = 1.0;
+                            x.importance = 1.0 - exp(-f.w * extra.w);
+                            vec3 gSmooth = HVX_TOOL_ON(HVX_FOCAL_BIT)
+                                               ? transpose(mat3(patientToOctree)) * leafGradientSpread(L, p, 2.0) : g;
+                            bool enteredNow = entered;
+                            hvxEnhance(x, tools, HVX_TOOLS, gSmooth, hTheta, enteredNow);
+                            if (enteredNow && !entered) {  // clip what lies in front of the focal probe
+                                accum = vec4(0.0);
+                                importanceMax = 0.0;
+                                entered = true;
+                            }
+                            vec3 colour = x.c;
+                            if (x.lit >= 0.0) {
+                                float gl2 = dot(x.g, x.g);
+                                float ndl = gl2 > 0.0 ? abs(dot(x.g, -x.v)) / sqrt(gl2) : 1.0;
+                                vec3 phong = extra.y > 0.5 ? x.c * (shading.x + shading.y * ndl) +
+                                                                 vec3(shading.z * pow(ndl, shading.w))
+                                                           : x.c;
+                                colour = mix(x.c * (shading.x + HVX_EMPHASIS_EMISSION), phong, x.lit);
+                            }
+                            hvxMimda(accum, importanceMax, colour * x.a, x.a, x.importance, tools.bandAxis.w);
+                            if (!hit && accum.w > 0.02) { hit = true; depth = t; }
+                            if (hvxMimdaFutureDelta(accum.w, importanceMax, tools.bandAxis.w) < 1.0 - tfRange.z) done = true;
+                        }
+                    }
+#elif MODE == 0
                     if (havePrev) {
                         vec4 f = tfSegment(sPrev, s);
                         float a = 1.0 - exp(-f.w * (t - tPrev));
@@ -127,6 +174,8 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     float v = MODE == 4 ? (travelled > 0.0 ? sum / travelled : extreme) : extreme;
     float g = clamp((v - tfRange.x) / (tfRange.y - tfRange.x), 0.0, 1.0);
     return vec4(g, g, g, 1.0);
+#elif HVX_TOOLS != 0
+    return accum;
 #else
     return vec4(color, alpha);
 #endif

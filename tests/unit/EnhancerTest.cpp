@@ -1,0 +1,179 @@
+// The illustrative enhancers (core/shared/Enhancers.glsl) against the thesis formulas, worked by
+// hand for chosen samples; the tool parameters' validation and JSON round trip.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/Enhancers.h"
+#include "core/Error.h"
+
+using namespace hvx;
+using namespace hvx::core::glsl;
+
+namespace {
+HvxSample sample(glm::vec3 p, glm::vec3 v, glm::vec3 g, float gn, float a) {
+    HvxSample x;
+    x.p = p;
+    x.v = v;
+    x.g = g;
+    x.gn = gn;
+    x.s = 100;
+    x.c = {0.8f, 0.6f, 0.4f};
+    x.a = a;
+    x.lit = 1;
+    x.importance = 1;
+    return x;
+}
+}  // namespace
+
+TEST(Enhancers, SmoothstepPqNormAndDistanceWeightFollowEquations62To69) {
+    EXPECT_FLOAT_EQ(hvxSmooth(0.2f, 0.6f, 0.1f), 0.0f);
+    EXPECT_FLOAT_EQ(hvxSmooth(0.2f, 0.6f, 0.4f), 0.5f * 0.5f * (3 - 2 * 0.5f));  // Eq. 6.2 at the midpoint
+    EXPECT_FLOAT_EQ(hvxSmooth(0.2f, 0.6f, 0.9f), 1.0f);
+    EXPECT_NEAR(hvxPqNorm({0.6f, 0.8f, 0.0f}, 2, 2), 1.0f, 1e-6f);                  // sphere
+    EXPECT_NEAR(hvxPqNorm({0.6f, 0.8f, 0.5f}, 2, 4), std::pow(1.0f + 0.0625f, 0.25f), 1e-6f);  // cylinder
+    EXPECT_NEAR(hvxPqNorm({1.0f, 1.0f, 0.0f}, 4, 4), std::pow(2.0f, 0.25f), 1e-6f);  // rounded cube
+    EXPECT_NEAR(hvxGBeta(0.5f, -2.0f), 0.5f / (std::exp(-1.0f) + 0.5f), 1e-6f);       // Eq. 6.9
+    EXPECT_FLOAT_EQ(hvxFocusWeight(0.3f, 0.55f, -2.0f), 1.0f);                        // Eq. 6.8 inside rho
+    EXPECT_NEAR(hvxFocusWeight(1.0f, 0.55f, -2.0f), 0.5f, 1e-6f);                      // 1 - g(1) = 1/2
+    EXPECT_FLOAT_EQ(hvxFocusWeight(1.2f, 0.55f, -2.0f), 0.0f);
+    EXPECT_FLOAT_EQ(hvxContextAngle(0.99f, 0.98f, 0.9f), 0.0f);                        // Eq. 6.16 in the focus cone
+    EXPECT_NEAR(hvxContextAngle(0.94f, 0.98f, 0.9f), 1.0f - (0.94f - 0.98f) / (0.9f - 0.98f), 1e-6f);
+}
+
+TEST(Enhancers, ClipPlaneIsACutFaceOnContextObliqueAndEmphasisesTheSlab) {
+    const glm::vec4 plane(0, 0, 1, -10);  // keeps z <= 10
+    // Face-on (looking along -n): mu = smoothstep(1 - 1, fl, fh) = 0.
+    auto x = sample({0, 0, 12}, {0, 0, -1}, {0, 0, 1}, 0.5f, 0.4f);
+    hvxClip(x, plane, 4.0f, 0.3f, 0.9f);
+    EXPECT_FLOAT_EQ(x.a, 0.0f);
+    // Oblique at 60 degrees: -n.v = 0.5, mu = smoothstep(0.3, 0.9, 0.5).
+    x = sample({0, 0, 12}, {std::sqrt(0.75f), 0, -0.5f}, {0, 0, 1}, 0.5f, 0.4f);
+    hvxClip(x, plane, 4.0f, 0.3f, 0.9f);
+    const float t = (0.5f - 0.3f) / 0.6f;
+    EXPECT_NEAR(x.a, 0.4f * t * t * (3 - 2 * t), 1e-6f);
+    // Parallel to the plane: full context.
+    x = sample({0, 0, 12}, {1, 0, 0}, {0, 0, 1}, 0.5f, 0.4f);
+    hvxClip(x, plane, 4.0f, 0.3f, 0.9f);
+    EXPECT_FLOAT_EQ(x.a, 0.4f);
+    // In the slab, halfway: opacity half way to 1, lighting half way to ambient + emission.
+    x = sample({0, 0, 8}, {0, 0, -1}, {0, 0, 1}, 0.5f, 0.4f);
+    hvxClip(x, plane, 4.0f, 0.3f, 0.9f);
+    EXPECT_NEAR(x.a, 0.4f + 0.5f * 0.6f, 1e-6f);
+    EXPECT_NEAR(x.lit, 0.5f, 1e-6f);
+    // Behind the slab: untouched.
+    x = sample({0, 0, 0}, {0, 0, -1}, {0, 0, 1}, 0.5f, 0.4f);
+    hvxClip(x, plane, 4.0f, 0.3f, 0.9f);
+    EXPECT_FLOAT_EQ(x.a, 0.4f);
+    EXPECT_FLOAT_EQ(x.lit, 1.0f);
+}
+
+TEST(Enhancers, FocalProbeBlendsFocusAndContextStylesByEquation610) {
+    // Inside rho (d = 1): pure focus, Eq. 6.12 with s_i from Eq. 6.11.
+    auto x = sample({0, 0, 0}, {0, 0, -1}, {1, 0, 0}, 0.5f, 0.4f);  // gradient across the view: a silhouette
+    const float w = hvxSmooth(0.015f, 0.95f, 0.5f);
+    const float si = w * hvxSmooth(0.7f, 0.95f, 1.0f);
+    hvxFocalProbe(x, 0.2f, 0.55f, -2.0f, 0.015f, 0.95f, 0.7f, 0.95f, 0.9f, 1.3f, 0.0f);
+    EXPECT_NEAR(x.c.r, (1 - si) * 1.3f * 0.8f, 1e-6f);
+    EXPECT_NEAR(x.a, 1.3f * 0.4f, 1e-6f);
+    EXPECT_LT(x.lit, 0.0f);
+    // Outside the probe (d = 0): context, alpha = h * s_i * lambda * alpha (Eq. 6.15).
+    x = sample({0, 0, 0}, {0, 0, -1}, {1, 0, 0}, 0.5f, 0.4f);
+    hvxFocalProbe(x, 1.5f, 0.55f, -2.0f, 0.015f, 0.95f, 0.7f, 0.95f, 0.9f, 1.3f, 0.6f);
+    EXPECT_NEAR(x.c.g, 0.9f * 0.6f, 1e-6f);
+    EXPECT_NEAR(x.a, 0.6f * si * 0.9f * 0.4f, 1e-6f);
+    // Relief (Eqs 6.13-6.14): the light made perpendicular to the smoothed normal.
+    const glm::vec3 L(0, 0, 1), g = glm::normalize(glm::vec3(1, 0, 1)), n(0, 0, 1);
+    EXPECT_NEAR(hvxRelief(L, g, n, 0.35f, 0.65f, 3.0f), 0.35f + 0.65f * (glm::dot(L, g) + 3.0f * 0.0f), 1e-6f);
+    const glm::vec3 n2 = glm::normalize(glm::vec3(0, 1, 1));
+    const glm::vec3 Lstar = L - n2 * glm::dot(n2, L);
+    EXPECT_NEAR(hvxRelief(L, g, n2, 0.35f, 0.65f, 3.0f),
+                0.35f + 0.65f * (glm::dot(L, g) + 3.0f * glm::clamp(glm::dot(Lstar, g), 0.0f, 1.0f)), 1e-6f);
+}
+
+TEST(Enhancers, ContextProbeFollowsEquations617And618) {
+    const glm::vec3 centre(0, 0, 0), axis(0, 0, 1), v(0, 0, -1);
+    // A sample 10 mm in front of the centre plane (towards the viewer), radius 20.
+    auto x = sample({0, 0, 10}, v, glm::vec3(1, 0, 0.5f), 0.6f, 0.5f);
+    hvxContextProbe(x, centre, 20, axis, 0.015f, 0.95f, 0.8f, 1.0f);
+    const float omegaD = 1 - 0.25f;  // along = -10: 1 - (10/20)^2
+    const float facing = 0.5f / std::sqrt(1.25f);
+    const float eta = 1.0f * hvxSmooth(0.015f, 0.95f, 0.6f) * std::pow(1 - facing, 4.0f);
+    EXPECT_NEAR(x.a, 0.5f * eta * omegaD, 1e-6f);                  // lerp(0, eta, omega_d)
+    EXPECT_NEAR(x.c.r, 0.8f * (1 - eta), 1e-6f);                    // 1 - eta
+    // 10 mm behind the plane: lerp(eta, 1, 1 - omega_d) for both factors.
+    x = sample({0, 0, -10}, v, glm::vec3(1, 0, 0.5f), 0.6f, 0.5f);
+    hvxContextProbe(x, centre, 20, axis, 0.015f, 0.95f, 0.8f, 1.0f);
+    EXPECT_NEAR(x.a, 0.5f * (eta + (1 - eta) * (1 - omegaD)), 1e-6f);
+    // Outside the sphere: untouched.
+    x = sample({0, 0, 30}, v, glm::vec3(1, 0, 0.5f), 0.6f, 0.5f);
+    hvxContextProbe(x, centre, 20, axis, 0.015f, 0.95f, 0.8f, 1.0f);
+    EXPECT_FLOAT_EQ(x.a, 0.5f);
+}
+
+TEST(Enhancers, BandPickerAndMimdaAccumulation) {
+    const glm::vec4 band(100, 200, 300, 400);
+    EXPECT_FLOAT_EQ(hvxBand(band, 150), 0.5f);
+    EXPECT_FLOAT_EQ(hvxBand(band, 250), 1.0f);
+    EXPECT_FLOAT_EQ(hvxBand(band, 450), 0.0f);
+    auto x = sample({0, 0, 0}, {0, 0, -1}, {1, 0, 0}, 0.5f, 0.4f);
+    x.s = 50;  // outside the band, looking straight along the axis: gone
+    hvxBandPicker(x, band, {0, 0, 1}, 0.5f, 1.0f);
+    EXPECT_FLOAT_EQ(x.a, 0.0f);
+    EXPECT_FLOAT_EQ(x.importance, 0.0f);
+    x = sample({0, 0, 0}, {1, 0, 0}, {1, 0, 0}, 0.5f, 0.4f);
+    x.s = 50;  // at right angles to the axis: context stays
+    hvxBandPicker(x, band, {0, 0, 1}, 0.5f, 1.0f);
+    EXPECT_FLOAT_EQ(x.a, 0.4f);
+    // MImDA (Eqs 3.2-3.3) with gamma = 0 is front-to-back compositing.
+    glm::vec4 accum(0.2f, 0.1f, 0.0f, 0.3f);
+    float imax = 0.5f;
+    hvxMimda(accum, imax, {0.4f, 0.4f, 0.4f}, 0.5f, 0.9f, 0.0f);
+    EXPECT_NEAR(accum.r, 0.2f + 0.7f * 0.4f, 1e-6f);
+    EXPECT_NEAR(accum.a, 0.3f + 0.7f * 0.5f, 1e-6f);
+    // gamma = 1 and an importance rise of 0.4: beta = 0.6 weighs down what lies in front.
+    accum = glm::vec4(0.2f, 0.1f, 0.0f, 0.3f);
+    imax = 0.5f;
+    hvxMimda(accum, imax, {0.4f, 0.4f, 0.4f}, 0.5f, 0.9f, 1.0f);
+    EXPECT_NEAR(accum.r, 0.2f * 0.6f + (1 - 0.6f * 0.3f) * 0.4f, 1e-6f);
+    EXPECT_NEAR(accum.a, 0.3f * 0.6f + (1 - 0.6f * 0.3f) * 0.5f, 1e-6f);
+    EXPECT_FLOAT_EQ(imax, 0.9f);
+    EXPECT_NEAR(hvxMimdaFutureDelta(0.995f, 0.2f, 0.0f), 0.005f, 1e-6f) << "gamma 0: the usual opacity test";
+    EXPECT_GT(hvxMimdaFutureDelta(0.995f, 0.2f, 1.0f), 0.5f) << "important content may still come";
+}
+
+TEST(ToolSet, OutOfRangeParametersAreRefusedAndJsonRoundTrips) {
+    core::ToolSet t;
+    t.clip.enabled = true;
+    t.focal.enabled = true;
+    t.focal.p = 4;
+    t.focal.centre = {1, 2, 3};
+    t.mimda.enabled = true;
+    t.mimda.gamma = 0.25;
+    t.band.band = {-100, 0, 200, 300};
+    EXPECT_NO_THROW(t.validate());
+    const auto back = core::ToolSet::fromJson(t.toJson());
+    EXPECT_EQ(back.variantBits(), t.variantBits());
+    EXPECT_EQ(back.focal.centre, t.focal.centre);
+    EXPECT_DOUBLE_EQ(back.focal.p, 4);
+    EXPECT_DOUBLE_EQ(back.mimda.gamma, 0.25);
+    EXPECT_EQ(back.band.band, t.band.band);
+    auto bad = t;
+    bad.mimda.gamma = 1.5;
+    EXPECT_THROW(bad.validate(), core::Error);
+    bad = t;
+    bad.focal.rho = 1.0;
+    EXPECT_THROW(bad.validate(), core::Error);
+    bad = t;
+    bad.band.band = {300, 200, 100, 0};
+    EXPECT_THROW(bad.validate(), core::Error);
+    bad = t;
+    bad.clip.normal = {0, 0, 0};
+    EXPECT_THROW(bad.validate(), core::Error);
+    bad = t;
+    bad.focal.radii = {10, -1, 10};
+    EXPECT_THROW(bad.validate(), core::Error);
+    EXPECT_THROW(core::ToolSet::fromJson("{\"mimda\": {\"gamma\": 7}}"), core::Error);
+    EXPECT_THROW(core::ToolSet::fromJson("{\"clip\": {\"normal\": [1, 2]}}"), core::Error);
+    EXPECT_THROW(core::ToolSet::fromJson("not json"), core::Error);
+}
