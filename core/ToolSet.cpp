@@ -1,6 +1,10 @@
 #include "core/ToolSet.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <glm/geometric.hpp>
 #include <nlohmann/json.hpp>
@@ -33,6 +37,26 @@ T get(const Json& j, const char* key, const char* tool, T fallback) {
     }
 }
 }  // namespace
+
+bool ToolSet::clipHides(const View& view) const {
+    if (!clip.enabled) return false;
+    const glm::dvec3 n = glm::normalize(clip.normal);
+    double halfFov = 0.0;  // half the diagonal field of view: the widest ray's angle from the axis
+    if (view.model == View::Model::Pinhole) {
+        const double t = std::tan(glm::radians(view.fovYDegrees) / 2.0);
+        halfFov = std::atan(t * std::sqrt(1.0 + double(view.width) * view.width / (double(view.height) * view.height)));
+    } else if (view.model == View::Model::Screen) {
+        return false;  // rays from many origins: never assume
+    }
+    const glm::dvec3 v = glm::normalize(view.target - view.eye);
+    const double angle = std::acos(std::clamp(-glm::dot(n, v), -1.0, 1.0)) + halfFov;
+    return angle < glm::pi<double>() / 2 && 1.0 - std::cos(angle) <= clip.fl;
+}
+
+glm::dvec4 ToolSet::keptHalfSpace() const {
+    const double len = glm::length(clip.normal);
+    return glm::dvec4(-clip.normal / len, -clip.offset / len);
+}
 
 int ToolSet::variantBits() const {
     return (clip.enabled ? ClipBit : 0) | (focal.enabled ? FocalBit : 0) | (context.enabled ? ContextBit : 0) |

@@ -5,6 +5,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "core/View.h"
+
 namespace hvx::core {
 
 /// The illustrative tools of a frame (thesis ch. 6 and §3.2.2) and their parameters, in patient
@@ -54,6 +56,13 @@ struct ToolSet {
         bool enabled = false;
         double gamma = 0.5;
     } mimda;
+
+    /// True when the clip plane hides its cut-away side from every ray of `view` (seen close
+    /// enough to face-on that mu = 0 at the widest ray): the working set may then skip those
+    /// bricks altogether.
+    bool clipHides(const View& view) const;
+    /// The kept half-space as WorkingSetOptions::clipPlane expects it (dot(n, p) + d >= 0).
+    glm::dvec4 keptHalfSpace() const;
 
     enum Bits { ClipBit = 1, FocalBit = 2, ContextBit = 4, BandBit = 8, MimdaBit = 16 };
     /// Which tools are on (the shader variant).

@@ -1,5 +1,6 @@
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -34,12 +35,12 @@ core::RenderSettings::Mode parseMode(const std::string& m) {
 int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
-                        "view-transparency"},
+                        "view-transparency", "tools"},
                        {"cpu"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
-                          "[--tf PRESET] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] -o OUT.png|OUT.exr");
+                          "[--tf PRESET] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json] -o OUT.png|OUT.exr");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
@@ -62,6 +63,17 @@ int renderCommand(int argc, char** argv) {
     settings.viewTransparency = args.number("view-transparency").value_or(0.0);
     if (!(settings.boundary >= 0 && settings.boundary <= 1) || !(settings.viewTransparency >= 0 && settings.viewTransparency <= 1))
         throw core::Error("--boundary and --view-transparency must be between 0 and 1");
+    if (const auto tools = args.value("tools")) {  // illustrative tools from JSON (core::ToolSet)
+        std::ifstream in(*tools);
+        if (!in) throw core::Error(*tools + ": cannot be read");
+        std::ostringstream text;
+        text << in.rdbuf();
+        try {
+            settings.tools = core::ToolSet::fromJson(text.str());
+        } catch (const core::Error& e) {
+            throw core::Error(*tools + ": " + e.what());
+        }
+    }
     const std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
     const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
@@ -83,6 +95,9 @@ int renderCommand(int argc, char** argv) {
     const double radius = glm::length(centre - corner) / std::tan(glm::radians(15.0)) * 1.05 / zoom;
     const core::View view = core::View::orbit(centre, radius, az, el, width, height);
 
+    // A clip plane seen face-on hides its far side from every ray: those bricks are not loaded.
+    opt.clip = settings.tools.clipHides(view);
+    opt.clipPlane = settings.tools.keptHalfSpace();
     const auto t0 = std::chrono::steady_clock::now();
     core::BrickCache cache(std::size_t(args.integer("cache-mb", 2048, 16, 1 << 20)) << 20);
     core::BrickLoader loader(*reader, cache);

@@ -133,7 +133,8 @@ TEST(Tools, ClipPlaneSeenFaceOnEqualsAPlainCut) {
     }
     cut.values = whole.values;
     const glm::dmat4 toPatient = g.indexToPatient();
-    const glm::dvec3 centre(toPatient * glm::dvec4(31.5, 31.5, 31.5, 1));
+    // The plane between slices 29 and 30: the upper bricks (slices 32-63) lie wholly beyond it.
+    const glm::dvec3 centre(toPatient * glm::dvec4(31.5, 31.5, 29.5, 1));
     for (std::size_t k = 0; k < 64; ++k)
         if (glm::dvec3(toPatient * glm::dvec4(0, 0, double(k), 1)).z > centre.z)
             for (std::size_t i = 0; i < 64 * 64; ++i) cut.values[k * 64 * 64 + i] = -1024;
@@ -149,6 +150,16 @@ TEST(Tools, ClipPlaneSeenFaceOnEqualsAPlainCut) {
     rs.tools.clip.thickness = 0;  // no emphasis slab: a plain cut
     const auto tool = a.cpu(tf, rs);
     const auto plain = b.cpu(tf, {});
+    // Seen face-on, the cut-away side is hidden from every ray: its bricks need not be loaded.
+    ASSERT_TRUE(rs.tools.clipHides(a.view));
+    const std::size_t fullCut = a.ws->stats().cutNodes;
+    a.ws->options().clip = true;
+    a.ws->options().clipPlane = rs.tools.keptHalfSpace();
+    a.settle(tf);
+    EXPECT_LT(a.ws->stats().cutNodes, fullCut);
+    EXPECT_GT(psnr(a.cpu(tf, rs), tool), 60.0) << "skipping the hidden bricks changes nothing";
+    rs.tools.clip.normal = {1, 0, 0};  // seen edge-on: the far side shows as context
+    EXPECT_FALSE(rs.tools.clipHides(a.view));
     const double db = psnr(tool, plain);
     std::printf("face-on clip plane vs the volume cut by hand: %.1f dB\n", db);
     EXPECT_GT(db, 35.0) << "they differ only within half a voxel of the plane";
