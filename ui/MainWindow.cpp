@@ -14,6 +14,7 @@
 #include <QMessageBox>
 #include <QPointer>
 #include <QSettings>
+#include <QScrollArea>
 #include <QStatusBar>
 #include <QTimer>
 #include <QTreeWidget>
@@ -33,20 +34,12 @@
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
 #include "ui/TransferFunctionEditor.h"
+#include "ui/ToolsPanel.h"
 #include "ui/VolumeView.h"
+#include "core/SliceSampler.h"
 
 namespace hvx::ui {
 
-namespace {
-QLabel* placeholder(const QString& text) {
-    auto* l = new QLabel(text);
-    l->setWordWrap(true);
-    l->setAlignment(Qt::AlignTop | Qt::AlignLeft);
-    l->setMargin(8);
-    l->setEnabled(false);
-    return l;
-}
-}  // namespace
 
 MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* parent)
     : QMainWindow(parent), jobs_(std::make_unique<JobManager>()), view_(new VolumeView(this)), readouts_(new QLabel) {
@@ -74,13 +67,16 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     tabifyDockWidget(studies, pacsDock);
     studies->raise();
     auto* tfDock = addDock(tr("Transfer function"), "tfDock", tfEditor_, Qt::RightDockWidgetArea);
-    auto* renderDock = addDock(tr("Rendering"), "renderDock", controls_, Qt::RightDockWidgetArea);
+    auto* renderDock = addDock(tr("Rendering"), "renderDock", controls_, Qt::RightDockWidgetArea, true);
     // Tools and output of later work, present so the layout is stable.
-    auto* probes = addDock(tr("Probes"), "probesDock", placeholder(tr("Focal and context-preserving probes")), Qt::RightDockWidgetArea);
-    auto* clip = addDock(tr("Clip plane"), "clipDock", placeholder(tr("View-dependent clip plane")), Qt::RightDockWidgetArea);
-    auto* band = addDock(tr("Band picker"), "bandDock", placeholder(tr("Band picker and importance")), Qt::RightDockWidgetArea);
+    toolPanels_[0] = new ToolsPanel(ToolsPanel::Section::Probes);
+    toolPanels_[1] = new ToolsPanel(ToolsPanel::Section::Clip);
+    toolPanels_[2] = new ToolsPanel(ToolsPanel::Section::Band);
+    auto* probes = addDock(tr("Probes"), "probesDock", toolPanels_[0], Qt::RightDockWidgetArea, true);
+    auto* clip = addDock(tr("Clip plane"), "clipDock", toolPanels_[1], Qt::RightDockWidgetArea, true);
+    auto* band = addDock(tr("Band picker"), "bandDock", toolPanels_[2], Qt::RightDockWidgetArea, true);
     lightField_ = new LightFieldPanel(*view_);
-    auto* lf = addDock(tr("Light field"), "lightFieldDock", lightField_, Qt::RightDockWidgetArea);
+    auto* lf = addDock(tr("Light field"), "lightFieldDock", lightField_, Qt::RightDockWidgetArea, true);
     tabifyDockWidget(renderDock, probes);
     tabifyDockWidget(probes, clip);
     tabifyDockWidget(clip, band);
@@ -109,6 +105,8 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     connect(jobs_.get(), &JobManager::finished, this, [this](int, const QString& state, const QString& message) {
         if (state == "failed") showError(message);
     });
+    for (auto* panel : toolPanels_) connect(panel, &ToolsPanel::changed, this, &MainWindow::applyTools);
+    connect(view_, &VolumeView::surfacePicked, this, &MainWindow::placeTool);
     for (auto* s : slices_)
         connect(s, &SliceView::pointChanged, this, [this, s](const glm::dvec3& p) {
             for (auto* other : slices_)
@@ -119,6 +117,13 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     QSettings settings;
     restoreGeometry(settings.value("window/geometry").toByteArray());
     restoreState(settings.value("window/state").toByteArray());
+    if (settings.contains("tools/json")) {  // the session's tools
+        try {
+            setTools(core::ToolSet::fromJson(settings.value("tools/json").toString().toStdString()));
+        } catch (const core::Error& e) {
+            showError(tr("Saved tools ignored: %1").arg(QString::fromStdString(e.what())));
+        }
+    }
     if (settings.contains("render/mode")) {
         auto rs = controls_->settings();
         rs.mode = core::RenderSettings::Mode(std::clamp(settings.value("render/mode").toInt(), 0, 4));
@@ -129,10 +134,19 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
 
 MainWindow::~MainWindow() { jobs_->waitIdle(0); }
 
-QDockWidget* MainWindow::addDock(const QString& title, const QString& name, QWidget* widget, Qt::DockWidgetArea area) {
+QDockWidget* MainWindow::addDock(const QString& title, const QString& name, QWidget* widget, Qt::DockWidgetArea area,
+                                 bool scrolled) {
     auto* dock = new QDockWidget(title, this);
     dock->setObjectName(name);
-    dock->setWidget(widget);
+    if (scrolled) {  // long forms scroll instead of making the window taller than the screen
+        auto* scroll = new QScrollArea;
+        scroll->setWidgetResizable(true);
+        scroll->setFrameShape(QFrame::NoFrame);
+        scroll->setWidget(widget);
+        dock->setWidget(scroll);
+    } else {
+        dock->setWidget(widget);
+    }
     addDockWidget(area, dock);
     docks_ << dock;
     return dock;
@@ -219,6 +233,7 @@ bool MainWindow::openOctree(const QString& path, const QString& label) {
                      [self, reader, histogram](const QString&) {
                          if (self && self->reader_ == reader) {
                              const auto& geo = reader->geometry();
+                             self->histogram_ = *histogram;
                              const auto spec = self->tfEditor_->spec();
                              self->tfEditor_->setVolume(geo.valueMin, geo.valueMax, geo.rescaleSlope, geo.rescaleIntercept, geo.modality, *histogram);
                              self->tfEditor_->setSpec(spec);  // keep what the user chose meanwhile
@@ -261,6 +276,62 @@ void MainWindow::applyTransferFunction() {
     } catch (const core::Error& e) {
         showError(QString::fromStdString(e.what()));
     }
+}
+
+void MainWindow::setTools(const core::ToolSet& tools) {
+    tools.validate();
+    tools_ = tools;
+    for (auto* panel : toolPanels_) panel->setTools(tools_);
+    view_->setTools(tools_);
+}
+
+void MainWindow::applyTools() {
+    core::ToolSet t = tools_;
+    for (auto* panel : toolPanels_) panel->apply(t);
+    try {
+        view_->setTools(t);
+        tools_ = t;
+    } catch (const core::Error& e) {
+        showError(QString::fromStdString(e.what()));
+        for (auto* panel : toolPanels_) panel->setTools(tools_);  // refuse: back to the last valid values
+    }
+}
+
+void MainWindow::placeTool(const glm::dvec3& patient, bool alt) {
+    core::ToolSet t = tools_;
+    if (alt && reader_) {
+        // The band around the value under the cursor: grown over the histogram while the bins
+        // stay above a third of the picked bin's count (region growing, as Huang's band picker).
+        core::BrickCache cache(32u << 20);
+        const core::SliceSampler sampler(*reader_, cache);
+        auto plane = core::SlicePlane::standard(core::SlicePlane::Orientation::Axial, patient, 0.1, 1, 1);
+        const float v = sampler.sample(plane, 0).values[0];
+        if (std::isnan(v)) return;
+        const auto& h = histogram_;
+        double lo = v, hi = v;
+        if (!h.counts.empty()) {
+            const double width = (h.valueMax - h.valueMin) / double(h.counts.size());
+            int bin = std::clamp(int((v - h.valueMin) / width), 0, int(h.counts.size()) - 1);
+            const double floor = double(h.counts[std::size_t(bin)]) / 3.0;
+            int a = bin, b = bin;
+            const int limit = int(h.counts.size()) / 4;
+            while (a > 0 && bin - a < limit && double(h.counts[std::size_t(a - 1)]) >= floor) --a;
+            while (b + 1 < int(h.counts.size()) && b - bin < limit && double(h.counts[std::size_t(b + 1)]) >= floor) ++b;
+            lo = h.valueMin + a * width;
+            hi = h.valueMin + (b + 1) * width;
+        }
+        const double ramp = std::max(1.0, 0.25 * (hi - lo));
+        t.band.enabled = true;
+        t.band.band = {lo - ramp, lo, hi, hi + ramp};
+        t.band.axis = -glm::normalize(view_->camera().back());
+        statusBar()->showMessage(tr("Band picked around %1: [%2, %3]").arg(v).arg(lo).arg(hi), 5000);
+    } else {
+        t.focal.centre = patient;
+        t.context.centre = patient;
+        t.context.axis = -glm::normalize(view_->camera().back());
+        if (!t.focal.enabled && !t.context.enabled) t.focal.enabled = true;
+    }
+    setTools(t);
 }
 
 void MainWindow::showError(const QString& message) {
@@ -311,6 +382,7 @@ void MainWindow::closeEvent(QCloseEvent* e) {
     settings.setValue("window/geometry", saveGeometry());
     settings.setValue("window/state", saveState());
     settings.setValue("render/mode", int(controls_->settings().mode));
+    settings.setValue("tools/json", QString::fromStdString(tools_.toJson()));
     e->accept();
 }
 

@@ -4,6 +4,8 @@
 #include <memory>
 
 #include "core/OctreeReader.h"
+#include "core/ToolSet.h"
+#include "core/VolumeHistogram.h"
 
 class QLabel;
 class QDockWidget;
@@ -17,6 +19,7 @@ class PacsPanel;
 class RenderControls;
 class SliceView;
 class StudyBrowser;
+class ToolsPanel;
 class TransferFunctionEditor;
 class VolumeView;
 
@@ -51,6 +54,11 @@ public:
     LightFieldPanel* lightField() const { return lightField_; }
     SliceView* slice(int i) const { return slices_[i]; }
     const QString& openLabel() const { return openLabel_; }
+    /// The illustrative tools of the session (saved with the window layout).
+    const core::ToolSet& tools() const { return tools_; }
+    /// Throws core::Error for out-of-range parameters.
+    void setTools(const core::ToolSet& tools);
+    ToolsPanel* toolsPanel(int i) const { return toolPanels_[i]; }
     /// The last error shown in the status bar.
     QString lastError() const { return lastError_; }
 
@@ -58,9 +66,12 @@ protected:
     void closeEvent(QCloseEvent* e) override;
 
 private:
-    QDockWidget* addDock(const QString& title, const QString& name, QWidget* widget, Qt::DockWidgetArea area);
+    QDockWidget* addDock(const QString& title, const QString& name, QWidget* widget, Qt::DockWidgetArea area,
+                         bool scrolled = false);
     void buildMenus();
     void applyTransferFunction();
+    void applyTools();
+    void placeTool(const glm::dvec3& patient, bool alt);
     void showError(const QString& message);
     void updateReadouts();
     void saveScreenshot();
@@ -81,6 +92,9 @@ private:
     double referenceLength_ = 1.0;
     QString openLabel_, lastError_;
     QList<QDockWidget*> docks_;
+    ToolsPanel* toolPanels_[3] = {};
+    core::ToolSet tools_;
+    core::VolumeHistogram histogram_;
 };
 
 }  // namespace hvx::ui

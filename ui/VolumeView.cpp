@@ -121,6 +121,12 @@ void VolumeView::setRenderSettings(const core::RenderSettings& settings) {
     update();
 }
 
+void VolumeView::setTools(const core::ToolSet& tools) {
+    tools.validate();
+    settings_.tools = tools;
+    update();
+}
+
 void VolumeView::setAccuracy(double voxelsPerPixel) {
     accuracy_ = std::clamp(voxelsPerPixel, 0.25, 16.0);
     if (scene_) scene_->ws.options().voxelsPerPixel = accuracy_;
@@ -185,9 +191,14 @@ void VolumeView::paintGL() {
             rs.stepScale *= level.stepScale;
             rs.countRays = true;
             const auto view = camera_.view(w, h);
+            // A clip plane seen face-on hides its far side: those bricks are not even loaded.
+            scene_->ws.options().clip = settings_.mode == core::RenderSettings::Mode::Dvr && settings_.tools.clipHides(view);
+            scene_->ws.options().clipPlane = settings_.tools.keptHalfSpace();
             QElapsedTimer t;
             t.start();
-            auto img = renderFrame(view.scaled(level.resolution), rs, false);
+            lastView_ = view.scaled(level.resolution);
+            auto img = renderFrame(lastView_, rs, false);
+            lastDepth_ = img.depth;
             // The cut was refined for the reduced view; refine it for the full one next frame.
             scene_->ws.setRayCounts(img.rayCounts);
             const double ms = double(t.nsecsElapsed()) / 1e6;
@@ -331,6 +342,19 @@ void VolumeView::interacted() {
 }
 
 void VolumeView::mousePressEvent(QMouseEvent* e) {
+    const bool pick = e->button() == Qt::LeftButton && (e->modifiers() & (Qt::ControlModifier | Qt::AltModifier));
+    if (pick && scene_ && !lastDepth_.empty()) {
+        const double sx = e->position().x() / std::max(1, width()) * lastView_.width;
+        const double sy = e->position().y() / std::max(1, height()) * lastView_.height;
+        const int px = std::clamp(int(sx), 0, lastView_.width - 1), py = std::clamp(int(sy), 0, lastView_.height - 1);
+        const float depth = lastDepth_[std::size_t(py) * std::size_t(lastView_.width) + std::size_t(px)];
+        if (std::isfinite(depth)) {
+            glm::dvec3 o, d;
+            lastView_.ray(px, py, o, d);
+            emit surfacePicked(o + d * double(depth), (e->modifiers() & Qt::AltModifier) != 0);
+        }
+        return;
+    }
     dragging_ = true;
     dragButton_ = e->button();
     lastPos_ = e->position().toPoint();

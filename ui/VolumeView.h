@@ -46,6 +46,8 @@ public:
     void setTransferFunction(const core::TransferFunction& tf);
     void setRenderSettings(const core::RenderSettings& settings);
     const core::RenderSettings& renderSettings() const { return settings_; }
+    /// The illustrative tools (DVR); throws core::Error for out-of-range parameters.
+    void setTools(const core::ToolSet& tools);
     /// Quality/accuracy: voxels per pixel of the working set (1 = full, larger is coarser).
     void setAccuracy(double voxelsPerPixel);
     double accuracy() const { return accuracy_; }
@@ -71,6 +73,8 @@ public:
 
 signals:
     void frameRendered();
+    /// Ctrl+click (or Alt+click) on the volume: the first significant sample under the cursor.
+    void surfacePicked(const glm::dvec3& patient, bool alt);
     void failed(const QString& message);
 
 protected:
@@ -97,6 +101,8 @@ private:
     core::InteractiveQuality quality_;
     double accuracy_ = 1.0;
     QImage frame_;
+    std::vector<float> lastDepth_;  // of the last frame, at its own (maybe reduced) size
+    core::View lastView_;
     QString error_;
     int frames_ = 0;
     int unsettledFrames_ = 0;

@@ -8,7 +8,9 @@
 #include <QDir>
 #include <QElapsedTimer>
 #include <QLineEdit>
+#include <QGroupBox>
 #include <QPushButton>
+#include <QSettings>
 #include <QSlider>
 #include <QSignalSpy>
 #include <QSurfaceFormat>
@@ -32,6 +34,8 @@
 #include "ui/RenderControls.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
+#include "ui/ToolsPanel.h"
+#include "core/Error.h"
 #include "ui/TransferFunctionEditor.h"
 #include "ui/VolumeView.h"
 
@@ -92,6 +96,7 @@ class WorkstationTest : public QObject {
 private slots:
     void initTestCase() {
         QDir().mkpath(kArtifacts);
+        QSettings().clear();  // no layout or tools from an earlier run
         window_ = std::make_unique<ui::MainWindow>(QString::fromStdString(dir_.file("db/studies.sqlite")),
                                                    QString::fromStdString(dir_.file("pacs.json")));
         window_->resize(1400, 900);
@@ -150,7 +155,8 @@ private slots:
         QTest::mouseRelease(view(), Qt::LeftButton, {}, c + QPoint(120, 0));
         const QImage after = settledFrame();
         QVERIFY2(difference(before, after) > 1.0, "rotating changes the image");
-        QVERIFY(view()->orientationLabels() != (QStringList{"R", "L", "S", "I"}));
+        QVERIFY2(view()->orientationLabels() != (QStringList{"R", "L", "S", "I"}),
+                 qPrintable(view()->orientationLabels().join(",") + QStringLiteral(" view %1x%2").arg(view()->width()).arg(view()->height())));
         saveArtifact("rotated.png");
     }
 
@@ -187,6 +193,37 @@ private slots:
         saveArtifact("mip.png");
         QTest::keyClick(mode, Qt::Key_Up);
         QTest::keyClick(mode, Qt::Key_Up);
+    }
+
+    void illustrativeToolsChangeTheImageAndSurviveARestart() {
+        const QImage plain = settledFrame();
+        // Ctrl+click on the volume places the focal probe on the surface under the cursor.
+        QTest::mouseClick(view(), Qt::LeftButton, Qt::ControlModifier, view()->rect().center());
+        QVERIFY(window_->tools().focal.enabled);
+        QVERIFY2(glm::length(window_->tools().focal.centre - window_->tools().context.centre) < 1e-9 &&
+                     window_->tools().focal.centre != glm::dvec3(0.0),
+                 "the probe moved to the picked surface");
+        window_->toolsPanel(1)->group("clip")->setChecked(true);  // and the clip plane, from its dock
+        QVERIFY(window_->tools().clip.enabled);
+        const QImage tools = settledFrame();
+        QVERIFY2(difference(plain, tools) > 1.0, "the tools change the image");
+        saveArtifact("tools.png");
+        // Out-of-range parameters are refused and the last valid tools stay.
+        auto bad = window_->tools();
+        bad.mimda.gamma = 2.0;
+        QVERIFY_THROWS_EXCEPTION(core::Error, window_->setTools(bad));
+        QCOMPARE(window_->tools().mimda.gamma, 0.5);
+        // Saved with the session: a new window (as after a restart) comes back with them.
+        const std::string saved = window_->tools().toJson();
+        window_->close();
+        {
+            ui::MainWindow again(QString::fromStdString(dir_.file("db/studies.sqlite")),
+                                 QString::fromStdString(dir_.file("pacs.json")));
+            QCOMPARE(again.tools().toJson(), saved);
+        }
+        window_->show();
+        QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
+        window_->setTools({});
     }
 
     void takesScreenshotsAtTheViewsSizeOrLarger() {
