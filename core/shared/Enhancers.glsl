@@ -192,17 +192,23 @@ HVX_FN float hvxFocalAngle(HvxTools t, vec3 origin, vec3 dir) {
     return hvxContextAngle(dot(toC / dist, dir), sqrt(1.0f - sinFocus * sinFocus), sqrt(1.0f - sinProbe * sinProbe));
 }
 
+// The focal probe's pq-norm at a point (<= 1 inside the probe).
+HVX_FN float hvxFocalNorm(HvxTools t, vec3 p) {
+    mat3 rot = mat3(vec3(t.focalRot0), vec3(t.focalRot1), vec3(t.focalRot2));
+    vec3 local = (transpose(rot) * (p - vec3(t.focalCentre))) / vec3(t.focalRadii);
+    return hvxPqNorm(local, t.focalCentre.w, t.focalRadii.w);
+}
+
 // Applies the active tools in a fixed order: clip plane, focal probe, context probe, band
 // picker. HVX_TOOL_ON(bit) is a compile-time constant in the shader (a static variant) and a
 // test of hvxBits on the CPU. `entered` becomes true at the first sample inside the focal probe,
-// where the caller clears what was accumulated in front of it (thesis §6.3.5).
+// where the caller clears what was accumulated in front of it (thesis §6.3.5). gSmooth (the
+// smoothed gradient of relief shading) matters only inside the probe: callers may pass g elsewhere.
 HVX_FN void hvxEnhance(HVX_INOUT(HvxSample) x, HvxTools t, int hvxBits, vec3 gSmooth, float hTheta,
                        HVX_INOUT(bool) entered) {
     if (HVX_TOOL_ON(HVX_CLIP_BIT)) hvxClip(x, t.clipPlane, t.clipParams.x, t.clipParams.y, t.clipParams.z);
     if (HVX_TOOL_ON(HVX_FOCAL_BIT)) {
-        mat3 rot = mat3(vec3(t.focalRot0), vec3(t.focalRot1), vec3(t.focalRot2));
-        vec3 local = (transpose(rot) * (x.p - vec3(t.focalCentre))) / vec3(t.focalRadii);
-        float norm = hvxPqNorm(local, t.focalCentre.w, t.focalRadii.w);
+        float norm = hvxFocalNorm(t, x.p);
         if (norm <= 1.0f) entered = true;
         vec3 L = -x.v;  // headlight
         float gl2 = dot(x.g, x.g);
