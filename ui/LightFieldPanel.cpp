@@ -21,28 +21,12 @@
 #include "core/LightFieldSimulator.h"
 #include "core/QuiltLayout.h"
 #include "core/StereoComposer.h"
+#include "ui/ImageConversion.h"
 #include "ui/LightFieldWindow.h"
 #include "ui/VolumeView.h"
 
 namespace hvx::ui {
 
-namespace {
-QImage toQImage(const core::RenderImage& img) {
-    QImage out(img.width, img.height, QImage::Format_RGB32);
-    for (int y = 0; y < img.height; ++y) {
-        auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
-        for (int x = 0; x < img.width; ++x) {
-            const auto& p = img.rgba[std::size_t(y) * std::size_t(img.width) + std::size_t(x)];
-            auto c = [](float v) {
-                const double l = std::clamp(double(v), 0.0, 1.0);
-                return int(std::lround(255.0 * (l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1 / 2.4) - 0.055)));
-            };
-            row[x] = qRgb(c(p.r), c(p.g), c(p.b));
-        }
-    }
-    return out;
-}
-}  // namespace
 
 LightFieldPanel::LightFieldPanel(VolumeView& view, QWidget* parent)
     : QWidget(parent), view_(view), profiles_(new QComboBox(this)), eta_(new QSlider(Qt::Horizontal, this)),

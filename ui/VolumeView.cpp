@@ -24,6 +24,7 @@
 #include "core/WorkingSet.h"
 #include "render/GpuRayCaster.h"
 #include "render/LightFieldRenderer.h"
+#include "ui/ImageConversion.h"
 
 namespace hvx::ui {
 
@@ -39,35 +40,6 @@ struct VolumeView::Scene {
           space(core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount())) {}
 };
 
-namespace {
-// Linear [0, 1] -> 8-bit sRGB, as core::ImageWriter encodes PNGs.
-const std::array<std::uint8_t, 4096>& srgbTable() {
-    static const auto table = [] {
-        std::array<std::uint8_t, 4096> t{};
-        for (std::size_t i = 0; i < t.size(); ++i) {
-            const double c = double(i) / double(t.size() - 1);
-            const double s = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-            t[i] = std::uint8_t(std::lround(std::clamp(s, 0.0, 1.0) * 255.0));
-        }
-        return t;
-    }();
-    return table;
-}
-
-QImage toImage(const core::RenderImage& img) {
-    QImage out(img.width, img.height, QImage::Format_RGB32);
-    const auto& lut = srgbTable();
-    for (int y = 0; y < img.height; ++y) {
-        auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
-        for (int x = 0; x < img.width; ++x) {
-            const auto& p = img.rgba[std::size_t(y) * std::size_t(img.width) + std::size_t(x)];
-            auto c = [&](float v) { return lut[std::size_t(std::clamp(v, 0.0f, 1.0f) * 4095.0f)]; };
-            row[x] = qRgb(c(p.r), c(p.g), c(p.b));  // premultiplied over black
-        }
-    }
-    return out;
-}
-}  // namespace
 
 VolumeView::VolumeView(QWidget* parent) : QOpenGLWidget(parent) {
     setFocusPolicy(Qt::StrongFocus);
@@ -203,7 +175,7 @@ void VolumeView::paintGL() {
             scene_->ws.setRayCounts(img.rayCounts);
             const double ms = double(t.nsecsElapsed()) / 1e6;
             quality_.frameDone(level, ms);
-            frame_ = toImage(img).scaled(w, h, Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
+            frame_ = toQImage(img).scaled(w, h, Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
             ++frames_;
             const auto& st = scene_->ws.stats();
             readouts_.frameMs = ms;

@@ -17,20 +17,13 @@
 #include "render/EglOffscreenContext.h"
 #include "render/LightFieldRenderer.h"
 #include "tests/support/MemoryVoxelSource.h"
+#include "tests/support/ImageCompare.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;
 
 namespace {
-double psnr(const core::RenderImage& a, const core::RenderImage& b) {
-    double se = 0;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i) {
-        const glm::vec4 d = glm::clamp(a.rgba[i], 0.0f, 1.0f) - glm::clamp(b.rgba[i], 0.0f, 1.0f);
-        se += double(glm::dot(d, d)) / 4.0;
-    }
-    const double mse = se / double(a.rgba.size());
-    return mse > 0 ? 10.0 * std::log10(1.0 / mse) : 99.0;
-}
+using test::psnr;
 
 // A small projector display: 48 projectors of 96x72 over a 300x225 mm screen.
 core::DisplayModel smallDisplay() {

@@ -1,0 +1,12 @@
+#pragma once
+#include <QImage>
+
+#include "core/CpuRayCaster.h"
+
+namespace hvx::ui {
+
+/// A rendered frame as a QImage: premultiplied colour over black, encoded to 8-bit sRGB as
+/// core::ImageWriter writes PNGs.
+QImage toQImage(const core::RenderImage& image);
+
+}  // namespace hvx::ui
