@@ -107,6 +107,10 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     });
     for (auto* panel : toolPanels_) connect(panel, &ToolsPanel::changed, this, &MainWindow::applyTools);
     connect(view_, &VolumeView::surfacePicked, this, &MainWindow::placeTool);
+    connect(view_, &VolumeView::toolsEdited, this, [this](const core::ToolSet& t) {
+        tools_ = t;
+        for (auto* panel : toolPanels_) panel->setTools(tools_);
+    });
     for (auto* s : slices_)
         connect(s, &SliceView::pointChanged, this, [this, s](const glm::dvec3& p) {
             for (auto* other : slices_)

@@ -14,7 +14,9 @@
 #include <array>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "core/BrickCache.h"
 #include "core/BrickLoader.h"
@@ -45,7 +47,9 @@ VolumeView::VolumeView(QWidget* parent) : QOpenGLWidget(parent) {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(200, 200);
     setToolTip(tr("Left drag: rotate \u2022 Middle or Shift+drag: pan \u2022 Right drag or wheel: zoom\n"
-                  "A P L R S I: standard views \u2022 Home: reset"));
+                  "A P L R S I: standard views \u2022 Home: reset\n"
+                  "Ctrl+click: place the probes on the surface \u2022 Ctrl+drag: move them (with Shift: in depth) "
+                  "\u2022 Ctrl+wheel: scale them \u2022 Alt+click: pick a band"));
     settle_.setSingleShot(true);
     settle_.setInterval(200);
     connect(&settle_, &QTimer::timeout, this, qOverload<>(&VolumeView::update));
@@ -229,7 +233,7 @@ void VolumeView::paintOverlays(QPainter& p) {
     // Orientation cube (bottom left): faces towards the viewer, lettered in patient terms.
     const double s = 26.0;
     const QPointF c(14 + s * 1.3, height() - 14 - s * 1.3);
-    auto project = [&](const glm::dvec3& v) {
+    auto cubePoint = [&](const glm::dvec3& v) {
         return c + QPointF(glm::dot(v, camera_.right()) * s, -glm::dot(v, camera_.up()) * s);
     };
     struct Face {
@@ -247,18 +251,34 @@ void VolumeView::paintOverlays(QPainter& p) {
         glm::dvec3 a = glm::abs(face.n.x) > 0 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
         glm::dvec3 b = glm::cross(face.n, a);
         QPainterPath path;
-        path.moveTo(project(face.n + a + b));
-        path.lineTo(project(face.n + a - b));
-        path.lineTo(project(face.n - a - b));
-        path.lineTo(project(face.n - a + b));
+        path.moveTo(cubePoint(face.n + a + b));
+        path.lineTo(cubePoint(face.n + a - b));
+        path.lineTo(cubePoint(face.n - a - b));
+        path.lineTo(cubePoint(face.n - a + b));
         path.closeSubpath();
         const int shade = int(70 + 120 * facing);
         p.fillPath(path, QColor(shade / 2, shade / 2, shade));
         p.setPen(QColor(220, 220, 220));
         p.drawPath(path);
-        const QPointF centre = project(face.n);
+        const QPointF centre = cubePoint(face.n);
         p.drawText(QRectF(centre.x() - 10, centre.y() - 10, 20, 20), Qt::AlignCenter, face.letter);
     }
+    // Probe handles: the centre and the outline of the focal and context probes.
+    const auto& tools = settings_.tools;
+    auto handle = [&](const glm::dvec3& probeCentre, double radius, const QColor& colour) {
+        QPointF at;
+        double depth = 0;
+        if (!project(probeCentre, at, depth)) return;
+        const double px = radius / depth / std::tan(glm::radians(camera_.fovYDegrees()) / 2.0) * height() / 2.0;
+        p.setPen(QPen(colour, 1.5, Qt::DashLine));
+        p.setBrush(Qt::NoBrush);
+        p.drawEllipse(at, px, px);
+        p.setPen(QPen(colour, 2));
+        p.drawLine(at - QPointF(6, 0), at + QPointF(6, 0));
+        p.drawLine(at - QPointF(0, 6), at + QPointF(0, 6));
+    };
+    if (tools.focal.enabled) handle(tools.focal.centre, std::max({tools.focal.radii.x, tools.focal.radii.y, tools.focal.radii.z}), QColor(120, 220, 255));
+    if (tools.context.enabled) handle(tools.context.centre, tools.context.radius, QColor(255, 170, 90));
 }
 
 void VolumeView::capture(const QString& path, int width, int height) {
@@ -314,8 +334,65 @@ void VolumeView::interacted() {
 }
 
 void VolumeView::mousePressEvent(QMouseEvent* e) {
-    const bool pick = e->button() == Qt::LeftButton && (e->modifiers() & (Qt::ControlModifier | Qt::AltModifier));
-    if (pick && scene_ && !lastDepth_.empty()) {
+    lastPos_ = pressPos_ = e->position().toPoint();
+    const bool modified = e->modifiers() & (Qt::ControlModifier | Qt::AltModifier);
+    if (e->button() == Qt::LeftButton && modified) {  // tools: pick on release, or drag the probes
+        toolDrag_ = true;
+        toolMoved_ = false;
+        return;
+    }
+    dragging_ = true;
+    dragButton_ = e->button();
+}
+
+bool VolumeView::project(const glm::dvec3& p, QPointF& out, double& depth) const {
+    const auto v = camera_.view(width(), height());
+    const glm::dvec3 rel = p - v.eye;
+    depth = -glm::dot(rel, camera_.back());
+    if (depth <= 1e-6) return false;
+    const double t = std::tan(glm::radians(v.fovYDegrees) / 2.0);
+    const double nx = glm::dot(rel, camera_.right()) / depth / (t * double(width()) / height());
+    const double ny = glm::dot(rel, camera_.up()) / depth / t;
+    out = QPointF((nx + 1.0) / 2.0 * width(), (1.0 - ny) / 2.0 * height());
+    return true;
+}
+
+void VolumeView::moveProbes(const QPoint& d, bool alongView) {
+    auto tools = settings_.tools;
+    QPointF at;
+    double depth = camera_.distance();
+    project(tools.focal.enabled ? tools.focal.centre : tools.context.centre, at, depth);
+    const double mmPerPixel = 2.0 * depth * std::tan(glm::radians(camera_.fovYDegrees()) / 2.0) / std::max(1, height());
+    const glm::dvec3 delta = alongView ? -camera_.back() * (-d.y() * mmPerPixel)
+                                       : (camera_.right() * double(d.x()) - camera_.up() * double(d.y())) * mmPerPixel;
+    tools.focal.centre += delta;
+    tools.context.centre += delta;
+    settings_.tools = tools;
+    emit toolsEdited(tools);
+    interacted();
+}
+
+void VolumeView::mouseMoveEvent(QMouseEvent* e) {
+    const QPoint pos = e->position().toPoint();
+    const QPoint d = pos - lastPos_;
+    lastPos_ = pos;
+    if (toolDrag_) {  // Ctrl+drag moves the probes in the view plane, Ctrl+Shift+drag in depth
+        if ((pos - pressPos_).manhattanLength() > 3) toolMoved_ = true;
+        if (toolMoved_ && (settings_.tools.focal.enabled || settings_.tools.context.enabled))
+            moveProbes(d, e->modifiers() & Qt::ShiftModifier);
+        return;
+    }
+    if (!dragging_) return;
+    const bool pan = dragButton_ == Qt::MiddleButton || (dragButton_ == Qt::LeftButton && (e->modifiers() & Qt::ShiftModifier));
+    if (pan) camera_.pan(d.x(), d.y(), height());
+    else if (dragButton_ == Qt::RightButton) camera_.zoom(std::pow(1.005, -d.y()));
+    else if (dragButton_ == Qt::LeftButton) camera_.rotate(d.x(), d.y(), height());
+    update();
+}
+
+void VolumeView::mouseReleaseEvent(QMouseEvent* e) {
+    if (toolDrag_ && !toolMoved_ && scene_ && !lastDepth_.empty()) {
+        // A click: the first significant sample under the cursor.
         const double sx = e->position().x() / std::max(1, width()) * lastView_.width;
         const double sy = e->position().y() / std::max(1, height()) * lastView_.height;
         const int px = std::clamp(int(sx), 0, lastView_.width - 1), py = std::clamp(int(sy), 0, lastView_.height - 1);
@@ -325,32 +402,24 @@ void VolumeView::mousePressEvent(QMouseEvent* e) {
             lastView_.ray(px, py, o, d);
             emit surfacePicked(o + d * double(depth), (e->modifiers() & Qt::AltModifier) != 0);
         }
-        return;
     }
-    dragging_ = true;
-    dragButton_ = e->button();
-    lastPos_ = e->position().toPoint();
-}
-
-void VolumeView::mouseMoveEvent(QMouseEvent* e) {
-    if (!dragging_) return;
-    const QPoint pos = e->position().toPoint();
-    const QPoint d = pos - lastPos_;
-    lastPos_ = pos;
-    const bool pan = dragButton_ == Qt::MiddleButton || (dragButton_ == Qt::LeftButton && (e->modifiers() & Qt::ShiftModifier));
-    if (pan) camera_.pan(d.x(), d.y(), height());
-    else if (dragButton_ == Qt::RightButton) camera_.zoom(std::pow(1.005, -d.y()));
-    else if (dragButton_ == Qt::LeftButton) camera_.rotate(d.x(), d.y(), height());
-    update();
-}
-
-void VolumeView::mouseReleaseEvent(QMouseEvent*) {
+    toolDrag_ = false;
     dragging_ = false;
     update();  // the next frame is full quality
 }
 
 void VolumeView::wheelEvent(QWheelEvent* e) {
     const double steps = !e->pixelDelta().isNull() ? e->pixelDelta().y() / 60.0 : e->angleDelta().y() / 120.0;
+    if ((e->modifiers() & Qt::ControlModifier) && (settings_.tools.focal.enabled || settings_.tools.context.enabled)) {
+        auto tools = settings_.tools;  // Ctrl+wheel scales the probes
+        const double f = std::pow(1.1, steps);
+        tools.focal.radii = glm::clamp(tools.focal.radii * f, glm::dvec3(1.0), glm::dvec3(2000.0));
+        tools.context.radius = std::clamp(tools.context.radius * f, 1.0, 2000.0);
+        settings_.tools = tools;
+        emit toolsEdited(tools);
+        interacted();
+        return;
+    }
     camera_.zoom(std::pow(1.1, steps));
     interacted();
 }

@@ -75,6 +75,8 @@ signals:
     void frameRendered();
     /// Ctrl+click (or Alt+click) on the volume: the first significant sample under the cursor.
     void surfacePicked(const glm::dvec3& patient, bool alt);
+    /// The probes were moved or scaled in the view (Ctrl+drag, Ctrl+Shift+drag, Ctrl+wheel).
+    void toolsEdited(const core::ToolSet& tools);
     void failed(const QString& message);
 
 protected:
@@ -108,6 +110,11 @@ private:
     int unsettledFrames_ = 0;
     Readouts readouts_;
     bool dragging_ = false;
+    bool toolDrag_ = false, toolMoved_ = false;
+    QPoint pressPos_;
+    /// Widget position of a patient point, and its distance along the view (mm); false behind the eye.
+    bool project(const glm::dvec3& p, QPointF& out, double& depth) const;
+    void moveProbes(const QPoint& d, bool alongView);
     Qt::MouseButton dragButton_ = Qt::NoButton;
     QPoint lastPos_;
     QTimer settle_;     // wheel/keys: moving until it fires

@@ -16,6 +16,7 @@
 #include <QSurfaceFormat>
 #include <QTest>
 #include <QTreeWidget>
+#include <QWheelEvent>
 
 #include <cmath>
 #include <filesystem>
@@ -203,6 +204,19 @@ private slots:
         QVERIFY2(glm::length(window_->tools().focal.centre - window_->tools().context.centre) < 1e-9 &&
                      window_->tools().focal.centre != glm::dvec3(0.0),
                  "the probe moved to the picked surface");
+        // Ctrl+wheel scales the probe, Ctrl+drag moves it across the view.
+        const double radius = window_->tools().focal.radii.x;
+        QWheelEvent wheel(QPointF(view()->rect().center()), view()->mapToGlobal(QPointF(view()->rect().center())), QPoint(),
+                          QPoint(0, 120), Qt::NoButton, Qt::ControlModifier, Qt::NoScrollPhase, false);
+        QApplication::sendEvent(view(), &wheel);
+        QVERIFY(std::abs(window_->tools().focal.radii.x - radius * 1.1) < 1e-6);
+        const glm::dvec3 before = window_->tools().focal.centre;
+        const QPoint c = view()->rect().center();
+        QTest::mousePress(view(), Qt::LeftButton, Qt::ControlModifier, c);
+        for (int i = 1; i <= 5; ++i) QTest::mouseMove(view(), c + QPoint(10 * i, 0), 10);
+        QTest::mouseRelease(view(), Qt::LeftButton, Qt::ControlModifier, c + QPoint(50, 0));
+        QVERIFY2(glm::dot(window_->tools().focal.centre - before, view()->camera().right()) > 1.0,
+                 "dragging right moves the probe to the view's right");
         window_->toolsPanel(1)->group("clip")->setChecked(true);  // and the clip plane, from its dock
         QVERIFY(window_->tools().clip.enabled);
         const QImage tools = settledFrame();
