@@ -17,15 +17,18 @@ namespace hvx::render {
 namespace {
 struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
     glm::mat4 patientToOctree;
-    glm::vec4 eye, forward, right, up, extent, tfRange, shading, extra, enhance;
-    glm::vec4 screenCentre, screenRight, screenUp, screenViewer, screenProjector;
+    glm::vec4 extent, tfRange, shading, extra, enhance;
     glm::uvec4 brick, image;
 };
-static_assert(sizeof(FrameBlock) == 64 + 14 * 16 + 2 * 16, "std140 layout of Frame");
+static_assert(sizeof(FrameBlock) == 64 + 5 * 16 + 2 * 16, "std140 layout of Frame");
+struct ViewBlock {  // std430 mirror of raycast_inputs.glsl's ViewCamera
+    glm::vec4 eye, forward, right, up, screenCentre, screenRight, screenUp, screenViewer, screenProjector;
+};
+static_assert(sizeof(ViewBlock) == 9 * 16, "std430 layout of ViewCamera");
 }  // namespace
 
 GpuRayCaster::GpuRayCaster(PoolPrecision precision) {
-    glCreateBuffers(10, buffers_);
+    glCreateBuffers(11, buffers_);
     if (precision == PoolPrecision::Auto) {
         const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         const std::string name = renderer ? renderer : "";
@@ -36,7 +39,7 @@ GpuRayCaster::GpuRayCaster(PoolPrecision precision) {
 }
 
 GpuRayCaster::~GpuRayCaster() {
-    glDeleteBuffers(10, buffers_);
+    glDeleteBuffers(11, buffers_);
     if (pool_) glDeleteTextures(1, &pool_);
 }
 
@@ -127,6 +130,18 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
                                        const std::vector<std::shared_ptr<const core::Brick>>& slots,
                                        const core::TransferFunction& tf, const core::RenderSettings& settings,
                                        const core::View& view) {
+    return std::move(renderViews(reader, index, slots, tf, settings, {view}).front());
+}
+
+std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReader& reader, const core::SpatialIndex& index,
+                                                         const std::vector<std::shared_ptr<const core::Brick>>& slots,
+                                                         const core::TransferFunction& tf,
+                                                         const core::RenderSettings& settings,
+                                                         const std::vector<core::View>& views) {
+    if (views.empty()) return {};
+    const int width = views.front().width, height = views.front().height;
+    for (const auto& v : views)
+        if (v.width != width || v.height != height) throw core::Error("a batch of views must share one image size");
     const int mode = int(settings.mode);
     const int tools = settings.mode == core::RenderSettings::Mode::Dvr ? settings.tools.variantBits() : 0;
     if (tools) settings.tools.validate();
@@ -146,30 +161,39 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     const std::vector<glm::vec4> integral(tf.integralTable().begin(), tf.integralTable().end());
     glNamedBufferData(buffers_[2], GLsizeiptr(table.size() * sizeof(glm::vec4)), table.data(), GL_STREAM_DRAW);
     glNamedBufferData(buffers_[3], GLsizeiptr(integral.size() * sizeof(glm::vec4)), integral.data(), GL_STREAM_DRAW);
-    const std::size_t pixels = std::size_t(view.width) * std::size_t(view.height);
-    glNamedBufferData(buffers_[4], GLsizeiptr(pixels * sizeof(glm::vec4)), nullptr, GL_STREAM_READ);
-    glNamedBufferData(buffers_[5], GLsizeiptr(pixels * sizeof(float)), nullptr, GL_STREAM_READ);
+    const std::size_t pixels = std::size_t(width) * std::size_t(height);
+    const std::size_t all = pixels * views.size();
+    glNamedBufferData(buffers_[4], GLsizeiptr(all * sizeof(glm::vec4)), nullptr, GL_STREAM_READ);
+    glNamedBufferData(buffers_[5], GLsizeiptr(all * sizeof(float)), nullptr, GL_STREAM_READ);
     std::vector<std::uint32_t> zeros(settings.countRays ? index.nodes.size() : 1, 0u);
     glNamedBufferData(buffers_[6], GLsizeiptr(zeros.size() * 4), zeros.data(), GL_STREAM_READ);
+
+    // Each view's camera: one entry per view, read by the invocations of dispatch layer z.
+    std::vector<ViewBlock> blocks;
+    for (const auto& view : views) {
+        ViewBlock b{};
+        const glm::dvec3 f = glm::normalize(view.target - view.eye);
+        const glm::dvec3 r = glm::normalize(glm::cross(f, view.up));
+        const glm::dvec3 u = glm::cross(r, f);
+        const bool pinhole = view.model == core::View::Model::Pinhole;
+        const bool screen = view.model == core::View::Model::Screen;
+        b.eye = glm::vec4(glm::vec3(view.eye), screen ? 2.0f : pinhole ? 1.0f : 0.0f);
+        b.forward = glm::vec4(glm::vec3(f), pinhole ? float(std::tan(glm::radians(view.fovYDegrees) / 2.0))
+                                                    : float(view.orthoHeight / 2.0));
+        b.right = glm::vec4(glm::vec3(r), float(view.width) / float(view.height));
+        b.up = glm::vec4(glm::vec3(u), 0.0f);
+        b.screenCentre = glm::vec4(glm::vec3(view.screen.centre), float(view.screen.eta));
+        b.screenRight = glm::vec4(glm::vec3(glm::normalize(view.screen.right)), float(view.screen.widthMm));
+        b.screenUp = glm::vec4(glm::vec3(glm::normalize(view.screen.up)), float(view.screen.heightMm));
+        b.screenViewer = glm::vec4(glm::vec3(view.screen.viewer), 0.0f);
+        b.screenProjector = glm::vec4(glm::vec3(view.screen.projector), 0.0f);
+        blocks.push_back(b);
+    }
+    glNamedBufferData(buffers_[10], GLsizeiptr(blocks.size() * sizeof(ViewBlock)), blocks.data(), GL_STREAM_DRAW);
 
     const auto space = core::OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount());
     FrameBlock fb{};
     fb.patientToOctree = glm::mat4(space.patientToOctree);
-    const glm::dvec3 f = glm::normalize(view.target - view.eye);
-    const glm::dvec3 r = glm::normalize(glm::cross(f, view.up));
-    const glm::dvec3 u = glm::cross(r, f);
-    const bool pinhole = view.model == core::View::Model::Pinhole;
-    const bool screen = view.model == core::View::Model::Screen;
-    fb.eye = glm::vec4(glm::vec3(view.eye), screen ? 2.0f : pinhole ? 1.0f : 0.0f);
-    fb.screenCentre = glm::vec4(glm::vec3(view.screen.centre), float(view.screen.eta));
-    fb.screenRight = glm::vec4(glm::vec3(glm::normalize(view.screen.right)), float(view.screen.widthMm));
-    fb.screenUp = glm::vec4(glm::vec3(glm::normalize(view.screen.up)), float(view.screen.heightMm));
-    fb.screenViewer = glm::vec4(glm::vec3(view.screen.viewer), 0.0f);
-    fb.screenProjector = glm::vec4(glm::vec3(view.screen.projector), 0.0f);
-    fb.forward = glm::vec4(glm::vec3(f), pinhole ? float(std::tan(glm::radians(view.fovYDegrees) / 2.0))
-                                                 : float(view.orthoHeight / 2.0));
-    fb.right = glm::vec4(glm::vec3(r), float(view.width) / float(view.height));
-    fb.up = glm::vec4(glm::vec3(u), 0.0f);
     fb.extent = glm::vec4(glm::vec3(space.extent), float(1.0 / space.rootVoxels));
     fb.tfRange = glm::vec4(float(tf.valueMin()), float(tf.valueMax()), float(settings.earlyTermination),
                            float(settings.stepScale));
@@ -180,32 +204,38 @@ core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const c
     fb.enhance = glm::vec4(float(settings.boundary), float(settings.viewTransparency),
                            float(space.minSpacing / (tf.valueMax() - tf.valueMin()) / core::kBoundaryGradientFraction), 0.0f);
     fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), poolRow_);
-    fb.image = glm::uvec4(std::uint32_t(view.width), std::uint32_t(view.height), poolLayer_, 0u);
+    fb.image = glm::uvec4(std::uint32_t(width), std::uint32_t(height), poolLayer_, std::uint32_t(views.size()));
     glNamedBufferData(buffers_[7], sizeof fb, &fb, GL_STREAM_DRAW);
 
     program->use();
     for (GLuint b = 0; b < 7; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffers_[8]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, buffers_[10]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers_[9]);
     glBindTextureUnit(0, pool_);
-    glDispatchCompute(GLuint((view.width + 7) / 8), GLuint((view.height + 7) / 8), 1);
+    glDispatchCompute(GLuint((width + 7) / 8), GLuint((height + 7) / 8), GLuint(views.size()));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
-    core::RenderImage img;
-    img.width = view.width;
-    img.height = view.height;
-    img.rgba.resize(pixels);
-    img.depth.resize(pixels);
-    glGetNamedBufferSubData(buffers_[4], 0, GLsizeiptr(pixels * sizeof(glm::vec4)), img.rgba.data());
-    glGetNamedBufferSubData(buffers_[5], 0, GLsizeiptr(pixels * sizeof(float)), img.depth.data());
-    if (settings.countRays) {
-        img.rayCounts.resize(index.nodes.size());
-        glGetNamedBufferSubData(buffers_[6], 0, GLsizeiptr(img.rayCounts.size() * 4), img.rayCounts.data());
+    std::vector<core::RenderImage> images(views.size());
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        auto& img = images[v];
+        img.width = width;
+        img.height = height;
+        img.rgba.resize(pixels);
+        img.depth.resize(pixels);
+        glGetNamedBufferSubData(buffers_[4], GLintptr(v * pixels * sizeof(glm::vec4)), GLsizeiptr(pixels * sizeof(glm::vec4)),
+                                img.rgba.data());
+        glGetNamedBufferSubData(buffers_[5], GLintptr(v * pixels * sizeof(float)), GLsizeiptr(pixels * sizeof(float)),
+                                img.depth.data());
+    }
+    if (settings.countRays) {  // rays of every view of the batch, per index node
+        images.front().rayCounts.resize(index.nodes.size());
+        glGetNamedBufferSubData(buffers_[6], 0, GLsizeiptr(index.nodes.size() * 4), images.front().rayCounts.data());
     }
     const GLenum err = glGetError();
     if (err != GL_NO_ERROR) throw core::Error("OpenGL error " + std::to_string(err) + " while ray casting");
-    return img;
+    return images;
 }
 
 }  // namespace hvx::render

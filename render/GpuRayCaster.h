@@ -37,6 +37,13 @@ public:
                              const std::vector<std::shared_ptr<const core::Brick>>& slots,
                              const core::TransferFunction& tf, const core::RenderSettings& settings,
                              const core::View& view);
+    /// Renders several views of one size from the same index and pool in one dispatch (the
+    /// layers of its z dimension): the views of a light-field frame. With countRays, the rays
+    /// of all views are counted in the first image.
+    std::vector<core::RenderImage> renderViews(const core::OctreeReader& reader, const core::SpatialIndex& index,
+                                               const std::vector<std::shared_ptr<const core::Brick>>& slots,
+                                               const core::TransferFunction& tf, const core::RenderSettings& settings,
+                                               const std::vector<core::View>& views);
     /// Bytes uploaded to the brick pool by the last render().
     std::size_t lastUploadBytes() const { return uploaded_; }
     /// Bytes the pool texture occupies on the GPU.
@@ -47,7 +54,7 @@ private:
                     core::ScalarType type);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
-    unsigned buffers_[10] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot decode, tools
+    unsigned buffers_[11] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot decode, tools, views
     unsigned pool_ = 0;
     std::uint32_t poolEdge_ = 0, poolRow_ = 0, poolLayer_ = 0, poolLayers_ = 0;
     // What each slot holds; keeping the reference stops a freed brick's address from being

@@ -1,5 +1,6 @@
 #include "render/LightFieldRenderer.h"
 
+#include <algorithm>
 #include <chrono>
 
 namespace hvx::render {
@@ -21,9 +22,18 @@ std::vector<core::RenderImage> LightFieldRenderer::render(const core::OctreeRead
     const auto t1 = Clock::now();
     std::vector<core::RenderImage> out;
     out.reserve(views.size());
-    for (const auto& v : views) {
-        if (gpu) out.push_back(gpu->render(reader, ws.index(), ws.slotBricks(), tf, settings, v));
-        else out.push_back(core::CpuRayCaster(reader, ws.index(), ws.slotData(), tf, settings).render(v));
+    if (gpu) {
+        // Batches of views per dispatch, as many as keep the output buffers near 64 MiB.
+        const std::size_t perView = std::size_t(views.front().width) * std::size_t(views.front().height) * 20;
+        const std::size_t batch = std::max<std::size_t>(1, (std::size_t(64) << 20) / std::max<std::size_t>(1, perView));
+        for (std::size_t first = 0; first < views.size(); first += batch) {
+            const std::vector<core::View> some(views.begin() + std::ptrdiff_t(first),
+                                               views.begin() + std::ptrdiff_t(std::min(views.size(), first + batch)));
+            auto images = gpu->renderViews(reader, ws.index(), ws.slotBricks(), tf, settings, some);
+            for (auto& im : images) out.push_back(std::move(im));
+        }
+    } else {
+        for (const auto& v : views) out.push_back(core::CpuRayCaster(reader, ws.index(), ws.slotData(), tf, settings).render(v));
     }
     if (stats) {
         stats->cutNodes = ws.stats().cutNodes;

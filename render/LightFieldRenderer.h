@@ -11,7 +11,8 @@ namespace hvx::render {
 
 /// Draws all views of a multi-view display frame from one working set: the cut is refined
 /// once for every view together with the display's accuracy function s(z) (DESIGN.md decision
-/// 4), then each view is ray cast from that same index and pool (a dispatch per view). With
+/// 4), then the views are ray cast from that same index and pool, a batch of views per dispatch
+/// (GpuRayCaster::renderViews; the batch keeps the output near 64 MiB). With
 /// `gpu` null the CPU reference draws (the working set must keep its CPU mirror).
 ///
 /// Threading: the GL thread when `gpu` is given.

@@ -16,6 +16,8 @@
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "core/BrickCache.h"
@@ -49,7 +51,8 @@ VolumeView::VolumeView(QWidget* parent) : QOpenGLWidget(parent) {
     setToolTip(tr("Left drag: rotate \u2022 Middle or Shift+drag: pan \u2022 Right drag or wheel: zoom\n"
                   "A P L R S I: standard views \u2022 Home: reset\n"
                   "Ctrl+click: place the probes on the surface \u2022 Ctrl+drag: move them (with Shift: in depth) "
-                  "\u2022 Ctrl+wheel: scale them \u2022 Alt+click: pick a band"));
+                  "\u2022 Ctrl+wheel: scale them \u2022 Alt+click: pick a band\n"
+                  "Clip plane alone: Ctrl+drag pushes it along its normal, Ctrl+Shift+drag tilts it"));
     settle_.setSingleShot(true);
     settle_.setInterval(200);
     connect(&settle_, &QTimer::timeout, this, qOverload<>(&VolumeView::update));
@@ -372,14 +375,36 @@ void VolumeView::moveProbes(const QPoint& d, bool alongView) {
     interacted();
 }
 
+void VolumeView::moveClipPlane(const QPoint& d, bool tilt) {
+    auto tools = settings_.tools;
+    glm::dvec3 n = glm::normalize(tools.clip.normal);
+    // A point of the plane, kept fixed while tilting: the projection of the camera's target.
+    const glm::dvec3 onPlane = camera_.target() - n * (glm::dot(n, camera_.target()) + tools.clip.offset);
+    if (tilt) {  // Ctrl+Shift+drag: turn the plane about the view's axes through that point
+        const double perPixel = glm::pi<double>() / std::max(1, height());
+        n = glm::angleAxis(d.x() * perPixel, camera_.up()) * (glm::angleAxis(d.y() * perPixel, camera_.right()) * n);
+        tools.clip.normal = n;
+        tools.clip.offset = -glm::dot(n, onPlane);
+    } else {  // Ctrl+drag: push the plane along its normal, one pixel's millimetres per pixel
+        const double mmPerPixel =
+            2.0 * camera_.distance() * std::tan(glm::radians(camera_.fovYDegrees()) / 2.0) / std::max(1, height());
+        tools.clip.normal = n;
+        tools.clip.offset = tools.clip.offset - d.y() * mmPerPixel;
+    }
+    settings_.tools = tools;
+    emit toolsEdited(tools);
+    interacted();
+}
+
 void VolumeView::mouseMoveEvent(QMouseEvent* e) {
     const QPoint pos = e->position().toPoint();
     const QPoint d = pos - lastPos_;
     lastPos_ = pos;
     if (toolDrag_) {  // Ctrl+drag moves the probes in the view plane, Ctrl+Shift+drag in depth
         if ((pos - pressPos_).manhattanLength() > 3) toolMoved_ = true;
-        if (toolMoved_ && (settings_.tools.focal.enabled || settings_.tools.context.enabled))
-            moveProbes(d, e->modifiers() & Qt::ShiftModifier);
+        if (!toolMoved_) return;
+        if (settings_.tools.focal.enabled || settings_.tools.context.enabled) moveProbes(d, e->modifiers() & Qt::ShiftModifier);
+        else if (settings_.tools.clip.enabled) moveClipPlane(d, e->modifiers() & Qt::ShiftModifier);
         return;
     }
     if (!dragging_) return;

@@ -115,6 +115,7 @@ private:
     /// Widget position of a patient point, and its distance along the view (mm); false behind the eye.
     bool project(const glm::dvec3& p, QPointF& out, double& depth) const;
     void moveProbes(const QPoint& d, bool alongView);
+    void moveClipPlane(const QPoint& d, bool tilt);
     Qt::MouseButton dragButton_ = Qt::NoButton;
     QPoint lastPos_;
     QTimer settle_;     // wheel/keys: moving until it fires

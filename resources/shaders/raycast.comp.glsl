@@ -12,7 +12,12 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (px.x >= int(image.x) || px.y >= int(image.y)) return;
+    uint view = gl_GlobalInvocationID.z;
+    if (px.x >= int(image.x) || px.y >= int(image.y) || view >= image.w) return;
+    ViewCamera cam = views[view];
+    vec4 eye = cam.eye, forward = cam.forward, right = cam.right, up = cam.up;
+    vec4 screenCentre = cam.screenCentre, screenRight = cam.screenRight, screenUp = cam.screenUp;
+    vec4 screenViewer = cam.screenViewer, screenProjector = cam.screenProjector;
     float nx = (float(px.x) + 0.5) / float(image.x) * 2.0 - 1.0;
     float ny = 1.0 - (float(px.y) + 0.5) / float(image.y) * 2.0;
     vec3 ow, dw;
@@ -35,7 +40,7 @@ void main() {
     }
     float depth;
     vec4 c = castRay(ow, dw, depth);
-    uint i = uint(px.y) * image.x + uint(px.x);
+    uint i = (view * image.y + uint(px.y)) * image.x + uint(px.x);
     outColor[i] = c;
     outDepth[i] = depth;
 }

@@ -1,23 +1,27 @@
 // Inputs and outputs of the ray caster (bindings shared with render/GpuRayCaster.cpp).
 layout(std140, binding = 0) uniform Frame {
     mat4 patientToOctree;
-    vec4 eye;        // xyz; w: 1 pinhole, 0 orthographic, 2 screen (MCOP, thesis Eq. 5.1)
-    vec4 forward;    // xyz; w: tan(fovY/2) or half the ortho height
-    vec4 right;      // xyz; w: aspect
-    vec4 up;
     vec4 extent;     // xyz: the volume's box in octree space; w: 1 / rootVoxels
     vec4 tfRange;    // valueMin, valueMax, early termination, step scale
     vec4 shading;    // ambient, diffuse, specular, shininess
     vec4 extra;      // iso value, shading on, count rays (1/0), TF reference length (mm)
     vec4 enhance;    // boundary enhancement, view-dependent transparency, strength per gradient, unused
+    uvec4 brick;     // brick size, border, edge, slots per row
+    uvec4 image;     // width, height, slots per layer, views in the batch
+};
+// One camera per view of the batch (dispatch layer z = view index).
+struct ViewCamera {
+    vec4 eye;              // xyz; w: 1 pinhole, 0 orthographic, 2 screen (MCOP, thesis Eq. 5.1)
+    vec4 forward;          // xyz; w: tan(fovY/2) or half the ortho height
+    vec4 right;            // xyz; w: aspect
+    vec4 up;
     vec4 screenCentre;     // screen model: xyz centre (patient); w: eta
     vec4 screenRight;      // xyz unit; w: width mm
     vec4 screenUp;         // xyz unit; w: height mm
     vec4 screenViewer;     // xyz: V in display coordinates
     vec4 screenProjector;  // xyz: E in display coordinates
-    uvec4 brick;     // brick size, border, edge, slots per row
-    uvec4 image;     // width, height, slots per layer, unused
 };
+layout(std430, binding = 8) readonly buffer Views { ViewCamera views[]; };
 layout(std430, binding = 2) readonly buffer TfTable { vec4 tfF[]; };      // 4096 entries
 layout(std430, binding = 3) readonly buffer TfIntegral { vec4 tfI[]; };   // 4097 entries
 layout(std430, binding = 4) writeonly buffer OutColor { vec4 outColor[]; };

@@ -222,6 +222,15 @@ private slots:
         const QImage tools = settledFrame();
         QVERIFY2(difference(plain, tools) > 1.0, "the tools change the image");
         saveArtifact("tools.png");
+        // The clip plane alone: Ctrl+drag pushes it along its normal.
+        auto clipOnly = window_->tools();
+        clipOnly.focal.enabled = clipOnly.context.enabled = false;
+        window_->setTools(clipOnly);
+        const double offset = window_->tools().clip.offset;
+        QTest::mousePress(view(), Qt::LeftButton, Qt::ControlModifier, c);
+        for (int i = 1; i <= 5; ++i) QTest::mouseMove(view(), c - QPoint(0, 10 * i), 10);
+        QTest::mouseRelease(view(), Qt::LeftButton, Qt::ControlModifier, c - QPoint(0, 50));
+        QVERIFY2(window_->tools().clip.offset > offset, "dragging up pushes the plane");
         // Out-of-range parameters are refused and the last valid tools stay.
         auto bad = window_->tools();
         bad.mimda.gamma = 2.0;

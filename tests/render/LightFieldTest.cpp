@@ -10,6 +10,7 @@
 #include "core/BrickCache.h"
 #include "core/BrickLoader.h"
 #include "core/DisplayModel.h"
+#include "core/Error.h"
 #include "core/ImageWriter.h"
 #include "core/LightFieldSimulator.h"
 #include "core/OctreeBuilder.h"
@@ -155,4 +156,26 @@ TEST(LightField, AMarkerInFrontOfTheScreenShiftsByTheGeometricAmountForShiftedOb
         if (px == 0.0) reference = column;
     }
     EXPECT_GT(reference, 0);
+}
+
+TEST(LightField, ABatchOfViewsInOneDispatchEqualsViewsDrawnOneByOne) {
+    core::PhantomVoxelSource phantom({64, 64, 48}, 3, {300, 300, 300}, 5.0);
+    Scene s(phantom);
+    const auto display = smallDisplay();
+    const auto views = display.views(s.centre(), {1, 0, 0}, {0, 0, 1}, 1.0);
+    const auto tf = core::TransferFunction::preset("ct-soft-tissue", s.reader->geometry().valueMin,
+                                                   s.reader->geometry().valueMax, 1, 0, 4.0);
+    render::EglOffscreenContext ctx;
+    render::GpuRayCaster gpu;
+    const std::vector<core::View> some(views.begin(), views.begin() + 7);
+    render::LightFieldRenderer::render(*s.reader, *s.ws, *s.loader, tf, {}, some, display.accuracyFunction(), nullptr, true);
+    const auto batch = gpu.renderViews(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, {}, some);
+    ASSERT_EQ(batch.size(), some.size());
+    for (std::size_t i = 0; i < some.size(); ++i) {
+        const auto single = gpu.render(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, {}, some[i]);
+        for (std::size_t k = 0; k < single.rgba.size(); ++k) ASSERT_EQ(batch[i].rgba[k], single.rgba[k]) << "view " << i;
+    }
+    auto other = some;
+    other.back().width = 10;
+    EXPECT_THROW(gpu.renderViews(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, {}, other), core::Error);
 }
