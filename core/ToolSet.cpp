@@ -7,6 +7,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 #include <nlohmann/json.hpp>
 
 #include "core/Enhancers.h"
@@ -37,6 +38,14 @@ T get(const Json& j, const char* key, const char* tool, T fallback) {
     }
 }
 }  // namespace
+
+glm::dmat3 ToolSet::FocalProbe::rotation() const {
+    const glm::dvec3 r = glm::radians(rotationDegrees);
+    const glm::dmat3 rx(1, 0, 0, 0, std::cos(r.x), std::sin(r.x), 0, -std::sin(r.x), std::cos(r.x));
+    const glm::dmat3 ry(std::cos(r.y), 0, -std::sin(r.y), 0, 1, 0, std::sin(r.y), 0, std::cos(r.y));
+    const glm::dmat3 rz(std::cos(r.z), std::sin(r.z), 0, -std::sin(r.z), std::cos(r.z), 0, 0, 0, 1);
+    return rz * ry * rx;
+}
 
 bool ToolSet::clipHides(const View& view) const {
     if (!clip.enabled) return false;
@@ -70,6 +79,8 @@ void ToolSet::validate() const {
     check(clip.fl >= 0 && clip.fl < clip.fh && clip.fh <= 1, "clip plane", "need 0 <= fl < fh <= 1");
     check(finite(focal.centre) && focal.radii.x > 0 && focal.radii.y > 0 && focal.radii.z > 0 && finite(focal.radii),
           "focal probe", "the radii must be positive");
+    check(finite(focal.rotationDegrees) && glm::all(glm::lessThanEqual(glm::abs(focal.rotationDegrees), glm::dvec3(360.0))),
+          "focal probe", "rotations must be between -360 and 360 degrees");
     check(focal.p >= 0.5 && focal.p <= 64 && focal.q >= 0.5 && focal.q <= 64, "focal probe", "p and q must be between 0.5 and 64");
     check(focal.beta >= -20 && focal.beta <= 20, "focal probe", "beta must be between -20 and 20");
     check(focal.rho >= 0 && focal.rho < 1, "focal probe", "rho must be in [0, 1)");
@@ -93,10 +104,8 @@ std::string ToolSet::toJson() const {
     Json j;
     j["clip"] = {{"enabled", clip.enabled}, {"normal", vec(clip.normal)}, {"offset", clip.offset},
                  {"thickness", clip.thickness}, {"fl", clip.fl}, {"fh", clip.fh}};
-    Json rot = Json::array();
-    for (int c = 0; c < 3; ++c) rot.push_back(vec(focal.rotation[c]));
     j["focal"] = {{"enabled", focal.enabled}, {"centre", vec(focal.centre)}, {"radii", vec(focal.radii)},
-                  {"rotation", rot}, {"p", focal.p}, {"q", focal.q}, {"beta", focal.beta}, {"rho", focal.rho},
+                  {"rotationDegrees", vec(focal.rotationDegrees)}, {"p", focal.p}, {"q", focal.q}, {"beta", focal.beta}, {"rho", focal.rho},
                   {"gl", focal.gl}, {"gh", focal.gh}, {"sl", focal.sl}, {"sh", focal.sh}, {"toon", focal.toon}};
     j["context"] = {{"enabled", context.enabled}, {"centre", vec(context.centre)}, {"radius", context.radius},
                     {"axis", vec(context.axis)}, {"gl", context.gl}, {"gh", context.gh}, {"al", context.al},
@@ -129,10 +138,7 @@ ToolSet ToolSet::fromJson(const std::string& text) {
         t.focal.enabled = get(f, "enabled", "focal probe", false);
         if (f.contains("centre")) t.focal.centre = vec(f["centre"], "focal probe", "centre");
         if (f.contains("radii")) t.focal.radii = vec(f["radii"], "focal probe", "radii");
-        if (f.contains("rotation")) {
-            if (!f["rotation"].is_array() || f["rotation"].size() != 3) throw Error("focal probe: rotation must be 3 columns");
-            for (int c = 0; c < 3; ++c) t.focal.rotation[c] = vec(f["rotation"][std::size_t(c)], "focal probe", "rotation");
-        }
+        if (f.contains("rotationDegrees")) t.focal.rotationDegrees = vec(f["rotationDegrees"], "focal probe", "rotationDegrees");
         for (auto [key, field] : {std::pair{"p", &t.focal.p}, {"q", &t.focal.q}, {"beta", &t.focal.beta}, {"rho", &t.focal.rho},
                                   {"gl", &t.focal.gl}, {"gh", &t.focal.gh}, {"sl", &t.focal.sl}, {"sh", &t.focal.sh},
                                   {"toon", &t.focal.toon}})
@@ -173,9 +179,10 @@ glsl::HvxTools packTools(const ToolSet& t, const glm::dvec4& shading) {
     p.clipParams = glm::vec4(float(t.clip.thickness), float(t.clip.fl), float(t.clip.fh), 0.0f);
     p.focalCentre = glm::vec4(glm::vec3(t.focal.centre), float(t.focal.p));
     p.focalRadii = glm::vec4(glm::vec3(t.focal.radii), float(t.focal.q));
-    p.focalRot0 = glm::vec4(glm::vec3(t.focal.rotation[0]), 0.0f);
-    p.focalRot1 = glm::vec4(glm::vec3(t.focal.rotation[1]), 0.0f);
-    p.focalRot2 = glm::vec4(glm::vec3(t.focal.rotation[2]), 0.0f);
+    const glm::dmat3 rotation = t.focal.rotation();
+    p.focalRot0 = glm::vec4(glm::vec3(rotation[0]), 0.0f);
+    p.focalRot1 = glm::vec4(glm::vec3(rotation[1]), 0.0f);
+    p.focalRot2 = glm::vec4(glm::vec3(rotation[2]), 0.0f);
     p.focalParams = glm::vec4(float(t.focal.beta), float(t.focal.rho), float(t.focal.gl), float(t.focal.gh));
     p.focalStyle = glm::vec4(float(t.focal.sl), float(t.focal.sh), float(t.focal.toon), 0.0f);
     p.contextCentre = glm::vec4(glm::vec3(t.context.centre), float(t.context.radius));

@@ -25,12 +25,14 @@ struct ToolSet {
         double fl = 0.3, fh = 0.9;   ///< view-dependent factor ramp
     } clip;
     /// Context-preserving focal probe (§6.3): a superquadric (p, q) of `radii` about `centre`,
-    /// oriented by `rotation` (columns: the probe's axes in patient space).
+    /// turned by `rotationDegrees` (about the patient's x, then y, then z axis).
     struct FocalProbe {
         bool enabled = false;
         glm::dvec3 centre{0.0};
         glm::dvec3 radii{40, 40, 40};
-        glm::dmat3 rotation{1.0};
+        glm::dvec3 rotationDegrees{0.0};
+        /// The probe's axes (columns) in patient space.
+        glm::dmat3 rotation() const;
         double p = 2, q = 2;
         double beta = -2, rho = 0.55;
         double gl = 0.015, gh = 0.95, sl = 0.7, sh = 0.95, toon = 3;

@@ -38,6 +38,7 @@ ToolsPanel::ToolsPanel(Section section, QWidget* parent) : QWidget(parent), sect
                               "transparency (thesis \u00a76.3). Ctrl+click in the 3D view places it."));
         vec3(f, tr("Centre"), [](core::ToolSet& t) -> glm::dvec3& { return t.focal.centre; }, -5000, 5000);
         vec3(f, tr("Radius"), [](core::ToolSet& t) -> glm::dvec3& { return t.focal.radii; }, 1, 2000);
+        vec3(f, tr("Rotation (\u00b0)"), [](core::ToolSet& t) -> glm::dvec3& { return t.focal.rotationDegrees; }, -360, 360);
         scalar(f, "p", [](core::ToolSet& t) -> double& { return t.focal.p; }, 0.5, 64, 0.5, 1, tr("2: sphere or cylinder; 4: rounded cube"));
         scalar(f, "q", [](core::ToolSet& t) -> double& { return t.focal.q; }, 0.5, 64, 0.5, 1, tr("2: sphere; 4: cylinder or rounded cube"));
         scalar(f, "\u03b2", [](core::ToolSet& t) -> double& { return t.focal.beta; }, -20, 20, 0.5, 2);

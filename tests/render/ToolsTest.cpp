@@ -73,7 +73,9 @@ core::ToolSet toolsFor(int bits, const glm::dvec3& centre, double lo, double hi)
     t.clip.offset = glm::dot(glm::normalize(t.clip.normal), centre) * -1.0 * glm::length(t.clip.normal);
     t.focal.enabled = bits & core::ToolSet::FocalBit;
     t.focal.centre = centre;
-    t.focal.radii = {70, 70, 70};
+    t.focal.radii = {70, 60, 90};
+    t.focal.q = 4;  // a cylinder, turned
+    t.focal.rotationDegrees = {30, 0, 20};
     t.context.enabled = bits & core::ToolSet::ContextBit;
     t.context.centre = centre + glm::dvec3(30, 0, 0);
     t.context.radius = 80;

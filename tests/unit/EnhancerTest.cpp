@@ -148,6 +148,7 @@ TEST(ToolSet, OutOfRangeParametersAreRefusedAndJsonRoundTrips) {
     t.focal.enabled = true;
     t.focal.p = 4;
     t.focal.centre = {1, 2, 3};
+    t.focal.rotationDegrees = {0, 0, 90};
     t.mimda.enabled = true;
     t.mimda.gamma = 0.25;
     t.band.band = {-100, 0, 200, 300};
@@ -156,6 +157,9 @@ TEST(ToolSet, OutOfRangeParametersAreRefusedAndJsonRoundTrips) {
     EXPECT_EQ(back.variantBits(), t.variantBits());
     EXPECT_EQ(back.focal.centre, t.focal.centre);
     EXPECT_DOUBLE_EQ(back.focal.p, 4);
+    EXPECT_EQ(back.focal.rotationDegrees, t.focal.rotationDegrees);
+    // 90 degrees about z: the probe's x axis points along the patient's y.
+    EXPECT_NEAR(glm::length(t.focal.rotation()[0] - glm::dvec3(0, 1, 0)), 0.0, 1e-12);
     EXPECT_DOUBLE_EQ(back.mimda.gamma, 0.25);
     EXPECT_EQ(back.band.band, t.band.band);
     auto bad = t;
