@@ -5,6 +5,7 @@
 
 #include "core/Error.h"
 #include "core/OctreeBuilder.h"
+#include "core/SubsampledVoxelSource.h"
 #include "dicom/DicomScanner.h"
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/SeriesAssembler.h"
@@ -17,8 +18,10 @@ std::string SeriesOctree::folderFor(const std::string& dbPath) {
     return (std::filesystem::path(dbPath).parent_path() / "octrees").string();
 }
 
-std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
-                                std::vector<std::string>* warnings, std::string outPath) {
+namespace {
+// The series' largest stack, assembled from its files in the database.
+SeriesVolume assembleSeries(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
+                            std::vector<std::string>* warnings) {
     const auto files = db.filesOfSeries(seriesUid);
     if (files.empty()) throw core::Error("series " + seriesUid + " is not in the database (import it first)");
     core::JobContext scanJob;  // header scanning is quick next to building; progress comes from the build
@@ -37,14 +40,31 @@ std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid,
         warnings->insert(warnings->end(), notes.begin(), notes.end());
         warnings->insert(warnings->end(), volumes[pick].warnings.begin(), volumes[pick].warnings.end());
     }
-    if (outPath.empty()) {
-        std::filesystem::create_directories(folderFor(db.path()));
-        outPath = (std::filesystem::path(folderFor(db.path())) / (UidPath::component(seriesUid) + ".hvo")).string();
-    }
-    DicomSeriesSource source(volumes[pick]);
+    return volumes[pick];
+}
+
+std::string defaultPath(StudyDatabase& db, const std::string& seriesUid, const std::string& suffix) {
+    std::filesystem::create_directories(SeriesOctree::folderFor(db.path()));
+    return (std::filesystem::path(SeriesOctree::folderFor(db.path())) / (UidPath::component(seriesUid) + suffix)).string();
+}
+}  // namespace
+
+std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
+                                std::vector<std::string>* warnings, std::string outPath) {
+    DicomSeriesSource source(assembleSeries(db, seriesUid, job, warnings));
+    if (outPath.empty()) outPath = defaultPath(db, seriesUid, ".hvo");
     core::OctreeBuilder(core::BuildOptions{}).build(source, outPath, job);
     db.setSeriesOctree(seriesUid, outPath);
     return outPath;
+}
+
+std::string SeriesOctree::buildPreview(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
+                                       std::uint32_t factor) {
+    core::SubsampledVoxelSource source(std::make_unique<DicomSeriesSource>(assembleSeries(db, seriesUid, job, nullptr)),
+                                       factor);
+    const std::string out = defaultPath(db, seriesUid, ".preview.hvo");
+    core::OctreeBuilder(core::BuildOptions{}).build(source, out, job);
+    return out;
 }
 
 }  // namespace hvx::dicom

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,11 @@ public:
     /// for an unknown series or one with no image volume; core::Cancelled when cancelled.
     static std::string build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
                              std::vector<std::string>* warnings = nullptr, std::string outPath = {});
+    /// A quick preview octree of every `factor`-th voxel (reading one slice in `factor`), at
+    /// `<folder>/<uid>.preview.hvo`, for showing a series while its full octree builds. Not
+    /// recorded in the database.
+    static std::string buildPreview(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
+                                    std::uint32_t factor = 4);
 };
 
 }  // namespace hvx::dicom

@@ -1,5 +1,6 @@
 #include "ui/LightFieldPanel.h"
 
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
@@ -31,7 +32,9 @@ namespace hvx::ui {
 LightFieldPanel::LightFieldPanel(VolumeView& view, QWidget* parent)
     : QWidget(parent), view_(view), profiles_(new QComboBox(this)), eta_(new QSlider(Qt::Horizontal, this)),
       zoom_(new QDoubleSpinBox(this)), observer_(new QSlider(Qt::Horizontal, this)), screens_(new QComboBox(this)),
-      depth_(new QLabel(this)), previewLabel_(new QLabel(this)), status_(new QLabel(this)) {
+      depth_(new QLabel(this)), previewLabel_(new QLabel(this)), status_(new QLabel(this)),
+      follow_(new QCheckBox(tr("Follow the 3D view"), this)) {
+    follow_->setToolTip(tr("Re-render with the 3D view: a lowered sampling rate while it moves, full quality when it stops"));
     profiles_->setObjectName("lightFieldProfile");
     for (const auto& n : core::DisplayModel::builtInNames()) profiles_->addItem(QString::fromStdString(n));
     profiles_->setCurrentText("holovizio-96");
@@ -68,6 +71,8 @@ LightFieldPanel::LightFieldPanel(VolumeView& view, QWidget* parent)
     layout->setContentsMargins(4, 4, 4, 4);
     layout->addLayout(form);
     layout->addLayout(buttons);
+    layout->addWidget(follow_);
+    connect(follow_, &QCheckBox::toggled, this, &LightFieldPanel::setFollowView);
     layout->addWidget(previewLabel_, 1);
     layout->addWidget(status_);
     connect(render, &QPushButton::clicked, this, &LightFieldPanel::renderFrame);
@@ -91,10 +96,22 @@ void LightFieldPanel::updateDepthRange() {
     }
 }
 
-bool LightFieldPanel::renderFrame() {
+void LightFieldPanel::setFollowView(bool follow) {
+    if (follow_->isChecked() != follow) follow_->setChecked(follow);
+    disconnect(&view_, &VolumeView::frameRendered, this, nullptr);
+    if (!follow) return;
+    connect(&view_, &VolumeView::frameRendered, this, [this] {
+        const bool moving = view_.readouts().resolution < 1.0;
+        if (moving || lastInteractive_) renderFrame(moving);  // and once more at full quality when it stops
+    });
+    renderFrame(false);
+}
+
+bool LightFieldPanel::renderFrame(bool interactive) {
+    lastInteractive_ = interactive;
     try {
         display_ = core::DisplayModel::load(profiles_->currentText().toStdString());
-        views_ = view_.renderViews(display_, eta_->value() / 100.0, zoom_->value());
+        views_ = view_.renderViews(display_, eta_->value() / 100.0, zoom_->value(), 8e6, interactive);
         const auto& v = views_.front();
         if (display_.kind == core::DisplayModel::Kind::Lenticular) {
             core::QuiltLayout q{display_.quiltColumns, display_.quiltRows, v.width, v.height, display_.aspect};
@@ -108,7 +125,8 @@ bool LightFieldPanel::renderFrame() {
             QPainter p(&frame_);
             for (int i = 0; i < int(views_.size()); ++i) p.drawImage((i % cols) * v.width, (i / cols) * v.height, toQImage(views_[std::size_t(i)]));
         }
-        status_->setText(tr("%1: %2 views of %3x%4").arg(QString::fromStdString(display_.name)).arg(views_.size()).arg(v.width).arg(v.height));
+        status_->setText(tr("%1: %2 views of %3x%4%5").arg(QString::fromStdString(display_.name)).arg(views_.size()).arg(v.width)
+                             .arg(v.height).arg(interactive ? tr(" (interactive: lowered sampling)") : QString()));
         updatePreview();
         if (window_ && window_->isVisible()) window_->setFrame(frame_);
         return true;

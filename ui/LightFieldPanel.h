@@ -12,6 +12,7 @@ class QComboBox;
 class QLabel;
 class QSlider;
 class QDoubleSpinBox;
+class QCheckBox;
 
 namespace hvx::ui {
 
@@ -32,7 +33,10 @@ public:
     ~LightFieldPanel() override;
     /// Renders all views of the chosen display for the current 3D view; returns false (with
     /// the reason shown) when no volume is open or the profile is bad.
-    bool renderFrame();
+    bool renderFrame(bool interactive = false);
+    /// Follow the 3D view: re-render on each of its frames, at the lowered sampling rate while
+    /// the camera moves and at full quality once it stops.
+    void setFollowView(bool follow);
     /// The display frame (quilt, stereo frame or projector atlas) and the preview image.
     const QImage& frame() const { return frame_; }
     const QImage& preview() const { return preview_; }
@@ -57,6 +61,8 @@ private:
     std::vector<core::RenderImage> views_;
     QImage frame_, preview_;
     std::unique_ptr<LightFieldWindow> window_;
+    QCheckBox* follow_;
+    bool lastInteractive_ = false;
 };
 
 }  // namespace hvx::ui

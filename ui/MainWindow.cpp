@@ -4,6 +4,7 @@
 #include <QApplication>
 #include <QCloseEvent>
 #include <QDockWidget>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QHBoxLayout>
@@ -210,7 +211,7 @@ bool MainWindow::openPath(const QString& path) {
     return true;
 }
 
-bool MainWindow::openOctree(const QString& path, const QString& label) {
+bool MainWindow::openOctree(const QString& path, const QString& label, bool keepCamera) {
     try {
         std::shared_ptr<const core::OctreeReader> reader = core::OctreeReader::open(path.toStdString());
         reader_ = reader;
@@ -222,7 +223,7 @@ bool MainWindow::openOctree(const QString& path, const QString& label) {
         const double pMin = g.valueMin * g.rescaleSlope + g.rescaleIntercept, pMax = g.valueMax * g.rescaleSlope + g.rescaleIntercept;
         controls_->setVolume(g.rescaleSlope, g.rescaleIntercept, std::min(pMin, pMax), std::max(pMin, pMax), g.modality == "CT");
         tfEditor_->setVolume(g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept, g.modality, {});
-        view_->setVolume(reader);
+        view_->setVolume(reader, keepCamera);
         view_->setRenderSettings(controls_->settings());
         applyTransferFunction();
         for (auto* s : slices_) s->setVolume(reader);
@@ -258,6 +259,23 @@ void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath,
     }
     const std::string db = browser_->databasePath().toStdString(), uid = seriesUid.toStdString();
     QPointer<MainWindow> self(this);
+    // First a quick preview (every 4th voxel), shown as soon as it exists; then the full octree,
+    // which replaces it in place with the same camera.
+    auto preview = std::make_shared<QString>();
+    auto fullOpened = std::make_shared<bool>(false);
+    jobs_->start(
+        tr("Preview: %1").arg(label),
+        [db, uid](core::JobContext& job) {
+            dicom::StudyDatabase database(db);
+            return QString::fromStdString(dicom::SeriesOctree::buildPreview(database, uid, job));
+        },
+        [self, label, preview, fullOpened](const QString& path) {
+            if (!self || *fullOpened) {  // the full octree was quicker: the preview is not needed
+                QFile::remove(path);
+                return;
+            }
+            if (self->openOctree(path, label + tr(" (preview)"))) *preview = path;
+        });
     jobs_->start(
         tr("Build octree: %1").arg(label),
         [db, uid](core::JobContext& job) {
@@ -265,12 +283,14 @@ void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath,
             std::vector<std::string> warnings;
             return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, &warnings));
         },
-        [self, label](const QString& path) {
+        [self, label, preview, fullOpened](const QString& path) {
             if (!self) return;
+            *fullOpened = true;
             self->browser_->refresh();
-            self->openOctree(path, label);
+            self->openOctree(path, label, !preview->isEmpty());
+            if (!preview->isEmpty()) QFile::remove(*preview);
         });
-    statusBar()->showMessage(tr("Building the octree of %1 in the background\u2026").arg(label), 5000);
+    statusBar()->showMessage(tr("Building the octree of %1 in the background; a preview comes first\u2026").arg(label), 5000);
 }
 
 void MainWindow::applyTransferFunction() {

@@ -40,7 +40,7 @@ public:
     /// a DICOM file (imported, then its series opened). Returns false with the error shown.
     bool openPath(const QString& path);
     /// Opens an .hvo octree in the 3D and slice views.
-    bool openOctree(const QString& path, const QString& label = {});
+    bool openOctree(const QString& path, const QString& label = {}, bool keepCamera = false);
     /// Opens an imported series, building its octree in the background when missing.
     void openSeries(const QString& seriesUid, const QString& octreePath, const QString& label);
 

@@ -20,7 +20,10 @@
 #include "core/Error.h"
 #include "core/OctreeReader.h"
 #include "core/SliceSampler.h"
+#include "dicom/DicomHeaderReader.h"
+#include "dicom/DicomInstance.h"
 #include "dicom/DicomScanner.h"
+#include "dicom/PixelDecoder.h"
 #include "dicom/StudyDatabase.h"
 #include "ui/JobManager.h"
 
@@ -47,6 +50,37 @@ QIcon thumbnail(const std::string& octreePath) {
                 const float v = img.values[std::size_t(y * 64 + x)];
                 const double t = std::isnan(v) ? 0.0 : std::clamp((v - lo) / (hi - lo), 0.0, 1.0);
                 q.scanLine(y)[x] = std::uint8_t(t * 255);
+            }
+        return QIcon(QPixmap::fromImage(q));
+    } catch (const std::exception&) {
+        return {};
+    }
+}
+// Without an octree: the middle image of the series, decoded from its DICOM file.
+QIcon dicomThumbnail(const std::vector<std::string>& files) {
+    if (files.empty()) return {};
+    try {
+        dicom::DicomInstance in;
+        if (dicom::DicomHeaderReader::read(files[files.size() / 2], in) != dicom::DicomHeaderReader::Kind::Dicom ||
+            !in.hasPixels() || in.samplesPerPixel != 1)
+            return {};
+        std::vector<std::int32_t> px;
+        dicom::PixelDecoder().decode(in, in.frames / 2, px);
+        if (px.size() < std::size_t(in.rows) * in.columns) return {};
+        double lo = 1e300, hi = -1e300;
+        for (auto v : px) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
+        if (in.modality == "CT" && !in.frameGeometry.empty()) {  // soft-tissue window
+            const auto& f = in.frameGeometry[std::min<std::size_t>(in.frames / 2, in.frameGeometry.size() - 1)];
+            lo = (-160 - f.rescaleIntercept) / f.rescaleSlope;
+            hi = (240 - f.rescaleIntercept) / f.rescaleSlope;
+        }
+        const bool invert = in.photometric == "MONOCHROME1";
+        QImage q(64, 64, QImage::Format_Grayscale8);
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) {
+                const std::size_t r = std::size_t(y) * in.rows / 64, c = std::size_t(x) * in.columns / 64;
+                double t = std::clamp((double(px[r * in.columns + c]) - lo) / std::max(1e-9, hi - lo), 0.0, 1.0);
+                q.scanLine(y)[x] = std::uint8_t((invert ? 1.0 - t : t) * 255);
             }
         return QIcon(QPixmap::fromImage(q));
     } catch (const std::exception&) {
@@ -128,6 +162,8 @@ void StudyBrowser::refresh() {
                 item->setData(0, LabelRole, QString::fromStdString(s.patientName) + " \u2014 " + label);
                 if (!se.octreePath.empty() && QFileInfo::exists(QString::fromStdString(se.octreePath)))
                     item->setIcon(0, thumbnail(se.octreePath));
+                else
+                    item->setIcon(0, dicomThumbnail(db.filesOfSeries(se.seriesUid)));
                 item->setToolTip(0, se.octreePath.empty() ? tr("No octree yet: opening builds it in the background")
                                                           : tr("Octree: %1").arg(QString::fromStdString(se.octreePath)));
             }

@@ -68,7 +68,8 @@ VolumeView::~VolumeView() {
     scene_.reset();
 }
 
-void VolumeView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
+void VolumeView::setVolume(std::shared_ptr<const core::OctreeReader> reader, bool keepCamera) {
+    keepCamera = keepCamera && scene_ != nullptr;
     scene_.reset();
     error_.clear();
     if (reader) {
@@ -77,7 +78,7 @@ void VolumeView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
         options.voxelsPerPixel = accuracy_;
         scene_ = std::make_unique<Scene>(std::move(reader), options);
         setRenderSettings(settings_);
-        resetView();
+        if (!keepCamera) resetView();
     }
     update();
 }
@@ -302,14 +303,20 @@ void VolumeView::capture(const QString& path, int width, int height) {
 }
 
 std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel& display, double eta, double zoom,
-                                                       double maxBeams) {
+                                                       double maxBeams, bool interactive) {
     if (!scene_ || !tf_ || !gpu_) throw core::Error("open a volume first");
     const auto& s = scene_->space;
     const glm::dvec3 centre(s.octreeToPatient * glm::dvec4(s.extent * 0.5, 1.0));
     const glm::dvec3 corner(s.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double scale = zoom * 0.9 * std::min(display.screenWidthMm, display.screenHeightMm) / (2.0 * glm::length(centre - corner));
     const double beams = double(display.viewCount()) * display.viewWidthPx() * display.viewHeightPx();
-    const double shrink = beams > maxBeams ? std::sqrt(maxBeams / beams) : 1.0;
+    double shrink = beams > maxBeams ? std::sqrt(maxBeams / beams) : 1.0;
+    core::RenderSettings rs = settings_;
+    if (interactive) {  // thesis §5.5: 2.5 mm on screen and a doubled integration step
+        const double pixelMm = display.screenHeightMm / std::max(1, display.viewHeightPx());
+        shrink *= std::min(0.5, pixelMm / 2.5);
+        rs.stepScale *= 2.0;
+    }
     const auto views = display.views(camera_.target(), camera_.right(), camera_.up(), eta,
                                      std::max(1, int(display.viewWidthPx() * shrink)),
                                      std::max(1, int(display.viewHeightPx() * shrink)), scale);
@@ -318,7 +325,7 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
         core::WorkingSetOptions options = scene_->ws.options();
         options.cpuMirror = false;
         core::WorkingSet ws(*scene_->reader, scene_->cache, scene_->loader, options);
-        auto images = render::LightFieldRenderer::render(*scene_->reader, ws, scene_->loader, *tf_, settings_, views,
+        auto images = render::LightFieldRenderer::render(*scene_->reader, ws, scene_->loader, *tf_, rs, views,
                                                          display.accuracyFunction(scale), gpu_.get(), true);
         glUseProgram(0);
         glBindTextureUnit(0, 0);

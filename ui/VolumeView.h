@@ -40,8 +40,9 @@ public:
     explicit VolumeView(QWidget* parent = nullptr);
     ~VolumeView() override;
 
-    /// Shows a volume (framed in the anterior view); nullptr clears the view.
-    void setVolume(std::shared_ptr<const core::OctreeReader> reader);
+    /// Shows a volume (framed in the anterior view, or keeping the camera: the full octree
+    /// replacing its preview); nullptr clears the view.
+    void setVolume(std::shared_ptr<const core::OctreeReader> reader, bool keepCamera = false);
     bool hasVolume() const;
     void setTransferFunction(const core::TransferFunction& tf);
     void setRenderSettings(const core::RenderSettings& settings);
@@ -61,9 +62,11 @@ public:
     /// Renders every view of a multi-view display from one working set with the display's
     /// accuracy s(z), the screen centred on the camera's target and facing the camera; `zoom`
     /// scales the volume's default fit. Views are shrunk so the frame holds at most `maxBeams`
-    /// rays. Throws core::Error when no volume is open.
+    /// rays. `interactive` lowers the sampling rate as the thesis does while moving: pixels of
+    /// 2.5 mm on the screen (at least twice the display's own) and a doubled step. Throws
+    /// core::Error when no volume is open.
     std::vector<core::RenderImage> renderViews(const core::DisplayModel& display, double eta, double zoom,
-                                               double maxBeams = 8e6);
+                                               double maxBeams = 8e6, bool interactive = false);
     /// The last image shown (the ray-cast frame, without overlays), at the widget's size.
     QImage lastFrame() const { return frame_; }
     int frameCount() const { return frames_; }

@@ -119,15 +119,23 @@ private slots:
         for (QTreeWidgetItemIterator it(tree); *it; ++it)
             if (!(*it)->data(0, Qt::UserRole + 1).toString().isEmpty()) series = *it;
         QVERIFY2(series, "the imported series is listed in the study browser");
+        QVERIFY2(!series->icon(0).isNull(), "a thumbnail from the DICOM images before any octree exists");
         QVERIFY(tree->topLevelItem(0)->text(0).contains("GUI IMPORT"));
         // Double-click: the octree is built in the background, then the view opens it.
         tree->scrollToItem(series);
         const QRect r = tree->visualItemRect(series);
         QSignalSpy open(window_->browser(), &ui::StudyBrowser::openSeries);
+        QSignalSpy titles(window_.get(), &QWidget::windowTitleChanged);
         QTest::mouseClick(tree->viewport(), Qt::LeftButton, {}, r.center());  // the press an activation needs
         QTest::mouseDClick(tree->viewport(), Qt::LeftButton, {}, r.center());
         QCOMPARE(open.count(), 1);
         QTRY_VERIFY2_WITH_TIMEOUT(view()->hasVolume(), qPrintable(window_->lastError()), 60000);
+        // A preview octree (every 4th voxel) is shown first, then the full one replaces it.
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        QTRY_VERIFY_WITH_TIMEOUT(!window_->openLabel().endsWith("(preview)"), 10000);
+        bool previewShown = false;
+        for (const auto& t : titles) previewShown |= t.at(0).toString().endsWith("(preview)");
+        QVERIFY2(previewShown, "the view showed the preview while the octree was building");
         const QImage first = settledFrame();
         QVERIFY2(coverage(first) > 0.05, "the first frame shows the volume (not blank)");
         QVERIFY(!window_->slice(0)->image().isNull());
@@ -274,6 +282,10 @@ private slots:
         QVERIFY(sliders.size() >= 2);
         sliders.last()->setValue(-80);  // the observer walks to the left
         QVERIFY2(difference(centre, lf->preview()) > 0.5, "another observer sees another view");
+        // While moving, frames use the lowered sampling rate of the thesis: fewer pixels, larger step.
+        QVERIFY(lf->renderFrame(true));
+        QVERIFY(lf->frame().width() < 16 * 320);
+        QVERIFY(coverage(lf->frame()) > 0.01);
         lf->profiles()->setCurrentText("looking-glass-portrait");
         QVERIFY(lf->renderFrame());
         QVERIFY(coverage(lf->frame()) > 0.01);

@@ -119,3 +119,27 @@ TEST(VolumeHistogram, CountsEveryVoxelOfTheChosenLevelOnce) {
     for (auto c : coarse.counts) total += c;
     EXPECT_EQ(total, 25u * 20u * 15u) << "level 1 has half the voxels per axis";
 }
+
+#include "core/SubsampledVoxelSource.h"
+
+TEST(SubsampledVoxelSource, KeepsEveryFactorthVoxelInPlace) {
+    core::VolumeGeometry g;
+    g.scalarType = core::ScalarType::Int16;
+    g.spacing = {0.5, 0.6, 2.0};
+    g.origin = {10, 20, 30};
+    test::DenseVolume v;
+    v.dims = {9, 8, 7};
+    v.values.resize(9 * 8 * 7);
+    for (std::size_t i = 0; i < v.values.size(); ++i) v.values[i] = double(i % 1000);
+    core::SubsampledVoxelSource sub(std::make_unique<test::MemoryVoxelSource>(g, v), 4);
+    const auto& s = sub.geometry();
+    EXPECT_EQ(s.dims, (std::array<std::uint32_t, 3>{3, 2, 2}));
+    EXPECT_EQ(s.spacing, glm::dvec3(2.0, 2.4, 8.0));
+    EXPECT_EQ(s.origin, g.origin) << "voxel 0 stays where it was";
+    std::vector<std::int16_t> out(3 * 2 * 2);
+    sub.readSlices(0, 2, out.data());
+    for (std::size_t k = 0; k < 2; ++k)
+        for (std::size_t j = 0; j < 2; ++j)
+            for (std::size_t i = 0; i < 3; ++i)
+                EXPECT_EQ(out[(k * 2 + j) * 3 + i], std::int16_t(((k * 4 * 8 + j * 4) * 9 + i * 4) % 1000));
+}
