@@ -97,6 +97,11 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
     DcmElement* element = nullptr;
     if (ds->findAndGetElement(DCM_PixelData, element).bad() || !element)
         throw core::Error(in.path + ": pixel data is missing (truncated file?)");
+    // A damaged file can hold (7FE0,0010) with a VR DCMTK does not parse into DcmPixelData
+    // (the fuzzer found one): refuse it rather than cast blindly.
+    if (element->ident() != EVR_PixelData)
+        throw core::Error(in.path + ": pixel data has an unexpected encoding (VR " +
+                          std::string(DcmVR(element->getVR()).getVRName()) + ")");
     auto* pd = OFstatic_cast(DcmPixelData*, element);
     const E_TransferSyntax xfer = ds->getOriginalXfer();
     const std::size_t pixels = std::size_t(in.rows) * in.columns;
