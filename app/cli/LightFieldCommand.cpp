@@ -17,6 +17,7 @@
 #include "core/LightFieldSimulator.h"
 #include "core/OctreeReader.h"
 #include "core/DviPacker.h"
+#include "core/ProjectorCorrection.h"
 #include "core/QuiltLayout.h"
 #include "core/StereoComposer.h"
 #include "core/VoxelSourceFactory.h"
@@ -41,7 +42,7 @@ glm::dvec3 parseTriple(const std::string& text, const char* what) {
 int lightFieldCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"display", "o", "output", "format", "eta", "view", "zoom", "tf", "mode", "size", "observer",
-                        "simulate", "budget", "cache-mb"},
+                        "simulate", "budget", "cache-mb", "correction"},
                        {"cpu", "list"});
     if (args.flag("list")) {
         for (const auto& n : core::DisplayModel::builtInNames()) {
@@ -54,7 +55,7 @@ int lightFieldCommand(int argc, char** argv) {
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out || !args.value("display"))
         throw core::Error("usage: holovox-cli lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] "
-                          "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--cpu]");
+                          "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json] [--cpu]");
     const auto display = core::DisplayModel::load(*args.value("display"));
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
@@ -111,6 +112,10 @@ int lightFieldCommand(int argc, char** argv) {
     images = render::LightFieldRenderer::render(*reader, ws, loader, tf, settings, views, display.accuracyFunction(scale),
                                                 gpu.get(), true, &stats);
 
+    if (const auto correction = args.value("correction")) {  // per-projector warp and colour LUTs
+        const auto c = core::ProjectorCorrection::load(*correction);
+        for (std::size_t i = 0; i < images.size(); ++i) images[i] = c.apply(images[i], i);
+    }
     const std::string format = args.value("format").value_or(
         display.kind == core::DisplayModel::Kind::Lenticular ? "quilt"
         : display.kind == core::DisplayModel::Kind::Stereo  ? "stereo"

@@ -219,3 +219,50 @@ TEST(DisplayModel, DviLayoutPacksSixteenProjectorsPerFrameWithTheirIdsInTheHeade
     projectors.push_back(flat(100, 100, {}));
     EXPECT_THROW(core::DviPacker::pack(projectors), core::Error);
 }
+
+#include "core/ProjectorCorrection.h"
+
+namespace {
+std::string grid(float dx, float dy) {
+    std::string o = "[";
+    for (int i = 0; i < 4; ++i) o += std::string(i ? "," : "") + "[" + std::to_string(dx) + "," + std::to_string(dy) + "]";
+    return o + "]";
+}
+std::string ramp(bool invert) {
+    std::string o = "[";
+    for (int k = 0; k < 256; ++k) o += std::string(k ? "," : "") + std::to_string(invert ? 1.0 - k / 255.0 : k / 255.0);
+    return o + "]";
+}
+}  // namespace
+
+TEST(DisplayModel, CorrectionPassWarpsAndRecoloursEachProjector) {
+    core::RenderImage img = flat(8, 6, {0, 0, 0, 1});
+    img.rgba[std::size_t(3) * 8 + 4] = {1, 0.5f, 0.25f, 1};  // a marker at (4, 3)
+    // Identity: no change.
+    const auto identity = core::ProjectorCorrection::parse(R"({"projectors": [{"grid": [2, 2], "offsets": )" + grid(0, 0) +
+                                                               "}]}",
+                                                           "identity");
+    EXPECT_EQ(identity.apply(img, 5).rgba, img.rgba) << "one entry applies to every projector";
+    // A uniform offset of (+2, -1): output pixel p shows input p + (2, -1), so the marker moves to (2, 4).
+    const auto shift = core::ProjectorCorrection::parse(R"({"projectors": [{"grid": [2, 2], "offsets": )" + grid(2, -1) +
+                                                            "}]}",
+                                                        "shift");
+    const auto moved = shift.apply(img, 0);
+    EXPECT_EQ(moved.rgba[std::size_t(4) * 8 + 2], img.rgba[std::size_t(3) * 8 + 4]);
+    EXPECT_EQ(moved.rgba[std::size_t(3) * 8 + 4], glm::vec4(0, 0, 0, 1));
+    // An inverting colour table.
+    const auto invert = core::ProjectorCorrection::parse(
+        R"({"projectors": [{"lut": {"r": )" + ramp(true) + R"(, "g": )" + ramp(true) + R"(, "b": )" + ramp(false) + "}}]}",
+        "invert");
+    const auto recoloured = invert.apply(img, 0);
+    EXPECT_NEAR(recoloured.rgba[std::size_t(3) * 8 + 4].r, 0.0f, 1e-5f);
+    EXPECT_NEAR(recoloured.rgba[std::size_t(3) * 8 + 4].g, 0.5f, 1e-2f);
+    EXPECT_NEAR(recoloured.rgba[std::size_t(3) * 8 + 4].b, 0.25f, 1e-2f);
+    EXPECT_NEAR(recoloured.rgba[0].r, 1.0f, 1e-5f);
+    // Bad files.
+    EXPECT_THROW(core::ProjectorCorrection::parse("{}", "x"), core::Error);
+    EXPECT_THROW(core::ProjectorCorrection::parse(R"({"projectors": [{"grid": [2, 2], "offsets": [[0, 0]]}]})", "x"), core::Error);
+    EXPECT_THROW(core::ProjectorCorrection::parse(R"({"projectors": [{"lut": {"r": [0.5]}}]})", "x"), core::Error);
+    EXPECT_THROW(core::ProjectorCorrection::parse("[", "x"), core::Error);
+    EXPECT_THROW(core::ProjectorCorrection::load("/nonexistent/correction.json"), core::Error);
+}
