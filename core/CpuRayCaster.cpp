@@ -186,12 +186,12 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                         x.a = float(a);
                         x.lit = 1.0f;
                         x.importance = 1.0f - std::exp(-float(f.w) * float(tf_.referenceLength()));
-                        const glm::vec3 gSmooth =
-                            (toolBits & HVX_FOCAL_BIT) && glsl::hvxFocalNorm(packedTools, x.p) <= 1.0f
-                                ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(n, leafLo, p, 2.0f)))
-                                : g;
+                        const float focalNorm = (toolBits & HVX_FOCAL_BIT) ? glsl::hvxFocalNorm(packedTools, x.p) : 2.0f;
+                        const glm::vec3 gSmooth = focalNorm <= 1.0f
+                                                      ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(n, leafLo, p, 2.0f)))
+                                                      : g;
                         bool enteredNow = enteredProbe;
-                        glsl::hvxEnhance(x, packedTools, toolBits, gSmooth, hTheta, enteredNow);
+                        glsl::hvxEnhance(x, packedTools, toolBits, focalNorm, gSmooth, hTheta, enteredNow);
                         if (enteredNow && !enteredProbe) {  // clip what lies in front of the focal probe
                             accum = glm::vec4(0.0f);
                             importanceMax = 0.0f;

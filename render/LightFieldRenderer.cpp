@@ -33,7 +33,8 @@ std::vector<core::RenderImage> LightFieldRenderer::render(const core::OctreeRead
             for (auto& im : images) out.push_back(std::move(im));
         }
     } else {
-        for (const auto& v : views) out.push_back(core::CpuRayCaster(reader, ws.index(), ws.slotData(), tf, settings).render(v));
+        const core::CpuRayCaster cpu(reader, ws.index(), ws.slotData(), tf, settings);
+        for (const auto& v : views) out.push_back(cpu.render(v));
     }
     if (stats) {
         stats->cutNodes = ws.stats().cutNodes;

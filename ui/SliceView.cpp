@@ -1,5 +1,7 @@
 #include "ui/SliceView.h"
 
+#include "ui/EdgeLabels.h"
+
 #include <QMouseEvent>
 #include <QPainter>
 #include <QWheelEvent>
@@ -111,15 +113,9 @@ void SliceView::paintEvent(QPaintEvent*) {
     p.drawLine(QPointF(c.x(), 0), QPointF(c.x(), c.y() - 6));
     p.drawLine(QPointF(c.x(), c.y() + 6), QPointF(c.x(), height()));
     const auto labels = core::SlicePlane::edgeLabels(orientation_);
-    QFont f = font();
-    f.setBold(true);
-    p.setFont(f);
-    p.setPen(QColor(255, 230, 120));
     const QRect r = rect().adjusted(5, 3, -5, -3);
-    p.drawText(r, Qt::AlignLeft | Qt::AlignVCenter, labels[0]);
-    p.drawText(r, Qt::AlignRight | Qt::AlignVCenter, labels[1]);
-    p.drawText(r, Qt::AlignTop | Qt::AlignHCenter, labels[2]);
-    p.drawText(r, Qt::AlignBottom | Qt::AlignHCenter, labels[3]);
+    p.setFont(font());
+    drawEdgeLabels(p, r, {labels[0], labels[1], labels[2], labels[3]});
     static const char* names[] = {"Axial", "Coronal", "Sagittal"};
     p.setPen(QColor(200, 200, 200));
     QFont info = font();

@@ -160,10 +160,15 @@ void StudyBrowser::refresh() {
                 item->setData(0, SeriesUidRole, QString::fromStdString(se.seriesUid));
                 item->setData(0, OctreeRole, QString::fromStdString(se.octreePath));
                 item->setData(0, LabelRole, QString::fromStdString(s.patientName) + " \u2014 " + label);
-                if (!se.octreePath.empty() && QFileInfo::exists(QString::fromStdString(se.octreePath)))
-                    item->setIcon(0, thumbnail(se.octreePath));
-                else
-                    item->setIcon(0, dicomThumbnail(db.filesOfSeries(se.seriesUid)));
+                // Thumbnails are made once per series (and again once its octree exists), not at
+                // every refresh: they read bricks or decode a DICOM image on this thread.
+                const bool octree = !se.octreePath.empty() && QFileInfo::exists(QString::fromStdString(se.octreePath));
+                const QString thumbKey = QString::fromStdString(se.seriesUid + (octree ? "|" + se.octreePath : std::string()));
+                auto cached = thumbnails_.find(thumbKey);
+                if (cached == thumbnails_.end())
+                    cached = thumbnails_.insert(thumbKey, octree ? thumbnail(se.octreePath)
+                                                            : dicomThumbnail(db.filesOfSeries(se.seriesUid)));
+                item->setIcon(0, *cached);
                 item->setToolTip(0, se.octreePath.empty() ? tr("No octree yet: opening builds it in the background")
                                                           : tr("Octree: %1").arg(QString::fromStdString(se.octreePath)));
             }

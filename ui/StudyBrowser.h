@@ -1,4 +1,6 @@
 #pragma once
+#include <QHash>
+#include <QIcon>
 #include <QWidget>
 
 class QComboBox;
@@ -47,6 +49,7 @@ private:
     QComboBox* modality_;
     QTreeWidget* tree_;
     QLabel* count_;
+    QHash<QString, QIcon> thumbnails_;  // by series UID (and octree path)
 };
 
 }  // namespace hvx::ui

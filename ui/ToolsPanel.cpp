@@ -35,7 +35,8 @@ ToolsPanel::ToolsPanel(Section section, QWidget* parent) : QWidget(parent), sect
     if (section == Section::Probes) {
         auto* f = addGroup("focal", tr("Context-preserving focal probe"),
                            tr("Focus: relief shading and silhouette darkening; context: silhouettes and view-dependent "
-                              "transparency (thesis \u00a76.3). Ctrl+click in the 3D view places it."));
+                              "transparency (thesis \u00a76.3). Ctrl+click in the 3D view places it."),
+                           [](core::ToolSet& t) -> bool& { return t.focal.enabled; });
         vec3(f, tr("Centre"), [](core::ToolSet& t) -> glm::dvec3& { return t.focal.centre; }, -5000, 5000);
         vec3(f, tr("Radius"), [](core::ToolSet& t) -> glm::dvec3& { return t.focal.radii; }, 1, 2000);
         vec3(f, tr("Rotation (\u00b0)"), [](core::ToolSet& t) -> glm::dvec3& { return t.focal.rotationDegrees; }, -360, 360);
@@ -50,13 +51,15 @@ ToolsPanel::ToolsPanel(Section section, QWidget* parent) : QWidget(parent), sect
         scalar(f, tr("Toon a"), [](core::ToolSet& t) -> double& { return t.focal.toon; }, 0, 20, 0.5, 1);
         auto* c = addGroup("context", tr("Context-preserving probe"),
                            tr("Material turns transparent with penetration; contextual edges show when looking along the "
-                              "tool axis (thesis \u00a76.4.2)."));
+                              "tool axis (thesis \u00a76.4.2)."),
+                           [](core::ToolSet& t) -> bool& { return t.context.enabled; });
         vec3(c, tr("Centre"), [](core::ToolSet& t) -> glm::dvec3& { return t.context.centre; }, -5000, 5000);
         scalar(c, tr("Radius"), [](core::ToolSet& t) -> double& { return t.context.radius; }, 1, 2000, 5, 1);
         vec3(c, tr("Axis"), [](core::ToolSet& t) -> glm::dvec3& { return t.context.axis; }, -1, 1);
     } else if (section == Section::Clip) {
         auto* g = addGroup("clip", tr("Clip plane with view-dependent context"),
-                           tr("A cut-away seen face-on; more context appears as the view turns away (thesis \u00a76.4.1)."));
+                           tr("A cut-away seen face-on; more context appears as the view turns away (thesis \u00a76.4.1)."),
+                           [](core::ToolSet& t) -> bool& { return t.clip.enabled; });
         vec3(g, tr("Normal"), [](core::ToolSet& t) -> glm::dvec3& { return t.clip.normal; }, -1, 1);
         scalar(g, tr("Offset (mm)"), [](core::ToolSet& t) -> double& { return t.clip.offset; }, -5000, 5000, 1, 1);
         scalar(g, tr("Slab \u03b4 (mm)"), [](core::ToolSet& t) -> double& { return t.clip.thickness; }, 0, 1000, 1, 1);
@@ -65,13 +68,15 @@ ToolsPanel::ToolsPanel(Section section, QWidget* parent) : QWidget(parent), sect
     } else {
         auto* b = addGroup("band", tr("Band picker"),
                            tr("Importance 1 inside the band; other bands fade when looking along the tool axis "
-                              "(thesis \u00a76.4.3). Alt+click in the 3D view picks the band under the cursor."));
+                              "(thesis \u00a76.4.3). Alt+click in the 3D view picks the band under the cursor."),
+                           [](core::ToolSet& t) -> bool& { return t.band.enabled; });
         const char* names[] = {"b0", "b1", "b2", "b3"};
         for (int k = 0; k < 4; ++k)
             scalar(b, names[k], [k](core::ToolSet& t) -> double& { return t.band.band[k]; }, -1e6, 1e6, 10, 1);
         vec3(b, tr("Axis"), [](core::ToolSet& t) -> glm::dvec3& { return t.band.axis; }, -1, 1);
         auto* m = addGroup("mimda", tr("Importance accumulation (MImDA)"),
-                           tr("\u03b3 = 0: plain DVR; 1: important content shines through (thesis \u00a73.2.2)."));
+                           tr("\u03b3 = 0: plain DVR; 1: important content shines through (thesis \u00a73.2.2)."),
+                           [](core::ToolSet& t) -> bool& { return t.mimda.enabled; });
         scalar(m, "\u03b3", [](core::ToolSet& t) -> double& { return t.mimda.gamma; }, 0, 1, 0.05, 2);
     }
     auto* resetButton = new QPushButton(tr("Reset"), this);
@@ -82,7 +87,7 @@ ToolsPanel::ToolsPanel(Section section, QWidget* parent) : QWidget(parent), sect
     setTools({});
 }
 
-QGroupBox* ToolsPanel::addGroup(const QString& name, const QString& title, const QString& tip) {
+QGroupBox* ToolsPanel::addGroup(const QString& name, const QString& title, const QString& tip, EnabledFlag enabled) {
     auto* g = new QGroupBox(title, this);
     g->setObjectName(name);
     g->setCheckable(true);
@@ -94,17 +99,8 @@ QGroupBox* ToolsPanel::addGroup(const QString& name, const QString& title, const
     connect(g, &QGroupBox::toggled, this, [this] {
         if (!updating_) emit changed();
     });
-    const QString n = name;
-    show_.push_back([g, n](const core::ToolSet& t) {
-        g->setChecked(n == "focal" ? t.focal.enabled : n == "context" ? t.context.enabled : n == "clip" ? t.clip.enabled
-                      : n == "band"                                   ? t.band.enabled
-                                                                      : t.mimda.enabled);
-    });
-    read_.push_back([g, n](core::ToolSet& t) {
-        (n == "focal" ? t.focal.enabled : n == "context" ? t.context.enabled : n == "clip" ? t.clip.enabled
-         : n == "band"                                   ? t.band.enabled
-                                                         : t.mimda.enabled) = g->isChecked();
-    });
+    show_.push_back([g, enabled](const core::ToolSet& t) { g->setChecked(enabled(const_cast<core::ToolSet&>(t))); });
+    read_.push_back([g, enabled](core::ToolSet& t) { enabled(t) = g->isChecked(); });
     return g;
 }
 

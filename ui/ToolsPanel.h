@@ -33,7 +33,8 @@ signals:
     void changed();
 
 private:
-    QGroupBox* addGroup(const QString& name, const QString& title, const QString& tip);
+    using EnabledFlag = bool& (*)(core::ToolSet&);
+    QGroupBox* addGroup(const QString& name, const QString& title, const QString& tip, EnabledFlag enabled);
     QDoubleSpinBox* addField(QGroupBox* group, const QString& label, double lo, double hi, double step, int decimals,
                              const QString& tip = {});
     void reset();

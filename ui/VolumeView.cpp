@@ -28,6 +28,7 @@
 #include "core/WorkingSet.h"
 #include "render/GpuRayCaster.h"
 #include "render/LightFieldRenderer.h"
+#include "ui/EdgeLabels.h"
 #include "ui/ImageConversion.h"
 
 namespace hvx::ui {
@@ -223,17 +224,8 @@ void VolumeView::paintOverlays(QPainter& p) {
         return;
     }
     // Patient-orientation labels at the edges.
-    const auto labels = orientationLabels();
-    QFont f = font();
-    f.setPointSizeF(f.pointSizeF() * 1.4);
-    f.setBold(true);
-    p.setFont(f);
-    p.setPen(QColor(255, 230, 120));
-    const QRect r = rect().adjusted(8, 6, -8, -6);
-    p.drawText(r, Qt::AlignLeft | Qt::AlignVCenter, labels[0]);
-    p.drawText(r, Qt::AlignRight | Qt::AlignVCenter, labels[1]);
-    p.drawText(r, Qt::AlignTop | Qt::AlignHCenter, labels[2]);
-    p.drawText(r, Qt::AlignBottom | Qt::AlignHCenter, labels[3]);
+    p.setFont(font());
+    drawEdgeLabels(p, rect().adjusted(8, 6, -8, -6), orientationLabels(), 1.4);
     // Orientation cube (bottom left): faces towards the viewer, lettered in patient terms.
     const double s = 26.0;
     const QPointF c(14 + s * 1.3, height() - 14 - s * 1.3);

@@ -202,13 +202,14 @@ HVX_FN float hvxFocalNorm(HvxTools t, vec3 p) {
 // Applies the active tools in a fixed order: clip plane, focal probe, context probe, band
 // picker. HVX_TOOL_ON(bit) is a compile-time constant in the shader (a static variant) and a
 // test of hvxBits on the CPU. `entered` becomes true at the first sample inside the focal probe,
-// where the caller clears what was accumulated in front of it (thesis §6.3.5). gSmooth (the
-// smoothed gradient of relief shading) matters only inside the probe: callers may pass g elsewhere.
-HVX_FN void hvxEnhance(HVX_INOUT(HvxSample) x, HvxTools t, int hvxBits, vec3 gSmooth, float hTheta,
+// where the caller clears what was accumulated in front of it (thesis §6.3.5). The caller
+// computes the focal probe's norm at x.p once (hvxFocalNorm) and passes it; gSmooth (the smoothed
+// gradient of relief shading) matters only inside the probe: callers may pass g elsewhere.
+HVX_FN void hvxEnhance(HVX_INOUT(HvxSample) x, HvxTools t, int hvxBits, float focalNorm, vec3 gSmooth, float hTheta,
                        HVX_INOUT(bool) entered) {
     if (HVX_TOOL_ON(HVX_CLIP_BIT)) hvxClip(x, t.clipPlane, t.clipParams.x, t.clipParams.y, t.clipParams.z);
     if (HVX_TOOL_ON(HVX_FOCAL_BIT)) {
-        float norm = hvxFocalNorm(t, x.p);
+        float norm = focalNorm;
         if (norm <= 1.0f) entered = true;
         vec3 L = -x.v;  // headlight
         float gl2 = dot(x.g, x.g);

@@ -101,10 +101,11 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                             x.a = a;
                             x.lit = 1.0;
                             x.importance = 1.0 - exp(-f.w * extra.w);
-                            vec3 gSmooth = HVX_TOOL_ON(HVX_FOCAL_BIT) && hvxFocalNorm(tools, x.p) <= 1.0
+                            float focalNorm = HVX_TOOL_ON(HVX_FOCAL_BIT) ? hvxFocalNorm(tools, x.p) : 2.0;
+                            vec3 gSmooth = focalNorm <= 1.0
                                                ? transpose(mat3(patientToOctree)) * leafGradientSpread(L, p, 2.0) : g;
                             bool enteredNow = entered;
-                            hvxEnhance(x, tools, HVX_TOOLS, gSmooth, hTheta, enteredNow);
+                            hvxEnhance(x, tools, HVX_TOOLS, focalNorm, gSmooth, hTheta, enteredNow);
                             if (enteredNow && !entered) {  // clip what lies in front of the focal probe
                                 accum = vec4(0.0);
                                 importanceMax = 0.0;
