@@ -3,12 +3,14 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <glm/geometric.hpp>
 
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
+#include "core/AtomicFileWriter.h"
 #include "core/BrickCache.h"
 #include "core/BrickLoader.h"
 #include "core/DisplayModel.h"
@@ -57,6 +59,19 @@ int lightFieldCommand(int argc, char** argv) {
         throw core::Error("usage: holovox-cli lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] "
                           "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json] [--cpu]");
     const auto display = core::DisplayModel::load(*args.value("display"));
+    const std::string format = args.value("format").value_or(
+        display.kind == core::DisplayModel::Kind::Lenticular ? "quilt"
+        : display.kind == core::DisplayModel::Kind::Stereo  ? "stereo"
+                                                            : "projectors");
+    // Checked before rendering, which can take minutes.
+    if (format != "quilt" && format != "projectors" && format != "exr" && format != "stereo" && format != "dvi")
+        throw core::Error("--format must be quilt, projectors, exr, stereo or dvi");
+    if (format == "quilt" && display.kind != core::DisplayModel::Kind::Lenticular)
+        throw core::Error("--format quilt needs a lenticular display");
+    if (format == "stereo" && display.kind != core::DisplayModel::Kind::Stereo)
+        throw core::Error("--format stereo needs a stereo display");
+    std::optional<core::ProjectorCorrection> correction;
+    if (const auto path = args.value("correction")) correction = core::ProjectorCorrection::load(*path);
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
@@ -112,14 +127,8 @@ int lightFieldCommand(int argc, char** argv) {
     images = render::LightFieldRenderer::render(*reader, ws, loader, tf, settings, views, display.accuracyFunction(scale),
                                                 gpu.get(), true, &stats);
 
-    if (const auto correction = args.value("correction")) {  // per-projector warp and colour LUTs
-        const auto c = core::ProjectorCorrection::load(*correction);
-        for (std::size_t i = 0; i < images.size(); ++i) images[i] = c.apply(images[i], i);
-    }
-    const std::string format = args.value("format").value_or(
-        display.kind == core::DisplayModel::Kind::Lenticular ? "quilt"
-        : display.kind == core::DisplayModel::Kind::Stereo  ? "stereo"
-                                                            : "projectors");
+    if (correction)  // per-projector warp and colour LUTs
+        for (std::size_t i = 0; i < images.size(); ++i) images[i] = correction->apply(images[i], i);
     std::string written;
     if (format == "exr") {
         std::vector<std::string> names;
@@ -131,10 +140,14 @@ int lightFieldCommand(int argc, char** argv) {
         core::QuiltLayout q{display.quiltColumns, display.quiltRows, images.front().width, images.front().height, display.aspect};
         const std::string path = q.fileName(*out);
         core::ImageWriter::write(q.assemble(images), path);
-        std::ofstream meta(path.substr(0, path.size() - 4) + ".json");
+        std::ostringstream meta;  // the layout beside the quilt, written whole or not at all
         meta << "{\"quilt\": {\"columns\": " << q.columns << ", \"rows\": " << q.rows << ", \"aspect\": " << q.aspect
              << ", \"tileWidth\": " << q.tileWidth << ", \"tileHeight\": " << q.tileHeight << ", \"viewConeDegrees\": "
              << display.viewConeDegrees << ", \"view0\": \"bottom-left, leftmost\"}, \"display\": \"" << display.name << "\"}\n";
+        core::AtomicFileWriter sidecar(path.substr(0, path.size() - 4) + ".json");
+        const std::string text = meta.str();
+        sidecar.append(text.data(), text.size());
+        sidecar.commit();
         written = path;
     } else if (format == "stereo") {
         if (display.kind != core::DisplayModel::Kind::Stereo) throw core::Error("--format stereo needs a stereo display");

@@ -90,3 +90,27 @@ TEST(CliBadInput, BadOptionsAndUsage) {
     expectCleanFailure("build phantom:8x8x8 --frobnicate -o " + dir.file("o.hvo"), dir, "--frobnicate", {});
     expectCleanFailure("info " + dir.file("none.hvo"), dir, dir.file("none.hvo"), {});
 }
+
+TEST(CliBadInput, LightFieldAndToolInputsFailCleanlyBeforeRendering) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 32x32x24 -o " + dir.file("p.hvo") + " --quiet").exitCode, 0);
+    expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display no-such-display -o " + dir.file("out"), dir,
+                       "no-such-display", {"p.hvo"}, "neither a built-in profile");
+    expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display holovizio-96 --format quilt -o " + dir.file("out"),
+                       dir, "quilt", {"p.hvo"}, "needs a lenticular display");
+    expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display holovizio-96 --format gif -o " + dir.file("out"), dir,
+                       "--format", {"p.hvo"});
+    std::ofstream(dir.file("tools.json")) << R"({"mimda": {"enabled": true, "gamma": 3}})";
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --tools " + dir.file("tools.json") + " -o " + dir.file("o.png"),
+                       dir, "tools.json", {"p.hvo", "tools.json"}, "gamma must be between 0 and 1");
+    std::ofstream(dir.file("fix.json")) << R"({"projectors": [{"lut": {"r": [2]}}]})";
+    expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display stereo-anaglyph --size 16x12 --cpu --correction " +
+                           dir.file("fix.json") + " -o " + dir.file("s.png"),
+                       dir, "fix.json", {"fix.json", "p.hvo", "tools.json"});
+    // A good quilt: the file named by the convention and its layout beside it, nothing else.
+    const auto r = test::runCommand(cli + " lightfield " + dir.file("p.hvo") +
+                                    " --display looking-glass-portrait --size 8x10 --cpu -o " + dir.file("q") + " 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(dir.entries(),
+              (std::vector<std::string>{"fix.json", "p.hvo", "q_qs8x6a0.75.json", "q_qs8x6a0.75.png", "tools.json"}));
+}
