@@ -28,7 +28,7 @@ static_assert(sizeof(ViewBlock) == 9 * 16, "std430 layout of ViewCamera");
 }  // namespace
 
 GpuRayCaster::GpuRayCaster(PoolPrecision precision) {
-    glCreateBuffers(11, buffers_);
+    glCreateBuffers(kBuffers, buffers_);
     if (precision == PoolPrecision::Auto) {
         const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         const std::string name = renderer ? renderer : "";
@@ -39,7 +39,7 @@ GpuRayCaster::GpuRayCaster(PoolPrecision precision) {
 }
 
 GpuRayCaster::~GpuRayCaster() {
-    glDeleteBuffers(11, buffers_);
+    glDeleteBuffers(kBuffers, buffers_);
     if (pool_) glDeleteTextures(1, &pool_);
 }
 
@@ -56,8 +56,9 @@ GLenum poolFormat(core::ScalarType type) {
 }
 }  // namespace
 
-void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Brick>>& slots, std::uint32_t edge,
-                              core::ScalarType type) {
+void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Brick>>& slots, std::uint32_t brickSize,
+                              std::uint32_t border, core::ScalarType type) {
+    const std::uint32_t edge = brickSize + 2 * border;
     uploaded_ = 0;
     const auto count = std::uint32_t(std::max<std::size_t>(1, slots.size()));
     // A near-cubic grid of slots, rebuilt only when it must grow or the volume's type changes.
@@ -82,6 +83,7 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Bric
         glTextureParameteri(pool_, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
         poolContent_.assign(poolRow_ * poolRow_ * poolLayers_, nullptr);
         slotDecode_.assign(poolContent_.size() * 2, 0.0f);
+        slotCells_.assign(poolContent_.size(), {});
         poolBytes_ = poolContent_.size() * std::size_t(edge) * edge * edge * core::scalarSize(type);
     }
     std::vector<std::uint16_t> biased;
@@ -119,6 +121,7 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Bric
                             GLint(slot / poolLayer_ * edge), GLsizei(edge), GLsizei(edge), GLsizei(edge), GL_RED,
                             format, data);
         poolContent_[s] = brick;
+        slotCells_[s] = core::BrickCells::of(*brick, brickSize, border);
         slotDecode_[2 * s] = scale;
         slotDecode_[2 * s + 1] = offset;
         uploaded_ += brick->data.size();
@@ -153,7 +156,17 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const auto packed = core::packTools(settings.tools, {settings.ambient, settings.diffuse, settings.specular, settings.shininess});
     static_assert(sizeof(packed) == 16 * 16, "std140 layout of HvxTools");
     glNamedBufferData(buffers_[9], sizeof packed, &packed, GL_STREAM_DRAW);
-    uploadPool(slots, reader.brickEdge(), floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
+    uploadPool(slots, reader.brickSize(), reader.border(),
+               floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
+    // Which cells of each slot's brick the transfer function leaves visible (64 bits per slot).
+    std::vector<glm::uvec2> visibleCells(std::max<std::size_t>(1, slots.size()), glm::uvec2(~0u));
+    if (cellSkipping_ && settings.mode == core::RenderSettings::Mode::Dvr)
+        for (std::size_t s = 0; s < slots.size(); ++s) {
+            const std::uint64_t bits = slots[s] ? slotCells_[s].visible(tf) : ~std::uint64_t(0);
+            visibleCells[s] = glm::uvec2(std::uint32_t(bits), std::uint32_t(bits >> 32));
+        }
+    glNamedBufferData(buffers_[12], GLsizeiptr(visibleCells.size() * sizeof(glm::uvec2)), visibleCells.data(),
+                      GL_STREAM_DRAW);
     glNamedBufferData(buffers_[0], GLsizeiptr(index.nodes.size() * sizeof(glm::uvec4)), index.nodes.data(), GL_STREAM_DRAW);
     glNamedBufferData(buffers_[1], GLsizeiptr(index.ropes.size() * 4), index.ropes.data(), GL_STREAM_DRAW);
     // The transfer function's own tables (128 KiB), uploaded every frame: cheap, and never stale.
@@ -161,6 +174,11 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const std::vector<glm::vec4> integral(tf.integralTable().begin(), tf.integralTable().end());
     glNamedBufferData(buffers_[2], GLsizeiptr(table.size() * sizeof(glm::vec4)), table.data(), GL_STREAM_DRAW);
     glNamedBufferData(buffers_[3], GLsizeiptr(integral.size() * sizeof(glm::vec4)), integral.data(), GL_STREAM_DRAW);
+    // Opacity alone, (F.w, f.w) per entry in one 8-byte read: most samples stop at the opacity test.
+    std::vector<glm::vec2> opacity(integral.size());
+    for (std::size_t i = 0; i < opacity.size(); ++i)
+        opacity[i] = {integral[i].w, i < table.size() ? table[i].w : 0.0f};
+    glNamedBufferData(buffers_[11], GLsizeiptr(opacity.size() * sizeof(glm::vec2)), opacity.data(), GL_STREAM_DRAW);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t all = pixels * views.size();
     glNamedBufferData(buffers_[4], GLsizeiptr(all * sizeof(glm::vec4)), nullptr, GL_STREAM_READ);
@@ -211,6 +229,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     for (GLuint b = 0; b < 7; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffers_[8]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, buffers_[10]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, buffers_[11]);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, buffers_[12]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers_[9]);
     glBindTextureUnit(0, pool_);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/Brick.h"
+#include "core/BrickCells.h"
 #include "core/CpuRayCaster.h"
 #include "render/ComputeProgram.h"
 
@@ -44,23 +45,31 @@ public:
                                                const std::vector<std::shared_ptr<const core::Brick>>& slots,
                                                const core::TransferFunction& tf, const core::RenderSettings& settings,
                                                const std::vector<core::View>& views);
+    /// Empty-space skipping inside bricks (on by default): samples in a brick cell that is
+    /// transparent under the transfer function are stepped over (core::BrickCells). The image
+    /// is the same either way; the switch exists for the tests that show it.
+    void setCellSkipping(bool on) { cellSkipping_ = on; }
     /// Bytes uploaded to the brick pool by the last render().
     std::size_t lastUploadBytes() const { return uploaded_; }
     /// Bytes the pool texture occupies on the GPU.
     std::size_t poolBytes() const { return poolBytes_; }
 
 private:
-    void uploadPool(const std::vector<std::shared_ptr<const core::Brick>>& slots, std::uint32_t edge,
-                    core::ScalarType type);
+    void uploadPool(const std::vector<std::shared_ptr<const core::Brick>>& slots, std::uint32_t brickSize,
+                    std::uint32_t border, core::ScalarType type);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
-    unsigned buffers_[11] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot decode, tools, views
+    static constexpr int kBuffers = 13;
+    unsigned buffers_[kBuffers] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot decode,
+                                       // tools, views, tf opacity (F.w, f.w), visible cells per slot
     unsigned pool_ = 0;
     std::uint32_t poolEdge_ = 0, poolRow_ = 0, poolLayer_ = 0, poolLayers_ = 0;
     // What each slot holds; keeping the reference stops a freed brick's address from being
     // reused by a new brick and mistaken for it.
     std::vector<std::shared_ptr<const core::Brick>> poolContent_;
     std::vector<float> slotDecode_;  // per slot: stored value = texel * [2s] + [2s+1]
+    std::vector<core::BrickCells> slotCells_;  // per slot: value ranges of the brick's cells
+    bool cellSkipping_ = true;
     core::ScalarType poolType_ = core::ScalarType::Float32;
     bool floatPool_ = false;
     std::size_t uploaded_ = 0, poolBytes_ = 0;

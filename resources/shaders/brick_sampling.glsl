@@ -2,40 +2,62 @@
 // Everything constant over a leaf (its slot, level and texture placement) is computed once when
 // the ray enters it; a sample is then one filtered fetch and a multiply-add.
 struct LeafSampler {
-    vec3 scale;      // octree coordinates -> brick sample coordinates (u), per axis
-    vec3 offset;     // u = p * scale - offset
-    vec3 cellTex;    // texture coordinate of the slot's first sample centre
-    vec3 texelSize;  // 1 / pool size
-    vec2 decode;     // normalised texel -> stored value
-    float uMax;      // last sample centre inside the brick
-    float h;         // one voxel of this level, in octree units (gradients)
+    vec3 scale;     // octree coordinates -> pool texture coordinates: tex = p * scale + offset
+    vec3 offset;
+    vec3 texLo;     // the brick's first and last sample centres in the pool: the filter never
+    vec3 texHi;     // reads past them, so never into another slot
+    vec2 decode;    // normalised texel -> stored value
+    float h;        // one voxel of this level, in octree units (gradients)
+    uvec2 visible;  // which of the brick's 4x4x4 cells may show (core::BrickCells), cell x + 4y + 16z
+    vec3 leafLo;    // the leaf's corner and cell size, in octree units
+    float cell;
 };
 
-LeafSampler leafSampler(uint node, vec3 leafLo) {
-    uvec4 nd = hvxNodes[node];
+// Whether the cell of the leaf containing p may show; if not, sets cellExit to the ray
+// parameter where the ray o + t·d leaves that cell (invD = 1 / d).
+bool cellVisible(LeafSampler L, vec3 p, vec3 o, vec3 invD, out float cellExit) {
+    ivec3 c = clamp(ivec3(floor((p - L.leafLo) / L.cell)), ivec3(0), ivec3(3));
+    int bit = c.x + 4 * c.y + 16 * c.z;
+    uint word = bit < 32 ? L.visible.x : L.visible.y;
+    cellExit = 0.0;
+    if ((word & (1u << uint(bit & 31))) != 0u) return true;
+    vec3 lo = L.leafLo + vec3(c) * L.cell;
+    vec3 far = max((lo - o) * invD, (lo + L.cell - o) * invD);
+    cellExit = min(min(far.x, far.y), far.z);
+    return false;
+}
+
+// The sampler of leaf `node` (record nd, box corner leafLo). The slot's cell in the pool is
+// found with float arithmetic (exact below 2^23 slots): integer division is not a vector
+// instruction on CPUs, and this runs once per leaf.
+LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
     uint depth = nd.y & 0xFFu;
-    uint slot = nd.x;
-    int e = int(brick.z);
-    LeafSampler L;
+    float slot = float(nd.x), row = float(brick.w), layer = float(image.z);
+    float z = floor((slot + 0.5) / layer);
+    float inLayer = slot - z * layer;
+    float y = floor((inLayer + 0.5) / row);
+    vec3 cell = vec3(inLayer - y * row, y, z) * float(brick.z);
+    vec3 texel = 1.0 / vec3(textureSize(brickPool, 0));
     float s = float(brick.x) * float(1u << depth);
     vec3 lo = floor(leafLo * float(1u << depth) + 0.5) * float(brick.x);
-    L.scale = vec3(s);
-    L.offset = lo - float(brick.y) + 0.5;
-    ivec3 cell = ivec3(int(slot % brick.w), int((slot / brick.w) % (image.z / brick.w)), int(slot / image.z)) * e;
-    L.texelSize = 1.0 / vec3(textureSize(brickPool, 0));
-    L.cellTex = (vec3(cell) + 0.5) * L.texelSize;
-    L.decode = slotDecode[slot];
-    L.uMax = float(e - 1);
+    // u = p * s - (lo - border + 0.5) is the brick sample coordinate; tex = (cell + 0.5 + u) * texel.
+    LeafSampler L;
+    L.scale = vec3(s) * texel;
+    L.offset = (cell + float(brick.y) - lo) * texel;
+    L.texLo = (cell + 0.5) * texel;
+    L.texHi = (cell + float(brick.z) - 0.5) * texel;
+    L.decode = slotDecode[nd.x];
     L.h = 1.0 / s;
+    L.visible = visibleCells[nd.x];
+    L.leafLo = leafLo;
+    L.cell = 0.25 / float(1u << depth);
     return L;
 }
 
-// Hardware trilinear filtering inside the slot: u stays within the brick's sample centres (the
-// border replicates neighbours), so the filter never reads another slot. The decode is linear,
-// so it applies after filtering.
+// Hardware trilinear filtering inside the slot (the border replicates the neighbours). The
+// decode is linear, so it applies after filtering.
 float leafSample(LeafSampler L, vec3 p) {
-    vec3 u = clamp(p * L.scale - L.offset, vec3(0.0), vec3(L.uMax));
-    return texture(brickPool, L.cellTex + u * L.texelSize).r * L.decode.x + L.decode.y;
+    return texture(brickPool, clamp(p * L.scale + L.offset, L.texLo, L.texHi)).r * L.decode.x + L.decode.y;
 }
 
 // Central differences `spread` voxels apart (2: the smoothed normal of relief shading).

@@ -24,10 +24,12 @@ struct ViewCamera {
 layout(std430, binding = 8) readonly buffer Views { ViewCamera views[]; };
 layout(std430, binding = 2) readonly buffer TfTable { vec4 tfF[]; };      // 4096 entries
 layout(std430, binding = 3) readonly buffer TfIntegral { vec4 tfI[]; };   // 4097 entries
+layout(std430, binding = 9) readonly buffer TfOpacity { vec2 tfA[]; };    // 4097 entries: (tfI.w, tfF.w)
 layout(std430, binding = 4) writeonly buffer OutColor { vec4 outColor[]; };
 layout(std430, binding = 5) writeonly buffer OutDepth { float outDepth[]; };
 layout(binding = 0) uniform sampler3D brickPool;  // R8/R16/R32F, slot s at cell (s % row, s / row % rows, s / layer)
 layout(std430, binding = 7) readonly buffer SlotDecode { vec2 slotDecode[]; };  // stored = texel * x + y
+layout(std430, binding = 10) readonly buffer VisibleCells { uvec2 visibleCells[]; };  // per slot, 4x4x4 bits
 layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per index node (feedback)
 #ifndef HVX_TOOLS
 #define HVX_TOOLS 0

@@ -50,6 +50,12 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 double seconds(Clock::time_point a) { return std::chrono::duration<double>(Clock::now() - a).count(); }
+/// User and system CPU time of the whole process (all driver threads), in seconds.
+double cpuSeconds() {
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    return double(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6 * double(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -59,6 +65,9 @@ int main(int argc, char** argv) {
     }
     int size = 512, frames = 8;
     std::string preset = "ct-bone";
+    bool breakdown = false;
+    for (int i = 2; i < argc; ++i)
+        if (!std::strcmp(argv[i], "--breakdown")) breakdown = true;
     for (int i = 2; i + 1 < argc; i += 2) {
         if (!std::strcmp(argv[i], "--size")) size = std::stoi(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--frames")) frames = std::stoi(argv[i + 1]);
@@ -99,7 +108,7 @@ int main(int argc, char** argv) {
     double gpuMs = 0, cpuMs = 0;
     {
         render::EglOffscreenContext ctx;
-        render::GpuRayCaster gpu;
+        render::GpuRayCaster gpu(getenv("HVX_NATIVE") ? render::GpuRayCaster::PoolPrecision::Native : render::GpuRayCaster::PoolPrecision::Auto);
         gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, viewAt(0));  // compile + upload
         const auto t = Clock::now();
         for (int f = 1; f <= frames; ++f) gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, viewAt(f));
@@ -117,6 +126,36 @@ int main(int argc, char** argv) {
             gpu.render(*reader, ws.index(), ws.slotBricks(), tf, moving, viewAt(f).scaled(level.resolution));
         std::printf("Holovox GPU while moving: %.1f ms/frame (resolution x%.2f, step x%.0f)\n",
                     seconds(tm) * 1000.0 / frames, level.resolution, level.stepScale);
+        if (breakdown) {  // where the frame time goes: the same frames with parts switched off
+            auto time = [&](const char* what, const core::TransferFunction& t, const core::RenderSettings& s,
+                            double scale = 1.0) {
+                // The best of three passes (this VM's timings are noisy), in wall time and in
+                // the process's CPU time (which excludes time stolen by other guests).
+                double best = 1e30, bestCpu = 1e30;
+                for (int pass = 0; pass < 3; ++pass) {
+                    const double c0 = cpuSeconds();
+                    const auto tb = Clock::now();
+                    for (int f = 1; f <= frames; ++f)
+                        gpu.render(*reader, ws.index(), ws.slotBricks(), t, s, viewAt(f).scaled(scale));
+                    best = std::min(best, seconds(tb) * 1000.0 / frames);
+                    bestCpu = std::min(bestCpu, (cpuSeconds() - c0) * 1000.0 / frames);
+                }
+                std::printf("  breakdown: %-40s %6.1f ms/frame, CPU %6.1f ms/frame\n", what, best, bestCpu);
+            };
+            time("full (DVR, shaded)", tf, {});
+            core::RenderSettings flat;
+            flat.shading = false;
+            time("no shading (no gradients)", tf, flat);
+            core::RenderSettings mip;
+            mip.mode = core::RenderSettings::Mode::Mip;
+            time("MIP (every sample, no TF)", tf, mip);
+            mip.stepScale = 8.0;
+            time("MIP, step x8 (mostly per-leaf costs)", tf, mip);
+            const core::TransferFunction clear({{g.valueMin, {0, 0, 0, 0}}, {g.valueMax, {0, 0, 0, 0}}}, g.valueMin,
+                                               g.valueMax, tf.referenceLength());
+            time("transparent TF (march, TF lookups)", clear, flat);
+            time("8x8 image (uploads, fixed costs)", tf, {}, 8.0 / size);
+        }
     }
     if (octreeOnly) {
         rusage ru{};

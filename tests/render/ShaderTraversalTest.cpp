@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/BrickCells.h"
 #include "core/Error.h"
 #include "core/OctreeBuilder.h"
 #include "core/OctreeReader.h"
@@ -273,4 +274,37 @@ TEST(GpuRayCaster, CountsRaysPerLeafForVisibilityFeedbackWithoutGlErrors) {
     for (auto c : img.rayCounts) total += c;
     EXPECT_GT(total, 80u * 80u / 4u);
     EXPECT_TRUE(messages.empty()) << messages.front();
+}
+
+TEST(GpuRayCaster, SkippingTransparentCellsInsideBricksChangesNothing) {
+    // Without culling, the index keeps every brick, so rays cross many bricks whose cells the
+    // transfer function leaves transparent; skipping them must give the image of sampling them.
+    Scene s;
+    const auto& g = s.reader->geometry();
+    render::EglOffscreenContext ctx;
+    render::GpuRayCaster gpu;
+    core::WorkingSetOptions unculled;
+    unculled.cullByTransferFunction = false;
+    for (const char* preset : {"ct-bone", "ct-soft-tissue"}) {
+        const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, 1, 0, 4.0);
+        gpu.setCellSkipping(true);
+        const auto skipped = s.render(gpu, tf, unculled, {});
+        gpu.setCellSkipping(false);
+        const auto dense = s.render(gpu, tf, unculled, {});
+        EXPECT_GT(coverage(dense), 0.05) << preset;
+        const double db = psnr(skipped, dense);
+        std::printf("%s: cells skipped vs sampled PSNR %.1f dB\n", preset, db);
+        EXPECT_GT(db, 80.0) << preset;
+    }
+    // And there was something to skip: part of the cells are transparent under ct-bone.
+    std::size_t cells = 0, hidden = 0;
+    const auto bone = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1, 0, 4.0);
+    for (std::uint32_t n = 0; n < s.reader->nodes().size(); ++n) {
+        const auto brick = s.reader->readBrick(n);
+        const auto bits = core::BrickCells::of(brick, s.reader->brickSize(), s.reader->border()).visible(bone);
+        cells += 64;
+        hidden += 64 - std::size_t(__builtin_popcountll(bits));
+    }
+    EXPECT_GT(hidden, cells / 10);
+    EXPECT_LT(hidden, cells);
 }
