@@ -3,6 +3,8 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "core/Error.h"
@@ -15,6 +17,12 @@ struct EglOffscreenContext::Impl {
 };
 
 namespace {
+std::string hex(EGLint v) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%04X", unsigned(v));
+    return buf;
+}
+
 EGLDisplay openDisplay() {
     const char* clientExt = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     const std::string ext = clientExt ? clientExt : "";
@@ -59,15 +67,17 @@ EglOffscreenContext::EglOffscreenContext(bool debug) : impl_(std::make_unique<Im
 }
 
 EglOffscreenContext::~EglOffscreenContext() {
-    eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    release();
     eglDestroyContext(impl_->display, impl_->context);
     eglTerminate(impl_->display);
 }
 
 void EglOffscreenContext::makeCurrent() {
     if (!eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, impl_->context))
-        throw core::Error("EGL: cannot make the surfaceless context current");
+        throw core::Error("EGL: cannot make the surfaceless context current (error 0x" + hex(eglGetError()) + ")");
 }
+
+void EglOffscreenContext::release() { eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
 
 EglOffscreenContext::Info EglOffscreenContext::info() const {
     Info i;

@@ -22,6 +22,8 @@ public:
     EglOffscreenContext& operator=(const EglOffscreenContext&) = delete;
     /// Makes the context current on the calling thread.
     void makeCurrent();
+    /// Leaves no context current on the calling thread (before another API, such as GLX, takes it).
+    void release();
     Info info() const;
 
 private:

@@ -3,7 +3,10 @@
 // same volume, transfer function control points, camera and image size. VTK needs an X display
 // (run under xvfb-run); Holovox renders headless.
 //
-//   xvfb-run -a build/release/tests/bench/hvx_bench_render INPUT [--size 512] [--frames 8]
+//   xvfb-run -a build/release/tests/bench/hvx_bench_render INPUT [--size 512] [--frames 8] [--rounds 3]
+//                                                           [--breakdown]
+//   Rounds alternate Holovox and VTK over the same frames; the ratio reported is the median
+//   of the rounds' ratios. --breakdown times the GPU frame with parts switched off.
 //   INPUT: a volume file or phantom:XxYxZ (loaded whole for VTK; Holovox streams its octree),
 //          or an existing FILE.hvo larger than RAM: Holovox alone, within its memory budget
 //          (VTK must hold the whole volume, and cannot).
@@ -60,15 +63,17 @@ double cpuSeconds() {
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: %s INPUT [--size N] [--frames N] [--tf PRESET]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s INPUT [--size N] [--frames N] [--rounds N] [--tf PRESET] [--breakdown]\n", argv[0]);
         return 2;
     }
     int size = 512, frames = 8;
     std::string preset = "ct-bone";
+    int rounds = 3;
     bool breakdown = false;
     for (int i = 2; i < argc; ++i)
         if (!std::strcmp(argv[i], "--breakdown")) breakdown = true;
     for (int i = 2; i + 1 < argc; i += 2) {
+        if (!std::strcmp(argv[i], "--rounds")) rounds = std::max(1, std::stoi(argv[i + 1]));
         if (!std::strcmp(argv[i], "--size")) size = std::stoi(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--frames")) frames = std::stoi(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--tf")) preset = argv[i + 1];
@@ -105,16 +110,23 @@ int main(int argc, char** argv) {
         if (ws.stats().settled()) break;
         loader.waitIdle();
     }
-    double gpuMs = 0, cpuMs = 0;
-    {
-        render::EglOffscreenContext ctx;
-        render::GpuRayCaster gpu(getenv("HVX_NATIVE") ? render::GpuRayCaster::PoolPrecision::Native : render::GpuRayCaster::PoolPrecision::Auto);
-        gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, viewAt(0));  // compile + upload
+    render::EglOffscreenContext ctx;
+    auto gpuOwner = std::make_unique<render::GpuRayCaster>();  // released before VTK's windows go
+    auto& gpu = *gpuOwner;
+    gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, viewAt(0));  // compile + upload
+    auto timeHolovoxGpu = [&] {
+        ctx.makeCurrent();  // VTK's window takes the thread's context between rounds
         const auto t = Clock::now();
         for (int f = 1; f <= frames; ++f) gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, viewAt(f));
-        gpuMs = seconds(t) * 1000.0 / frames;
-        std::printf("Holovox GPU ray caster (%s): %.1f ms/frame (pool %.0f MiB)\n", ctx.info().renderer.c_str(), gpuMs,
-                    double(gpu.poolBytes()) / double(1 << 20));
+        const double ms = seconds(t) * 1000.0 / frames;
+        ctx.release();
+        return ms;
+    };
+    const double gpuMs = timeHolovoxGpu();
+    ctx.makeCurrent();
+    std::printf("Holovox GPU ray caster (%s): %.1f ms/frame (pool %.0f MiB)\n", ctx.info().renderer.c_str(), gpuMs,
+                double(gpu.poolBytes()) / double(1 << 20));
+    {
         // While the camera moves: reduced resolution and doubled step, sized to 40 ms frames.
         core::InteractiveQuality quality;
         quality.frameDone({}, gpuMs);
@@ -156,6 +168,7 @@ int main(int argc, char** argv) {
             time("transparent TF (march, TF lookups)", clear, flat);
             time("8x8 image (uploads, fixed costs)", tf, {}, 8.0 / size);
         }
+        ctx.release();
     }
     if (octreeOnly) {
         rusage ru{};
@@ -165,15 +178,15 @@ int main(int argc, char** argv) {
                     argv[1], g.dims[0], g.dims[1], g.dims[2], double(g.byteSize()) / double(1ull << 30), gpuMs, size,
                     size, double(ru.ru_maxrss) / 1024.0, double(g.byteSize()) / double(1ull << 30),
                     double(g.voxelCount()) * 4.0 / double(1ull << 30));
+        ctx.makeCurrent();  // for the caster's GL objects to go
         return 0;
     }
-    {
-        const core::CpuRayCaster cpu(*reader, ws.index(), ws.slotData(), tf, {});
+    const core::CpuRayCaster cpu(*reader, ws.index(), ws.slotData(), tf, {});
+    auto timeHolovoxCpu = [&] {
         const auto t = Clock::now();
         for (int f = 1; f <= frames; ++f) cpu.render(viewAt(f));
-        cpuMs = seconds(t) * 1000.0 / frames;
-        std::printf("Holovox CPU reference: %.1f ms/frame\n", cpuMs);
-    }
+        return seconds(t) * 1000.0 / frames;
+    };
 
     // VTK: the whole volume in memory, physical values, same TF points, same camera.
     vtkNew<vtkImageData> image;
@@ -215,50 +228,77 @@ int main(int argc, char** argv) {
     property->SetDiffuse(0.65);
     property->SetSpecular(0.25);
     property->SetSpecularPower(24.0);
-    auto timeVtk = [&](vtkVolumeMapper* mapper, const char* name) {
-        mapper->SetInputData(image);
+    // One window per VTK mapper, kept for all rounds.
+    struct VtkRun {
         vtkNew<vtkVolume> volume;
-        volume->SetMapper(mapper);
-        volume->SetProperty(property);
-        volume->SetUserMatrix(placement);
         vtkNew<vtkRenderer> renderer;
-        renderer->AddVolume(volume);
-        renderer->SetBackground(0, 0, 0);
         vtkNew<vtkRenderWindow> window;
-        window->SetOffScreenRendering(1);
-        window->SetSize(size, size);
-        window->AddRenderer(renderer);
-        auto place = [&](int f) {
+    };
+    auto setUp = [&](VtkRun& run, vtkVolumeMapper* mapper) {
+        mapper->SetInputData(image);
+        run.volume->SetMapper(mapper);
+        run.volume->SetProperty(property);
+        run.volume->SetUserMatrix(placement);
+        run.renderer->AddVolume(run.volume);
+        run.renderer->SetBackground(0, 0, 0);
+        run.window->SetOffScreenRendering(1);
+        run.window->SetSize(size, size);
+        run.window->AddRenderer(run.renderer);
+    };
+    auto timeVtk = [&](VtkRun& run, int first, int last) {
+        const auto t = Clock::now();
+        for (int f = first; f <= last; ++f) {
             const auto v = viewAt(f);
-            vtkCamera* cam = renderer->GetActiveCamera();
+            vtkCamera* cam = run.renderer->GetActiveCamera();
             cam->SetPosition(v.eye.x, v.eye.y, v.eye.z);
             cam->SetFocalPoint(v.target.x, v.target.y, v.target.z);
             cam->SetViewUp(v.up.x, v.up.y, v.up.z);
             cam->SetViewAngle(v.fovYDegrees);
-            renderer->ResetCameraClippingRange();
-        };
-        place(0);
-        window->Render();  // upload
-        const auto t = Clock::now();
-        for (int f = 1; f <= frames; ++f) {
-            place(f);
-            window->Render();
+            run.renderer->ResetCameraClippingRange();
+            run.window->Render();
         }
-        const double ms = seconds(t) * 1000.0 / frames;
-        std::printf("%s: %.1f ms/frame\n", name, ms);
+        const double ms = seconds(t) * 1000.0 / (last - first + 1);
+        run.window->ReleaseCurrent();  // libglvnd allows one API's context per thread at a time
         return ms;
     };
+    const float sampleDistance = float(std::min({g0.spacing.x, g0.spacing.y, g0.spacing.z}));
     vtkNew<vtkGPUVolumeRayCastMapper> vtkGpu;
     vtkGpu->SetAutoAdjustSampleDistances(0);
-    vtkGpu->SetSampleDistance(float(std::min({g0.spacing.x, g0.spacing.y, g0.spacing.z})));
-    const double vtkGpuMs = timeVtk(vtkGpu, "VTK vtkGPUVolumeRayCastMapper");
+    vtkGpu->SetSampleDistance(sampleDistance);
     vtkNew<vtkFixedPointVolumeRayCastMapper> vtkCpu;
     vtkCpu->SetAutoAdjustSampleDistances(0);
-    vtkCpu->SetSampleDistance(float(std::min({g0.spacing.x, g0.spacing.y, g0.spacing.z})));
-    const double vtkCpuMs = timeVtk(vtkCpu, "VTK vtkFixedPointVolumeRayCastMapper");
-    std::printf("%s %ux%ux%u, %dx%d, %d frames: Holovox GPU / VTK GPU = %.2f (target <= 0.5), "
-                "Holovox CPU / VTK fixed-point = %.2f\n",
-                argv[1], g0.dims[0], g0.dims[1], g0.dims[2], size, size, frames, gpuMs / vtkGpuMs, cpuMs / vtkCpuMs);
+    vtkCpu->SetSampleDistance(sampleDistance);
+    VtkRun gpuRun, cpuRun;
+    setUp(gpuRun, vtkGpu);
+    setUp(cpuRun, vtkCpu);
+    timeVtk(gpuRun, 0, 0);  // uploads
+    timeVtk(cpuRun, 0, 0);
+
+    // Rounds that alternate the four renderers over the same frames, so that each ratio is
+    // taken between timings a few seconds apart: this VM's speed drifts by ±15% over a run.
+    std::vector<double> gpuRatios, cpuRatios;
+    for (int r = 1; r <= rounds; ++r) {
+        const double hg = timeHolovoxGpu(), vg = timeVtk(gpuRun, 1, frames);
+        const double hc = timeHolovoxCpu(), vc = timeVtk(cpuRun, 1, frames);
+        std::printf("round %d: Holovox GPU %.1f ms, VTK vtkGPUVolumeRayCastMapper %.1f ms (%.2f); Holovox CPU %.1f ms, "
+                    "VTK vtkFixedPointVolumeRayCastMapper %.1f ms (%.2f)\n",
+                    r, hg, vg, hg / vg, hc, vc, hc / vc);
+        gpuRatios.push_back(hg / vg);
+        cpuRatios.push_back(hc / vc);
+    }
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    };
+    std::printf("%s %ux%ux%u, %dx%d, %d frames x %d rounds: Holovox GPU / VTK GPU = %.2f (median; range %.2f-%.2f; "
+                "target <= 0.5), Holovox CPU / VTK fixed-point = %.2f (range %.2f-%.2f)\n",
+                argv[1], g0.dims[0], g0.dims[1], g0.dims[2], size, size, frames, rounds, median(gpuRatios),
+                *std::min_element(gpuRatios.begin(), gpuRatios.end()), *std::max_element(gpuRatios.begin(), gpuRatios.end()),
+                median(cpuRatios), *std::min_element(cpuRatios.begin(), cpuRatios.end()),
+                *std::max_element(cpuRatios.begin(), cpuRatios.end()));
+    ctx.makeCurrent();
+    gpuOwner.reset();
+    ctx.release();
     std::filesystem::remove(hvo);
     return 0;
 }
