@@ -58,4 +58,11 @@ std::uint64_t BrickCells::visible(const TransferFunction& tf) const {
     return bits;
 }
 
+std::uint64_t BrickCells::straddling(double value) const {
+    std::uint64_t bits = 0;
+    for (std::size_t c = 0; c < ranges.size(); ++c)
+        if (double(ranges[c].x) <= value && value <= double(ranges[c].y)) bits |= std::uint64_t(1) << c;
+    return bits;
+}
+
 }  // namespace hvx::core

@@ -28,6 +28,9 @@ struct BrickCells {
     /// Bit c set where cell c may show under `tf`: its range, widened by one table entry each
     /// side (the table is interpolated between entries), meets non-zero opacity.
     std::uint64_t visible(const TransferFunction& tf) const;
+    /// Bit c set where cell c may hold the iso surface of `value` (min <= value <= max): in
+    /// any other cell, all samples lie on one side of the value.
+    std::uint64_t straddling(double value) const;
 };
 
 }  // namespace hvx::core

@@ -160,9 +160,11 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
     // Which cells of each slot's brick the transfer function leaves visible (64 bits per slot).
     std::vector<glm::uvec2> visibleCells(std::max<std::size_t>(1, slots.size()), glm::uvec2(~0u));
-    if (cellSkipping_ && settings.mode == core::RenderSettings::Mode::Dvr)
+    const bool dvr = settings.mode == core::RenderSettings::Mode::Dvr;
+    if (cellSkipping_ && (dvr || settings.mode == core::RenderSettings::Mode::Iso))
         for (std::size_t s = 0; s < slots.size(); ++s) {
-            const std::uint64_t bits = slots[s] ? slotCells_[s].visible(tf) : ~std::uint64_t(0);
+            if (!slots[s]) continue;
+            const std::uint64_t bits = dvr ? slotCells_[s].visible(tf) : slotCells_[s].straddling(settings.isoValue);
             visibleCells[s] = glm::uvec2(std::uint32_t(bits), std::uint32_t(bits >> 32));
         }
     glNamedBufferData(buffers_[12], GLsizeiptr(visibleCells.size() * sizeof(glm::uvec2)), visibleCells.data(),

@@ -46,8 +46,9 @@ public:
                                                const core::TransferFunction& tf, const core::RenderSettings& settings,
                                                const std::vector<core::View>& views);
     /// Empty-space skipping inside bricks (on by default): samples in a brick cell that is
-    /// transparent under the transfer function are stepped over (core::BrickCells). The image
-    /// is the same either way; the switch exists for the tests that show it.
+    /// transparent under the transfer function (DVR) or holds no iso surface (isosurface) are
+    /// stepped over (core::BrickCells). The image is the same either way; the switch exists
+    /// for the tests that show it.
     void setCellSkipping(bool on) { cellSkipping_ = on; }
     /// Bytes uploaded to the brick pool by the last render().
     std::size_t lastUploadBytes() const { return uploaded_; }

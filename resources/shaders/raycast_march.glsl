@@ -1,6 +1,8 @@
 // The ray march: clip to the volume, walk the index leaf by leaf (shared traversal step),
-// sample each non-empty leaf at its voxel size and composite. Same order of operations as
-// core/CpuRayCaster.cpp.
+// sample each non-empty leaf at its voxel size and composite. The samples and their order of
+// operations are those of core/CpuRayCaster.cpp; two accelerations leave the image as it is:
+// the costly work runs once per significant sample (see the loops below), and the cells of a
+// brick that cannot show (core::BrickCells) are stepped over.
 #ifndef MODE
 #define MODE 0
 #endif
@@ -142,10 +144,11 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                     tPrev = t;
                     sPrev = s;
                     havePrev = true;
-#if MODE == 0
-                    // In a cell the transfer function leaves transparent, every sample and every
-                    // segment between two of them adds nothing: land on the last sample before
-                    // the cell's exit (it starts the next segment) and go on from there.
+#if MODE <= 1
+                    // In a cell the transfer function leaves transparent (DVR) or that does not
+                    // straddle the iso value, every sample and every segment between two of them
+                    // adds nothing: land on the last sample before the cell's exit (it starts the
+                    // next segment) and go on from there.
                     float cellExit;
                     if (!cellVisible(L, p, o, inv, cellExit)) {
                         float k = ceil((cellExit - t) / dt);  // t + k·dt: the first sample past the exit

@@ -296,15 +296,29 @@ TEST(GpuRayCaster, SkippingTransparentCellsInsideBricksChangesNothing) {
         std::printf("%s: cells skipped vs sampled PSNR %.1f dB\n", preset, db);
         EXPECT_GT(db, 80.0) << preset;
     }
+    core::RenderSettings iso;  // the isosurface's first hit, with cells that cannot hold it skipped
+    iso.mode = core::RenderSettings::Mode::Iso;
+    iso.isoValue = 300;
+    const auto tf = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1, 0, 4.0);
+    gpu.setCellSkipping(true);
+    const auto skippedIso = s.render(gpu, tf, unculled, iso);
+    gpu.setCellSkipping(false);
+    const auto denseIso = s.render(gpu, tf, unculled, iso);
+    EXPECT_GT(coverage(denseIso), 0.05);
+    EXPECT_GT(psnr(skippedIso, denseIso), 80.0);
     // And there was something to skip: part of the cells are transparent under ct-bone.
-    std::size_t cells = 0, hidden = 0;
+    std::size_t cells = 0, hidden = 0, noSurface = 0;
     const auto bone = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1, 0, 4.0);
     for (std::uint32_t n = 0; n < s.reader->nodes().size(); ++n) {
         const auto brick = s.reader->readBrick(n);
         const auto bits = core::BrickCells::of(brick, s.reader->brickSize(), s.reader->border()).visible(bone);
         cells += 64;
         hidden += 64 - std::size_t(__builtin_popcountll(bits));
+        const auto surface = core::BrickCells::of(brick, s.reader->brickSize(), s.reader->border()).straddling(300);
+        noSurface += 64 - std::size_t(__builtin_popcountll(surface));
     }
     EXPECT_GT(hidden, cells / 10);
     EXPECT_LT(hidden, cells);
+    EXPECT_GT(noSurface, cells / 10);
+    EXPECT_LT(noSurface, cells);
 }

@@ -80,3 +80,12 @@ TEST(BrickCells, RefusesBricksWithoutBorderOrWithASizeNotDivisibleByFour) {
     EXPECT_THROW(core::BrickCells::of(brickOf<std::uint8_t>(6, 1, core::ScalarType::UInt8, 0), 6, 1), core::Error);
     EXPECT_THROW(core::BrickCells::of(brickOf<std::uint8_t>(8, 1, core::ScalarType::UInt8, 0), 8, 2), core::Error);
 }
+
+TEST(BrickCells, StraddlingBitsMarkTheCellsAnIsoSurfaceCanCross) {
+    auto b = brickOf<std::uint16_t>(8, 1, core::ScalarType::UInt16, 100);
+    set<std::uint16_t>(b, 1, 1, 1, 400);  // interior (0, 0, 0): cell (0, 0, 0) only
+    const auto cells = core::BrickCells::of(b, 8, 1);
+    EXPECT_EQ(cells.straddling(250.0), std::uint64_t(1));
+    EXPECT_EQ(cells.straddling(100.0), ~std::uint64_t(0));  // every cell touches 100
+    EXPECT_EQ(cells.straddling(401.0), 0u);
+}
