@@ -68,20 +68,27 @@ std::vector<CpuRayCaster::Visit> CpuRayCaster::traverse(const glm::dvec3& origin
     return out;
 }
 
-float CpuRayCaster::sample(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p) const {
+CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafLo) const {
     const auto& nd = index_.nodes[node];
-    const auto& data = *slots_[nd.x];
     const std::uint32_t depth = nd.y & 0xFFu;
-    const float scale = float(reader_.brickSize()) * float(1u << depth);
-    const int e = int(reader_.brickEdge());
-    // The leaf's grid origin in level voxels (from its box, not from p: samples just outside
-    // the leaf read its border).
-    const glm::vec3 lo = glm::floor(leafLo * float(1u << depth) + 0.5f) * float(reader_.brickSize());
-    glm::vec3 u = p * scale - (lo - float(reader_.border())) - 0.5f;
+    Leaf L;
+    L.data = slots_[nd.x]->data();
+    L.scale = float(reader_.brickSize()) * float(1u << depth);
+    L.edge = int(reader_.brickEdge());
+    // The leaf's grid origin in level voxels (from its box, not from a sample: samples just
+    // outside the leaf read its border).
+    L.origin = glm::floor(leafLo * float(1u << depth) + 0.5f) * float(reader_.brickSize()) - float(reader_.border());
+    return L;
+}
+
+float CpuRayCaster::sample(const Leaf& L, const glm::vec3& p) const {
+    const int e = L.edge;
+    glm::vec3 u = p * L.scale - L.origin - 0.5f;
     u = glm::clamp(u, glm::vec3(0.0f), glm::vec3(float(e - 1)));
     const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(e - 2 > 0 ? e - 2 : 0));
     const glm::vec3 f = u - glm::vec3(i0);
-    auto at = [&](int x, int y, int z) { return data[(std::size_t(z) * e + std::size_t(y)) * e + std::size_t(x)]; };
+    const float* data = L.data;
+    auto at = [&](int x, int y, int z) { return data[(std::size_t(z) * std::size_t(e) + std::size_t(y)) * std::size_t(e) + std::size_t(x)]; };
     const int x1 = std::min(i0.x + 1, e - 1), y1 = std::min(i0.y + 1, e - 1), z1 = std::min(i0.z + 1, e - 1);
     const float c00 = at(i0.x, i0.y, i0.z) * (1 - f.x) + at(x1, i0.y, i0.z) * f.x;
     const float c10 = at(i0.x, y1, i0.z) * (1 - f.x) + at(x1, y1, i0.z) * f.x;
@@ -90,12 +97,11 @@ float CpuRayCaster::sample(std::uint32_t node, const glm::vec3& leafLo, const gl
     return (c00 * (1 - f.y) + c10 * f.y) * (1 - f.z) + (c01 * (1 - f.y) + c11 * f.y) * f.z;
 }
 
-glm::vec3 CpuRayCaster::gradient(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p, float spread) const {
-    const std::uint32_t depth = index_.nodes[node].y & 0xFFu;
-    const float h = spread / (float(reader_.brickSize()) * float(1u << depth));
-    return glm::vec3(sample(node, leafLo, p + glm::vec3(h, 0, 0)) - sample(node, leafLo, p - glm::vec3(h, 0, 0)),
-                     sample(node, leafLo, p + glm::vec3(0, h, 0)) - sample(node, leafLo, p - glm::vec3(0, h, 0)),
-                     sample(node, leafLo, p + glm::vec3(0, 0, h)) - sample(node, leafLo, p - glm::vec3(0, 0, h))) /
+glm::vec3 CpuRayCaster::gradient(const Leaf& L, const glm::vec3& p, float spread) const {
+    const float h = spread / L.scale;
+    return glm::vec3(sample(L, p + glm::vec3(h, 0, 0)) - sample(L, p - glm::vec3(h, 0, 0)),
+                     sample(L, p + glm::vec3(0, h, 0)) - sample(L, p - glm::vec3(0, h, 0)),
+                     sample(L, p + glm::vec3(0, 0, h)) - sample(L, p - glm::vec3(0, 0, h))) /
            (2.0f * h);
 }
 
@@ -111,14 +117,14 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     bool hit = false, havePrev = false;
     float tPrev = 0.0f, sPrev = 0.0f;
     const auto mode = settings_.mode;
-    glm::vec3 leafLo(0.0f);
+    Leaf L;  // the leaf being sampled
     // Shades a sample and scales its opacity `a` by boundary enhancement and view-dependent
     // transparency; the gradient is taken once for both.
     const bool enhance = settings_.boundary > 0.0 || settings_.viewTransparency > 0.0;
     const double strengthPerGradient = space_.minSpacing / (tf_.valueMax() - tf_.valueMin()) / kBoundaryGradientFraction;
-    auto shade = [&](std::uint32_t n, const glm::vec3& p, const glm::dvec3& base, double& a) {
+    auto shade = [&](const glm::vec3& p, const glm::dvec3& base, double& a) {
         if (!settings_.shading && !enhance) return base;
-        glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(n, leafLo, p));
+        glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(L, p));
         const double len = glm::length(g);
         const double facing = len < 1e-9 ? 0.0 : std::abs(glm::dot(g / len, -dw));  // headlight: L = V
         if (enhance) {
@@ -142,13 +148,13 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     float tStart = -1.0f;
     walk(ow, dw, [&](std::uint32_t n, const glm::vec3& lo, float tIn, float tOut) {
         if (tStart < 0.0f) tStart = tIn;
-        leafLo = lo;
         const auto& nd = index_.nodes[n];
         if (nd.x == SpatialIndex::kNone) {  // empty leaf: nothing to accumulate
             havePrev = false;
             return true;
         }
         if (counts) ++(*counts)[n];
+        L = leaf(n, lo);
         const std::uint32_t depthLevel = nd.y & 0xFFu;
         const float voxel = 1.0f / (float(reader_.brickSize()) * float(1u << depthLevel));
         const float dt = float(settings_.stepScale) * voxel / octPerMm;  // world mm
@@ -159,22 +165,23 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
             t = tStart + std::ceil((tIn - tStart) / dt) * dt;
             tPrev = t - dt;
             if (tPrev >= tStart) {  // not before the ray entered the volume
-                sPrev = sample(n, leafLo, o + tPrev * d);
+                sPrev = sample(L, o + tPrev * d);
                 havePrev = mode == RenderSettings::Mode::Dvr || mode == RenderSettings::Mode::Iso;
             }
         }
         for (; t <= tOut; t += dt) {
             const glm::vec3 p = o + t * d;
-            const float s = sample(n, leafLo, p);
+            const float s = sample(L, p);
             if (mode == RenderSettings::Mode::Dvr) {
                 if (havePrev) {
-                    const glm::dvec4 f = tf_.segment(sPrev, s);
+                    // Opacity first: most samples stop there, transparent.
                     const double seg = t - tPrev;
-                    double a = 1.0 - std::exp(-f.w * seg);
+                    double a = 1.0 - std::exp(-tf_.segmentExtinction(sPrev, s) * seg);
+                    const glm::dvec4 f = a > 1e-6 ? tf_.segment(sPrev, s) : glm::dvec4(0.0);
                     if (a > 1e-6 && toolBits) {
                         // Enhancers (core/shared/Enhancers.glsl), then shading and MImDA
                         // compositing, in the shader's order and precision.
-                        const glm::vec3 gOct = gradient(n, leafLo, p);
+                        const glm::vec3 gOct = gradient(L, p);
                         const glm::vec3 g = glm::vec3(normalToWorld_ * glm::dvec3(gOct));
                         glsl::HvxSample x;
                         x.p = glm::vec3(ow + double(t) * dw);
@@ -188,7 +195,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                         x.importance = 1.0f - std::exp(-float(f.w) * float(tf_.referenceLength()));
                         const float focalNorm = (toolBits & HVX_FOCAL_BIT) ? glsl::hvxFocalNorm(packedTools, x.p) : 2.0f;
                         const glm::vec3 gSmooth = focalNorm <= 1.0f
-                                                      ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(n, leafLo, p, 2.0f)))
+                                                      ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f)))
                                                       : g;
                         bool enteredNow = enteredProbe;
                         glsl::hvxEnhance(x, packedTools, toolBits, focalNorm, gSmooth, hTheta, enteredNow);
@@ -216,7 +223,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                         if (glsl::hvxMimdaFutureDelta(accum.w, importanceMax, gamma) < 1.0f - float(settings_.earlyTermination))
                             return false;
                     } else if (a > 1e-6) {
-                        const glm::dvec3 c = shade(n, p, glm::dvec3(f) / f.w, a);
+                        const glm::dvec3 c = shade(p, glm::dvec3(f) / f.w, a);
                         color += (1.0 - alpha) * a * c;
                         alpha += (1.0 - alpha) * a;
                         if (!hit && alpha > 0.02) {
@@ -232,7 +239,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                     float a = tPrev, b = t, sa = sPrev;
                     for (int k = 0; k < 8; ++k) {  // bisection to the crossing
                         const float m = 0.5f * (a + b);
-                        const float sm = sample(n, leafLo, o + m * d);
+                        const float sm = sample(L, o + m * d);
                         if ((sa < iso) != (sm < iso)) b = m;
                         else {
                             a = m;
@@ -244,7 +251,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                     glm::dvec3 base = f.w > 0 ? glm::dvec3(f) / f.w : glm::dvec3(0.9);
                     if (glm::length(base) < 0.1) base = glm::dvec3(0.9);
                     double opaque = 1.0;
-                    color = shade(n, o + th * d, base, opaque);
+                    color = shade(o + th * d, base, opaque);
                     alpha = 1.0;
                     depth = th;
                     return false;

@@ -78,8 +78,16 @@ private:
                    std::vector<std::uint32_t>* counts) const;
     template <class Visitor>
     void walk(const glm::dvec3& origin, const glm::dvec3& direction, Visitor&& visit) const;
-    float sample(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p) const;
-    glm::vec3 gradient(std::uint32_t node, const glm::vec3& leafLo, const glm::vec3& p, float spread = 1.0f) const;
+    /// What sampling a leaf's brick needs, worked out once per leaf a ray enters.
+    struct Leaf {
+        const float* data = nullptr;
+        float scale = 1.0f;   // octree units -> level voxels
+        glm::vec3 origin{};   // the brick's first sample, in level voxels, less the border
+        int edge = 0;
+    };
+    Leaf leaf(std::uint32_t node, const glm::vec3& leafLo) const;
+    float sample(const Leaf& leaf, const glm::vec3& p) const;
+    glm::vec3 gradient(const Leaf& leaf, const glm::vec3& p, float spread = 1.0f) const;
 
     const OctreeReader& reader_;
     const SpatialIndex& index_;

@@ -58,6 +58,20 @@ glm::dvec4 TransferFunction::segment(double a, double b) const {
     return sample(0.5 * (a + b));
 }
 
+double TransferFunction::segmentExtinction(double a, double b) const {
+    const double pa = position(a), pb = position(b);
+    auto integralW = [&](double p) {
+        const auto i = std::min<std::size_t>(std::size_t(p), kEntries - 1);
+        return F_[i].w + f_[i].w * (p - double(i));
+    };
+    if (std::abs(pb - pa) > 1e-3) return (integralW(pb) - integralW(pa)) / (pb - pa);
+    const double p = std::clamp(position(0.5 * (a + b)) - 0.5, 0.0, double(kEntries - 1));
+    const auto i = std::size_t(p);
+    const std::size_t j = std::min<std::size_t>(i + 1, kEntries - 1);
+    const double t = p - double(i);
+    return f_[i].w * (1.0 - t) + f_[j].w * t;
+}
+
 bool TransferFunction::isEmpty(double lo, double hi) const {
     // Table bins touched by [lo, hi]; their summed extinction is zero only if all are.
     const auto a = std::size_t(std::clamp(position(lo), 0.0, double(kEntries - 1)));

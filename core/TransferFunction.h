@@ -40,6 +40,8 @@ public:
     glm::dvec4 sample(double value) const;
     /// Eq. 3.1: the average of f over the segment from value a to value b.
     glm::dvec4 segment(double a, double b) const;
+    /// segment(a, b).w alone (the extinction), in the same operations.
+    double segmentExtinction(double a, double b) const;
     /// True when no value in [lo, hi] has any opacity.
     bool isEmpty(double lo, double hi) const;
     const std::vector<Point>& points() const { return points_; }
