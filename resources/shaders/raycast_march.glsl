@@ -64,179 +64,165 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     float importanceMax = 0.0;
 #endif
     // The current leaf: where the ray leaves it, its sampler, step and next sample.
-    float tExit = 0.0, tOut = 0.0, dt = 1.0, t = 0.0;
-    int face = 0;
-    bool inLeaf = false, ended = false, resume = false;
+    float dt = 1.0, t = 0.0;
     LeafSampler L;
 
-    // Three nested loops, so that each kind of work runs as often as it must and no more:
-    // samples (cheap: one fetch and the opacity test) inside leaves (traversal) inside
-    // significant samples (gradient, shading, compositing). SIMD drivers execute a branch's
-    // code for every lane, taken or not (llvmpipe masks it), but leave a loop as soon as all
-    // lanes have; a GPU warp does the same with divergent branches.
-    int steps = 0;
-    while (!done && !ended && steps < 65536) {
-        bool significant = false;
-        vec3 p = vec3(0.0);
-        float s = 0.0, pS = 0.0, iS = 0.0, a = 0.0;
-        while (!ended && steps < 65536) {  // leaves, until a significant sample or the ray's end
-            ++steps;
-            if (!resume) {  // the current leaf is done (or is the first): enter the next one
-                if (steps > 1 && (tExit >= t1 || !hvxNextLeaf(HVX_INDEX_ARG, o, d, face, tExit, nudge, n, lo, hi))) {
-                    ended = true;
-                    break;
-                }
-                tIn = max(tIn, tExit);
-                // Where the ray leaves the leaf; for a leaf with a brick, its sampler, step and
-                // first sample on the ray's own sampling grid. After empty space, the segment
-                // leading into the brick starts at its border sample, as a dense marcher would
-                // (core/CpuRayCaster.cpp). An empty leaf breaks the chain of segments.
-                face = hvxExitFace(o, inv, lo, hi, tExit);
-                tOut = min(tExit, t1);
-                inLeaf = false;
-                if (tOut > tIn) {
-                    uvec4 nd = hvxNodes[n];
-                    if (nd.x == HVX_NONE) {
-                        havePrev = false;
-                    } else {
-                        inLeaf = true;
-                        if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);  // visibility feedback
-                        L = leafSampler(n, nd, lo);
-                        float voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
-                        dt = tfRange.w * voxel / octPerMm;
-                        t = tPrev + dt;
-                        if (!havePrev) {
-                            t = t0 + ceil((tIn - t0) / dt) * dt;
-                            tPrev = t - dt;
-                            if (tPrev >= t0) {
-                                sPrev = leafSample(L, o + tPrev * d);
-                                if (MODE == 0) {
-                                    pPrev = tfPosition(sPrev);
-                                    iPrev = tfOpacityIntegralAt(pPrev);
-                                }
-                                havePrev = MODE == 0 || MODE == 1;
-                            }
+    // Three nested loops, so that each kind of work runs as often as it must: leaves
+    // (traversal), significant samples in a leaf (gradient, shading, compositing), and the
+    // transparent samples between them (one fetch and the opacity test). SIMD drivers execute
+    // a branch's code for every lane, taken or not (llvmpipe masks it), but leave a loop as
+    // soon as all of its lanes have; a GPU warp does the same with divergent branches.
+    for (int guard = 0; guard < 65536 && !done; ++guard) {
+        float tExit = 0.0;
+        int face = hvxExitFace(o, inv, lo, hi, tExit);
+        float tOut = min(tExit, t1);
+        bool inLeaf = false;
+        // For a leaf with a brick: its sampler, step and first sample on the ray's own sampling
+        // grid. After empty space, the segment leading into the brick starts at its border
+        // sample, as a dense marcher would (core/CpuRayCaster.cpp). An empty leaf breaks the
+        // chain of segments.
+        if (tOut > tIn) {
+            uvec4 nd = hvxNodes[n];
+            if (nd.x == HVX_NONE) {
+                havePrev = false;
+            } else {
+                inLeaf = true;
+                if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);  // visibility feedback
+                L = leafSampler(n, nd, lo);
+                float voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
+                dt = tfRange.w * voxel / octPerMm;
+                t = tPrev + dt;
+                if (!havePrev) {
+                    t = t0 + ceil((tIn - t0) / dt) * dt;
+                    tPrev = t - dt;
+                    if (tPrev >= t0) {
+                        sPrev = leafSample(L, o + tPrev * d);
+                        if (MODE == 0) {
+                            pPrev = tfPosition(sPrev);
+                            iPrev = tfOpacityIntegralAt(pPrev);
                         }
+                        havePrev = MODE == 0 || MODE == 1;
                     }
                 }
             }
-            resume = false;
-            if (inLeaf) {
-                for (; t <= tOut; t += dt) {  // samples of this leaf
-                    p = o + t * d;
-                    s = leafSample(L, p);
+        }
+        while (inLeaf && t <= tOut && !done) {  // significant samples of this leaf
+            bool significant = false;
+            vec3 p = vec3(0.0);
+            float s = 0.0, pS = 0.0, iS = 0.0, a = 0.0;
+            for (; t <= tOut; t += dt) {  // samples of this leaf
+                p = o + t * d;
+                s = leafSample(L, p);
 #if MODE == 0
-                    pS = tfPosition(s);
-                    iS = tfOpacityIntegralAt(pS);
-                    if (havePrev) {
-                        a = 1.0 - exp(-tfSegmentOpacity(sPrev, s, pPrev, iPrev, pS, iS) * (t - tPrev));
-                        if (a > 1e-6) { significant = true; break; }
-                    }
-                    pPrev = pS;
-                    iPrev = iS;
+                pS = tfPosition(s);
+                iS = tfOpacityIntegralAt(pS);
+                if (havePrev) {
+                    a = 1.0 - exp(-tfSegmentOpacity(sPrev, s, pPrev, iPrev, pS, iS) * (t - tPrev));
+                    if (a > 1e-6) { significant = true; break; }
+                }
+                pPrev = pS;
+                iPrev = iS;
 #elif MODE == 1
-                    if (havePrev && ((sPrev < extra.x) != (s < extra.x))) { significant = true; break; }
+                if (havePrev && ((sPrev < extra.x) != (s < extra.x))) { significant = true; break; }
 #else
-                    extreme = MODE == 3 ? min(extreme, s) : max(extreme, s);
-                    if (havePrev) { sum += 0.5 * (s + sPrev) * (t - tPrev); travelled += t - tPrev; }
-                    if (!hit) { hit = true; depth = t; }
+                extreme = MODE == 3 ? min(extreme, s) : max(extreme, s);
+                if (havePrev) { sum += 0.5 * (s + sPrev) * (t - tPrev); travelled += t - tPrev; }
+                if (!hit) { hit = true; depth = t; }
 #endif
-                    tPrev = t;
-                    sPrev = s;
-                    havePrev = true;
+                tPrev = t;
+                sPrev = s;
+                havePrev = true;
 #if MODE <= 1
-                    // In a cell the transfer function leaves transparent (DVR) or that does not
-                    // straddle the iso value, every sample and every segment between two of them
-                    // adds nothing: land on the last sample before the cell's exit (it starts the
-                    // next segment) and go on from there.
-                    float cellExit;
-                    if (!cellVisible(L, p, o, inv, cellExit)) {
-                        float k = ceil((cellExit - t) / dt);  // t + k·dt: the first sample past the exit
-                        if (k >= 3.0) {
-                            t += (k - 2.0) * dt;  // the loop's step makes it t + (k - 1)·dt
-                            havePrev = false;
-                        }
+                // In a cell the transfer function leaves transparent (DVR) or that does not
+                // straddle the iso value, every sample and every segment between two of them
+                // adds nothing: land on the last sample before the cell's exit (it starts the
+                // next segment) and go on from there.
+                float cellExit;
+                if (!cellVisible(L, p, o, inv, cellExit)) {
+                    float k = ceil((cellExit - t) / dt);  // t + k·dt: the first sample past the exit
+                    if (k >= 3.0) {
+                        t += (k - 2.0) * dt;  // the loop's step makes it t + (k - 1)·dt
+                        havePrev = false;
                     }
+                }
 #endif
-                }
-                if (significant) {  // handled below, then this leaf's samples resume
-                    resume = true;
-                    break;
-                }
             }
-        }
-        if (!significant) break;
+            if (!significant) break;
 #if MODE == 0 && HVX_TOOLS != 0
-        {  // enhancers, shading and MImDA as core/CpuRayCaster.cpp
-            vec4 f = tfSegment(sPrev, s);
-            vec3 g = transpose(mat3(patientToOctree)) * leafGradient(L, p);
-            HvxSample x;
-            x.p = ow + t * dw;
-            x.v = dw;
-            x.g = g;
-            x.gn = min(1.0, length(g) * enhance.z);
-            x.s = s;
-            x.c = f.rgb / f.w;
-            x.a = a;
-            x.lit = 1.0;
-            x.importance = 1.0 - exp(-f.w * extra.w);
-            float focalNorm = HVX_TOOL_ON(HVX_FOCAL_BIT) ? hvxFocalNorm(tools, x.p) : 2.0;
-            vec3 gSmooth = focalNorm <= 1.0 ? transpose(mat3(patientToOctree)) * leafGradientSpread(L, p, 2.0) : g;
-            bool enteredNow = entered;
-            hvxEnhance(x, tools, HVX_TOOLS, focalNorm, gSmooth, hTheta, enteredNow);
-            if (enteredNow && !entered) {  // clip what lies in front of the focal probe
-                accum = vec4(0.0);
-                importanceMax = 0.0;
-                entered = true;
+            {  // enhancers, shading and MImDA as core/CpuRayCaster.cpp
+                vec4 f = tfSegment(sPrev, s);
+                vec3 g = transpose(mat3(patientToOctree)) * leafGradient(L, p);
+                HvxSample x;
+                x.p = ow + t * dw;
+                x.v = dw;
+                x.g = g;
+                x.gn = min(1.0, length(g) * enhance.z);
+                x.s = s;
+                x.c = f.rgb / f.w;
+                x.a = a;
+                x.lit = 1.0;
+                x.importance = 1.0 - exp(-f.w * extra.w);
+                float focalNorm = HVX_TOOL_ON(HVX_FOCAL_BIT) ? hvxFocalNorm(tools, x.p) : 2.0;
+                vec3 gSmooth = focalNorm <= 1.0 ? transpose(mat3(patientToOctree)) * leafGradientSpread(L, p, 2.0) : g;
+                bool enteredNow = entered;
+                hvxEnhance(x, tools, HVX_TOOLS, focalNorm, gSmooth, hTheta, enteredNow);
+                if (enteredNow && !entered) {  // clip what lies in front of the focal probe
+                    accum = vec4(0.0);
+                    importanceMax = 0.0;
+                    entered = true;
+                }
+                vec3 colour = x.c;
+                if (x.lit >= 0.0) {
+                    float gl2 = dot(x.g, x.g);
+                    float ndl = gl2 > 0.0 ? abs(dot(x.g, -x.v)) / sqrt(gl2) : 1.0;
+                    vec3 phong = extra.y > 0.5 ? x.c * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w))
+                                               : x.c;
+                    colour = mix(x.c * (shading.x + HVX_EMPHASIS_EMISSION), phong, x.lit);
+                }
+                hvxMimda(accum, importanceMax, colour * x.a, x.a, x.importance, tools.bandAxis.w);
+                if (!hit && accum.w > 0.02) { hit = true; depth = t; }
+                if (hvxMimdaFutureDelta(accum.w, importanceMax, tools.bandAxis.w) < 1.0 - tfRange.z) done = true;
             }
-            vec3 colour = x.c;
-            if (x.lit >= 0.0) {
-                float gl2 = dot(x.g, x.g);
-                float ndl = gl2 > 0.0 ? abs(dot(x.g, -x.v)) / sqrt(gl2) : 1.0;
-                vec3 phong = extra.y > 0.5 ? x.c * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w))
-                                           : x.c;
-                colour = mix(x.c * (shading.x + HVX_EMPHASIS_EMISSION), phong, x.lit);
-            }
-            hvxMimda(accum, importanceMax, colour * x.a, x.a, x.importance, tools.bandAxis.w);
-            if (!hit && accum.w > 0.02) { hit = true; depth = t; }
-            if (hvxMimdaFutureDelta(accum.w, importanceMax, tools.bandAxis.w) < 1.0 - tfRange.z) done = true;
-        }
 #elif MODE == 0
-        {
-            vec4 f = tfSegment(sPrev, s);
-            vec3 c = shadeSample(L, p, f.rgb / f.w, dw, a);
-            color += (1.0 - alpha) * a * c;
-            alpha += (1.0 - alpha) * a;
-            if (!hit && alpha > 0.02) { hit = true; depth = t; }
-            if (alpha >= tfRange.z) done = true;
-        }
-#elif MODE == 1
-        {  // first crossing of the iso value: bisection, then shading
-            float ta = tPrev, tb = t, sa = sPrev;
-            for (int k = 0; k < 8; ++k) {
-                float m = 0.5 * (ta + tb);
-                float sm = leafSample(L, o + m * d);
-                if ((sa < extra.x) != (sm < extra.x)) tb = m; else { ta = m; sa = sm; }
+            {
+                vec4 f = tfSegment(sPrev, s);
+                vec3 c = shadeSample(L, p, f.rgb / f.w, dw, a);
+                color += (1.0 - alpha) * a * c;
+                alpha += (1.0 - alpha) * a;
+                if (!hit && alpha > 0.02) { hit = true; depth = t; }
+                if (alpha >= tfRange.z) done = true;
             }
-            float th = 0.5 * (ta + tb);
-            vec4 f = tfSample(extra.x);
-            vec3 base = f.w > 0.0 ? f.rgb / f.w : vec3(0.9);
-            if (length(base) < 0.1) base = vec3(0.9);
-            float opaque = 1.0;
-            color = shadeSample(L, o + th * d, base, dw, opaque);
-            alpha = 1.0;
-            depth = th;
-            done = true;
-        }
+#elif MODE == 1
+            {  // first crossing of the iso value: bisection, then shading
+                float ta = tPrev, tb = t, sa = sPrev;
+                for (int k = 0; k < 8; ++k) {
+                    float m = 0.5 * (ta + tb);
+                    float sm = leafSample(L, o + m * d);
+                    if ((sa < extra.x) != (sm < extra.x)) tb = m; else { ta = m; sa = sm; }
+                }
+                float th = 0.5 * (ta + tb);
+                vec4 f = tfSample(extra.x);
+                vec3 base = f.w > 0.0 ? f.rgb / f.w : vec3(0.9);
+                if (length(base) < 0.1) base = vec3(0.9);
+                float opaque = 1.0;
+                color = shadeSample(L, o + th * d, base, dw, opaque);
+                alpha = 1.0;
+                depth = th;
+                done = true;
+            }
 #endif
 #if MODE == 0
-        pPrev = pS;
-        iPrev = iS;
+            pPrev = pS;
+            iPrev = iS;
 #endif
-        tPrev = t;
-        sPrev = s;
-        havePrev = true;
-        t += dt;
+            tPrev = t;
+            sPrev = s;
+            havePrev = true;
+            t += dt;
+        }
+        if (done || tExit >= t1) break;
+        if (!hvxNextLeaf(HVX_INDEX_ARG, o, d, face, tExit, nudge, n, lo, hi)) break;
+        tIn = max(tIn, tExit);
     }
 #if MODE >= 2
     if (!hit) return vec4(0.0);
