@@ -54,6 +54,21 @@ GLenum poolFormat(core::ScalarType type) {
     }
     return GL_R32F;
 }
+/// What the visible cells depend on: the transfer function's extinction over its range, the
+/// mode and the iso value (FNV-1a; 0 stands for "no skipping").
+std::uint64_t cellKey(const core::TransferFunction& tf, const core::RenderSettings& settings) {
+    std::uint64_t h = 1469598103934665603ull;
+    auto mix = [&](const void* p, std::size_t n) {
+        const auto* b = static_cast<const unsigned char*>(p);
+        for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    };
+    for (const auto& F : tf.integralTable()) mix(&F.w, sizeof F.w);
+    const double range[3] = {tf.valueMin(), tf.valueMax(), settings.isoValue};
+    mix(range, sizeof range);
+    const int mode = int(settings.mode);
+    mix(&mode, sizeof mode);
+    return h | 1u;
+}
 }  // namespace
 
 void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Brick>>& slots, std::uint32_t brickSize,
@@ -84,6 +99,8 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Bric
         poolContent_.assign(poolRow_ * poolRow_ * poolLayers_, nullptr);
         slotDecode_.assign(poolContent_.size() * 2, 0.0f);
         slotCells_.assign(poolContent_.size(), {});
+        visibleCells_.assign(poolContent_.size(), glm::uvec2(~0u));
+        cellsStale_.assign(poolContent_.size(), true);
         poolBytes_ = poolContent_.size() * std::size_t(edge) * edge * edge * core::scalarSize(type);
     }
     std::vector<std::uint16_t> biased;
@@ -122,6 +139,7 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Bric
                             format, data);
         poolContent_[s] = brick;
         slotCells_[s] = core::BrickCells::of(*brick, brickSize, border);
+        cellsStale_[s] = true;
         slotDecode_[2 * s] = scale;
         slotDecode_[2 * s + 1] = offset;
         uploaded_ += brick->data.size();
@@ -158,16 +176,21 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     glNamedBufferData(buffers_[9], sizeof packed, &packed, GL_STREAM_DRAW);
     uploadPool(slots, reader.brickSize(), reader.border(),
                floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
-    // Which cells of each slot's brick the transfer function leaves visible (64 bits per slot).
-    std::vector<glm::uvec2> visibleCells(std::max<std::size_t>(1, slots.size()), glm::uvec2(~0u));
+    // Which cells of each slot's brick may show (64 bits per slot), kept from frame to frame.
     const bool dvr = settings.mode == core::RenderSettings::Mode::Dvr;
-    if (cellSkipping_ && (dvr || settings.mode == core::RenderSettings::Mode::Iso))
-        for (std::size_t s = 0; s < slots.size(); ++s) {
-            if (!slots[s]) continue;
-            const std::uint64_t bits = dvr ? slotCells_[s].visible(tf) : slotCells_[s].straddling(settings.isoValue);
-            visibleCells[s] = glm::uvec2(std::uint32_t(bits), std::uint32_t(bits >> 32));
-        }
-    glNamedBufferData(buffers_[12], GLsizeiptr(visibleCells.size() * sizeof(glm::uvec2)), visibleCells.data(),
+    const bool skip = cellSkipping_ && (dvr || settings.mode == core::RenderSettings::Mode::Iso);
+    const std::uint64_t key = skip ? cellKey(tf, settings) : 0;
+    if (key != cellKey_) std::fill(cellsStale_.begin(), cellsStale_.end(), true);
+    cellKey_ = key;
+    for (std::size_t s = 0; s < slots.size(); ++s) {
+        if (!slots[s] || !cellsStale_[s]) continue;
+        const std::uint64_t bits = !skip ? ~std::uint64_t(0)
+                                   : dvr ? slotCells_[s].visible(tf)
+                                         : slotCells_[s].straddling(settings.isoValue);
+        visibleCells_[s] = glm::uvec2(std::uint32_t(bits), std::uint32_t(bits >> 32));
+        cellsStale_[s] = false;
+    }
+    glNamedBufferData(buffers_[12], GLsizeiptr(visibleCells_.size() * sizeof(glm::uvec2)), visibleCells_.data(),
                       GL_STREAM_DRAW);
     glNamedBufferData(buffers_[0], GLsizeiptr(index.nodes.size() * sizeof(glm::uvec4)), index.nodes.data(), GL_STREAM_DRAW);
     glNamedBufferData(buffers_[1], GLsizeiptr(index.ropes.size() * 4), index.ropes.data(), GL_STREAM_DRAW);

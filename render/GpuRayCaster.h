@@ -3,6 +3,8 @@
 #include <memory>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "core/Brick.h"
 #include "core/BrickCells.h"
 #include "core/CpuRayCaster.h"
@@ -70,6 +72,11 @@ private:
     std::vector<std::shared_ptr<const core::Brick>> poolContent_;
     std::vector<float> slotDecode_;  // per slot: stored value = texel * [2s] + [2s+1]
     std::vector<core::BrickCells> slotCells_;  // per slot: value ranges of the brick's cells
+    // Per slot: which cells may show, as uploaded last. Recomputed for a slot whose brick
+    // changed, and for all when the transfer function, mode or iso value changes (cellKey_).
+    std::vector<glm::uvec2> visibleCells_;
+    std::vector<bool> cellsStale_;
+    std::uint64_t cellKey_ = 0;
     bool cellSkipping_ = true;
     core::ScalarType poolType_ = core::ScalarType::Float32;
     bool floatPool_ = false;

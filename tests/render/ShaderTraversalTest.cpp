@@ -322,3 +322,34 @@ TEST(GpuRayCaster, SkippingTransparentCellsInsideBricksChangesNothing) {
     EXPECT_GT(noSurface, cells / 10);
     EXPECT_LT(noSurface, cells);
 }
+
+TEST(GpuRayCaster, CellsFollowATransferFunctionChangeWithoutNewBricks) {
+    // The visible cells are kept between frames; a new transfer function over the same bricks
+    // (nothing uploaded) must still give the image of dense sampling.
+    Scene s;
+    const auto& g = s.reader->geometry();
+    core::BrickCache cache(1u << 30);
+    core::BrickLoader loader(*s.reader, cache);
+    core::WorkingSetOptions unculled;
+    unculled.cullByTransferFunction = false;
+    core::WorkingSet ws(*s.reader, cache, loader, unculled);
+    const auto bone = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1, 0, 4.0);
+    const auto soft = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
+    const auto space = ws.space();
+    const glm::dvec3 c(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const auto view = core::View::orbit(c, 1100.0, -40.0, 10.0, 80, 80);
+    for (int i = 0; i < 32; ++i) {
+        ws.update({view}, bone);
+        if (ws.stats().settled()) break;
+        loader.waitIdle();
+    }
+    render::EglOffscreenContext ctx;
+    render::GpuRayCaster gpu;
+    gpu.render(*s.reader, ws.index(), ws.slotBricks(), bone, {}, view);
+    const auto softSkipped = gpu.render(*s.reader, ws.index(), ws.slotBricks(), soft, {}, view);
+    EXPECT_EQ(gpu.lastUploadBytes(), 0u);
+    gpu.setCellSkipping(false);
+    const auto softDense = gpu.render(*s.reader, ws.index(), ws.slotBricks(), soft, {}, view);
+    EXPECT_GT(coverage(softDense), 0.05);
+    EXPECT_GT(psnr(softSkipped, softDense), 80.0);
+}
