@@ -17,7 +17,8 @@ void cellRanges(const T* v, std::uint32_t edge, std::uint32_t cell, std::uint32_
             for (int i = 0; i < BrickCells::kPerAxis; ++i) {
                 // Interior voxels [c·cell, (c+1)·cell) sit at samples border + ...; their box
                 // reaches half a voxel beyond, so interpolation reads one sample more each side.
-                const std::uint32_t x0 = border + std::uint32_t(i) * cell - 1, y0 = border + std::uint32_t(j) * cell - 1,
+                const std::uint32_t x0 = border + std::uint32_t(i) * cell - 1,
+                                    y0 = border + std::uint32_t(j) * cell - 1,
                                     z0 = border + std::uint32_t(k) * cell - 1;
                 T lo = std::numeric_limits<T>::max(), hi = std::numeric_limits<T>::lowest();
                 for (std::uint32_t z = z0; z <= z0 + cell + 1; ++z)

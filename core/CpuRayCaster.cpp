@@ -88,7 +88,9 @@ float CpuRayCaster::sample(const Leaf& L, const glm::vec3& p) const {
     const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(e - 2 > 0 ? e - 2 : 0));
     const glm::vec3 f = u - glm::vec3(i0);
     const float* data = L.data;
-    auto at = [&](int x, int y, int z) { return data[(std::size_t(z) * std::size_t(e) + std::size_t(y)) * std::size_t(e) + std::size_t(x)]; };
+    auto at = [&](int x, int y, int z) {
+        return data[(std::size_t(z) * std::size_t(e) + std::size_t(y)) * std::size_t(e) + std::size_t(x)];
+    };
     const int x1 = std::min(i0.x + 1, e - 1), y1 = std::min(i0.y + 1, e - 1), z1 = std::min(i0.z + 1, e - 1);
     const float c00 = at(i0.x, i0.y, i0.z) * (1 - f.x) + at(x1, i0.y, i0.z) * f.x;
     const float c10 = at(i0.x, y1, i0.z) * (1 - f.x) + at(x1, y1, i0.z) * f.x;
@@ -194,9 +196,8 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                         x.lit = 1.0f;
                         x.importance = 1.0f - std::exp(-float(f.w) * float(tf_.referenceLength()));
                         const float focalNorm = (toolBits & HVX_FOCAL_BIT) ? glsl::hvxFocalNorm(packedTools, x.p) : 2.0f;
-                        const glm::vec3 gSmooth = focalNorm <= 1.0f
-                                                      ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f)))
-                                                      : g;
+                        const glm::vec3 gSmooth =
+                            focalNorm <= 1.0f ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f))) : g;
                         bool enteredNow = enteredProbe;
                         glsl::hvxEnhance(x, packedTools, toolBits, focalNorm, gSmooth, hTheta, enteredNow);
                         if (enteredNow && !enteredProbe) {  // clip what lies in front of the focal probe
@@ -240,7 +241,8 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                     for (int k = 0; k < 8; ++k) {  // bisection to the crossing
                         const float m = 0.5f * (a + b);
                         const float sm = sample(L, o + m * d);
-                        if ((sa < iso) != (sm < iso)) b = m;
+                        if ((sa < iso) != (sm < iso))
+                            b = m;
                         else {
                             a = m;
                             sa = sm;

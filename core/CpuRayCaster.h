@@ -81,8 +81,8 @@ private:
     /// What sampling a leaf's brick needs, worked out once per leaf a ray enters.
     struct Leaf {
         const float* data = nullptr;
-        float scale = 1.0f;   // octree units -> level voxels
-        glm::vec3 origin{};   // the brick's first sample, in level voxels, less the border
+        float scale = 1.0f;  // octree units -> level voxels
+        glm::vec3 origin{};  // the brick's first sample, in level voxels, less the border
         int edge = 0;
     };
     Leaf leaf(std::uint32_t node, const glm::vec3& leafLo) const;

@@ -77,7 +77,9 @@ void EglOffscreenContext::makeCurrent() {
         throw core::Error("EGL: cannot make the surfaceless context current (error 0x" + hex(eglGetError()) + ")");
 }
 
-void EglOffscreenContext::release() { eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT); }
+void EglOffscreenContext::release() {
+    eglMakeCurrent(impl_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
 
 EglOffscreenContext::Info EglOffscreenContext::info() const {
     Info i;

@@ -201,8 +201,7 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     glNamedBufferData(buffers_[3], GLsizeiptr(integral.size() * sizeof(glm::vec4)), integral.data(), GL_STREAM_DRAW);
     // Opacity alone, (F.w, f.w) per entry in one 8-byte read: most samples stop at the opacity test.
     std::vector<glm::vec2> opacity(integral.size());
-    for (std::size_t i = 0; i < opacity.size(); ++i)
-        opacity[i] = {integral[i].w, i < table.size() ? table[i].w : 0.0f};
+    for (std::size_t i = 0; i < opacity.size(); ++i) opacity[i] = {integral[i].w, i < table.size() ? table[i].w : 0.0f};
     glNamedBufferData(buffers_[11], GLsizeiptr(opacity.size() * sizeof(glm::vec2)), opacity.data(), GL_STREAM_DRAW);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t all = pixels * views.size();

@@ -63,7 +63,8 @@ double cpuSeconds() {
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: %s INPUT [--size N] [--frames N] [--rounds N] [--tf PRESET] [--breakdown]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s INPUT [--size N] [--frames N] [--rounds N] [--tf PRESET] [--breakdown]\n",
+                     argv[0]);
         return 2;
     }
     int size = 512, frames = 8;
@@ -280,9 +281,10 @@ int main(int argc, char** argv) {
     for (int r = 1; r <= rounds; ++r) {
         const double hg = timeHolovoxGpu(), vg = timeVtk(gpuRun, 1, frames);
         const double hc = timeHolovoxCpu(), vc = timeVtk(cpuRun, 1, frames);
-        std::printf("round %d: Holovox GPU %.1f ms, VTK vtkGPUVolumeRayCastMapper %.1f ms (%.2f); Holovox CPU %.1f ms, "
-                    "VTK vtkFixedPointVolumeRayCastMapper %.1f ms (%.2f)\n",
-                    r, hg, vg, hg / vg, hc, vc, hc / vc);
+        std::printf(
+            "round %d: Holovox GPU %.1f ms, VTK vtkGPUVolumeRayCastMapper %.1f ms (%.2f); Holovox CPU %.1f ms, "
+            "VTK vtkFixedPointVolumeRayCastMapper %.1f ms (%.2f)\n",
+            r, hg, vg, hg / vg, hc, vc, hc / vc);
         gpuRatios.push_back(hg / vg);
         cpuRatios.push_back(hc / vc);
     }
@@ -290,12 +292,13 @@ int main(int argc, char** argv) {
         std::sort(v.begin(), v.end());
         return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
-    std::printf("%s %ux%ux%u, %dx%d, %d frames x %d rounds: Holovox GPU / VTK GPU = %.2f (median; range %.2f-%.2f; "
-                "target <= 0.5), Holovox CPU / VTK fixed-point = %.2f (range %.2f-%.2f)\n",
-                argv[1], g0.dims[0], g0.dims[1], g0.dims[2], size, size, frames, rounds, median(gpuRatios),
-                *std::min_element(gpuRatios.begin(), gpuRatios.end()), *std::max_element(gpuRatios.begin(), gpuRatios.end()),
-                median(cpuRatios), *std::min_element(cpuRatios.begin(), cpuRatios.end()),
-                *std::max_element(cpuRatios.begin(), cpuRatios.end()));
+    std::printf(
+        "%s %ux%ux%u, %dx%d, %d frames x %d rounds: Holovox GPU / VTK GPU = %.2f (median; range %.2f-%.2f; "
+        "target <= 0.5), Holovox CPU / VTK fixed-point = %.2f (range %.2f-%.2f)\n",
+        argv[1], g0.dims[0], g0.dims[1], g0.dims[2], size, size, frames, rounds, median(gpuRatios),
+        *std::min_element(gpuRatios.begin(), gpuRatios.end()), *std::max_element(gpuRatios.begin(), gpuRatios.end()),
+        median(cpuRatios), *std::min_element(cpuRatios.begin(), cpuRatios.end()),
+        *std::max_element(cpuRatios.begin(), cpuRatios.end()));
     ctx.makeCurrent();
     gpuOwner.reset();
     ctx.release();

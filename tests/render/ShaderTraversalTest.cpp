@@ -17,8 +17,8 @@
 #include "render/ComputeProgram.h"
 #include "render/EglOffscreenContext.h"
 #include "render/ShaderLibrary.h"
-#include "tests/support/RandomCut.h"
 #include "tests/support/ImageCompare.h"
+#include "tests/support/RandomCut.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;
@@ -198,6 +198,18 @@ TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
 
 namespace {
 struct Scene {
+    /// Refines `ws` for this scene's view until it settles; returns the view.
+    static core::View settle(core::WorkingSet& ws, core::BrickLoader& loader, const core::TransferFunction& tf) {
+        const auto space = ws.space();
+        const glm::dvec3 c(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+        const auto view = core::View::orbit(c, 1100.0, -40.0, 10.0, 80, 80);
+        for (int i = 0; i < 32; ++i) {
+            ws.update({view}, tf);
+            if (ws.stats().settled()) break;
+            loader.waitIdle();
+        }
+        return view;
+    }
     test::TempDir dir;
     std::unique_ptr<core::OctreeReader> reader;
     Scene() {
@@ -211,14 +223,7 @@ struct Scene {
         core::BrickCache cache(1u << 30);
         core::BrickLoader loader(*reader, cache);
         core::WorkingSet ws(*reader, cache, loader, opt);
-        const auto space = ws.space();
-        const glm::dvec3 c(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
-        const auto view = core::View::orbit(c, 1100.0, -40.0, 10.0, 80, 80);
-        for (int i = 0; i < 32; ++i) {
-            ws.update({view}, tf);
-            if (ws.stats().settled()) break;
-            loader.waitIdle();
-        }
+        const auto view = settle(ws, loader, tf);
         if (cut) *cut = ws.stats().cutNodes;
         return gpu.render(*reader, ws.index(), ws.slotBricks(), tf, rs, view);
     }
@@ -335,14 +340,7 @@ TEST(GpuRayCaster, CellsFollowATransferFunctionChangeWithoutNewBricks) {
     core::WorkingSet ws(*s.reader, cache, loader, unculled);
     const auto bone = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1, 0, 4.0);
     const auto soft = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
-    const auto space = ws.space();
-    const glm::dvec3 c(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
-    const auto view = core::View::orbit(c, 1100.0, -40.0, 10.0, 80, 80);
-    for (int i = 0; i < 32; ++i) {
-        ws.update({view}, bone);
-        if (ws.stats().settled()) break;
-        loader.waitIdle();
-    }
+    const auto view = Scene::settle(ws, loader, bone);
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
     gpu.render(*s.reader, ws.index(), ws.slotBricks(), bone, {}, view);

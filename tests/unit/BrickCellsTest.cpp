@@ -24,16 +24,18 @@ template <class T>
 void set(core::Brick& b, std::uint32_t x, std::uint32_t y, std::uint32_t z, T value) {
     reinterpret_cast<T*>(b.data.data())[(std::size_t(z) * b.edge + y) * b.edge + x] = value;
 }
-int cellIndex(int i, int j, int k) { return i + 4 * j + 16 * k; }
+int cellIndex(int i, int j, int k) {
+    return i + 4 * j + 16 * k;
+}
 }  // namespace
 
 TEST(BrickCells, EachCellCoversTheSamplesItsBoxInterpolatesAndNoMore) {
     // 16^3 interior, border 2: cell (i, j, k) holds interior voxels [4i, 4i + 4) per axis, at
     // samples 2 + 4i ... 5 + 4i; interpolation anywhere in its box reads samples 1 + 4i ... 6 + 4i.
     auto b = brickOf<std::int16_t>(16, 2, core::ScalarType::Int16, 10);
-    set<std::int16_t>(b, 6, 6, 6, 500);     // interior voxel (4, 4, 4): first voxel of cell (1, 1, 1)
-    set<std::int16_t>(b, 13, 2, 2, -300);   // interior voxel (11, 0, 0): last voxel of cell (2, 0, 0)
-    set<std::int16_t>(b, 0, 0, 0, 9999);    // outer border sample: no cell's box reaches it
+    set<std::int16_t>(b, 6, 6, 6, 500);    // interior voxel (4, 4, 4): first voxel of cell (1, 1, 1)
+    set<std::int16_t>(b, 13, 2, 2, -300);  // interior voxel (11, 0, 0): last voxel of cell (2, 0, 0)
+    set<std::int16_t>(b, 0, 0, 0, 9999);   // outer border sample: no cell's box reaches it
     const auto cells = core::BrickCells::of(b, 16, 2);
     // 500 at sample 6 is read by the boxes of cells 0 and 1 on each axis (1 + 4·1 = 5 <= 6 <= 6 = 6 + 4·0).
     for (int k = 0; k < 4; ++k)
@@ -41,7 +43,8 @@ TEST(BrickCells, EachCellCoversTheSamplesItsBoxInterpolatesAndNoMore) {
             for (int i = 0; i < 4; ++i) {
                 const auto r = cells.ranges[std::size_t(cellIndex(i, j, k))];
                 const bool has500 = i <= 1 && j <= 1 && k <= 1;
-                const bool hasMinus = (i == 2 || i == 3) && j == 0 && k == 0;  // x sample 13: cells 2 (9..14), 3 (13..18)
+                const bool hasMinus =
+                    (i == 2 || i == 3) && j == 0 && k == 0;  // x sample 13: cells 2 (9..14), 3 (13..18)
                 EXPECT_EQ(r.y, has500 ? 500.0f : 10.0f) << i << j << k;
                 EXPECT_EQ(r.x, hasMinus ? -300.0f : 10.0f) << i << j << k;
             }
