@@ -97,9 +97,8 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Bric
         glTextureParameteri(pool_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         glTextureParameteri(pool_, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
         poolContent_.assign(poolRow_ * poolRow_ * poolLayers_, nullptr);
-        slotDecode_.assign(poolContent_.size() * 2, 0.0f);
+        slotRecords_.assign(poolContent_.size(), {});
         slotCells_.assign(poolContent_.size(), {});
-        visibleCells_.assign(poolContent_.size(), glm::uvec2(~0u));
         cellsStale_.assign(poolContent_.size(), true);
         poolBytes_ = poolContent_.size() * std::size_t(edge) * edge * edge * core::scalarSize(type);
     }
@@ -140,11 +139,9 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Bric
         poolContent_[s] = brick;
         slotCells_[s] = core::BrickCells::of(*brick, brickSize, border);
         cellsStale_[s] = true;
-        slotDecode_[2 * s] = scale;
-        slotDecode_[2 * s + 1] = offset;
+        slotRecords_[s].decode = glm::vec2(scale, offset);
         uploaded_ += brick->data.size();
     }
-    glNamedBufferData(buffers_[8], GLsizeiptr(slotDecode_.size() * sizeof(float)), slotDecode_.data(), GL_STREAM_DRAW);
 }
 
 core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const core::SpatialIndex& index,
@@ -187,10 +184,11 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
         const std::uint64_t bits = !skip ? ~std::uint64_t(0)
                                    : dvr ? slotCells_[s].visible(tf)
                                          : slotCells_[s].straddling(settings.isoValue);
-        visibleCells_[s] = glm::uvec2(std::uint32_t(bits), std::uint32_t(bits >> 32));
+        slotRecords_[s].visible = glm::uvec2(std::uint32_t(bits), std::uint32_t(bits >> 32));
         cellsStale_[s] = false;
     }
-    glNamedBufferData(buffers_[12], GLsizeiptr(visibleCells_.size() * sizeof(glm::uvec2)), visibleCells_.data(),
+    static_assert(sizeof(SlotRecord) == 16, "std430 layout of SlotRecord");
+    glNamedBufferData(buffers_[8], GLsizeiptr(slotRecords_.size() * sizeof(SlotRecord)), slotRecords_.data(),
                       GL_STREAM_DRAW);
     glNamedBufferData(buffers_[0], GLsizeiptr(index.nodes.size() * sizeof(glm::uvec4)), index.nodes.data(), GL_STREAM_DRAW);
     glNamedBufferData(buffers_[1], GLsizeiptr(index.ropes.size() * 4), index.ropes.data(), GL_STREAM_DRAW);
@@ -254,7 +252,6 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffers_[8]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, buffers_[10]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, buffers_[11]);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, buffers_[12]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers_[9]);
     glBindTextureUnit(0, pool_);

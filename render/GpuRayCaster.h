@@ -62,19 +62,22 @@ private:
                     std::uint32_t border, core::ScalarType type);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
-    static constexpr int kBuffers = 13;
-    unsigned buffers_[kBuffers] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot decode,
-                                       // tools, views, tf opacity (F.w, f.w), visible cells per slot
+    static constexpr int kBuffers = 12;
+    unsigned buffers_[kBuffers] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot
+                                       // records, tools, views, tf opacity (F.w, f.w)
     unsigned pool_ = 0;
     std::uint32_t poolEdge_ = 0, poolRow_ = 0, poolLayer_ = 0, poolLayers_ = 0;
     // What each slot holds; keeping the reference stops a freed brick's address from being
     // reused by a new brick and mistaken for it.
     std::vector<std::shared_ptr<const core::Brick>> poolContent_;
-    std::vector<float> slotDecode_;  // per slot: stored value = texel * [2s] + [2s+1]
+    struct SlotRecord {                // std430 mirror of raycast_inputs.glsl's SlotRecord
+        glm::vec2 decode{1.0f, 0.0f};  // stored value = texel * x + y
+        glm::uvec2 visible{~0u};       // the brick's cells that may show (64 bits)
+    };
+    std::vector<SlotRecord> slotRecords_;
     std::vector<core::BrickCells> slotCells_;  // per slot: value ranges of the brick's cells
-    // Per slot: which cells may show, as uploaded last. Recomputed for a slot whose brick
-    // changed, and for all when the transfer function, mode or iso value changes (cellKey_).
-    std::vector<glm::uvec2> visibleCells_;
+    // A slot's visible cells are recomputed when its brick changes, and all of them when the
+    // transfer function, mode or iso value changes (cellKey_).
     std::vector<bool> cellsStale_;
     std::uint64_t cellKey_ = 0;
     bool cellSkipping_ = true;

@@ -46,9 +46,10 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
     L.offset = (cell + float(brick.y) - lo) * texel;
     L.texLo = (cell + 0.5) * texel;
     L.texHi = (cell + float(brick.z) - 0.5) * texel;
-    L.decode = slotDecode[nd.x];
+    SlotRecord record = slotRecords[nd.x];
+    L.decode = record.decode;
     L.h = 1.0 / s;
-    L.visible = visibleCells[nd.x];
+    L.visible = record.visible;
     L.leafLo = leafLo;
     L.cell = 0.25 / float(1u << depth);
     return L;

@@ -28,8 +28,11 @@ layout(std430, binding = 9) readonly buffer TfOpacity { vec2 tfA[]; };    // 409
 layout(std430, binding = 4) writeonly buffer OutColor { vec4 outColor[]; };
 layout(std430, binding = 5) writeonly buffer OutDepth { float outDepth[]; };
 layout(binding = 0) uniform sampler3D brickPool;  // R8/R16/R32F, slot s at cell (s % row, s / row % rows, s / layer)
-layout(std430, binding = 7) readonly buffer SlotDecode { vec2 slotDecode[]; };  // stored = texel * x + y
-layout(std430, binding = 10) readonly buffer VisibleCells { uvec2 visibleCells[]; };  // per slot, 4x4x4 bits
+struct SlotRecord {  // per pool slot (render::GpuRayCaster's SlotRecord)
+    vec2 decode;     // stored value = texel * x + y
+    uvec2 visible;   // the brick's 4x4x4 cells that may show (core::BrickCells), cell x + 4y + 16z
+};
+layout(std430, binding = 7) readonly buffer Slots { SlotRecord slotRecords[]; };
 layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per index node (feedback)
 #ifndef HVX_TOOLS
 #define HVX_TOOLS 0

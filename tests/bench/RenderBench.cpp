@@ -3,7 +3,7 @@
 // same volume, transfer function control points, camera and image size. VTK needs an X display
 // (run under xvfb-run); Holovox renders headless.
 //
-//   xvfb-run -a build/release/tests/bench/hvx_bench_render INPUT [--size 512] [--frames 8] [--rounds 3]
+//   xvfb-run -a build/release/tests/bench/hvx_bench_render INPUT [--size 512|WxH] [--frames 8] [--rounds 3]
 //                                                           [--breakdown]
 //   Rounds alternate Holovox and VTK over the same frames; the ratio reported is the median
 //   of the rounds' ratios. --breakdown times the GPU frame with parts switched off.
@@ -63,11 +63,11 @@ double cpuSeconds() {
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: %s INPUT [--size N] [--frames N] [--rounds N] [--tf PRESET] [--breakdown]\n",
+        std::fprintf(stderr, "usage: %s INPUT [--size N|WxH] [--frames N] [--rounds N] [--tf PRESET] [--breakdown]\n",
                      argv[0]);
         return 2;
     }
-    int size = 512, frames = 8;
+    int width = 512, height = 512, frames = 8;
     std::string preset = "ct-bone";
     int rounds = 3;
     bool breakdown = false;
@@ -75,8 +75,13 @@ int main(int argc, char** argv) {
         if (!std::strcmp(argv[i], "--breakdown")) breakdown = true;
     for (int i = 2; i + 1 < argc; i += 2) {
         if (!std::strcmp(argv[i], "--rounds")) rounds = std::max(1, std::stoi(argv[i + 1]));
-        if (!std::strcmp(argv[i], "--size")) size = std::stoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--frames")) frames = std::stoi(argv[i + 1]);
+        if (!std::strcmp(argv[i], "--size")) {  // N (square) or WxH, e.g. 1920x1080
+            const std::string v = argv[i + 1];
+            const auto x = v.find('x');
+            width = std::stoi(v.substr(0, x));
+            height = x == std::string::npos ? width : std::stoi(v.substr(x + 1));
+        } else if (!std::strcmp(argv[i], "--frames"))
+            frames = std::stoi(argv[i + 1]);
         else if (!std::strcmp(argv[i], "--tf")) preset = argv[i + 1];
     }
     const bool octreeOnly = std::string(argv[1]).ends_with(".hvo");
@@ -98,7 +103,7 @@ int main(int argc, char** argv) {
     const glm::dvec3 centre(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
     const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double radius = glm::length(centre - corner) / std::tan(glm::radians(15.0)) * 1.05;
-    auto viewAt = [&](int f) { return core::View::orbit(centre, radius, 30.0 + 10.0 * f, 15.0, size, size); };
+    auto viewAt = [&](int f) { return core::View::orbit(centre, radius, 30.0 + 10.0 * f, 15.0, width, height); };
 
     // Holovox: working set for the first view (all views see the whole volume), then frames.
     core::BrickCache cache(octreeOnly ? 1ull << 30 : 4ull << 30);
@@ -167,18 +172,19 @@ int main(int argc, char** argv) {
             const core::TransferFunction clear({{g.valueMin, {0, 0, 0, 0}}, {g.valueMax, {0, 0, 0, 0}}}, g.valueMin,
                                                g.valueMax, tf.referenceLength());
             time("transparent TF (march, TF lookups)", clear, flat);
-            time("8x8 image (uploads, fixed costs)", tf, {}, 8.0 / size);
+            time("8x8 image (uploads, fixed costs)", tf, {}, 8.0 / height);
         }
         ctx.release();
     }
     if (octreeOnly) {
         rusage ru{};
         getrusage(RUSAGE_SELF, &ru);
-        std::printf("%s: %ux%ux%u (%.1f GiB of voxels): Holovox GPU %.1f ms/frame at %dx%d, peak RSS %.0f MiB; VTK "
-                    "would have to hold all %.1f GiB (as float: %.1f GiB) in RAM\n",
-                    argv[1], g.dims[0], g.dims[1], g.dims[2], double(g.byteSize()) / double(1ull << 30), gpuMs, size,
-                    size, double(ru.ru_maxrss) / 1024.0, double(g.byteSize()) / double(1ull << 30),
-                    double(g.voxelCount()) * 4.0 / double(1ull << 30));
+        std::printf(
+            "%s: %ux%ux%u (%.1f GiB of voxels): Holovox GPU %.1f ms/frame at %dx%d, peak RSS %.0f MiB; VTK "
+            "would have to hold all %.1f GiB (as float: %.1f GiB) in RAM\n",
+            argv[1], g.dims[0], g.dims[1], g.dims[2], double(g.byteSize()) / double(1ull << 30), gpuMs, width, height,
+            double(ru.ru_maxrss) / 1024.0, double(g.byteSize()) / double(1ull << 30),
+            double(g.voxelCount()) * 4.0 / double(1ull << 30));
         ctx.makeCurrent();  // for the caster's GL objects to go
         return 0;
     }
@@ -243,7 +249,7 @@ int main(int argc, char** argv) {
         run.renderer->AddVolume(run.volume);
         run.renderer->SetBackground(0, 0, 0);
         run.window->SetOffScreenRendering(1);
-        run.window->SetSize(size, size);
+        run.window->SetSize(width, height);
         run.window->AddRenderer(run.renderer);
     };
     auto timeVtk = [&](VtkRun& run, int first, int last) {
@@ -295,7 +301,7 @@ int main(int argc, char** argv) {
     std::printf(
         "%s %ux%ux%u, %dx%d, %d frames x %d rounds: Holovox GPU / VTK GPU = %.2f (median; range %.2f-%.2f; "
         "target <= 0.5), Holovox CPU / VTK fixed-point = %.2f (range %.2f-%.2f)\n",
-        argv[1], g0.dims[0], g0.dims[1], g0.dims[2], size, size, frames, rounds, median(gpuRatios),
+        argv[1], g0.dims[0], g0.dims[1], g0.dims[2], width, height, frames, rounds, median(gpuRatios),
         *std::min_element(gpuRatios.begin(), gpuRatios.end()), *std::max_element(gpuRatios.begin(), gpuRatios.end()),
         median(cpuRatios), *std::min_element(cpuRatios.begin(), cpuRatios.end()),
         *std::max_element(cpuRatios.begin(), cpuRatios.end()));
