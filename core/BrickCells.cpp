@@ -51,6 +51,14 @@ BrickCells BrickCells::of(const Brick& brick, std::uint32_t brickSize, std::uint
     return cells;
 }
 
+BrickCells BrickCells::ofSamples(const float* samples, std::uint32_t brickSize, std::uint32_t border) {
+    if (brickSize % kPerAxis != 0 || border < 1)
+        throw Error("cell ranges need a brick size divisible by 4 and a border of at least one sample");
+    BrickCells cells;
+    cellRanges(samples, brickSize + 2 * border, brickSize / kPerAxis, border, cells.ranges);
+    return cells;
+}
+
 std::uint64_t BrickCells::visible(const TransferFunction& tf) const {
     const double entry = (tf.valueMax() - tf.valueMin()) / TransferFunction::kEntries;
     std::uint64_t bits = 0;

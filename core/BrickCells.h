@@ -24,6 +24,9 @@ struct BrickCells {
     /// The ranges of a decoded brick with `brickSize` interior samples and `border` (≥ 1) per
     /// side. Throws core::Error when the size is not a multiple of 4 or there is no border.
     static BrickCells of(const Brick& brick, std::uint32_t brickSize, std::uint32_t border);
+    /// The same for a brick already decoded to floats ((brickSize + 2·border)^3 samples, x
+    /// fastest), as the CPU reference holds them.
+    static BrickCells ofSamples(const float* samples, std::uint32_t brickSize, std::uint32_t border);
 
     /// Bit c set where cell c may show under `tf`: its range, widened by one table entry each
     /// side (the table is interpolated between entries), meets non-zero opacity.

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "core/BrickCells.h"
 #include "core/SpatialIndexTraversal.h"
 #include "core/ThreadPool.h"
 
@@ -20,7 +21,38 @@ CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index
     normalToWorld_ = glm::transpose(glm::inverse(glm::dmat3(space_.octreeToPatient)));
     settings_.tools.validate();
     packedTools = packTools(settings_.tools, {settings_.ambient, settings_.diffuse, settings_.specular, settings_.shininess});
+    // The cells of each brick the rays may skip (as render::GpuRayCaster), for the slots the
+    // index uses.
+    const bool dvr = settings_.mode == RenderSettings::Mode::Dvr;
+    if (settings_.skipEmptyCells && (dvr || settings_.mode == RenderSettings::Mode::Iso)) {
+        visibleCells_.assign(slots_.size(), ~std::uint64_t(0));
+        std::vector<std::uint32_t> used;
+        for (const auto& nd : index_.nodes)
+            if ((nd.y & SpatialIndex::kLeafBit) && nd.x != SpatialIndex::kNone && nd.x < slots_.size() && slots_[nd.x])
+                used.push_back(nd.x);
+        ThreadPool::shared().parallelFor(
+            used.size(),
+            [&](std::size_t a, std::size_t b) {
+                for (std::size_t i = a; i < b; ++i) {
+                    const auto cells =
+                        BrickCells::ofSamples(slots_[used[i]]->data(), reader_.brickSize(), reader_.border());
+                    visibleCells_[used[i]] = dvr ? cells.visible(tf_) : cells.straddling(settings_.isoValue);
+                }
+            },
+            16);
+    }
 }
+
+namespace {
+/// The cell (of BrickCells' 4×4×4) of a leaf with corner `lo` and cell size `cell` holding p.
+glm::ivec3 cellIndex(const glm::vec3& p, const glm::vec3& lo, float cell) {
+    return glm::clamp(glm::ivec3(glm::floor((p - lo) / cell)), glm::ivec3(0), glm::ivec3(3));
+}
+int cellOf(const glm::vec3& p, const glm::vec3& lo, float cell) {
+    const glm::ivec3 c = cellIndex(p, lo, cell);
+    return c.x + 4 * c.y + 16 * c.z;
+}
+}  // namespace
 
 template <class Visitor>
 void CpuRayCaster::walk(const glm::dvec3& ow, const glm::dvec3& dw, Visitor&& visit) const {
@@ -113,6 +145,9 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     const glm::vec3 o(space_.patientToOctree * glm::dvec4(ow, 1.0));
     const glm::vec3 d(glm::dmat3(space_.patientToOctree) * dw);
     const float octPerMm = glm::length(d);
+    const bool skipping = !visibleCells_.empty();
+    glm::vec3 inv;
+    for (int a = 0; a < 3; ++a) inv[a] = std::abs(d[a]) > 1e-20f ? 1.0f / d[a] : (d[a] >= 0 ? 1e30f : -1e30f);
     glm::dvec3 color(0.0);
     double alpha = 0.0, extreme = settings_.mode == RenderSettings::Mode::MinIp ? 1e300 : -1e300, sum = 0.0;
     double travelled = 0.0;
@@ -157,6 +192,8 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         }
         if (counts) ++(*counts)[n];
         L = leaf(n, lo);
+        const std::uint64_t cellBits = visibleCells(nd.x);
+        const float cell = 0.25f / float(1u << (nd.y & 0xFFu));
         const std::uint32_t depthLevel = nd.y & 0xFFu;
         const float voxel = 1.0f / (float(reader_.brickSize()) * float(1u << depthLevel));
         const float dt = float(settings_.stepScale) * voxel / octPerMm;  // world mm
@@ -272,6 +309,19 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
             tPrev = t;
             sPrev = s;
             havePrev = true;
+            // In a cell that cannot show, every sample and every segment between two of them
+            // adds nothing: land on the last sample before the cell's exit (it starts the next
+            // segment) and go on from there (as the shader, in the same float operations).
+            if (skipping && !((cellBits >> cellOf(p, lo, cell)) & 1u)) {
+                const glm::ivec3 c = cellIndex(p, lo, cell);
+                const glm::vec3 cellLo = lo + glm::vec3(c) * cell;
+                const glm::vec3 far = glm::max((cellLo - o) * inv, (cellLo + cell - o) * inv);
+                const float k = std::ceil((std::min(std::min(far.x, far.y), far.z) - t) / dt);
+                if (k >= 3.0f) {
+                    t += (k - 2.0f) * dt;  // the loop's step makes it t + (k - 1)·dt
+                    havePrev = false;
+                }
+            }
         }
         return true;
     });

@@ -31,6 +31,10 @@ struct RenderSettings {
     double earlyTermination = 0.99;
     double stepScale = 1.0;          ///< step = stepScale × the local voxel size
     bool countRays = false;          ///< fill RenderImage::rayCounts (visibility feedback)
+    /// Step over the cells of a brick (core::BrickCells) that cannot show: transparent under
+    /// the transfer function (DVR) or not holding the iso value. The image is the same either
+    /// way; off only for the tests that show it.
+    bool skipEmptyCells = true;
     ToolSet tools;                   ///< illustrative tools (DVR only)
 };
 
@@ -89,6 +93,11 @@ private:
     float sample(const Leaf& leaf, const glm::vec3& p) const;
     glm::vec3 gradient(const Leaf& leaf, const glm::vec3& p, float spread = 1.0f) const;
 
+    /// Which cells of a slot's brick may show, for the skipping above (all bits when off).
+    std::uint64_t visibleCells(std::uint32_t slot) const {
+        return slot < visibleCells_.size() ? visibleCells_[slot] : ~std::uint64_t(0);
+    }
+
     const OctreeReader& reader_;
     const SpatialIndex& index_;
     const std::vector<std::shared_ptr<const std::vector<float>>>& slots_;
@@ -97,6 +106,7 @@ private:
     OctreeSpace space_;
     glm::dmat3 normalToWorld_;
     glsl::HvxTools packedTools;
+    std::vector<std::uint64_t> visibleCells_;  // per slot; empty when nothing is skipped
 };
 
 }  // namespace hvx::core

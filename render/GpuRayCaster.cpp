@@ -175,7 +175,7 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
     // Which cells of each slot's brick may show (64 bits per slot), kept from frame to frame.
     const bool dvr = settings.mode == core::RenderSettings::Mode::Dvr;
-    const bool skip = cellSkipping_ && (dvr || settings.mode == core::RenderSettings::Mode::Iso);
+    const bool skip = settings.skipEmptyCells && (dvr || settings.mode == core::RenderSettings::Mode::Iso);
     const std::uint64_t key = skip ? cellKey(tf, settings) : 0;
     if (key != cellKey_) std::fill(cellsStale_.begin(), cellsStale_.end(), true);
     cellKey_ = key;

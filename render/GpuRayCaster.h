@@ -47,11 +47,6 @@ public:
                                                const std::vector<std::shared_ptr<const core::Brick>>& slots,
                                                const core::TransferFunction& tf, const core::RenderSettings& settings,
                                                const std::vector<core::View>& views);
-    /// Empty-space skipping inside bricks (on by default): samples in a brick cell that is
-    /// transparent under the transfer function (DVR) or holds no iso surface (isosurface) are
-    /// stepped over (core::BrickCells). The image is the same either way; the switch exists
-    /// for the tests that show it.
-    void setCellSkipping(bool on) { cellSkipping_ = on; }
     /// Bytes uploaded to the brick pool by the last render().
     std::size_t lastUploadBytes() const { return uploaded_; }
     /// Bytes the pool texture occupies on the GPU.
@@ -80,7 +75,6 @@ private:
     // transfer function, mode or iso value changes (cellKey_).
     std::vector<bool> cellsStale_;
     std::uint64_t cellKey_ = 0;
-    bool cellSkipping_ = true;
     core::ScalarType poolType_ = core::ScalarType::Float32;
     bool floatPool_ = false;
     std::size_t uploaded_ = 0, poolBytes_ = 0;

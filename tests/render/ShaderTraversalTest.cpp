@@ -292,10 +292,10 @@ TEST(GpuRayCaster, SkippingTransparentCellsInsideBricksChangesNothing) {
     unculled.cullByTransferFunction = false;
     for (const char* preset : {"ct-bone", "ct-soft-tissue"}) {
         const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, 1, 0, 4.0);
-        gpu.setCellSkipping(true);
+        core::RenderSettings denseSettings;
+        denseSettings.skipEmptyCells = false;
         const auto skipped = s.render(gpu, tf, unculled, {});
-        gpu.setCellSkipping(false);
-        const auto dense = s.render(gpu, tf, unculled, {});
+        const auto dense = s.render(gpu, tf, unculled, denseSettings);
         EXPECT_GT(coverage(dense), 0.05) << preset;
         const double db = psnr(skipped, dense);
         std::printf("%s: cells skipped vs sampled PSNR %.1f dB\n", preset, db);
@@ -305,9 +305,8 @@ TEST(GpuRayCaster, SkippingTransparentCellsInsideBricksChangesNothing) {
     iso.mode = core::RenderSettings::Mode::Iso;
     iso.isoValue = 300;
     const auto tf = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1, 0, 4.0);
-    gpu.setCellSkipping(true);
     const auto skippedIso = s.render(gpu, tf, unculled, iso);
-    gpu.setCellSkipping(false);
+    iso.skipEmptyCells = false;
     const auto denseIso = s.render(gpu, tf, unculled, iso);
     EXPECT_GT(coverage(denseIso), 0.05);
     EXPECT_GT(psnr(skippedIso, denseIso), 80.0);
@@ -346,8 +345,9 @@ TEST(GpuRayCaster, CellsFollowATransferFunctionChangeWithoutNewBricks) {
     gpu.render(*s.reader, ws.index(), ws.slotBricks(), bone, {}, view);
     const auto softSkipped = gpu.render(*s.reader, ws.index(), ws.slotBricks(), soft, {}, view);
     EXPECT_EQ(gpu.lastUploadBytes(), 0u);
-    gpu.setCellSkipping(false);
-    const auto softDense = gpu.render(*s.reader, ws.index(), ws.slotBricks(), soft, {}, view);
+    core::RenderSettings denseSettings;
+    denseSettings.skipEmptyCells = false;
+    const auto softDense = gpu.render(*s.reader, ws.index(), ws.slotBricks(), soft, denseSettings, view);
     EXPECT_GT(coverage(softDense), 0.05);
     EXPECT_GT(psnr(softSkipped, softDense), 80.0);
 }
