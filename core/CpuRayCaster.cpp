@@ -48,10 +48,6 @@ namespace {
 glm::ivec3 cellIndex(const glm::vec3& p, const glm::vec3& lo, float cell) {
     return glm::clamp(glm::ivec3(glm::floor((p - lo) / cell)), glm::ivec3(0), glm::ivec3(3));
 }
-int cellOf(const glm::vec3& p, const glm::vec3& lo, float cell) {
-    const glm::ivec3 c = cellIndex(p, lo, cell);
-    return c.x + 4 * c.y + 16 * c.z;
-}
 }  // namespace
 
 template <class Visitor>
@@ -194,6 +190,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         L = leaf(n, lo);
         const std::uint64_t cellBits = visibleCells(nd.x);
         const float cell = 0.25f / float(1u << (nd.y & 0xFFu));
+        float cellEnd = -1.0f;  // where the ray leaves the cell last looked at (t >= 0)
         const std::uint32_t depthLevel = nd.y & 0xFFu;
         const float voxel = 1.0f / (float(reader_.brickSize()) * float(1u << depthLevel));
         const float dt = float(settings_.stepScale) * voxel / octPerMm;  // world mm
@@ -311,15 +308,20 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
             havePrev = true;
             // In a cell that cannot show, every sample and every segment between two of them
             // adds nothing: land on the last sample before the cell's exit (it starts the next
-            // segment) and go on from there (as the shader, in the same float operations).
-            if (skipping && !((cellBits >> cellOf(p, lo, cell)) & 1u)) {
+            // segment) and go on from there, as the shader does. The shader tests every sample
+            // (a branch would not spare a SIMD lane); here a cell is looked at once, when the
+            // ray enters it.
+            if (skipping && t >= cellEnd) {
                 const glm::ivec3 c = cellIndex(p, lo, cell);
                 const glm::vec3 cellLo = lo + glm::vec3(c) * cell;
                 const glm::vec3 far = glm::max((cellLo - o) * inv, (cellLo + cell - o) * inv);
-                const float k = std::ceil((std::min(std::min(far.x, far.y), far.z) - t) / dt);
-                if (k >= 3.0f) {
-                    t += (k - 2.0f) * dt;  // the loop's step makes it t + (k - 1)·dt
-                    havePrev = false;
+                cellEnd = std::min(std::min(far.x, far.y), far.z);
+                if (!((cellBits >> (c.x + 4 * c.y + 16 * c.z)) & 1u)) {
+                    const float k = std::ceil((cellEnd - t) / dt);  // t + k·dt: the first sample past the exit
+                    if (k >= 3.0f) {
+                        t += (k - 2.0f) * dt;  // the loop's step makes it t + (k - 1)·dt
+                        havePrev = false;
+                    }
                 }
             }
         }
