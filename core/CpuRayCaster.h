@@ -58,8 +58,10 @@ struct RenderImage {
 /// The CPU reference ray caster: walks the spatial index with the same traversal code as the
 /// shader (core/shared/IndexTraversal.glsl), samples bricks trilinearly with a step equal to
 /// the leaf's voxel size and opacity corrected for it, composites front to back with the
-/// pre-integrated transfer function (thesis Eq. 3.1) and stops at 0.99 opacity. It is the
-/// oracle of the GPU tests and the headless fallback of `holovox-cli render --cpu`.
+/// pre-integrated transfer function (thesis Eq. 3.1) and stops at 0.99 opacity. Like the
+/// shader, it steps over brick cells that cannot show (RenderSettings::skipEmptyCells); their
+/// ranges are taken once, on construction. It is the oracle of the GPU tests and the headless
+/// fallback of `holovox-cli render --cpu`.
 ///
 /// Threading: render() spreads rows over ThreadPool::shared(); the object is immutable.
 class CpuRayCaster {
