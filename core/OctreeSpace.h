@@ -1,5 +1,7 @@
 #pragma once
 #include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "core/VolumeGeometry.h"
 
@@ -16,6 +18,8 @@ struct OctreeSpace {
     double minSpacing = 1.0;  ///< smallest voxel spacing (mm)
 
     static OctreeSpace of(const VolumeGeometry& g, std::uint32_t brickSize, int levelCount);
+    /// The centre of the volume's box, in patient coordinates (LPS mm).
+    glm::dvec3 centre() const { return glm::dvec3(octreeToPatient * glm::dvec4(extent * 0.5, 1.0)); }
     /// World length (mm) of one level-`level` voxel (the largest axis).
     double voxelSize(int level) const;
     glm::dvec3 maxSpacing{1.0};

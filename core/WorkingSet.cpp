@@ -131,6 +131,18 @@ bool WorkingSet::available(std::uint32_t node, double priority) {
     return true;
 }
 
+int WorkingSet::converge(const std::vector<View>& views, const TransferFunction& tf, const AccuracyFunction& accuracy,
+                         int maxFrames) {
+    int frames = 0;
+    while (frames < maxFrames) {
+        update(views, tf, accuracy);
+        ++frames;
+        if (stats_.settled()) break;
+        loader_.waitIdle();
+    }
+    return frames;
+}
+
 const SpatialIndex& WorkingSet::update(const std::vector<View>& views, const TransferFunction& tf,
                                        const AccuracyFunction& accuracy) {
     const auto t0 = std::chrono::steady_clock::now();

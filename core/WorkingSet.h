@@ -59,6 +59,10 @@ public:
     /// Refines for these views; returns the index (valid until the next update()).
     const SpatialIndex& update(const std::vector<View>& views, const TransferFunction& tf,
                                const AccuracyFunction& accuracy = {});
+    /// Synchronous mode (tests, the CLI, offline frames): refines and waits for the loader
+    /// until the cut settles or `maxFrames` refinements have run; returns how many ran.
+    int converge(const std::vector<View>& views, const TransferFunction& tf, const AccuracyFunction& accuracy = {},
+                 int maxFrames = 64);
     /// Feedback: per index node ray counts from the frame just drawn with index().
     void setRayCounts(const std::vector<std::uint32_t>& countsPerIndexNode);
     const SpatialIndex& index() const { return index_; }

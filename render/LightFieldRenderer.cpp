@@ -13,12 +13,7 @@ std::vector<core::RenderImage> LightFieldRenderer::render(const core::OctreeRead
                                                           bool converge, Stats* stats) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
-    int frames = 0;
-    for (; frames < (converge ? 64 : 1); ++frames) {
-        ws.update(views, tf, accuracy);
-        if (!converge || ws.stats().settled()) break;
-        loader.waitIdle();
-    }
+    const int frames = ws.converge(views, tf, accuracy, converge ? 64 : 1);
     const auto t1 = Clock::now();
     std::vector<core::RenderImage> out;
     out.reserve(views.size());
@@ -39,7 +34,7 @@ std::vector<core::RenderImage> LightFieldRenderer::render(const core::OctreeRead
     if (stats) {
         stats->cutNodes = ws.stats().cutNodes;
         stats->loaded = loader.loadedCount();
-        stats->refineFrames = frames + 1;
+        stats->refineFrames = frames;
         stats->refineMs = std::chrono::duration<double, std::milli>(t1 - t0).count();
         stats->renderMs = std::chrono::duration<double, std::milli>(Clock::now() - t1).count();
     }

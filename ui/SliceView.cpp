@@ -27,7 +27,7 @@ void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
         cache_ = std::make_unique<core::BrickCache>(std::size_t(256) << 20);
         sampler_ = std::make_unique<core::SliceSampler>(*reader_, *cache_);
         const auto& s = sampler_->space();
-        point_ = glm::dvec3(s.octreeToPatient * glm::dvec4(s.extent * 0.5, 1.0));
+        point_ = s.centre();
         volumeCentre_ = point_;
         const auto& g = reader_->geometry();
         if (g.modality != "CT") {

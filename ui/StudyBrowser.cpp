@@ -39,7 +39,7 @@ QIcon thumbnail(const std::string& octreePath) {
         core::BrickCache cache(32u << 20);
         const core::SliceSampler sampler(*reader, cache);
         const auto& g = reader->geometry();
-        const glm::dvec3 centre(sampler.space().octreeToPatient * glm::dvec4(sampler.space().extent * 0.5, 1.0));
+        const glm::dvec3 centre = sampler.space().centre();
         const double extent = std::max(g.dims[0] * g.spacing.x, g.dims[1] * g.spacing.y);
         const auto img = sampler.sample(core::SlicePlane::standard(core::SlicePlane::Orientation::Axial, centre, extent / 64, 64, 64));
         QImage q(64, 64, QImage::Format_Grayscale8);

@@ -122,7 +122,7 @@ void VolumeView::setStandardView(core::OrbitCamera::Standard view) {
 void VolumeView::resetView() {
     if (scene_) {
         const auto& s = scene_->space;
-        const glm::dvec3 centre(s.octreeToPatient * glm::dvec4(s.extent * 0.5, 1.0));
+        const glm::dvec3 centre = s.centre();
         const glm::dvec3 corner(s.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
         camera_.frame(centre, glm::length(centre - corner));
     }
@@ -147,11 +147,7 @@ void VolumeView::initializeGL() {
 
 core::RenderImage VolumeView::renderFrame(const core::View& view, const core::RenderSettings& rs, bool converge) {
     auto& ws = scene_->ws;
-    for (int i = 0; i < (converge ? 64 : 1); ++i) {
-        ws.update({view}, *tf_);
-        if (!converge || ws.stats().settled()) break;
-        scene_->loader.waitIdle();
-    }
+    ws.converge({view}, *tf_, {}, converge ? 64 : 1);
     auto img = gpu_->render(*scene_->reader, ws.index(), ws.slotBricks(), *tf_, rs, view);
     // Leave the GL state as QPainter's engine expects it.
     glUseProgram(0);
@@ -298,7 +294,7 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
                                                        double maxBeams, bool interactive) {
     if (!scene_ || !tf_ || !gpu_) throw core::Error("open a volume first");
     const auto& s = scene_->space;
-    const glm::dvec3 centre(s.octreeToPatient * glm::dvec4(s.extent * 0.5, 1.0));
+    const glm::dvec3 centre = s.centre();
     const glm::dvec3 corner(s.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double scale = zoom * 0.9 * std::min(display.screenWidthMm, display.screenHeightMm) / (2.0 * glm::length(centre - corner));
     const double beams = double(display.viewCount()) * display.viewWidthPx() * display.viewHeightPx();

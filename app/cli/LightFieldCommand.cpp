@@ -89,7 +89,7 @@ int lightFieldCommand(int argc, char** argv) {
         height = int(d[1]);
     }
     // The volume's centre on the screen centre, seen from azimuth/elevation like `render`.
-    const glm::dvec3 centre(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 centre = space.centre();
     const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const core::View orbit = core::View::orbit(centre, 1000.0, az, el, 8, 8);
     const glm::dvec3 f = glm::normalize(orbit.target - orbit.eye);

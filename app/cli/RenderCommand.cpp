@@ -90,7 +90,7 @@ int renderCommand(int argc, char** argv) {
         opt.isoValue = settings.isoValue;
     }
     // An orbit camera around the volume's centre that frames it.
-    const glm::dvec3 centre = glm::dvec3(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 centre = space.centre();
     const glm::dvec3 corner = glm::dvec3(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double radius = glm::length(centre - corner) / std::tan(glm::radians(15.0)) * 1.05 / zoom;
     const core::View view = core::View::orbit(centre, radius, az, el, width, height);
@@ -102,13 +102,7 @@ int renderCommand(int argc, char** argv) {
     core::BrickCache cache(std::size_t(args.integer("cache-mb", 2048, 16, 1 << 20)) << 20);
     core::BrickLoader loader(*reader, cache);
     core::WorkingSet ws(*reader, cache, loader, opt);
-    int frames = 0;
-    // Synchronous mode: load what the cut asks for until it is complete.
-    for (; frames < 64; ++frames) {
-        ws.update({view}, tf);
-        if (ws.stats().settled()) break;
-        loader.waitIdle();
-    }
+    const int frames = ws.converge({view}, tf);  // synchronous: load what the cut asks for
     const double refineSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     for (const auto& e : loader.errors()) std::fprintf(stderr, "holovox-cli: warning: %s (drawn coarser)\n", e.c_str());
     const auto t1 = std::chrono::steady_clock::now();
@@ -124,11 +118,11 @@ int renderCommand(int argc, char** argv) {
     }
     const double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     core::ImageWriter::write(image, *out);
-    std::printf("rendered %s (%dx%d, %s, tf %s) on %s: cut of %zu bricks (%zu loaded, %zu frames to converge, "
-                "%.2f s), ray casting %.2f s\n",
-                out->c_str(), width, height, args.value("mode").value_or("dvr").c_str(), preset.c_str(),
-                device.c_str(), ws.stats().cutNodes, loader.loadedCount(), std::size_t(frames + 1), refineSeconds,
-                renderSeconds);
+    std::printf(
+        "rendered %s (%dx%d, %s, tf %s) on %s: cut of %zu bricks (%zu loaded, %zu frames to converge, "
+        "%.2f s), ray casting %.2f s\n",
+        out->c_str(), width, height, args.value("mode").value_or("dvr").c_str(), preset.c_str(), device.c_str(),
+        ws.stats().cutNodes, loader.loadedCount(), std::size_t(frames), refineSeconds, renderSeconds);
     return 0;
 }
 

@@ -54,7 +54,7 @@ int run(int rank, int size, int argc, char** argv) {
     const auto reader = core::OctreeReader::open(input);
     const auto& g = reader->geometry();
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
-    const glm::dvec3 centre(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 centre = space.centre();
     const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double scale = 0.9 * std::min(display.screenWidthMm, display.screenHeightMm) / (2.0 * glm::length(centre - corner));
     const auto all = display.views(centre, {1, 0, 0}, {0, 0, 1}, 1.0, width, height, scale);

@@ -83,11 +83,7 @@ int main(int argc, char** argv) {
     auto gpuOwner = std::make_unique<render::GpuRayCaster>();
     auto& gpu = *gpuOwner;
     auto cam = start;
-    for (int i = 0; i < 64; ++i) {
-        ws.update({cam.view(view->width(), view->height())}, tf);
-        if (ws.stats().settled()) break;
-        loader.waitIdle();
-    }
+    ws.converge({cam.view(view->width(), view->height())}, tf);
     gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, cam.view(view->width(), view->height()));
     QElapsedTimer t;
     t.start();

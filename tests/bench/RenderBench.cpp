@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
     const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
                                                    space.minSpacing);
-    const glm::dvec3 centre(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 centre = space.centre();
     const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double radius = glm::length(centre - corner) / std::tan(glm::radians(15.0)) * 1.05;
     auto viewAt = [&](int f) { return core::View::orbit(centre, radius, 30.0 + 10.0 * f, 15.0, width, height); };
@@ -111,11 +111,7 @@ int main(int argc, char** argv) {
     core::WorkingSetOptions options;
     options.cpuMirror = !octreeOnly;
     core::WorkingSet ws(*reader, cache, loader, options);
-    for (int i = 0; i < 64; ++i) {
-        ws.update({viewAt(0)}, tf);
-        if (ws.stats().settled()) break;
-        loader.waitIdle();
-    }
+    ws.converge({viewAt(0)}, tf);
     render::EglOffscreenContext ctx;
     auto gpuOwner = std::make_unique<render::GpuRayCaster>();  // released before VTK's windows go
     auto& gpu = *gpuOwner;

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
     const auto reader = core::OctreeReader::open(argv[1]);
     const auto& g = reader->geometry();
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
-    const glm::dvec3 centre(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 centre = space.centre();
     const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double radius = glm::length(centre - corner);
     const auto view = core::View::orbit(centre, radius / std::tan(glm::radians(15.0)) * 1.05, 30, 15, size, size);
@@ -46,11 +46,7 @@ int main(int argc, char** argv) {
     core::WorkingSetOptions options;
     options.cpuMirror = false;
     core::WorkingSet ws(*reader, cache, loader, options);
-    for (int i = 0; i < 64; ++i) {
-        ws.update({view}, tf);
-        if (ws.stats().settled()) break;
-        loader.waitIdle();
-    }
+    ws.converge({view}, tf);
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
     auto tools = [&](int bits) {

@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     opt.maxBricks = bricks;
     opt.cpuMirror = false;
     core::WorkingSet ws(*reader, cache, loader, opt);
-    const glm::dvec3 centre(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 centre = space.centre();
     const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double radius = glm::length(centre - corner) / std::tan(glm::radians(15.0)) * 1.05 / zoom;
     auto viewAt = [&](double az) { return core::View::orbit(centre, radius, az, 20.0, size, size); };

@@ -73,7 +73,7 @@ void checkBaselines(const std::string& dataset, const core::OctreeReader& reader
     const auto space = core::OctreeSpace::of(g, reader.brickSize(), reader.levelCount());
     const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
                                                    space.minSpacing);
-    const glm::dvec3 c(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 c = space.centre();
     const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const auto view = core::View::orbit(c, glm::length(c - corner) * 3.9, 35.0, 20.0, 128, 128);
     render::EglOffscreenContext ctx;
@@ -96,11 +96,7 @@ void checkBaselines(const std::string& dataset, const core::OctreeReader& reader
             opt.isoValue = rs.isoValue;
         }
         core::WorkingSet ws(reader, cache, loader, opt);
-        for (int i = 0; i < 32; ++i) {
-            ws.update({view}, tf);
-            if (ws.stats().settled()) break;
-            loader.waitIdle();
-        }
+        ws.converge({view}, tf, {}, 32);
         const auto image = gpu.render(reader, ws.index(), ws.slotBricks(), tf, rs, view);
         const std::string name = dataset + "-" + modeName(mode) + ".png";
         const std::string actualPath = artifacts + name;

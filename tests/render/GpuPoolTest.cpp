@@ -60,7 +60,7 @@ TEST(GpuBrickPool, EveryStoredTypeAndLossyBricksGiveTheCpuReferenceValues) {
         core::WorkingSetOptions opt;
         opt.cullByTransferFunction = false;
         core::WorkingSet ws(*reader, cache, loader, opt);
-        const glm::dvec3 centre(ws.space().octreeToPatient * glm::dvec4(ws.space().extent * 0.5, 1.0));
+        const glm::dvec3 centre = ws.space().centre();
         const auto view = core::View::orbit(centre, 200.0, 20.0, 10.0, 48, 40);
         for (int i = 0; i < 32 && !(i > 0 && ws.stats().settled()); ++i) {
             ws.update({view}, tf);

@@ -28,13 +28,9 @@ TEST(InteractiveFrames, MovingFramesAreCheaperAndCompleteAndStillFramesAreFullQu
     core::BrickCache cache(1u << 30);
     core::BrickLoader loader(*reader, cache);
     core::WorkingSet ws(*reader, cache, loader, {});
-    const glm::dvec3 c(ws.space().octreeToPatient * glm::dvec4(ws.space().extent * 0.5, 1.0));
+    const glm::dvec3 c = ws.space().centre();
     const auto view = core::View::orbit(c, 1100.0, 25.0, 10.0, 256, 256);
-    for (int i = 0; i < 32; ++i) {
-        ws.update({view}, tf);
-        if (ws.stats().settled()) break;
-        loader.waitIdle();
-    }
+    ws.converge({view}, tf, {}, 32);
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
     core::InteractiveQuality quality({1.0, 0.25, 2.0});  // an impossible target: always reduce

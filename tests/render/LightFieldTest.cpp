@@ -17,8 +17,9 @@
 #include "core/PhantomVoxelSource.h"
 #include "render/EglOffscreenContext.h"
 #include "render/LightFieldRenderer.h"
-#include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/ImageCompare.h"
+#include "tests/support/MemoryVoxelSource.h"
+#include "tests/support/OctreeScene.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;
@@ -33,27 +34,7 @@ core::DisplayModel smallDisplay() {
         "projectorDistanceMm":600,"observerHeightMm":0,"observerDistanceMm":800})", "small display");
 }
 
-struct Scene {
-    test::TempDir dir;
-    std::unique_ptr<core::OctreeReader> reader;
-    std::unique_ptr<core::BrickCache> cache;
-    std::unique_ptr<core::BrickLoader> loader;
-    std::unique_ptr<core::WorkingSet> ws;
-    explicit Scene(core::VoxelSource& source) {
-        core::JobContext job;
-        core::OctreeBuilder({}).build(source, dir.file("v.hvo"), job);
-        reader = core::OctreeReader::open(dir.file("v.hvo"));
-        cache = std::make_unique<core::BrickCache>(1u << 28);
-        loader = std::make_unique<core::BrickLoader>(*reader, *cache);
-        core::WorkingSetOptions opt;
-        opt.cullByTransferFunction = false;
-        ws = std::make_unique<core::WorkingSet>(*reader, *cache, *loader, opt);
-    }
-    glm::dvec3 centre() const {
-        const auto& s = ws->space();
-        return glm::dvec3(s.octreeToPatient * glm::dvec4(s.extent * 0.5, 1.0));
-    }
-};
+using Scene = test::OctreeScene;
 
 // Centroid column of the bright pixels of a MIP image (the marker), -1 when none.
 double markerColumn(const core::RenderImage& img) {

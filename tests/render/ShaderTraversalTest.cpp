@@ -154,13 +154,9 @@ TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
     opt.cullByTransferFunction = false;
     core::WorkingSet ws(*reader, cache, loader, opt);
     const auto space = ws.space();
-    const glm::dvec3 c(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+    const glm::dvec3 c = space.centre();
     const auto view = core::View::orbit(c, 1100.0, 30.0, 15.0, 96, 80);
-    for (int i = 0; i < 32; ++i) {
-        ws.update({view}, tf);
-        if (ws.stats().settled()) break;
-        loader.waitIdle();
-    }
+    ws.converge({view}, tf, {}, 32);
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
     std::vector<core::RenderSettings> variants;
@@ -199,15 +195,11 @@ TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
 namespace {
 struct Scene {
     /// Refines `ws` for this scene's view until it settles; returns the view.
-    static core::View settle(core::WorkingSet& ws, core::BrickLoader& loader, const core::TransferFunction& tf) {
+    static core::View settle(core::WorkingSet& ws, const core::TransferFunction& tf) {
         const auto space = ws.space();
-        const glm::dvec3 c(space.octreeToPatient * glm::dvec4(space.extent * 0.5, 1.0));
+        const glm::dvec3 c = space.centre();
         const auto view = core::View::orbit(c, 1100.0, -40.0, 10.0, 80, 80);
-        for (int i = 0; i < 32; ++i) {
-            ws.update({view}, tf);
-            if (ws.stats().settled()) break;
-            loader.waitIdle();
-        }
+        ws.converge({view}, tf, {}, 32);
         return view;
     }
     test::TempDir dir;
@@ -223,7 +215,7 @@ struct Scene {
         core::BrickCache cache(1u << 30);
         core::BrickLoader loader(*reader, cache);
         core::WorkingSet ws(*reader, cache, loader, opt);
-        const auto view = settle(ws, loader, tf);
+        const auto view = settle(ws, tf);
         if (cut) *cut = ws.stats().cutNodes;
         return gpu.render(*reader, ws.index(), ws.slotBricks(), tf, rs, view);
     }
@@ -339,7 +331,7 @@ TEST(GpuRayCaster, CellsFollowATransferFunctionChangeWithoutNewBricks) {
     core::WorkingSet ws(*s.reader, cache, loader, unculled);
     const auto bone = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1, 0, 4.0);
     const auto soft = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
-    const auto view = Scene::settle(ws, loader, bone);
+    const auto view = Scene::settle(ws, bone);
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
     gpu.render(*s.reader, ws.index(), ws.slotBricks(), bone, {}, view);

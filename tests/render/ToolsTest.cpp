@@ -16,8 +16,9 @@
 #include "core/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/GpuRayCaster.h"
-#include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/ImageCompare.h"
+#include "tests/support/MemoryVoxelSource.h"
+#include "tests/support/OctreeScene.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;
@@ -32,35 +33,12 @@ double maxDifference(const core::RenderImage& a, const core::RenderImage& b) {
     return m;
 }
 
-struct Scene {
-    test::TempDir dir;
-    std::unique_ptr<core::OctreeReader> reader;
-    std::unique_ptr<core::BrickCache> cache;
-    std::unique_ptr<core::BrickLoader> loader;
-    std::unique_ptr<core::WorkingSet> ws;
+struct Scene : test::OctreeScene {
     core::View view;
-    explicit Scene(core::VoxelSource& source, double az = 30, double el = 15) {
-        core::JobContext job;
-        core::OctreeBuilder({}).build(source, dir.file("v.hvo"), job);
-        reader = core::OctreeReader::open(dir.file("v.hvo"));
-        cache = std::make_unique<core::BrickCache>(1u << 28);
-        loader = std::make_unique<core::BrickLoader>(*reader, *cache);
-        core::WorkingSetOptions opt;
-        opt.cullByTransferFunction = false;
-        ws = std::make_unique<core::WorkingSet>(*reader, *cache, *loader, opt);
+    explicit Scene(core::VoxelSource& source, double az = 30, double el = 15) : OctreeScene(source) {
         view = core::View::orbit(centre(), 1100.0, az, el, 96, 80);
     }
-    glm::dvec3 centre() const {
-        const auto& s = ws->space();
-        return glm::dvec3(s.octreeToPatient * glm::dvec4(s.extent * 0.5, 1.0));
-    }
-    void settle(const core::TransferFunction& tf) {
-        for (int i = 0; i < 32; ++i) {
-            ws->update({view}, tf);
-            if (ws->stats().settled()) break;
-            loader->waitIdle();
-        }
-    }
+    void settle(const core::TransferFunction& tf) { ws->converge({view}, tf, {}, 32); }
     core::RenderImage cpu(const core::TransferFunction& tf, const core::RenderSettings& rs) {
         return core::CpuRayCaster(*reader, ws->index(), ws->slotData(), tf, rs).render(view);
     }

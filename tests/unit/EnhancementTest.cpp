@@ -41,13 +41,9 @@ struct Ramp {
         core::WorkingSetOptions opt;
         opt.cullByTransferFunction = false;
         core::WorkingSet ws(*reader, cache, loader, opt);
-        const glm::dvec3 c(ws.space().octreeToPatient * glm::dvec4(ws.space().extent * 0.5, 1.0));
+        const glm::dvec3 c = ws.space().centre();
         const auto view = core::View::orbit(c, 4000.0, az, 0.0, 9, 9);
-        for (int i = 0; i < 16; ++i) {
-            ws.update({view}, tf);
-            if (ws.stats().settled()) break;
-            loader.waitIdle();
-        }
+        ws.converge({view}, tf, {}, 16);
         rs.shading = false;
         return core::CpuRayCaster(*reader, ws.index(), ws.slotData(), tf, rs).render(view).rgba[4 * 9 + 4].a;
     }

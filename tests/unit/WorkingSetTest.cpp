@@ -38,18 +38,8 @@ core::TransferFunction boneTf(const core::OctreeReader& r) {
 
 core::View frontView(const core::OctreeReader& r, int size, double az = 0.0, double el = 0.0) {
     const auto s = core::OctreeSpace::of(r.geometry(), r.brickSize(), r.levelCount());
-    const glm::dvec3 c(s.octreeToPatient * glm::dvec4(s.extent * 0.5, 1.0));
+    const glm::dvec3 c = s.centre();
     return core::View::orbit(c, 1200.0, az, el, size, size);
-}
-
-// Loads until the cut no longer asks for data (synchronous mode).
-void converge(core::WorkingSet& ws, core::BrickLoader& loader, const std::vector<core::View>& views,
-              const core::TransferFunction& tf) {
-    for (int i = 0; i < 64; ++i) {
-        ws.update(views, tf);
-        if (ws.stats().settled()) return;
-        loader.waitIdle();
-    }
 }
 
 // Brute force: every index leaf whose box the ray crosses with positive length, by entry.
@@ -167,7 +157,7 @@ TEST(CpuRayCaster, FullResolutionCutMatchesDenseRayMarching) {
     opt.voxelsPerPixel = 1e-6;  // force full resolution
     core::WorkingSet ws(*r, cache, loader, opt);
     const auto view = frontView(*r, 64, 25, 10);
-    converge(ws, loader, {view}, tf);
+    ws.converge({view}, tf);
     core::RenderSettings rs;
     rs.shading = false;
     const core::CpuRayCaster caster(*r, ws.index(), ws.slotData(), tf, rs);
@@ -252,7 +242,7 @@ TEST(CpuRayCaster, SkippingCellsThatCannotShowChangesNothing) {
         core::WorkingSet ws(*r, cache, loader, opt);
         const auto view = frontView(*r, 72, 25, 10);
         const auto bone = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, 1.0, 0.0, 4.0);
-        converge(ws, loader, {view}, bone);
+        ws.converge({view}, bone);
         for (const char* preset : {"ct-bone", "ct-soft-tissue", "iso"}) {
             const bool iso = !std::strcmp(preset, "iso");
             const auto tf = iso ? bone : core::TransferFunction::preset(preset, g.valueMin, g.valueMax, 1.0, 0.0, 4.0);
@@ -291,7 +281,7 @@ TEST(WorkingSet, RefinementRespectsBudgetCullingAndConvergesToTheAccuracyTarget)
     core::WorkingSet ws(*r, cache, loader, opt);
     auto view = frontView(*r, 256, 0, 0);
     view.fovYDegrees = 12;  // the volume overflows the frustum: some nodes are off screen
-    converge(ws, loader, {view}, tf);
+    ws.converge({view}, tf);
     EXPECT_LE(ws.stats().cutNodes, 40u);
     const auto clip = view.viewProjection();
     const auto& space = ws.space();
@@ -317,7 +307,7 @@ TEST(WorkingSet, RefinementRespectsBudgetCullingAndConvergesToTheAccuracyTarget)
     opt.clip = false;
     const auto small = frontView(*r, 40, 20, 10);
     core::WorkingSet full(*r, cache, loader, opt);
-    converge(full, loader, {small}, tf);
+    full.converge({small}, tf);
     EXPECT_TRUE(full.stats().complete);
     std::size_t coarser = 0;
     for (auto id : full.cut()) {
@@ -333,7 +323,7 @@ TEST(WorkingSet, RefinementRespectsBudgetCullingAndConvergesToTheAccuracyTarget)
     // Coarser accuracy needs fewer bricks.
     opt.voxelsPerPixel = 4.0;
     core::WorkingSet coarse(*r, cache, loader, opt);
-    converge(coarse, loader, {small}, tf);
+    coarse.converge({small}, tf);
     EXPECT_LT(coarse.stats().cutNodes, full.stats().cutNodes);
 }
 
@@ -348,7 +338,7 @@ TEST(WorkingSet, VisibilityFeedbackStopsRefiningWhatNoRaySees) {
     opt.voxelsPerPixel = 0.25;
     core::WorkingSet ws(*r, cache, loader, opt);
     const auto view = frontView(*r, 128);
-    converge(ws, loader, {view}, tf);
+    ws.converge({view}, tf);
     const std::size_t before = ws.stats().cutNodes;
     core::RenderSettings rs;
     rs.countRays = true;
@@ -422,7 +412,7 @@ TEST(CpuRayCaster, AnteriorViewShowsThePatientsLeftOnTheImageRight) {
     core::BrickLoader loader(*r, cache);
     core::WorkingSet ws(*r, cache, loader, {});
     const auto view = frontView(*r, 96);
-    converge(ws, loader, {view}, tf);
+    ws.converge({view}, tf);
     const auto img = core::CpuRayCaster(*r, ws.index(), ws.slotData(), tf, {}).render(view);
     // The heart spans image columns ~45-59 in rows ~34-48; compare it with its mirror image.
     double left = 0, right = 0;

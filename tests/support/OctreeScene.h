@@ -1,0 +1,40 @@
+#pragma once
+// A volume built into an octree in a temporary directory, with its brick cache, loader and an
+// unculled working set: the common setup of the rendering tests.
+#include <memory>
+
+#include <glm/vec3.hpp>
+
+#include "core/BrickCache.h"
+#include "core/BrickLoader.h"
+#include "core/JobContext.h"
+#include "core/OctreeBuilder.h"
+#include "core/OctreeReader.h"
+#include "core/VoxelSource.h"
+#include "core/WorkingSet.h"
+#include "tests/support/TempDir.h"
+
+namespace hvx::test {
+
+struct OctreeScene {
+    TempDir dir;
+    std::unique_ptr<core::OctreeReader> reader;
+    std::unique_ptr<core::BrickCache> cache;
+    std::unique_ptr<core::BrickLoader> loader;
+    std::unique_ptr<core::WorkingSet> ws;
+
+    explicit OctreeScene(core::VoxelSource& source) {
+        core::JobContext job;
+        core::OctreeBuilder({}).build(source, dir.file("v.hvo"), job);
+        reader = core::OctreeReader::open(dir.file("v.hvo"));
+        cache = std::make_unique<core::BrickCache>(1u << 28);
+        loader = std::make_unique<core::BrickLoader>(*reader, *cache);
+        core::WorkingSetOptions opt;
+        opt.cullByTransferFunction = false;
+        ws = std::make_unique<core::WorkingSet>(*reader, *cache, *loader, opt);
+    }
+    /// The volume's centre in patient coordinates.
+    glm::dvec3 centre() const { return ws->space().centre(); }
+};
+
+}  // namespace hvx::test
