@@ -1,30 +1,9 @@
 #pragma once
 // C++ side of core/shared/Enhancers.glsl: the same source compiled with GLM types, so the CPU
 // reference applies exactly the enhancers the shader does.
-#include <glm/common.hpp>
-#include <glm/exponential.hpp>
-#include <glm/geometric.hpp>
-#include <glm/mat3x3.hpp>
-#include <glm/matrix.hpp>
-#include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
+#include "core/GlslVocabulary.h"
 
 namespace hvx::core::glsl {
-using vec3 = glm::vec3;
-using vec4 = glm::vec4;
-using mat3 = glm::mat3;
-using glm::length;
-using glm::transpose;
-using glm::abs;
-using glm::clamp;
-using glm::dot;
-using glm::exp;
-using glm::max;
-using glm::min;
-using glm::mix;
-using glm::pow;
-using glm::sqrt;
-
 #define HVX_INOUT(T) T&
 #define HVX_FN inline
 #define HVX_TOOL_ON(bit) ((hvxBits & (bit)) != 0)

@@ -1,23 +1,10 @@
 #pragma once
 // C++ side of core/shared/IndexTraversal.glsl: the same source compiled with GLM types, so the
 // CPU reference ray caster walks the index exactly as the shader does.
-#include <cstdint>
-
-#include <glm/common.hpp>
-#include <glm/vec3.hpp>
-#include <glm/vec4.hpp>
-
+#include "core/GlslVocabulary.h"
 #include "core/SpatialIndex.h"
 
 namespace hvx::core::glsl {
-using uint = std::uint32_t;
-using vec3 = glm::vec3;
-using uvec4 = glm::uvec4;
-using glm::floor;
-using glm::max;
-using glm::mix;
-using glm::step;
-
 #define HVX_INDEX_PARAM const ::hvx::core::SpatialIndex& hvxIndex
 #define HVX_INDEX_ARG hvxIndex
 #define HVX_NODE(i) hvxIndex.nodes[(i)]
