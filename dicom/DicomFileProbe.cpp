@@ -3,7 +3,7 @@
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcuid.h>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DicomHeaderReader.h"
 
 namespace hvx::dicom {

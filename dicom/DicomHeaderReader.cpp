@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DcmtkSetup.h"
 
 namespace hvx::dicom {

@@ -11,8 +11,8 @@
 #include <mutex>
 #include <set>
 
-#include "core/Error.h"
-#include "core/ThreadPool.h"
+#include "core/base/Error.h"
+#include "core/base/ThreadPool.h"
 #include "dicom/DcmtkSetup.h"
 #include "dicom/DicomHeaderReader.h"
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include "core/Error.h"
-#include "core/ThreadPool.h"
+#include "core/base/Error.h"
+#include "core/base/ThreadPool.h"
 #include "dicom/PixelDecoder.h"
 
 namespace hvx::dicom {

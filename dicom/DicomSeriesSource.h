@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/VoxelSource.h"
+#include "core/volume/VoxelSource.h"
 #include "dicom/SeriesVolume.h"
 
 namespace hvx::dicom {

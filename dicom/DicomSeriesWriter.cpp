@@ -15,7 +15,7 @@
 #include <filesystem>
 #include <mutex>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DcmtkSetup.h"
 
 namespace hvx::dicom {

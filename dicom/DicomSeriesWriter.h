@@ -2,8 +2,8 @@
 #include <string>
 #include <vector>
 
-#include "core/JobContext.h"
-#include "core/VoxelSource.h"
+#include "core/base/JobContext.h"
+#include "core/volume/VoxelSource.h"
 
 namespace hvx::dicom {
 

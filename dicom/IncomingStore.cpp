@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/UidPath.h"
 

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <memory>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::dicom {
 

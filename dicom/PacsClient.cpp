@@ -11,7 +11,7 @@
 #include <set>
 #include <tuple>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DcmtkSetup.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/IncomingStore.h"

@@ -7,7 +7,7 @@
 
 #include <cstdio>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::dicom {
 

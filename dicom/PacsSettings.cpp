@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "core/AtomicFileWriter.h"
-#include "core/Error.h"
+#include "core/base/AtomicFileWriter.h"
+#include "core/base/Error.h"
 
 namespace hvx::dicom {
 

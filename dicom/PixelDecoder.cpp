@@ -10,7 +10,7 @@
 
 #include <cstring>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DcmtkSetup.h"
 #include "dicom/Jpeg2000Decoder.h"
 #include "dicom/RleDecoder.h"

@@ -5,8 +5,8 @@
 #include <map>
 #include <mutex>
 
-#include "core/Error.h"
-#include "core/OctreeBuilder.h"
+#include "core/base/Error.h"
+#include "core/octree/OctreeBuilder.h"
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/SeriesAssembler.h"
 #include "dicom/StorageServer.h"

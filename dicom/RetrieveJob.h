@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "core/JobContext.h"
+#include "core/base/JobContext.h"
 #include "dicom/PacsClient.h"
 #include "dicom/PacsSettings.h"
 

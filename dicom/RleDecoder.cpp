@@ -2,7 +2,7 @@
 
 #include <cstring>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::dicom {
 

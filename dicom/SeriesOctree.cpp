@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "core/Error.h"
-#include "core/OctreeBuilder.h"
-#include "core/SubsampledVoxelSource.h"
+#include "core/base/Error.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/volume/SubsampledVoxelSource.h"
 #include "dicom/DicomScanner.h"
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/SeriesAssembler.h"

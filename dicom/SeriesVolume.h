@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "core/VolumeGeometry.h"
+#include "core/volume/VolumeGeometry.h"
 #include "dicom/DicomInstance.h"
 
 namespace hvx::dicom {

@@ -8,7 +8,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DcmtkSetup.h"
 #include "dicom/IncomingStore.h"
 #include "dicom/PacsProtocol.h"

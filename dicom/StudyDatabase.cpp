@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <set>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::dicom {
 

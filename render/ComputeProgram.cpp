@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::render {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::render {
 

@@ -9,8 +9,8 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "core/Error.h"
-#include "core/OctreeSpace.h"
+#include "core/base/Error.h"
+#include "core/streaming/OctreeSpace.h"
 
 namespace hvx::render {
 

@@ -5,9 +5,9 @@
 
 #include <glm/vec2.hpp>
 
-#include "core/Brick.h"
-#include "core/BrickCells.h"
-#include "core/CpuRayCaster.h"
+#include "core/octree/Brick.h"
+#include "core/streaming/BrickCells.h"
+#include "core/reference/CpuRayCaster.h"
 #include "render/ComputeProgram.h"
 
 namespace hvx::render {

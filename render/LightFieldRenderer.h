@@ -1,10 +1,10 @@
 #pragma once
 #include <vector>
 
-#include "core/BrickLoader.h"
-#include "core/CpuRayCaster.h"
-#include "core/DisplayModel.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/reference/CpuRayCaster.h"
+#include "core/camera/DisplayModel.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/GpuRayCaster.h"
 
 namespace hvx::render {

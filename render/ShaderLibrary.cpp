@@ -4,7 +4,7 @@
 #include <regex>
 #include <sstream>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::render {
 

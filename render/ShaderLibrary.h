@@ -7,7 +7,7 @@ namespace hvx::render {
 
 /// GLSL sources by file name, with `#include "name"` expanded at load time (each file once)
 /// and `#line` markers so a compiler message can be mapped back to file:line. The embedded
-/// library holds resources/shaders/*.glsl and core/shared/*.glsl, built into the binary.
+/// library holds resources/shaders/*.glsl and core/*/*.glsl, built into the binary.
 ///
 /// Threading: immutable; share freely.
 class ShaderLibrary {

@@ -15,6 +15,34 @@ check render '#include *[<"](Q[A-Za-z]*|QtCore/|QtGui/|QtWidgets/|dcmtk/)' "rend
 for d in ui app; do check "$d" '#include *[<"]dcmtk/' "DCMTK stays inside dicom/ ($d/)"; done
 hits=$(grep -lE '#include *[<"]dcmtk/' "$root"/dicom/*.h 2>/dev/null)
 if [ -n "$hits" ]; then echo "RULE BROKEN: public dicom/ headers expose DCMTK: $hits"; fail=1; fi
+# core's rooms (DESIGN.md "core's rooms"): each sub-folder includes only the rooms it may use.
+# The same table is in core/CMakeLists.txt (each room's USES); keep the two together.
+declare -A uses=(
+  [base]=""
+  [volume]="base"
+  [octree]="base volume"
+  [camera]="base volume"
+  [appearance]="base volume camera"
+  [image]="base camera"
+  [streaming]="base volume octree camera appearance"
+  [reference]="base volume octree camera appearance image streaming"
+)
+for f in "$root"/core/*; do
+  [ -f "$f" ] || continue
+  case "$(basename "$f")" in CMakeLists.txt) ;; *) echo "RULE BROKEN: core/ holds a file outside its rooms: $f"; fail=1 ;; esac
+done
+for dir in "$root"/core/*/; do
+  room=$(basename "$dir")
+  if [ -z "${uses[$room]+set}" ]; then echo "RULE BROKEN: core/$room/ is not a room of the table"; fail=1; continue; fi
+  while IFS= read -r hit; do
+    [ -n "$hit" ] || continue
+    used=$(sed -E 's#.*\#include *"core/([A-Za-z_]+)/.*#\1#' <<<"$hit")
+    [ "$used" = "$room" ] && continue
+    case " ${uses[$room]} " in *" $used "*) ;; *)
+      echo "RULE BROKEN: core/$room may use only [${uses[$room]}], not core/$used: $hit"; fail=1 ;;
+    esac
+  done < <(grep -rnE '#include *"core/[A-Za-z_]+/' "$dir" --include='*.h' --include='*.cpp' --include='*.glsl')
+done
 # Each module exists as its folder.
 for d in app ui core render dicom resources tests installer; do
   [ -d "$root/$d" ] || { echo "missing module folder $d/"; fail=1; }

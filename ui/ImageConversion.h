@@ -1,7 +1,7 @@
 #pragma once
 #include <QImage>
 
-#include "core/CpuRayCaster.h"
+#include "core/reference/CpuRayCaster.h"
 
 namespace hvx::ui {
 

@@ -8,7 +8,7 @@
 
 #include <thread>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::ui {
 

@@ -6,7 +6,7 @@
 #include <map>
 #include <memory>
 
-#include "core/JobContext.h"
+#include "core/base/JobContext.h"
 
 namespace hvx::ui {
 

@@ -18,10 +18,10 @@
 
 #include <glm/trigonometric.hpp>
 
-#include "core/Error.h"
-#include "core/LightFieldSimulator.h"
-#include "core/QuiltLayout.h"
-#include "core/StereoComposer.h"
+#include "core/base/Error.h"
+#include "core/image/LightFieldSimulator.h"
+#include "core/image/QuiltLayout.h"
+#include "core/image/StereoComposer.h"
 #include "ui/ImageConversion.h"
 #include "ui/LightFieldWindow.h"
 #include "ui/VolumeView.h"

@@ -5,8 +5,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/CpuRayCaster.h"
-#include "core/DisplayModel.h"
+#include "core/reference/CpuRayCaster.h"
+#include "core/camera/DisplayModel.h"
 
 class QComboBox;
 class QLabel;

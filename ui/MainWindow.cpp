@@ -14,16 +14,15 @@
 #include <QMenuBar>
 #include <QMessageBox>
 #include <QPointer>
-#include <QSettings>
 #include <QScrollArea>
 #include <QStatusBar>
 #include <QTimer>
 #include <QTreeWidget>
 #include <QTreeWidgetItemIterator>
 
-#include "core/Error.h"
-#include "core/OctreeSpace.h"
-#include "core/VolumeHistogram.h"
+#include "core/base/Error.h"
+#include "core/streaming/OctreeSpace.h"
+#include "core/reference/VolumeHistogram.h"
 #include "dicom/PacsSettings.h"
 #include "dicom/SeriesOctree.h"
 #include "dicom/StudyDatabase.h"
@@ -37,7 +36,8 @@
 #include "ui/TransferFunctionEditor.h"
 #include "ui/ToolsPanel.h"
 #include "ui/VolumeView.h"
-#include "core/SliceSampler.h"
+#include "ui/WindowSession.h"
+#include "core/reference/SliceSampler.h"
 
 namespace hvx::ui {
 
@@ -119,21 +119,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
         });
 
     resize(1400, 900);
-    QSettings settings;
-    restoreGeometry(settings.value("window/geometry").toByteArray());
-    restoreState(settings.value("window/state").toByteArray());
-    if (settings.contains("tools/json")) {  // the session's tools
-        try {
-            setTools(core::ToolSet::fromJson(settings.value("tools/json").toString().toStdString()));
-        } catch (const core::Error& e) {
-            showError(tr("Saved tools ignored: %1").arg(QString::fromStdString(e.what())));
-        }
-    }
-    if (settings.contains("render/mode")) {
-        auto rs = controls_->settings();
-        rs.mode = core::RenderSettings::Mode(std::clamp(settings.value("render/mode").toInt(), 0, 4));
-        controls_->setSettings(rs);
-    }
+    for (const QString& message : WindowSession::restore(*this)) showError(message);
     statusBar()->showMessage(tr("Ready"));
 }
 
@@ -331,19 +317,7 @@ void MainWindow::placeTool(const glm::dvec3& patient, bool alt) {
         auto plane = core::SlicePlane::standard(core::SlicePlane::Orientation::Axial, patient, 0.1, 1, 1);
         const float v = sampler.sample(plane, 0).values[0];
         if (std::isnan(v)) return;
-        const auto& h = histogram_;
-        double lo = v, hi = v;
-        if (!h.counts.empty()) {
-            const double width = (h.valueMax - h.valueMin) / double(h.counts.size());
-            int bin = std::clamp(int((v - h.valueMin) / width), 0, int(h.counts.size()) - 1);
-            const double floor = double(h.counts[std::size_t(bin)]) / 3.0;
-            int a = bin, b = bin;
-            const int limit = int(h.counts.size()) / 4;
-            while (a > 0 && bin - a < limit && double(h.counts[std::size_t(a - 1)]) >= floor) --a;
-            while (b + 1 < int(h.counts.size()) && b - bin < limit && double(h.counts[std::size_t(b + 1)]) >= floor) ++b;
-            lo = h.valueMin + a * width;
-            hi = h.valueMin + (b + 1) * width;
-        }
+        const auto [lo, hi] = histogram_.bandAround(v);
         const double ramp = std::max(1.0, 0.25 * (hi - lo));
         t.band.enabled = true;
         t.band.band = {lo - ramp, lo, hi, hi + ramp};
@@ -402,11 +376,7 @@ void MainWindow::chooseOpen() {
 }
 
 void MainWindow::closeEvent(QCloseEvent* e) {
-    QSettings settings;
-    settings.setValue("window/geometry", saveGeometry());
-    settings.setValue("window/state", saveState());
-    settings.setValue("render/mode", int(controls_->settings().mode));
-    settings.setValue("tools/json", QString::fromStdString(tools_.toJson()));
+    WindowSession::save(*this);
     e->accept();
 }
 

@@ -3,9 +3,9 @@
 
 #include <memory>
 
-#include "core/OctreeReader.h"
-#include "core/ToolSet.h"
-#include "core/VolumeHistogram.h"
+#include "core/octree/OctreeReader.h"
+#include "core/appearance/ToolSet.h"
+#include "core/reference/VolumeHistogram.h"
 
 class QLabel;
 class QDockWidget;

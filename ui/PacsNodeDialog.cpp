@@ -10,7 +10,7 @@
 #include <QPushButton>
 #include <QSpinBox>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/PacsClient.h"
 
 namespace hvx::ui {

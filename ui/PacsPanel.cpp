@@ -15,7 +15,7 @@
 
 #include <filesystem>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/PacsClient.h"
 #include "dicom/RetrieveJob.h"
 #include "dicom/SeriesOctree.h"

@@ -1,7 +1,7 @@
 #pragma once
 #include <QWidget>
 
-#include "core/CpuRayCaster.h"
+#include "core/reference/CpuRayCaster.h"
 
 class QComboBox;
 class QCheckBox;

@@ -6,9 +6,9 @@
 
 #include <glm/vec3.hpp>
 
-#include "core/BrickCache.h"
-#include "core/OctreeReader.h"
-#include "core/SliceSampler.h"
+#include "core/streaming/BrickCache.h"
+#include "core/octree/OctreeReader.h"
+#include "core/reference/SliceSampler.h"
 
 namespace hvx::ui {
 

@@ -16,10 +16,10 @@
 
 #include <cmath>
 
-#include "core/BrickCache.h"
-#include "core/Error.h"
-#include "core/OctreeReader.h"
-#include "core/SliceSampler.h"
+#include "core/streaming/BrickCache.h"
+#include "core/base/Error.h"
+#include "core/octree/OctreeReader.h"
+#include "core/reference/SliceSampler.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/DicomInstance.h"
 #include "dicom/DicomScanner.h"

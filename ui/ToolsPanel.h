@@ -4,7 +4,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/ToolSet.h"
+#include "core/appearance/ToolSet.h"
 
 class QGroupBox;
 class QDoubleSpinBox;

@@ -1,8 +1,8 @@
 #pragma once
 #include <QWidget>
 
-#include "core/TransferFunctionSpec.h"
-#include "core/VolumeHistogram.h"
+#include "core/appearance/TransferFunctionSpec.h"
+#include "core/reference/VolumeHistogram.h"
 
 namespace hvx::ui {
 

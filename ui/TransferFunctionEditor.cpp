@@ -7,7 +7,7 @@
 #include <QPushButton>
 #include <QVBoxLayout>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "ui/TransferFunctionCanvas.h"
 #include "ui/TransferFunctionFiles.h"
 

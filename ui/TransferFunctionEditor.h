@@ -3,8 +3,8 @@
 
 #include <optional>
 
-#include "core/TransferFunctionSpec.h"
-#include "core/VolumeHistogram.h"
+#include "core/appearance/TransferFunctionSpec.h"
+#include "core/reference/VolumeHistogram.h"
 
 class QComboBox;
 

@@ -13,7 +13,7 @@
 
 #include <glm/common.hpp>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::ui {
 

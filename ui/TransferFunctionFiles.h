@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/TransferFunctionSpec.h"
+#include "core/appearance/TransferFunctionSpec.h"
 
 namespace hvx::ui {
 

@@ -20,12 +20,12 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/Error.h"
-#include "core/ImageWriter.h"
-#include "core/OctreeSpace.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/base/Error.h"
+#include "core/image/ImageWriter.h"
+#include "core/streaming/OctreeSpace.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/GpuRayCaster.h"
 #include "render/LightFieldRenderer.h"
 #include "ui/EdgeLabels.h"
@@ -326,17 +326,22 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
     }
 }
 
+void VolumeView::editTools(const core::ToolSet& tools) {
+    settings_.tools = tools;
+    emit toolsEdited(tools);
+    interacted();
+}
+
 void VolumeView::interacted() {
     settle_.start();
     update();
 }
 
 void VolumeView::mousePressEvent(QMouseEvent* e) {
-    lastPos_ = pressPos_ = e->position().toPoint();
+    lastPos_ = e->position().toPoint();
     const bool modified = e->modifiers() & (Qt::ControlModifier | Qt::AltModifier);
     if (e->button() == Qt::LeftButton && modified) {  // tools: pick on release, or drag the probes
-        toolDrag_ = true;
-        toolMoved_ = false;
+        toolDrag_.press(lastPos_);
         return;
     }
     dragging_ = true;
@@ -355,51 +360,14 @@ bool VolumeView::project(const glm::dvec3& p, QPointF& out, double& depth) const
     return true;
 }
 
-void VolumeView::moveProbes(const QPoint& d, bool alongView) {
-    auto tools = settings_.tools;
-    QPointF at;
-    double depth = camera_.distance();
-    project(tools.focal.enabled ? tools.focal.centre : tools.context.centre, at, depth);
-    const double mmPerPixel = 2.0 * depth * std::tan(glm::radians(camera_.fovYDegrees()) / 2.0) / std::max(1, height());
-    const glm::dvec3 delta = alongView ? -camera_.back() * (-d.y() * mmPerPixel)
-                                       : (camera_.right() * double(d.x()) - camera_.up() * double(d.y())) * mmPerPixel;
-    tools.focal.centre += delta;
-    tools.context.centre += delta;
-    settings_.tools = tools;
-    emit toolsEdited(tools);
-    interacted();
-}
-
-void VolumeView::moveClipPlane(const QPoint& d, bool tilt) {
-    auto tools = settings_.tools;
-    glm::dvec3 n = glm::normalize(tools.clip.normal);
-    // A point of the plane, kept fixed while tilting: the projection of the camera's target.
-    const glm::dvec3 onPlane = camera_.target() - n * (glm::dot(n, camera_.target()) + tools.clip.offset);
-    if (tilt) {  // Ctrl+Shift+drag: turn the plane about the view's axes through that point
-        const double perPixel = glm::pi<double>() / std::max(1, height());
-        n = glm::angleAxis(d.x() * perPixel, camera_.up()) * (glm::angleAxis(d.y() * perPixel, camera_.right()) * n);
-        tools.clip.normal = n;
-        tools.clip.offset = -glm::dot(n, onPlane);
-    } else {  // Ctrl+drag: push the plane along its normal, one pixel's millimetres per pixel
-        const double mmPerPixel =
-            2.0 * camera_.distance() * std::tan(glm::radians(camera_.fovYDegrees()) / 2.0) / std::max(1, height());
-        tools.clip.normal = n;
-        tools.clip.offset = tools.clip.offset - d.y() * mmPerPixel;
-    }
-    settings_.tools = tools;
-    emit toolsEdited(tools);
-    interacted();
-}
-
 void VolumeView::mouseMoveEvent(QMouseEvent* e) {
     const QPoint pos = e->position().toPoint();
     const QPoint d = pos - lastPos_;
     lastPos_ = pos;
-    if (toolDrag_) {  // Ctrl+drag moves the probes in the view plane, Ctrl+Shift+drag in depth
-        if ((pos - pressPos_).manhattanLength() > 3) toolMoved_ = true;
-        if (!toolMoved_) return;
-        if (settings_.tools.focal.enabled || settings_.tools.context.enabled) moveProbes(d, e->modifiers() & Qt::ShiftModifier);
-        else if (settings_.tools.clip.enabled) moveClipPlane(d, e->modifiers() & Qt::ShiftModifier);
+    if (toolDrag_.active()) {  // Ctrl+drag moves the probes or the clip plane (ui/ToolDragger)
+        if (auto tools = toolDrag_.move(pos, d, e->modifiers() & Qt::ShiftModifier, settings_.tools, camera_, width(),
+                                        height()))
+            editTools(*tools);
         return;
     }
     if (!dragging_) return;
@@ -411,7 +379,7 @@ void VolumeView::mouseMoveEvent(QMouseEvent* e) {
 }
 
 void VolumeView::mouseReleaseEvent(QMouseEvent* e) {
-    if (toolDrag_ && !toolMoved_ && scene_ && !lastDepth_.empty()) {
+    if (toolDrag_.release() && scene_ && !lastDepth_.empty()) {
         // A click: the first significant sample under the cursor.
         const double sx = e->position().x() / std::max(1, width()) * lastView_.width;
         const double sy = e->position().y() / std::max(1, height()) * lastView_.height;
@@ -423,23 +391,17 @@ void VolumeView::mouseReleaseEvent(QMouseEvent* e) {
             emit surfacePicked(o + d * double(depth), (e->modifiers() & Qt::AltModifier) != 0);
         }
     }
-    toolDrag_ = false;
     dragging_ = false;
     update();  // the next frame is full quality
 }
 
 void VolumeView::wheelEvent(QWheelEvent* e) {
     const double steps = !e->pixelDelta().isNull() ? e->pixelDelta().y() / 60.0 : e->angleDelta().y() / 120.0;
-    if ((e->modifiers() & Qt::ControlModifier) && (settings_.tools.focal.enabled || settings_.tools.context.enabled)) {
-        auto tools = settings_.tools;  // Ctrl+wheel scales the probes
-        const double f = std::pow(1.1, steps);
-        tools.focal.radii = glm::clamp(tools.focal.radii * f, glm::dvec3(1.0), glm::dvec3(2000.0));
-        tools.context.radius = std::clamp(tools.context.radius * f, 1.0, 2000.0);
-        settings_.tools = tools;
-        emit toolsEdited(tools);
-        interacted();
-        return;
-    }
+    if (e->modifiers() & Qt::ControlModifier)  // Ctrl+wheel scales the probes
+        if (auto tools = ToolDragger::scaled(settings_.tools, steps)) {
+            editTools(*tools);
+            return;
+        }
     camera_.zoom(std::pow(1.1, steps));
     interacted();
 }

@@ -6,12 +6,13 @@
 
 #include <memory>
 
-#include "core/CpuRayCaster.h"
-#include "core/DisplayModel.h"
-#include "core/InteractiveQuality.h"
-#include "core/OctreeReader.h"
-#include "core/OrbitCamera.h"
-#include "core/TransferFunction.h"
+#include "core/reference/CpuRayCaster.h"
+#include "core/camera/DisplayModel.h"
+#include "core/camera/InteractiveQuality.h"
+#include "core/octree/OctreeReader.h"
+#include "core/camera/OrbitCamera.h"
+#include "core/appearance/TransferFunction.h"
+#include "ui/ToolDragger.h"
 
 namespace hvx::render {
 class GpuRayCaster;
@@ -113,12 +114,11 @@ private:
     int unsettledFrames_ = 0;
     Readouts readouts_;
     bool dragging_ = false;
-    bool toolDrag_ = false, toolMoved_ = false;
-    QPoint pressPos_;
+    ToolDragger toolDrag_;
     /// Widget position of a patient point, and its distance along the view (mm); false behind the eye.
     bool project(const glm::dvec3& p, QPointF& out, double& depth) const;
-    void moveProbes(const QPoint& d, bool alongView);
-    void moveClipPlane(const QPoint& d, bool tilt);
+    /// The tools changed by a gesture in the view: kept, announced and redrawn.
+    void editTools(const core::ToolSet& tools);
     Qt::MouseButton dragButton_ = Qt::NoButton;
     QPoint lastPos_;
     QTimer settle_;     // wheel/keys: moving until it fires

@@ -4,9 +4,9 @@
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
 #include "app/cli/OctreeBuildRunner.h"
-#include "core/BrickCodec.h"
-#include "core/Error.h"
-#include "core/VoxelSourceFactory.h"
+#include "core/octree/BrickCodec.h"
+#include "core/base/Error.h"
+#include "core/volume/VoxelSourceFactory.h"
 
 namespace hvx::app {
 

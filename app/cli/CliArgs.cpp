@@ -4,7 +4,7 @@
 #include <cctype>
 #include <cmath>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace hvx::app {
 

@@ -11,10 +11,10 @@
 #include <fstream>
 #include <thread>
 
-#include "core/Error.h"
-#include "core/JobContext.h"
-#include "core/PhantomVoxelSource.h"
-#include "core/VoxelSourceFactory.h"
+#include "core/base/Error.h"
+#include "core/base/JobContext.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "core/volume/VoxelSourceFactory.h"
 #include "dicom/DicomSeriesWriter.h"
 #include "dicom/PacsClient.h"
 

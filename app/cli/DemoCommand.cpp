@@ -5,9 +5,9 @@
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
 #include "app/cli/OctreeBuildRunner.h"
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "app/cli/DemoArchive.h"
-#include "core/VoxelSourceFactory.h"
+#include "core/volume/VoxelSourceFactory.h"
 #include "dicom/PacsClient.h"
 #include "dicom/PacsSettings.h"
 

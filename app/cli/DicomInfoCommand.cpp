@@ -2,7 +2,7 @@
 
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DicomFileProbe.h"
 
 namespace hvx::app {

@@ -2,9 +2,9 @@
 
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
-#include "core/Error.h"
-#include "core/OctreeReader.h"
-#include "core/OctreeSummary.h"
+#include "core/base/Error.h"
+#include "core/octree/OctreeReader.h"
+#include "core/octree/OctreeSummary.h"
 
 namespace hvx::app {
 

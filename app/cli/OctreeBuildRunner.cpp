@@ -4,8 +4,8 @@
 
 #include "app/cli/ProgressBar.h"
 #include "app/cli/SignalCancel.h"
-#include "core/OctreeReader.h"
-#include "core/OctreeSummary.h"
+#include "core/octree/OctreeReader.h"
+#include "core/octree/OctreeSummary.h"
 
 namespace hvx::app {
 

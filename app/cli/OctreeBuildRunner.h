@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "core/OctreeBuilder.h"
+#include "core/octree/OctreeBuilder.h"
 
 namespace hvx::app {
 

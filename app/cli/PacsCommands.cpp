@@ -8,7 +8,7 @@
 #include "app/cli/Commands.h"
 #include "app/cli/ProgressBar.h"
 #include "app/cli/SignalCancel.h"
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/PacsClient.h"
 #include "dicom/PacsSettings.h"
 #include "dicom/RetrieveJob.h"

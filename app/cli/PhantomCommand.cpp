@@ -6,10 +6,10 @@
 #include "app/cli/OctreeBuildRunner.h"
 #include "app/cli/ProgressBar.h"
 #include "app/cli/SignalCancel.h"
-#include "core/Error.h"
-#include "core/NrrdWriter.h"
-#include "core/PhantomVoxelSource.h"
-#include "core/VoxelSourceFactory.h"
+#include "core/base/Error.h"
+#include "core/volume/NrrdWriter.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "core/volume/VoxelSourceFactory.h"
 
 namespace hvx::app {
 

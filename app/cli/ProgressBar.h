@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "core/JobContext.h"
+#include "core/base/JobContext.h"
 
 namespace hvx::app {
 

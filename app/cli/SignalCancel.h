@@ -1,5 +1,5 @@
 #pragma once
-#include "core/JobContext.h"
+#include "core/base/JobContext.h"
 
 namespace hvx::app {
 

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "app/cli/Commands.h"
-#include "core/Error.h"
+#include "core/base/Error.h"
 
 namespace {
 void usage() {

@@ -11,8 +11,8 @@
 #include <filesystem>
 
 #include "app/cli/DemoArchive.h"
-#include "core/OctreeBuilder.h"
-#include "core/VoxelSourceFactory.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/volume/VoxelSourceFactory.h"
 #include "dicom/PacsSettings.h"
 #include "ui/JobManager.h"
 #include "ui/MainWindow.h"

@@ -15,13 +15,13 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/DisplayModel.h"
-#include "core/Error.h"
-#include "core/ImageWriter.h"
-#include "core/OctreeSpace.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/camera/DisplayModel.h"
+#include "core/base/Error.h"
+#include "core/image/ImageWriter.h"
+#include "core/streaming/OctreeSpace.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/LightFieldRenderer.h"
 

@@ -14,10 +14,10 @@
 #include <memory>
 #include <vector>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/OctreeSpace.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/streaming/OctreeSpace.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/GpuRayCaster.h"
 #include "ui/MainWindow.h"
 #include "ui/TransferFunctionEditor.h"

@@ -37,14 +37,14 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/CpuRayCaster.h"
-#include "core/InteractiveQuality.h"
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
-#include "core/VoxelSourceFactory.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/reference/CpuRayCaster.h"
+#include "core/camera/InteractiveQuality.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/volume/VoxelSourceFactory.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/GpuRayCaster.h"
 

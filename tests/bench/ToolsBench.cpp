@@ -12,10 +12,10 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/OctreeSpace.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/streaming/OctreeSpace.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/GpuRayCaster.h"
 

@@ -17,10 +17,10 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/OctreeReader.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/octree/OctreeReader.h"
+#include "core/streaming/WorkingSet.h"
 
 using namespace hvx;
 

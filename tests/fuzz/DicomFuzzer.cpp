@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/PixelDecoder.h"
 #include "dicom/SeriesAssembler.h"

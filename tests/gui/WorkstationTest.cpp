@@ -21,8 +21,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "core/OctreeBuilder.h"
-#include "core/PhantomVoxelSource.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/volume/PhantomVoxelSource.h"
 #include "dicom/DicomSeriesWriter.h"
 #include "tests/support/PacsPeer.h"
 #include "tests/support/TempDir.h"
@@ -36,7 +36,7 @@
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
 #include "ui/ToolsPanel.h"
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "ui/TransferFunctionEditor.h"
 #include "ui/VolumeView.h"
 

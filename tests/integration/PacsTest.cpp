@@ -11,8 +11,8 @@
 #include <fstream>
 #include <thread>
 
-#include "core/Error.h"
-#include "core/PhantomVoxelSource.h"
+#include "core/base/Error.h"
+#include "core/volume/PhantomVoxelSource.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/DicomSeriesWriter.h"
 #include "dicom/PacsClient.h"

@@ -12,14 +12,14 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/ImageWriter.h"
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
-#include "core/PhantomVoxelSource.h"
-#include "core/VoxelSourceFactory.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/image/ImageWriter.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "core/volume/VoxelSourceFactory.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/GpuRayCaster.h"
 #include "tests/support/TempDir.h"

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/CpuRayCaster.h"
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/reference/CpuRayCaster.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/GpuRayCaster.h"
 #include "tests/support/MemoryVoxelSource.h"

@@ -7,14 +7,14 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/DisplayModel.h"
-#include "core/Error.h"
-#include "core/ImageWriter.h"
-#include "core/LightFieldSimulator.h"
-#include "core/OctreeBuilder.h"
-#include "core/PhantomVoxelSource.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/camera/DisplayModel.h"
+#include "core/base/Error.h"
+#include "core/image/ImageWriter.h"
+#include "core/image/LightFieldSimulator.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/volume/PhantomVoxelSource.h"
 #include "render/EglOffscreenContext.h"
 #include "render/LightFieldRenderer.h"
 #include "tests/support/ImageCompare.h"

@@ -6,14 +6,14 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/BrickCells.h"
-#include "core/Error.h"
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
-#include "core/OctreeSpace.h"
-#include "core/PhantomVoxelSource.h"
-#include "core/SpatialIndex.h"
-#include "core/SpatialIndexTraversal.h"
+#include "core/streaming/BrickCells.h"
+#include "core/base/Error.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/streaming/OctreeSpace.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "core/streaming/SpatialIndex.h"
+#include "core/streaming/SpatialIndexTraversal.h"
 #include "render/ComputeProgram.h"
 #include "render/EglOffscreenContext.h"
 #include "render/ShaderLibrary.h"
@@ -129,11 +129,11 @@ TEST(ShaderTraversal, GpuWalksTheIndexExactlyAsTheCppReference) {
     EXPECT_EQ(differing, 0u);
 }
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/CpuRayCaster.h"
-#include "core/ImageWriter.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/reference/CpuRayCaster.h"
+#include "core/image/ImageWriter.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/GpuRayCaster.h"
 
 namespace {

@@ -8,12 +8,12 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/ImageWriter.h"
-#include "core/OctreeBuilder.h"
-#include "core/PhantomVoxelSource.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/image/ImageWriter.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "core/streaming/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/GpuRayCaster.h"
 #include "tests/support/ImageCompare.h"

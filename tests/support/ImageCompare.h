@@ -3,7 +3,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/CpuRayCaster.h"
+#include "core/reference/CpuRayCaster.h"
 
 namespace hvx::test {
 

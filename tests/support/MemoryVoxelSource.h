@@ -3,7 +3,7 @@
 #include <random>
 #include <vector>
 
-#include "core/VoxelSource.h"
+#include "core/volume/VoxelSource.h"
 #include "tests/support/ReferenceOctree.h"
 
 namespace hvx::test {

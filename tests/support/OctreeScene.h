@@ -5,13 +5,13 @@
 
 #include <glm/vec3.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/JobContext.h"
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
-#include "core/VoxelSource.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/base/JobContext.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/volume/VoxelSource.h"
+#include "core/streaming/WorkingSet.h"
 #include "tests/support/TempDir.h"
 
 namespace hvx::test {

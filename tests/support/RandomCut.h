@@ -3,7 +3,7 @@
 #include <random>
 #include <vector>
 
-#include "core/OctreeReader.h"
+#include "core/octree/OctreeReader.h"
 
 namespace hvx::test {
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/OctreeReader.h"
+#include "core/octree/OctreeReader.h"
 
 namespace hvx::test {
 

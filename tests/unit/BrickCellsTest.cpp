@@ -2,9 +2,9 @@
 
 #include <cstring>
 
-#include "core/BrickCells.h"
-#include "core/Error.h"
-#include "core/TransferFunction.h"
+#include "core/streaming/BrickCells.h"
+#include "core/base/Error.h"
+#include "core/appearance/TransferFunction.h"
 
 using namespace hvx;
 

@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
-#include "core/OctreeSummary.h"
-#include "core/PhantomVoxelSource.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/octree/OctreeSummary.h"
+#include "core/volume/PhantomVoxelSource.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;

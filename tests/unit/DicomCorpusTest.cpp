@@ -2,7 +2,7 @@
 
 #include <fstream>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/DicomScanner.h"
 #include "dicom/DicomSeriesSource.h"

@@ -2,7 +2,7 @@
 
 #include <fstream>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "dicom/DicomFileProbe.h"
 #include "tests/support/TempDir.h"
 

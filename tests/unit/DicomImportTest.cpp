@@ -4,8 +4,8 @@
 #include <glm/matrix.hpp>
 #include <random>
 
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
 #include "dicom/DicomScanner.h"
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/DicomSeriesWriter.h"

@@ -7,9 +7,9 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
-#include "core/DisplayModel.h"
-#include "core/Error.h"
-#include "core/QuiltLayout.h"
+#include "core/camera/DisplayModel.h"
+#include "core/base/Error.h"
+#include "core/image/QuiltLayout.h"
 
 using namespace hvx;
 
@@ -168,8 +168,8 @@ TEST(DisplayModel, BadProfilesAndImpossibleSizesGiveClearErrors) {
     EXPECT_THROW(d.views({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 1.0, 0, 0, -1.0), core::Error) << "negative scale";
 }
 
-#include "core/DviPacker.h"
-#include "core/StereoComposer.h"
+#include "core/image/DviPacker.h"
+#include "core/image/StereoComposer.h"
 
 namespace {
 core::RenderImage flat(int w, int h, glm::vec4 c) {
@@ -220,7 +220,7 @@ TEST(DisplayModel, DviLayoutPacksSixteenProjectorsPerFrameWithTheirIdsInTheHeade
     EXPECT_THROW(core::DviPacker::pack(projectors), core::Error);
 }
 
-#include "core/ProjectorCorrection.h"
+#include "core/image/ProjectorCorrection.h"
 
 namespace {
 std::string grid(float dx, float dy) {

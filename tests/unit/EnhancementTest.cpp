@@ -2,12 +2,12 @@
 // compares the shader against it): on volumes whose gradient is known exactly.
 #include <gtest/gtest.h>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/CpuRayCaster.h"
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/reference/CpuRayCaster.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/streaming/WorkingSet.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/TempDir.h"
 

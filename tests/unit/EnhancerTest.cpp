@@ -1,11 +1,11 @@
-// The illustrative enhancers (core/shared/Enhancers.glsl) against the thesis formulas, worked by
+// The illustrative enhancers (core/appearance/Enhancers.glsl) against the thesis formulas, worked by
 // hand for chosen samples; the tool parameters' validation and JSON round trip.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/Enhancers.h"
-#include "core/Error.h"
+#include "core/appearance/Enhancers.h"
+#include "core/base/Error.h"
 
 using namespace hvx;
 using namespace hvx::core::glsl;

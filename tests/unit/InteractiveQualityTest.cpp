@@ -2,8 +2,8 @@
 // frame time from measured frames; full quality as soon as the camera stops.
 #include <gtest/gtest.h>
 
-#include "core/InteractiveQuality.h"
-#include "core/View.h"
+#include "core/camera/InteractiveQuality.h"
+#include "core/camera/View.h"
 
 using namespace hvx;
 

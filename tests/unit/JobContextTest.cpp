@@ -2,8 +2,8 @@
 
 #include <thread>
 
-#include "core/Error.h"
-#include "core/JobContext.h"
+#include "core/base/Error.h"
+#include "core/base/JobContext.h"
 
 using namespace hvx::core;
 

@@ -2,9 +2,9 @@
 
 #include <fstream>
 
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
-#include "core/PhantomVoxelSource.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/volume/PhantomVoxelSource.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;

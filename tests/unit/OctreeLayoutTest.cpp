@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "core/OctreeLayout.h"
+#include "core/octree/OctreeLayout.h"
 
 using hvx::core::OctreeLayout;
 namespace hvo = hvx::core::hvo;

@@ -1,8 +1,8 @@
 #include <gtest/gtest.h>
 
-#include "core/OctreeBuilder.h"
-#include "core/OctreeReader.h"
-#include "core/PhantomVoxelSource.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/volume/PhantomVoxelSource.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/ReferenceOctree.h"
 #include "tests/support/TempDir.h"

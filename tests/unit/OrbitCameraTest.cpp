@@ -5,9 +5,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/Error.h"
-#include "core/OrbitCamera.h"
-#include "core/TransferFunctionSpec.h"
+#include "core/base/Error.h"
+#include "core/camera/OrbitCamera.h"
+#include "core/appearance/TransferFunctionSpec.h"
 
 using namespace hvx;
 

@@ -6,8 +6,8 @@
 
 #include <glm/mat4x4.hpp>
 
-#include "core/OctreeBuilder.h"
-#include "core/SliceSampler.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/reference/SliceSampler.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/TempDir.h"
 
@@ -102,7 +102,7 @@ TEST(SliceSampler, CoarsePixelsReadACoarseLevelThatAveragesTheSameValues) {
     EXPECT_NEAR(v, grid.expected(p), 10000.0 * 0.5 + 100) << "within half a coarse slice";
 }
 
-#include "core/VolumeHistogram.h"
+#include "core/reference/VolumeHistogram.h"
 
 TEST(VolumeHistogram, CountsEveryVoxelOfTheChosenLevelOnce) {
     Grid grid;  // values i + 100 j + 10000 k over 50 x 40 x 30 voxels
@@ -120,7 +120,7 @@ TEST(VolumeHistogram, CountsEveryVoxelOfTheChosenLevelOnce) {
     EXPECT_EQ(total, 25u * 20u * 15u) << "level 1 has half the voxels per axis";
 }
 
-#include "core/SubsampledVoxelSource.h"
+#include "core/volume/SubsampledVoxelSource.h"
 
 TEST(SubsampledVoxelSource, KeepsEveryFactorthVoxelInPlace) {
     core::VolumeGeometry g;

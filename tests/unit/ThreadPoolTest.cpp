@@ -3,7 +3,7 @@
 #include <atomic>
 #include <vector>
 
-#include "core/ThreadPool.h"
+#include "core/base/ThreadPool.h"
 
 using hvx::core::ThreadPool;
 

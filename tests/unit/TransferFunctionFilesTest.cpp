@@ -7,7 +7,7 @@
 
 #include <fstream>
 
-#include "core/Error.h"
+#include "core/base/Error.h"
 #include "tests/support/TempDir.h"
 #include "ui/TransferFunctionFiles.h"
 

@@ -2,7 +2,7 @@
 
 #include <random>
 
-#include "core/TransferFunction.h"
+#include "core/appearance/TransferFunction.h"
 
 using namespace hvx;
 

@@ -3,11 +3,11 @@
 #include <cstring>
 #include <fstream>
 
-#include "core/Error.h"
-#include "core/NrrdWriter.h"
-#include "core/PhantomVoxelSource.h"
-#include "core/RawVoxelSource.h"
-#include "core/VoxelSourceFactory.h"
+#include "core/base/Error.h"
+#include "core/volume/NrrdWriter.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "core/volume/RawVoxelSource.h"
+#include "core/volume/VoxelSourceFactory.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;

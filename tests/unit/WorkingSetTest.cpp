@@ -8,13 +8,13 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/BrickCache.h"
-#include "core/BrickLoader.h"
-#include "core/CpuRayCaster.h"
-#include "core/OctreeBuilder.h"
-#include "core/PhantomVoxelSource.h"
-#include "core/SpatialIndexTraversal.h"
-#include "core/WorkingSet.h"
+#include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickLoader.h"
+#include "core/reference/CpuRayCaster.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "core/streaming/SpatialIndexTraversal.h"
+#include "core/streaming/WorkingSet.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/RandomCut.h"
 #include "tests/support/TempDir.h"

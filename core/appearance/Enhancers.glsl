@@ -1,0 +1,230 @@
+// Illustrative "enhancers" (thesis §3.2.2 and ch. 6): per-sample functions chained before
+// shading and compositing, written once in the subset of GLSL that C++ also compiles (through
+// GLM and the macros of core/appearance/Enhancers.h). The shader compiles only the tools a frame uses
+// (static variants, HVX_TOOL_* defines); the CPU reference calls the same functions.
+//
+// Conventions: world space is patient LPS mm; v is the unit view direction (eye -> sample);
+// g is the world gradient (stored units per mm) and gn its strength in [0, 1] (the value change
+// per finest voxel as a fraction of the transfer function's range, 10% = 1, as for boundary
+// enhancement). HVX_FN prefixes functions (inline in C++, empty in GLSL).
+
+// Thesis Eq. 6.2 is GLSL's smoothstep(a, b, t); written out so both languages agree exactly.
+HVX_FN float hvxSmooth(float a, float b, float t) {
+    float x = clamp((t - a) / max(b - a, 1e-6f), 0.0f, 1.0f);
+    return x * x * (3.0f - 2.0f * x);
+}
+
+// One sample as the enhancers see and modify it.
+#define HVX_CLIP_BIT 1
+#define HVX_FOCAL_BIT 2
+#define HVX_CONTEXT_BIT 4
+#define HVX_BAND_BIT 8
+#define HVX_MIMDA_BIT 16
+
+struct HvxSample {
+    vec3 p;            // world position
+    vec3 v;            // unit view direction
+    vec3 g;            // world gradient
+    float gn;          // gradient strength [0, 1]
+    float s;           // stored value
+    vec3 c;            // colour (not premultiplied)
+    float a;           // opacity of this segment
+    float lit;         // 1: Phong shading; 0: ambient + emission (emphasis); < 0: already shaded
+    float importance;  // for MImDA
+};
+
+// ---- Clip plane with view-dependent context (thesis §6.4.1) ---------------------------------
+// plane: n (unit, xyz) and p (w): delta = n.x + p. On the positive side opacity is scaled by
+// mu = smoothstep(1 - max(0, -n.v), fl, fh): a cut-away seen face-on, context when oblique.
+// In the slab -thickness < delta < 0 opacity and shading blend to full opacity and
+// ambient + emission at the plane.
+HVX_FN float hvxClipMu(vec4 plane, vec3 v, float fl, float fh) {
+    return hvxSmooth(fl, fh, 1.0f - max(0.0f, -dot(vec3(plane), v)));
+}
+
+HVX_FN void hvxClip(HVX_INOUT(HvxSample) x, vec4 plane, float thickness, float fl, float fh) {
+    float delta = dot(vec3(plane), x.p) + plane.w;
+    if (delta > 0.0f) {
+        x.a *= hvxClipMu(plane, x.v, fl, fh);
+    } else if (thickness > 0.0f && delta > -thickness) {
+        float w = 1.0f + delta / thickness;  // 0 at -thickness, 1 at the plane
+        x.a = mix(x.a, 1.0f, w);
+        x.lit = min(x.lit, 1.0f - w);
+    }
+}
+
+// ---- Context-preserving focal probe (thesis §6.3, Eqs 6.6-6.16) -----------------------------
+// The pq-norm of the probe-local position (Eqs 6.6-6.7): p = q = 2 sphere, p = 2, q = 4
+// cylinder, p = q = 4 rounded cube.
+HVX_FN float hvxPqNorm(vec3 local, float p, float q) {
+    float xy = pow(pow(abs(local.x), p) + pow(abs(local.y), p), 1.0f / p);
+    return pow(pow(xy, q) + pow(abs(local.z), q), 1.0f / q);
+}
+
+// Eq. 6.9
+HVX_FN float hvxGBeta(float t, float beta) { return t / (exp(beta * (1.0f - t)) + t); }
+
+// Eq. 6.8: 1 inside rho, falling off to the probe surface, 0 outside.
+HVX_FN float hvxFocusWeight(float norm, float rho, float beta) {
+    if (norm <= rho) return 1.0f;
+    if (norm > 1.0f) return 0.0f;
+    return 1.0f - hvxGBeta((norm - rho) / (1.0f - rho), beta);
+}
+
+// Eq. 6.16: h(theta) for the angle between the eye->probe-centre direction and the ray,
+// 0 inside the focus cone (phiFocus), rising to 1 at the probe's silhouette cone (phiProbe).
+HVX_FN float hvxContextAngle(float cosTheta, float cosFocus, float cosProbe) {
+    if (cosTheta >= cosFocus) return 0.0f;
+    if (cosTheta <= cosProbe) return 1.0f;
+    return 1.0f - (cosTheta - cosFocus) / (cosProbe - cosFocus);
+}
+
+// Focus and context styles blended by distance (Eqs 6.10-6.15). lambda: the Phong factor of
+// the sample (Eq. 6.5); relief: r_i of Eq. 6.14; hTheta: Eq. 6.16 for this ray.
+HVX_FN void hvxFocalProbe(HVX_INOUT(HvxSample) x, float norm, float rho, float beta, float gl, float gh, float sl,
+                          float sh, float lambda, float relief, float hTheta) {
+    float w = hvxSmooth(gl, gh, x.gn);                                     // Eq. 6.1
+    float gl2 = dot(x.g, x.g);
+    float facing = gl2 > 0.0f ? abs(dot(x.g, x.v)) / sqrt(gl2) : 1.0f;
+    float si = w * hvxSmooth(sl, sh, 1.0f - facing);                       // Eq. 6.11
+    vec3 cFocus = (1.0f - si) * relief * x.c;                              // Eq. 6.12
+    float aFocus = clamp(relief * x.a, 0.0f, 1.0f);
+    vec3 cContext = lambda * x.c;                                          // Eq. 6.15
+    float aContext = clamp(hTheta * si * lambda * x.a, 0.0f, 1.0f);
+    float d = hvxFocusWeight(norm, rho, beta);
+    x.c = d * cFocus + (1.0f - d) * cContext;                              // Eq. 6.10
+    x.a = d * aFocus + (1.0f - d) * aContext;
+    x.lit = -1.0f;  // the styles carry their own lighting
+}
+
+// Eq. 6.14 with Eq. 6.13: relief shading from the light L, the gradient direction and a
+// smoothed normal.
+HVX_FN float hvxRelief(vec3 L, vec3 gDir, vec3 nSmooth, float ka, float kd, float toon) {
+    vec3 Lstar = L - nSmooth * dot(nSmooth, L);
+    return ka + kd * (dot(L, gDir) + toon * clamp(dot(Lstar, gDir), 0.0f, 1.0f));
+}
+
+// ---- Context-preserving probe (thesis §6.4.2, Eqs 6.17-6.18) --------------------------------
+// A sphere (centre, radius) with a tool axis. omegaD: 1 on the plane through the centre facing
+// the viewer, 0 at one radius from it; omegaA: 1 when the axis is aligned with the view.
+HVX_FN void hvxContextProbe(HVX_INOUT(HvxSample) x, vec3 centre, float radius, vec3 axis, float gl, float gh,
+                            float al, float ah) {
+    vec3 r = x.p - centre;
+    if (dot(r, r) >= radius * radius) return;
+    float along = dot(r, x.v);  // < 0 in front of the centre plane
+    float omegaD = max(0.0f, 1.0f - (along / radius) * (along / radius));
+    float omegaA = hvxSmooth(al, ah, abs(dot(axis, x.v)));
+    float gl2 = dot(x.g, x.g);
+    float facing = gl2 > 0.0f ? abs(dot(x.g, x.v)) / sqrt(gl2) : 1.0f;
+    float f = 1.0f - facing;
+    float eta = omegaA * hvxSmooth(gl, gh, x.importance * x.gn) * f * f * f * f;
+    float muA = along < 0.0f ? mix(0.0f, eta, omegaD) : mix(eta, 1.0f, 1.0f - omegaD);   // Eq. 6.17
+    float muI = along < 0.0f ? 1.0f - eta : mix(1.0f - eta, 1.0f, 1.0f - omegaD);         // Eq. 6.18
+    x.a *= muA;
+    x.c *= muI;
+}
+
+// ---- Band picker (thesis §6.4.3) -------------------------------------------------------------
+// A trapezoid band b0 <= b1 <= b2 <= b3 (stored values): importance is its membership; outside
+// the band opacity fades as the view aligns with the tool axis (only the band when looking
+// straight at it, context at an angle).
+HVX_FN float hvxBand(vec4 band, float s) {
+    if (s < band.x || s > band.w) return 0.0f;
+    if (s < band.y) return band.y > band.x ? (s - band.x) / (band.y - band.x) : 1.0f;
+    if (s > band.z) return band.w > band.z ? (band.w - s) / (band.w - band.z) : 1.0f;
+    return 1.0f;
+}
+
+HVX_FN void hvxBandPicker(HVX_INOUT(HvxSample) x, vec4 band, vec3 axis, float al, float ah) {
+    float inBand = hvxBand(band, x.s);
+    float omegaA = hvxSmooth(al, ah, abs(dot(axis, x.v)));
+    x.importance = inBand;
+    x.a *= mix(1.0f - omegaA, 1.0f, inBand);
+}
+
+// ---- MImDA compositing (thesis §3.2.2, Eqs 3.2-3.3) ------------------------------------------
+// accum: rgb premultiplied colour, a opacity; importanceMax is updated. gamma = 0 is plain DVR.
+HVX_FN void hvxMimda(HVX_INOUT(vec4) accum, HVX_INOUT(float) importanceMax, vec3 premultiplied, float a,
+                     float importance, float gamma) {
+    float delta = max(importance - importanceMax, 0.0f);
+    float b = 1.0f - gamma * delta;
+    vec3 c = vec3(accum) * b + (1.0f - b * accum.w) * premultiplied;
+    float alpha = accum.w * b + (1.0f - b * accum.w) * a;
+    accum = vec4(c, alpha);
+    importanceMax = max(importanceMax, importance);
+}
+
+// The revised early-termination test: the largest opacity still to come.
+HVX_FN float hvxMimdaFutureDelta(float alpha, float importanceMax, float gamma) {
+    return 1.0f - (1.0f - gamma * (1.0f - importanceMax)) * alpha;
+}
+
+// ---- The chain -------------------------------------------------------------------------------
+// Tool parameters as the shader's uniform block holds them (std140: vec4s only); filled from
+// core::ToolSet by both sides.
+struct HvxTools {
+    vec4 clipPlane;      // n (unit), offset
+    vec4 clipParams;     // thickness, fl, fh, -
+    vec4 focalCentre;    // xyz, p
+    vec4 focalRadii;     // xyz, q
+    vec4 focalRot0;      // the probe's axes (columns) in patient space
+    vec4 focalRot1;
+    vec4 focalRot2;
+    vec4 focalParams;    // beta, rho, g_l, g_h
+    vec4 focalStyle;     // s_l, s_h, toon a, -
+    vec4 contextCentre;  // xyz, radius
+    vec4 contextAxis;    // xyz (unit), -
+    vec4 contextParams;  // g_l, g_h, a_l, a_h
+    vec4 band;           // b0, b1, b2, b3
+    vec4 bandAxis;       // xyz (unit), MImDA gamma
+    vec4 bandParams;     // a_l, a_h, -, -
+    vec4 shading;        // k_a, k_d, k_s, shininess
+};
+
+// Eq. 6.16 for a ray: the angle between it and the eye -> probe-centre direction, against the
+// cones of the probe (its largest radius) and of its focus (rho times that).
+HVX_FN float hvxFocalAngle(HvxTools t, vec3 origin, vec3 dir) {
+    vec3 toC = vec3(t.focalCentre) - origin;
+    float dist = max(length(toC), 1e-6f);
+    float radius = max(t.focalRadii.x, max(t.focalRadii.y, t.focalRadii.z));
+    float sinProbe = min(1.0f, radius / dist);
+    float sinFocus = min(1.0f, t.focalParams.y * radius / dist);
+    return hvxContextAngle(dot(toC / dist, dir), sqrt(1.0f - sinFocus * sinFocus), sqrt(1.0f - sinProbe * sinProbe));
+}
+
+// The focal probe's pq-norm at a point (<= 1 inside the probe).
+HVX_FN float hvxFocalNorm(HvxTools t, vec3 p) {
+    mat3 rot = mat3(vec3(t.focalRot0), vec3(t.focalRot1), vec3(t.focalRot2));
+    vec3 local = (transpose(rot) * (p - vec3(t.focalCentre))) / vec3(t.focalRadii);
+    return hvxPqNorm(local, t.focalCentre.w, t.focalRadii.w);
+}
+
+// Applies the active tools in a fixed order: clip plane, focal probe, context probe, band
+// picker. HVX_TOOL_ON(bit) is a compile-time constant in the shader (a static variant) and a
+// test of hvxBits on the CPU. `entered` becomes true at the first sample inside the focal probe,
+// where the caller clears what was accumulated in front of it (thesis §6.3.5). The caller
+// computes the focal probe's norm at x.p once (hvxFocalNorm) and passes it; gSmooth (the smoothed
+// gradient of relief shading) matters only inside the probe: callers may pass g elsewhere.
+HVX_FN void hvxEnhance(HVX_INOUT(HvxSample) x, HvxTools t, int hvxBits, float focalNorm, vec3 gSmooth, float hTheta,
+                       HVX_INOUT(bool) entered) {
+    if (HVX_TOOL_ON(HVX_CLIP_BIT)) hvxClip(x, t.clipPlane, t.clipParams.x, t.clipParams.y, t.clipParams.z);
+    if (HVX_TOOL_ON(HVX_FOCAL_BIT)) {
+        float norm = focalNorm;
+        if (norm <= 1.0f) entered = true;
+        vec3 L = -x.v;  // headlight
+        float gl2 = dot(x.g, x.g);
+        vec3 gDir = gl2 > 0.0f ? x.g / sqrt(gl2) : L;
+        if (dot(gDir, L) < 0.0f) gDir = -gDir;
+        float sl2 = dot(gSmooth, gSmooth);
+        vec3 nSmooth = sl2 > 0.0f ? gSmooth / sqrt(sl2) : gDir;
+        float ndl = dot(gDir, L);
+        float lambda = t.shading.x + t.shading.y * ndl + t.shading.z * pow(ndl, t.shading.w);   // Eq. 6.5
+        float relief = hvxRelief(L, gDir, nSmooth, t.shading.x, t.shading.y, t.focalStyle.z);  // Eq. 6.14
+        hvxFocalProbe(x, norm, t.focalParams.y, t.focalParams.x, t.focalParams.z, t.focalParams.w, t.focalStyle.x,
+                      t.focalStyle.y, lambda, relief, hTheta);
+    }
+    if (HVX_TOOL_ON(HVX_CONTEXT_BIT))
+        hvxContextProbe(x, vec3(t.contextCentre), t.contextCentre.w, vec3(t.contextAxis), t.contextParams.x,
+                        t.contextParams.y, t.contextParams.z, t.contextParams.w);
+    if (HVX_TOOL_ON(HVX_BAND_BIT)) hvxBandPicker(x, t.band, vec3(t.bandAxis), t.bandParams.x, t.bandParams.y);
+}

@@ -1,0 +1,148 @@
+#include "core/appearance/TransferFunction.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/base/Error.h"
+
+namespace hvx::core {
+
+TransferFunction::TransferFunction(std::vector<Point> points, double valueMin, double valueMax, double referenceLength)
+    : points_(std::move(points)), min_(valueMin), max_(valueMax), refLength_(referenceLength) {
+    if (points_.empty()) throw Error("a transfer function needs at least one control point");
+    if (!(max_ > min_)) max_ = min_ + 1.0;
+    if (!(refLength_ > 0)) throw Error("transfer function reference length must be positive");
+    std::sort(points_.begin(), points_.end(), [](const Point& a, const Point& b) { return a.value < b.value; });
+    f_.resize(kEntries);
+    for (int i = 0; i < kEntries; ++i) {
+        const double v = min_ + (max_ - min_) * (i + 0.5) / kEntries;
+        glm::dvec4 c;
+        if (v <= points_.front().value) c = points_.front().rgba;
+        else if (v >= points_.back().value) c = points_.back().rgba;
+        else {
+            auto hi = std::upper_bound(points_.begin(), points_.end(), v,
+                                       [](double x, const Point& p) { return x < p.value; });
+            auto lo = hi - 1;
+            const double t = hi->value > lo->value ? (v - lo->value) / (hi->value - lo->value) : 0.0;
+            c = lo->rgba + (hi->rgba - lo->rgba) * t;
+        }
+        const double a = std::clamp(c.a, 0.0, 0.999999);
+        const double tau = -std::log(1.0 - a) / refLength_;
+        f_[std::size_t(i)] = glm::dvec4(glm::dvec3(c) * tau, tau);
+    }
+    F_.assign(kEntries + 1, glm::dvec4(0.0));
+    for (int i = 0; i < kEntries; ++i) F_[std::size_t(i) + 1] = F_[std::size_t(i)] + f_[std::size_t(i)];
+}
+
+double TransferFunction::position(double value) const {
+    return std::clamp((value - min_) / (max_ - min_) * kEntries, 0.0, double(kEntries));
+}
+
+glm::dvec4 TransferFunction::sample(double value) const {
+    const double p = std::clamp(position(value) - 0.5, 0.0, double(kEntries - 1));
+    const auto i = std::size_t(p);
+    const std::size_t j = std::min<std::size_t>(i + 1, kEntries - 1);
+    const double t = p - double(i);
+    return f_[i] * (1.0 - t) + f_[j] * t;
+}
+
+glm::dvec4 TransferFunction::integral(double value) const {
+    const double p = position(value);
+    const auto i = std::min<std::size_t>(std::size_t(p), kEntries - 1);
+    return F_[i] + f_[i] * (p - double(i));
+}
+
+glm::dvec4 TransferFunction::segment(double a, double b) const {
+    const double pa = position(a), pb = position(b);
+    if (std::abs(pb - pa) > 1e-3) return (integral(b) - integral(a)) / (pb - pa);
+    return sample(0.5 * (a + b));
+}
+
+double TransferFunction::segmentExtinction(double a, double b) const {
+    const double pa = position(a), pb = position(b);
+    auto integralW = [&](double p) {
+        const auto i = std::min<std::size_t>(std::size_t(p), kEntries - 1);
+        return F_[i].w + f_[i].w * (p - double(i));
+    };
+    if (std::abs(pb - pa) > 1e-3) return (integralW(pb) - integralW(pa)) / (pb - pa);
+    const double p = std::clamp(position(0.5 * (a + b)) - 0.5, 0.0, double(kEntries - 1));
+    const auto i = std::size_t(p);
+    const std::size_t j = std::min<std::size_t>(i + 1, kEntries - 1);
+    const double t = p - double(i);
+    return f_[i].w * (1.0 - t) + f_[j].w * t;
+}
+
+bool TransferFunction::isEmpty(double lo, double hi) const {
+    // Table bins touched by [lo, hi]; their summed extinction is zero only if all are.
+    const auto a = std::size_t(std::clamp(position(lo), 0.0, double(kEntries - 1)));
+    const auto b = std::size_t(std::clamp(position(hi), 0.0, double(kEntries - 1)));
+    return F_[b + 1].w - F_[a].w <= 0.0;
+}
+
+std::vector<std::string> TransferFunction::presetNames() {
+    return {"ct-bone", "ct-soft-tissue", "ct-angio", "ct-lung", "ct-muscle", "mr-default", "mr-angio", "mip-ramp"};
+}
+
+TransferFunction TransferFunction::preset(const std::string& name, double valueMin, double valueMax, double slope,
+                                          double intercept, double referenceLength) {
+    // Control points in physical units (HU for CT), converted to stored values.
+    std::vector<Point> pts;
+    auto add = [&](double physical, double r, double g, double b, double a) {
+        pts.push_back({(physical - intercept) / slope, {r, g, b, a}});
+    };
+    if (name == "ct-bone") {
+        add(-1024, 0, 0, 0, 0);
+        add(150, 0.55, 0.25, 0.15, 0);
+        add(300, 0.9, 0.8, 0.7, 0.35);
+        add(1500, 1.0, 1.0, 0.95, 0.9);
+    } else if (name == "ct-soft-tissue") {
+        add(-1024, 0, 0, 0, 0);
+        add(-200, 0.6, 0.3, 0.2, 0);
+        add(-50, 0.8, 0.55, 0.45, 0.04);
+        add(100, 0.9, 0.6, 0.5, 0.12);
+        add(250, 1.0, 0.85, 0.75, 0.5);
+        add(1500, 1.0, 1.0, 0.95, 0.9);
+    } else if (name == "ct-angio") {
+        add(-1024, 0, 0, 0, 0);
+        add(120, 0.7, 0.1, 0.05, 0);
+        add(220, 0.95, 0.3, 0.2, 0.45);
+        add(400, 1.0, 0.9, 0.8, 0.8);
+    } else if (name == "ct-lung") {
+        add(-1024, 0, 0, 0, 0);
+        add(-950, 0.3, 0.4, 0.7, 0);
+        add(-800, 0.6, 0.7, 0.9, 0.08);
+        add(-500, 0.9, 0.9, 1.0, 0.2);
+        add(-200, 0.9, 0.6, 0.5, 0);
+    } else if (name == "ct-muscle") {
+        add(-1024, 0, 0, 0, 0);
+        add(-155, 0.55, 0.25, 0.15, 0);
+        add(217, 0.88, 0.6, 0.29, 0.68);
+        add(420, 1.0, 0.94, 0.95, 0.83);
+        add(1500, 0.83, 0.66, 1.0, 0.8);
+    } else if (name == "mr-angio") {  // bright flow on a dark background (TOF / contrast MRA)
+        const double span = (valueMax - valueMin) * slope;
+        const double lo = valueMin * slope + intercept;
+        add(lo, 0, 0, 0, 0);
+        add(lo + 0.3 * span, 0.6, 0.1, 0.05, 0);
+        add(lo + 0.5 * span, 0.95, 0.35, 0.25, 0.5);
+        add(lo + span, 1, 0.95, 0.9, 0.9);
+    } else if (name == "mr-default") {
+        const double span = (valueMax - valueMin) * slope;
+        const double lo = valueMin * slope + intercept;
+        add(lo, 0, 0, 0, 0);
+        add(lo + 0.2 * span, 0.5, 0.35, 0.3, 0);
+        add(lo + 0.4 * span, 0.85, 0.7, 0.6, 0.15);
+        add(lo + 0.7 * span, 1.0, 0.95, 0.9, 0.6);
+        add(lo + span, 1, 1, 1, 0.9);
+    } else if (name == "mip-ramp") {
+        add(valueMin * slope + intercept, 0, 0, 0, 0);
+        add(valueMax * slope + intercept, 1, 1, 1, 1);
+    } else {
+        std::string known;
+        for (const auto& n : presetNames()) known += (known.empty() ? "" : ", ") + n;
+        throw Error("unknown transfer function preset '" + name + "' (" + known + ")");
+    }
+    return TransferFunction(std::move(pts), valueMin, valueMax, referenceLength);
+}
+
+}  // namespace hvx::core

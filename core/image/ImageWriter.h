@@ -1,0 +1,23 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/image/RenderImage.h"
+
+namespace hvx::core {
+
+/// Writes rendered frames: PNG (libpng, 8-bit, composited over black, sRGB-encoded) or OpenEXR
+/// (float RGBA premultiplied, plus Z = depth in mm). Written under a temporary name and
+/// renamed; throws core::Error naming the file.
+class ImageWriter {
+public:
+    /// Picks the format from the extension (.png or .exr).
+    static void write(const RenderImage& image, const std::string& path);
+    static void writePng(const RenderImage& image, const std::string& path);
+    static void writeExr(const RenderImage& image, const std::string& path);
+    /// One OpenEXR file with one part per image (light-field views), each part named.
+    static void writeExrParts(const std::vector<RenderImage>& images, const std::vector<std::string>& names,
+                              const std::string& path);
+};
+
+}  // namespace hvx::core

@@ -1,0 +1,149 @@
+#include "core/octree/OctreeReader.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include "core/octree/BrickCodec.h"
+#include "core/octree/OctreeLayout.h"
+
+namespace hvx::core {
+
+namespace {
+bool readFully(int fd, void* dst, std::size_t size, std::uint64_t offset) {
+    auto* p = static_cast<char*>(dst);
+    while (size > 0) {
+        const ssize_t n = ::pread(fd, p, size, off_t(offset));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        p += n;
+        size -= std::size_t(n);
+        offset += std::uint64_t(n);
+    }
+    return true;
+}
+}  // namespace
+
+std::unique_ptr<OctreeReader> OctreeReader::open(const std::string& path) {
+    std::unique_ptr<OctreeReader> r(new OctreeReader());
+    r->path_ = path;
+    r->fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+    if (r->fd_ < 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
+    r->load();
+    return r;
+}
+
+OctreeReader::~OctreeReader() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+void OctreeReader::load() {
+    const auto bad = [this](const std::string& why) { return Error(path_ + ": not a valid .hvo file (" + why + ")"); };
+    struct stat st {};
+    if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) throw bad("not a regular file");
+    if (std::uint64_t(st.st_size) < sizeof header_ || !readFully(fd_, &header_, sizeof header_, 0))
+        throw bad("file is shorter than the header");
+    auto& h = header_;
+    if (std::memcmp(h.magic, hvo::kMagic, sizeof h.magic) != 0) throw bad("wrong magic number");
+    if (h.version != hvo::kVersion) throw bad("unsupported version " + std::to_string(h.version));
+    if (BrickCodec::checksum(&h, offsetof(hvo::FileHeader, headerChecksum)) != h.headerChecksum)
+        throw bad("header checksum mismatch");
+    if (!h.complete) throw bad("the build that wrote it did not finish");
+    if (h.fileSize != std::uint64_t(st.st_size))
+        throw bad("file is " + std::to_string(st.st_size) + " bytes, header says " + std::to_string(h.fileSize) +
+                  " (truncated?)");
+    if (!isValidScalarType(h.scalarType)) throw bad("unknown scalar type");
+    if (h.codec > 2) throw bad("unknown codec");
+    if (h.brickSize < 1 || h.brickSize > 256 || h.border > 8) throw bad("brick size or border out of range");
+    const std::uint64_t tableBytes = h.nodeCount * sizeof(hvo::NodeRecord);
+    if (h.nodeCount == 0 || h.nodeCount > (1ull << 32) || h.nodeTableOffset < sizeof h ||
+        h.nodeTableOffset + tableBytes != h.fileSize)
+        throw bad("node table out of bounds");
+
+    VolumeGeometry& g = geometry_;
+    for (int a = 0; a < 3; ++a) {
+        g.dims[std::size_t(a)] = h.dims[a];
+        g.spacing[a] = h.spacing[a];
+        g.origin[a] = h.origin[a];
+        for (int r = 0; r < 3; ++r) g.direction[a][r] = h.direction[3 * a + r];
+    }
+    g.scalarType = ScalarType(h.scalarType);
+    g.rescaleSlope = h.rescaleSlope;
+    g.rescaleIntercept = h.rescaleIntercept;
+    g.valueMin = h.valueMin;
+    g.valueMax = h.valueMax;
+    g.modality.assign(h.modality, strnlen(h.modality, sizeof h.modality));
+    g.isLabel = (h.flags & hvo::FileLabels) != 0;
+    g.monochrome1 = (h.flags & hvo::FileMonochrome1) != 0;
+    try {
+        g.validate(path_);
+    } catch (const Error& e) {
+        throw bad(e.what());
+    }
+
+    // The structure must be exactly the one the dimensions imply: a hostile table cannot send
+    // traversal out of bounds or into cycles.
+    const OctreeLayout layout(g.dims, h.brickSize);
+    if (layout.levelCount() != int(h.levelCount) || layout.nodes().size() != h.nodeCount)
+        throw bad("node count does not match the volume dimensions");
+    nodes_.resize(std::size_t(h.nodeCount));
+    if (!readFully(fd_, nodes_.data(), std::size_t(tableBytes), h.nodeTableOffset)) throw bad("cannot read node table");
+    if (BrickCodec::checksum(nodes_.data(), std::size_t(tableBytes)) != h.nodeTableChecksum)
+        throw bad("node table checksum mismatch");
+    const auto& ref = layout.nodes();
+    for (std::size_t i = 0; i < nodes_.size(); ++i) {
+        const auto& n = nodes_[i];
+        const auto& e = ref[i];
+        if (n.parent != e.parent || n.firstChild != e.firstChild || n.childMask != e.childMask || n.x != e.x ||
+            n.y != e.y || n.z != e.z || n.level != e.level)
+            throw bad("node " + std::to_string(i) + " has an inconsistent structure");
+        if (!(n.flags & hvo::NodeEmpty) &&
+            (n.payloadOffset < sizeof h || n.payloadOffset + n.payloadSize > h.nodeTableOffset))
+            throw bad("payload of node " + std::to_string(i) + " is out of bounds");
+    }
+}
+
+Brick OctreeReader::readBrick(std::uint32_t node) const {
+    if (node >= nodes_.size()) throw Error(path_ + ": node " + std::to_string(node) + " does not exist");
+    const auto& n = nodes_[node];
+    Brick b;
+    b.node = node;
+    b.edge = brickEdge();
+    b.type = geometry_.scalarType;
+    const std::size_t samples = std::size_t(b.edge) * b.edge * b.edge;
+    const auto where = [&] {
+        return path_ + ": brick of node " + std::to_string(node) + " (level " + std::to_string(n.level) + ", " +
+               std::to_string(n.x) + "," + std::to_string(n.y) + "," + std::to_string(n.z) + ")";
+    };
+    if (n.flags & hvo::NodeEmpty) {
+        b.empty = true;
+        b.data.resize(samples * scalarSize(b.type));
+        dispatchScalar(b.type, [&](auto tag) {
+            using T = decltype(tag);
+            std::fill_n(reinterpret_cast<T*>(b.data.data()), samples, T(n.minValue));
+        });
+        return b;
+    }
+    b.lossy8 = (n.flags & hvo::NodeLossy8) != 0;
+    if (b.lossy8) {
+        b.type = ScalarType::UInt8;
+        b.quantMin = n.quantMin;
+        b.quantMax = n.quantMax;
+    }
+    std::vector<std::byte> packed(n.payloadSize);
+    if (!readFully(fd_, packed.data(), packed.size(), n.payloadOffset))
+        throw CorruptBrickError(where() + " cannot be read (" + std::strerror(errno) + ")", node);
+    if (BrickCodec::checksum(packed.data(), packed.size()) != n.checksum)
+        throw CorruptBrickError(where() + " is corrupt (checksum mismatch)", node);
+    b.data.resize(samples * scalarSize(b.type));
+    const std::size_t width = (header_.flags & hvo::FileShuffled) ? scalarSize(b.type) : 1;
+    if (!BrickCodec::decompress(hvo::Codec(header_.codec), packed.data(), packed.size(), b.data.data(), b.data.size(),
+                                width))
+        throw CorruptBrickError(where() + " is corrupt (does not decompress)", node);
+    return b;
+}
+
+}  // namespace hvx::core

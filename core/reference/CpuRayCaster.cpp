@@ -1,0 +1,371 @@
+#include "core/reference/CpuRayCaster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "core/streaming/BrickCells.h"
+#include "core/streaming/SpatialIndexTraversal.h"
+#include "core/base/ThreadPool.h"
+
+namespace hvx::core {
+
+CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index,
+                           const std::vector<std::shared_ptr<const std::vector<float>>>& slots,
+                           const TransferFunction& tf, RenderSettings settings)
+    : reader_(reader), index_(index), slots_(slots), tf_(tf), settings_(settings),
+      space_(OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount())) {
+    normalToWorld_ = glm::transpose(glm::inverse(glm::dmat3(space_.octreeToPatient)));
+    settings_.tools.validate();
+    packedTools = packTools(settings_.tools, {settings_.ambient, settings_.diffuse, settings_.specular, settings_.shininess});
+    // The cells of each brick the rays may skip (as render::GpuRayCaster), for the slots the
+    // index uses.
+    const bool dvr = settings_.mode == RenderSettings::Mode::Dvr;
+    if (settings_.skipEmptyCells && (dvr || settings_.mode == RenderSettings::Mode::Iso)) {
+        visibleCells_.assign(slots_.size(), ~std::uint64_t(0));
+        std::vector<std::uint32_t> used;
+        for (const auto& nd : index_.nodes)
+            if ((nd.y & SpatialIndex::kLeafBit) && nd.x != SpatialIndex::kNone && nd.x < slots_.size() && slots_[nd.x])
+                used.push_back(nd.x);
+        ThreadPool::shared().parallelFor(
+            used.size(),
+            [&](std::size_t a, std::size_t b) {
+                for (std::size_t i = a; i < b; ++i) {
+                    const auto cells =
+                        BrickCells::ofSamples(slots_[used[i]]->data(), reader_.brickSize(), reader_.border());
+                    visibleCells_[used[i]] = dvr ? cells.visible(tf_) : cells.straddling(settings_.isoValue);
+                }
+            },
+            16);
+    }
+}
+
+namespace {
+/// The cell (of BrickCells' 4×4×4) of a leaf with corner `lo` and cell size `cell` holding p.
+glm::ivec3 cellIndex(const glm::vec3& p, const glm::vec3& lo, float cell) {
+    return glm::clamp(glm::ivec3(glm::floor((p - lo) / cell)), glm::ivec3(0), glm::ivec3(3));
+}
+}  // namespace
+
+template <class Visitor>
+void CpuRayCaster::walk(const glm::dvec3& ow, const glm::dvec3& dw, Visitor&& visit) const {
+    const glm::dvec3 od = glm::dvec3(space_.patientToOctree * glm::dvec4(ow, 1.0));
+    const glm::dvec3 dd = glm::dmat3(space_.patientToOctree) * dw;
+    // Clip to the volume's box in octree space (t stays in world mm).
+    double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(dd[a]) < 1e-15) {
+            if (od[a] < 0.0 || od[a] > space_.extent[a]) return;
+            continue;
+        }
+        double ta = (0.0 - od[a]) / dd[a], tb = (space_.extent[a] - od[a]) / dd[a];
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+    }
+    if (!(t1 > t0)) return;
+    const glm::vec3 o(od), d(dd);
+    glm::vec3 inv;
+    for (int a = 0; a < 3; ++a) inv[a] = std::abs(d[a]) > 1e-20f ? 1.0f / d[a] : (d[a] >= 0 ? 1e30f : -1e30f);
+    // Step past a face by a thousandth of a level-0 voxel, far above float resolution.
+    const float nudge = float(1e-3 / space_.rootVoxels / std::max(1e-12, glm::length(dd)));
+    std::uint32_t n = 0;
+    glm::vec3 lo(0.0f), hi(1.0f);
+    glsl::hvxDescend(index_, n, lo, hi, o + (float(t0) + nudge) * d);
+    float tIn = float(t0);
+    for (int guard = 0; guard < 1 << 20; ++guard) {
+        float tExit = 0;
+        const int face = glsl::hvxExitFace(o, inv, lo, hi, tExit);
+        const float tOut = std::min(tExit, float(t1));
+        if (tOut > tIn && !visit(n, lo, tIn, tOut)) return;
+        if (tExit >= float(t1)) return;
+        if (!glsl::hvxNextLeaf(index_, o, d, face, tExit, nudge, n, lo, hi)) return;
+        tIn = std::max(tIn, tExit);
+    }
+}
+
+std::vector<CpuRayCaster::Visit> CpuRayCaster::traverse(const glm::dvec3& origin, const glm::dvec3& direction) const {
+    std::vector<Visit> out;
+    walk(origin, direction, [&](std::uint32_t n, const glm::vec3&, float a, float b) {
+        out.push_back({n, a, b});
+        return true;
+    });
+    return out;
+}
+
+CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafLo) const {
+    const auto& nd = index_.nodes[node];
+    const std::uint32_t depth = nd.y & 0xFFu;
+    Leaf L;
+    L.data = slots_[nd.x]->data();
+    L.scale = float(reader_.brickSize()) * float(1u << depth);
+    L.edge = int(reader_.brickEdge());
+    // The leaf's grid origin in level voxels (from its box, not from a sample: samples just
+    // outside the leaf read its border).
+    L.origin = glm::floor(leafLo * float(1u << depth) + 0.5f) * float(reader_.brickSize()) - float(reader_.border());
+    return L;
+}
+
+float CpuRayCaster::sample(const Leaf& L, const glm::vec3& p) const {
+    const int e = L.edge;
+    glm::vec3 u = p * L.scale - L.origin - 0.5f;
+    u = glm::clamp(u, glm::vec3(0.0f), glm::vec3(float(e - 1)));
+    const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(e - 2 > 0 ? e - 2 : 0));
+    const glm::vec3 f = u - glm::vec3(i0);
+    const float* data = L.data;
+    auto at = [&](int x, int y, int z) {
+        return data[(std::size_t(z) * std::size_t(e) + std::size_t(y)) * std::size_t(e) + std::size_t(x)];
+    };
+    const int x1 = std::min(i0.x + 1, e - 1), y1 = std::min(i0.y + 1, e - 1), z1 = std::min(i0.z + 1, e - 1);
+    const float c00 = at(i0.x, i0.y, i0.z) * (1 - f.x) + at(x1, i0.y, i0.z) * f.x;
+    const float c10 = at(i0.x, y1, i0.z) * (1 - f.x) + at(x1, y1, i0.z) * f.x;
+    const float c01 = at(i0.x, i0.y, z1) * (1 - f.x) + at(x1, i0.y, z1) * f.x;
+    const float c11 = at(i0.x, y1, z1) * (1 - f.x) + at(x1, y1, z1) * f.x;
+    return (c00 * (1 - f.y) + c10 * f.y) * (1 - f.z) + (c01 * (1 - f.y) + c11 * f.y) * f.z;
+}
+
+glm::vec3 CpuRayCaster::gradient(const Leaf& L, const glm::vec3& p, float spread) const {
+    const float h = spread / L.scale;
+    return glm::vec3(sample(L, p + glm::vec3(h, 0, 0)) - sample(L, p - glm::vec3(h, 0, 0)),
+                     sample(L, p + glm::vec3(0, h, 0)) - sample(L, p - glm::vec3(0, h, 0)),
+                     sample(L, p + glm::vec3(0, 0, h)) - sample(L, p - glm::vec3(0, 0, h))) /
+           (2.0f * h);
+}
+
+glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& depth,
+                             std::vector<std::uint32_t>* counts) const {
+    depth = std::numeric_limits<float>::infinity();
+    const glm::vec3 o(space_.patientToOctree * glm::dvec4(ow, 1.0));
+    const glm::vec3 d(glm::dmat3(space_.patientToOctree) * dw);
+    const float octPerMm = glm::length(d);
+    const bool skipping = !visibleCells_.empty();
+    glm::vec3 inv;
+    for (int a = 0; a < 3; ++a) inv[a] = std::abs(d[a]) > 1e-20f ? 1.0f / d[a] : (d[a] >= 0 ? 1e30f : -1e30f);
+    glm::dvec3 color(0.0);
+    double alpha = 0.0, extreme = settings_.mode == RenderSettings::Mode::MinIp ? 1e300 : -1e300, sum = 0.0;
+    double travelled = 0.0;
+    bool hit = false, havePrev = false;
+    float tPrev = 0.0f, sPrev = 0.0f;
+    const auto mode = settings_.mode;
+    Leaf L;  // the leaf being sampled
+    // Shades a sample and scales its opacity `a` by boundary enhancement and view-dependent
+    // transparency; the gradient is taken once for both.
+    const bool enhance = settings_.boundary > 0.0 || settings_.viewTransparency > 0.0;
+    const double strengthPerGradient = space_.minSpacing / (tf_.valueMax() - tf_.valueMin()) / kBoundaryGradientFraction;
+    auto shade = [&](const glm::vec3& p, const glm::dvec3& base, double& a) {
+        if (!settings_.shading && !enhance) return base;
+        glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(L, p));
+        const double len = glm::length(g);
+        const double facing = len < 1e-9 ? 0.0 : std::abs(glm::dot(g / len, -dw));  // headlight: L = V
+        if (enhance) {
+            const double strength = std::min(1.0, len * strengthPerGradient);
+            a *= (1.0 - settings_.boundary + settings_.boundary * strength) *
+                 (1.0 - settings_.viewTransparency * strength * facing);
+        }
+        if (!settings_.shading) return base;
+        if (len < 1e-9) return base * (settings_.ambient + settings_.diffuse);
+        return base * (settings_.ambient + settings_.diffuse * facing) +
+               glm::dvec3(settings_.specular * std::pow(facing, settings_.shininess));
+    };
+    // Tools: per-ray state (focal probe cone, entry) and the MImDA accumulator.
+    const int toolBits = settings_.mode == RenderSettings::Mode::Dvr ? settings_.tools.variantBits() : 0;
+    const float strengthPerGradientF = float(strengthPerGradient);
+    const float gamma = packedTools.bandAxis.w;
+    const float hTheta = (toolBits & HVX_FOCAL_BIT) ? glsl::hvxFocalAngle(packedTools, glm::vec3(ow), glm::vec3(dw)) : 1.0f;
+    bool enteredProbe = false;
+    glm::vec4 accum(0.0f);
+    float importanceMax = 0.0f;
+    float tStart = -1.0f;
+    walk(ow, dw, [&](std::uint32_t n, const glm::vec3& lo, float tIn, float tOut) {
+        if (tStart < 0.0f) tStart = tIn;
+        const auto& nd = index_.nodes[n];
+        if (nd.x == SpatialIndex::kNone) {  // empty leaf: nothing to accumulate
+            havePrev = false;
+            return true;
+        }
+        if (counts) ++(*counts)[n];
+        L = leaf(n, lo);
+        const std::uint64_t cellBits = visibleCells(nd.x);
+        const float cell = 0.25f / float(1u << (nd.y & 0xFFu));
+        float cellEnd = -1.0f;  // where the ray leaves the cell last looked at (t >= 0)
+        const std::uint32_t depthLevel = nd.y & 0xFFu;
+        const float voxel = 1.0f / (float(reader_.brickSize()) * float(1u << depthLevel));
+        const float dt = float(settings_.stepScale) * voxel / octPerMm;  // world mm
+        float t = tPrev + dt;
+        if (!havePrev) {
+            // After empty space, resume on the ray's own sampling grid and take the segment
+            // leading into this brick from its border samples, as a dense marcher would.
+            t = tStart + std::ceil((tIn - tStart) / dt) * dt;
+            tPrev = t - dt;
+            if (tPrev >= tStart) {  // not before the ray entered the volume
+                sPrev = sample(L, o + tPrev * d);
+                havePrev = mode == RenderSettings::Mode::Dvr || mode == RenderSettings::Mode::Iso;
+            }
+        }
+        for (; t <= tOut; t += dt) {
+            const glm::vec3 p = o + t * d;
+            const float s = sample(L, p);
+            if (mode == RenderSettings::Mode::Dvr) {
+                if (havePrev) {
+                    // Opacity first: most samples stop there, transparent.
+                    const double seg = t - tPrev;
+                    double a = 1.0 - std::exp(-tf_.segmentExtinction(sPrev, s) * seg);
+                    const glm::dvec4 f = a > 1e-6 ? tf_.segment(sPrev, s) : glm::dvec4(0.0);
+                    if (a > 1e-6 && toolBits) {
+                        // Enhancers (core/appearance/Enhancers.glsl), then shading and MImDA
+                        // compositing, in the shader's order and precision.
+                        const glm::vec3 gOct = gradient(L, p);
+                        const glm::vec3 g = glm::vec3(normalToWorld_ * glm::dvec3(gOct));
+                        glsl::HvxSample x;
+                        x.p = glm::vec3(ow + double(t) * dw);
+                        x.v = glm::vec3(dw);
+                        x.g = g;
+                        x.gn = std::min(1.0f, glm::length(g) * strengthPerGradientF);
+                        x.s = s;
+                        x.c = glm::vec3(glm::dvec3(f) / f.w);
+                        x.a = float(a);
+                        x.lit = 1.0f;
+                        x.importance = 1.0f - std::exp(-float(f.w) * float(tf_.referenceLength()));
+                        const float focalNorm = (toolBits & HVX_FOCAL_BIT) ? glsl::hvxFocalNorm(packedTools, x.p) : 2.0f;
+                        const glm::vec3 gSmooth =
+                            focalNorm <= 1.0f ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f))) : g;
+                        bool enteredNow = enteredProbe;
+                        glsl::hvxEnhance(x, packedTools, toolBits, focalNorm, gSmooth, hTheta, enteredNow);
+                        if (enteredNow && !enteredProbe) {  // clip what lies in front of the focal probe
+                            accum = glm::vec4(0.0f);
+                            importanceMax = 0.0f;
+                            enteredProbe = true;
+                        }
+                        glm::vec3 colour = x.c;
+                        if (x.lit >= 0.0f) {
+                            const float gl2 = glm::dot(x.g, x.g);
+                            const float ndl = gl2 > 0.0f ? std::abs(glm::dot(x.g, -x.v)) / std::sqrt(gl2) : 1.0f;
+                            const glm::vec3 phong = settings_.shading
+                                                        ? x.c * float(settings_.ambient + settings_.diffuse * ndl) +
+                                                              glm::vec3(float(settings_.specular) *
+                                                                        std::pow(ndl, float(settings_.shininess)))
+                                                        : x.c;
+                            colour = glm::mix(x.c * float(settings_.ambient + kEmphasisEmission), phong, x.lit);
+                        }
+                        glsl::hvxMimda(accum, importanceMax, colour * x.a, x.a, x.importance, gamma);
+                        if (!hit && accum.w > 0.02f) {
+                            hit = true;
+                            depth = t;
+                        }
+                        if (glsl::hvxMimdaFutureDelta(accum.w, importanceMax, gamma) < 1.0f - float(settings_.earlyTermination))
+                            return false;
+                    } else if (a > 1e-6) {
+                        const glm::dvec3 c = shade(p, glm::dvec3(f) / f.w, a);
+                        color += (1.0 - alpha) * a * c;
+                        alpha += (1.0 - alpha) * a;
+                        if (!hit && alpha > 0.02) {
+                            hit = true;
+                            depth = t;
+                        }
+                        if (alpha >= settings_.earlyTermination) return false;
+                    }
+                }
+            } else if (mode == RenderSettings::Mode::Iso) {
+                const double iso = settings_.isoValue;
+                if (havePrev && (sPrev < iso) != (s < iso)) {
+                    float a = tPrev, b = t, sa = sPrev;
+                    for (int k = 0; k < 8; ++k) {  // bisection to the crossing
+                        const float m = 0.5f * (a + b);
+                        const float sm = sample(L, o + m * d);
+                        if ((sa < iso) != (sm < iso))
+                            b = m;
+                        else {
+                            a = m;
+                            sa = sm;
+                        }
+                    }
+                    const float th = 0.5f * (a + b);
+                    const glm::dvec4 f = tf_.sample(iso);
+                    glm::dvec3 base = f.w > 0 ? glm::dvec3(f) / f.w : glm::dvec3(0.9);
+                    if (glm::length(base) < 0.1) base = glm::dvec3(0.9);
+                    double opaque = 1.0;
+                    color = shade(o + th * d, base, opaque);
+                    alpha = 1.0;
+                    depth = th;
+                    return false;
+                }
+            } else {
+                extreme = mode == RenderSettings::Mode::MinIp ? std::min(extreme, double(s)) : std::max(extreme, double(s));
+                if (havePrev) {
+                    sum += 0.5 * (s + sPrev) * (t - tPrev);
+                    travelled += t - tPrev;
+                }
+                if (!hit) {
+                    hit = true;
+                    depth = t;
+                }
+            }
+            tPrev = t;
+            sPrev = s;
+            havePrev = true;
+            // In a cell that cannot show, every sample and every segment between two of them
+            // adds nothing: land on the last sample before the cell's exit (it starts the next
+            // segment) and go on from there, as the shader does. The shader tests every sample
+            // (a branch would not spare a SIMD lane); here a cell is looked at once, when the
+            // ray enters it.
+            if (skipping && t >= cellEnd) {
+                const glm::ivec3 c = cellIndex(p, lo, cell);
+                const glm::vec3 cellLo = lo + glm::vec3(c) * cell;
+                const glm::vec3 far = glm::max((cellLo - o) * inv, (cellLo + cell - o) * inv);
+                cellEnd = std::min(std::min(far.x, far.y), far.z);
+                if (!((cellBits >> (c.x + 4 * c.y + 16 * c.z)) & 1u)) {
+                    const float k = std::ceil((cellEnd - t) / dt);  // t + k·dt: the first sample past the exit
+                    if (k >= 3.0f) {
+                        t += (k - 2.0f) * dt;  // the loop's step makes it t + (k - 1)·dt
+                        havePrev = false;
+                    }
+                }
+            }
+        }
+        return true;
+    });
+    if (mode == RenderSettings::Mode::Mip || mode == RenderSettings::Mode::MinIp || mode == RenderSettings::Mode::Average) {
+        if (!hit) return glm::vec4(0.0f);
+        const double v = mode == RenderSettings::Mode::Average ? (travelled > 0 ? sum / travelled : extreme) : extreme;
+        const float g = float(std::clamp((v - tf_.valueMin()) / (tf_.valueMax() - tf_.valueMin()), 0.0, 1.0));
+        return glm::vec4(g, g, g, 1.0f);
+    }
+    if (toolBits) return accum;
+    return glm::vec4(glm::vec3(color), float(alpha));
+}
+
+RenderImage CpuRayCaster::render(const View& view) const {
+    RenderImage img;
+    img.width = view.width;
+    img.height = view.height;
+    img.rgba.assign(std::size_t(view.width) * view.height, glm::vec4(0.0f));
+    img.depth.assign(img.rgba.size(), std::numeric_limits<float>::infinity());
+    std::vector<std::vector<std::uint32_t>> counts;
+    const bool count = settings_.countRays;
+    ThreadPool::shared().parallelFor(std::size_t(view.height), [&](std::size_t y0, std::size_t y1) {
+        std::vector<std::uint32_t> local(count ? index_.nodes.size() : 0, 0);
+        for (std::size_t y = y0; y < y1; ++y)
+            for (int x = 0; x < view.width; ++x) {
+                glm::dvec3 o, d;
+                view.ray(x, double(y), o, d);
+                const std::size_t i = y * std::size_t(view.width) + std::size_t(x);
+                img.rgba[i] = cast(o, d, img.depth[i], count ? &local : nullptr);
+            }
+        if (count) {
+            static std::mutex m;
+            std::lock_guard lock(m);
+            counts.push_back(std::move(local));
+        }
+    }, 8);
+    if (count) {
+        img.rayCounts.assign(index_.nodes.size(), 0);
+        for (const auto& c : counts)
+            for (std::size_t i = 0; i < c.size(); ++i) img.rayCounts[i] += c[i];
+    }
+    return img;
+}
+
+}  // namespace hvx::core

@@ -1,0 +1,76 @@
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/vec4.hpp>
+
+#include "core/appearance/Enhancers.h"
+#include "core/image/RenderImage.h"
+#include "core/reference/RenderSettings.h"
+#include "core/octree/OctreeReader.h"
+#include "core/appearance/ToolSet.h"
+#include "core/streaming/OctreeSpace.h"
+#include "core/streaming/SpatialIndex.h"
+#include "core/appearance/TransferFunction.h"
+#include "core/camera/View.h"
+
+namespace hvx::core {
+
+/// The CPU reference ray caster: walks the spatial index with the same traversal code as the
+/// shader (core/streaming/IndexTraversal.glsl), samples bricks trilinearly with a step equal to
+/// the leaf's voxel size and opacity corrected for it, composites front to back with the
+/// pre-integrated transfer function (thesis Eq. 3.1) and stops at 0.99 opacity. Like the
+/// shader, it steps over brick cells that cannot show (RenderSettings::skipEmptyCells); their
+/// ranges are taken once, on construction. It is the oracle of the GPU tests and the headless
+/// fallback of `holovox-cli render --cpu`.
+///
+/// Threading: render() spreads rows over ThreadPool::shared(); the object is immutable.
+class CpuRayCaster {
+public:
+    CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index,
+                 const std::vector<std::shared_ptr<const std::vector<float>>>& slots, const TransferFunction& tf,
+                 RenderSettings settings);
+    RenderImage render(const View& view) const;
+
+    /// One leaf visit of a ray: index node and world-space parameter interval.
+    struct Visit {
+        std::uint32_t node;
+        float tIn, tOut;
+    };
+    /// The leaves a world-space ray crosses, front to back (for tests and debugging).
+    std::vector<Visit> traverse(const glm::dvec3& origin, const glm::dvec3& direction) const;
+
+private:
+    glm::vec4 cast(const glm::dvec3& origin, const glm::dvec3& direction, float& depth,
+                   std::vector<std::uint32_t>* counts) const;
+    template <class Visitor>
+    void walk(const glm::dvec3& origin, const glm::dvec3& direction, Visitor&& visit) const;
+    /// What sampling a leaf's brick needs, worked out once per leaf a ray enters.
+    struct Leaf {
+        const float* data = nullptr;
+        float scale = 1.0f;  // octree units -> level voxels
+        glm::vec3 origin{};  // the brick's first sample, in level voxels, less the border
+        int edge = 0;
+    };
+    Leaf leaf(std::uint32_t node, const glm::vec3& leafLo) const;
+    float sample(const Leaf& leaf, const glm::vec3& p) const;
+    glm::vec3 gradient(const Leaf& leaf, const glm::vec3& p, float spread = 1.0f) const;
+
+    /// Which cells of a slot's brick may show, for the skipping above (all bits when off).
+    std::uint64_t visibleCells(std::uint32_t slot) const {
+        return slot < visibleCells_.size() ? visibleCells_[slot] : ~std::uint64_t(0);
+    }
+
+    const OctreeReader& reader_;
+    const SpatialIndex& index_;
+    const std::vector<std::shared_ptr<const std::vector<float>>>& slots_;
+    const TransferFunction& tf_;
+    RenderSettings settings_;
+    OctreeSpace space_;
+    glm::dmat3 normalToWorld_;
+    glsl::HvxTools packedTools;
+    std::vector<std::uint64_t> visibleCells_;  // per slot; empty when nothing is skipped
+};
+
+}  // namespace hvx::core

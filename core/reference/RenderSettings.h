@@ -1,0 +1,37 @@
+#pragma once
+#include "core/appearance/ToolSet.h"
+
+namespace hvx::core {
+
+/// How to render: the mode, shading and stepping shared by the CPU reference and the GPU.
+struct RenderSettings {
+    enum class Mode { Dvr, Iso, Mip, MinIp, Average };
+    Mode mode = Mode::Dvr;
+    double isoValue = 0.0;           ///< stored units
+    bool shading = true;             ///< Phong with central-difference gradients (DVR, iso)
+    double ambient = 0.35, diffuse = 0.65, specular = 0.25, shininess = 24.0;
+    /// Boundary enhancement (Rheingans & Ebert, as in Bruckner's illustrative DVR): opacity is
+    /// scaled by (1 - b + b·|∇f|^), so homogeneous regions fade and boundaries stay. 0 = off.
+    double boundary = 0.0;
+    /// View-dependent transparency: opacity is scaled by (1 - v·|∇f|^·|n·V|), so boundaries
+    /// facing the viewer turn transparent and silhouettes stay. 0 = off.
+    double viewTransparency = 0.0;
+    double earlyTermination = 0.99;
+    double stepScale = 1.0;          ///< step = stepScale × the local voxel size
+    bool countRays = false;          ///< fill RenderImage::rayCounts (visibility feedback)
+    /// Step over the cells of a brick (core::BrickCells) that cannot show: transparent under
+    /// the transfer function (DVR) or not holding the iso value. The image is the same either
+    /// way; off only for the tests that show it.
+    bool skipEmptyCells = true;
+    ToolSet tools;                   ///< illustrative tools (DVR only)
+};
+
+/// Emission added to ambient light where a tool emphasises tissue (the clip plane's slab).
+constexpr double kEmphasisEmission = 0.5;
+
+/// |∇f|^ above: the gradient's strength in [0, 1], the value change per finest voxel as a
+/// fraction of the transfer function's range, where 10% of the range per voxel counts as a full
+/// boundary.
+constexpr double kBoundaryGradientFraction = 0.1;
+
+}  // namespace hvx::core

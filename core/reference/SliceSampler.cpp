@@ -1,0 +1,99 @@
+#include "core/reference/SliceSampler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hvx::core {
+
+SlicePlane SlicePlane::standard(Orientation o, const glm::dvec3& centre, double pixelMm, int width, int height) {
+    SlicePlane p;
+    p.centre = centre;
+    p.pixelMm = pixelMm;
+    p.width = width;
+    p.height = height;
+    switch (o) {  // LPS: +x patient left, +y posterior, +z superior
+    case Orientation::Axial: p.right = {1, 0, 0}, p.down = {0, 1, 0}; break;
+    case Orientation::Coronal: p.right = {1, 0, 0}, p.down = {0, 0, -1}; break;
+    case Orientation::Sagittal: p.right = {0, 1, 0}, p.down = {0, 0, -1}; break;
+    }
+    return p;
+}
+
+std::array<const char*, 4> SlicePlane::edgeLabels(Orientation o) {
+    switch (o) {
+    case Orientation::Axial: return {"R", "L", "A", "P"};
+    case Orientation::Coronal: return {"R", "L", "S", "I"};
+    case Orientation::Sagittal: break;
+    }
+    return {"A", "P", "S", "I"};
+}
+
+SliceSampler::SliceSampler(const OctreeReader& reader, BrickCache& cache)
+    : reader_(reader), cache_(cache),
+      space_(OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount())),
+      layout_(reader.geometry().dims, reader.brickSize()) {}
+
+int SliceSampler::levelFor(double pixelMm) const {
+    int level = 0;
+    while (level + 1 < reader_.levelCount() && space_.minSpacing * std::pow(2.0, level + 1) <= pixelMm) ++level;
+    return level;
+}
+
+std::shared_ptr<const Brick> SliceSampler::brick(std::uint32_t node) const {
+    if (auto b = cache_.get(node)) return b;
+    auto b = std::make_shared<const Brick>(reader_.readBrick(node));
+    cache_.put(node, b);
+    return b;
+}
+
+SliceImage SliceSampler::sample(const SlicePlane& plane, int level) const {
+    SliceImage out;
+    out.width = plane.width;
+    out.height = plane.height;
+    out.level = level >= 0 ? std::min(level, reader_.levelCount() - 1) : levelFor(plane.pixelMm);
+    out.values.assign(std::size_t(plane.width) * std::size_t(plane.height), std::numeric_limits<float>::quiet_NaN());
+    const auto& dims = layout_.levelDims(out.level);
+    const auto& grid = layout_.levelNodes(out.level);
+    const double toLevel = space_.rootVoxels / double(1u << out.level);
+    const auto bs = double(reader_.brickSize());
+    const int edge = int(reader_.brickEdge());
+    const double border = reader_.border();
+    std::uint32_t lastNode = UINT32_MAX;
+    std::shared_ptr<const Brick> b;
+    for (int j = 0; j < plane.height; ++j)
+        for (int i = 0; i < plane.width; ++i) {
+            const glm::dvec3 p = plane.centre + (i + 0.5 - plane.width / 2.0) * plane.pixelMm * plane.right +
+                                 (j + 0.5 - plane.height / 2.0) * plane.pixelMm * plane.down;
+            const glm::dvec3 o(space_.patientToOctree * glm::dvec4(p, 1.0));
+            // Level voxel coordinates, integers at voxel centres.
+            const glm::dvec3 c = o * toLevel - 0.5;
+            bool inside = true;
+            for (int a = 0; a < 3; ++a) inside = inside && c[a] >= -0.5 && c[a] <= double(dims[std::size_t(a)]) - 0.5;
+            if (!inside) continue;
+            std::uint32_t n[3];
+            for (int a = 0; a < 3; ++a)
+                n[a] = std::min(grid[std::size_t(a)] - 1, std::uint32_t(std::max(0.0, std::floor(c[a] / bs))));
+            const std::uint32_t node = layout_.nodeId(out.level, n[0], n[1], n[2]);
+            if (node != lastNode) {
+                b = brick(node);
+                lastNode = node;
+            }
+            // Sample coordinates inside the brick (border included); the border holds the
+            // neighbours (replicated at the volume's edges), so trilinear never leaves it.
+            glm::dvec3 u;
+            for (int a = 0; a < 3; ++a) u[a] = std::clamp(c[a] - n[a] * bs + border, 0.0, double(edge - 1));
+            const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(edge - 2));
+            const glm::dvec3 f = u - glm::dvec3(i0);
+            double v = 0;
+            for (int k = 0; k < 8; ++k) {
+                const int dx = k & 1, dy = (k >> 1) & 1, dz = (k >> 2) & 1;
+                const double w = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
+                if (w > 0) v += w * b->value(std::uint32_t(i0.x + dx), std::uint32_t(i0.y + dy), std::uint32_t(i0.z + dz));
+            }
+            out.values[std::size_t(j) * std::size_t(plane.width) + std::size_t(i)] = float(v);
+        }
+    return out;
+}
+
+}  // namespace hvx::core

@@ -1,0 +1,61 @@
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/streaming/BrickCache.h"
+#include "core/octree/OctreeLayout.h"
+#include "core/octree/OctreeReader.h"
+#include "core/streaming/OctreeSpace.h"
+
+namespace hvx::core {
+
+/// A planar image through the volume in patient space (LPS mm): pixel (i, j) lies at
+/// centre + (i + 0.5 - width/2)·pixelMm·right + (j + 0.5 - height/2)·pixelMm·down.
+struct SlicePlane {
+    enum class Orientation { Axial, Coronal, Sagittal };
+    glm::dvec3 centre{0.0};
+    glm::dvec3 right{1, 0, 0}, down{0, 1, 0};  ///< unit vectors
+    double pixelMm = 1.0;
+    int width = 256, height = 256;
+
+    /// The standard radiological planes through `centre`: axial seen from the feet (patient
+    /// left on the image right, anterior up), coronal seen from the front (left on the right,
+    /// superior up), sagittal seen from the patient's left (anterior on the left, superior up).
+    static SlicePlane standard(Orientation o, const glm::dvec3& centre, double pixelMm, int width, int height);
+    /// Orientation letters at the image's left, right, top and bottom edges ("R", "L", "A", ...).
+    static std::array<const char*, 4> edgeLabels(Orientation o);
+};
+
+/// A sampled slice: stored values (NaN outside the volume) and the octree level read.
+struct SliceImage {
+    int width = 0, height = 0, level = 0;
+    std::vector<float> values;
+};
+
+/// Samples planes through an octree at the level whose voxels match the plane's pixels, reading
+/// bricks through a brick cache (synchronously: a slice touches few bricks). Trilinear inside
+/// each brick, border included.
+///
+/// Threading: one thread at a time per object (the cache itself is thread-safe).
+class SliceSampler {
+public:
+    SliceSampler(const OctreeReader& reader, BrickCache& cache);
+    /// The level whose voxel is closest to, and not larger than twice, `pixelMm`.
+    int levelFor(double pixelMm) const;
+    /// Samples `plane` at levelFor(plane.pixelMm), or at `level` when given (>= 0).
+    SliceImage sample(const SlicePlane& plane, int level = -1) const;
+    const OctreeSpace& space() const { return space_; }
+
+private:
+    std::shared_ptr<const Brick> brick(std::uint32_t node) const;
+
+    const OctreeReader& reader_;
+    BrickCache& cache_;
+    OctreeSpace space_;
+    OctreeLayout layout_;
+};
+
+}  // namespace hvx::core

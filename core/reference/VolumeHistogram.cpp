@@ -1,0 +1,59 @@
+#include "core/reference/VolumeHistogram.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/octree/OctreeLayout.h"
+
+namespace hvx::core {
+
+VolumeHistogram VolumeHistogram::compute(const OctreeReader& reader, int bins, std::size_t maxBricks) {
+    VolumeHistogram h;
+    const auto& g = reader.geometry();
+    h.valueMin = g.valueMin;
+    h.valueMax = g.valueMax > g.valueMin ? g.valueMax : g.valueMin + 1.0;
+    h.counts.assign(std::size_t(std::max(1, bins)), 0);
+    const OctreeLayout layout(g.dims, reader.brickSize());
+    int level = 0;
+    auto nodesAt = [&](int l) {
+        const auto& n = layout.levelNodes(l);
+        return std::size_t(n[0]) * n[1] * n[2];
+    };
+    while (level + 1 < layout.levelCount() && nodesAt(level) > maxBricks) ++level;
+    h.level = level;
+    const auto& dims = layout.levelDims(level);
+    const auto& grid = layout.levelNodes(level);
+    const std::uint32_t bs = reader.brickSize(), border = reader.border();
+    const double scale = double(h.counts.size()) / (h.valueMax - h.valueMin);
+    for (std::uint32_t z = 0; z < grid[2]; ++z)
+        for (std::uint32_t y = 0; y < grid[1]; ++y)
+            for (std::uint32_t x = 0; x < grid[0]; ++x) {
+                const Brick b = reader.readBrick(layout.nodeId(level, x, y, z));
+                // Interior voxels that lie inside the level's volume (the last bricks are partial).
+                const std::uint32_t nx = std::min(bs, dims[0] - x * bs), ny = std::min(bs, dims[1] - y * bs),
+                                    nz = std::min(bs, dims[2] - z * bs);
+                for (std::uint32_t k = 0; k < nz; ++k)
+                    for (std::uint32_t j = 0; j < ny; ++j)
+                        for (std::uint32_t i = 0; i < nx; ++i) {
+                            const double v = b.value(i + border, j + border, k + border);
+                            const auto bin = std::clamp(std::int64_t(std::floor((v - h.valueMin) * scale)), std::int64_t(0),
+                                                        std::int64_t(h.counts.size()) - 1);
+                            ++h.counts[std::size_t(bin)];
+                        }
+            }
+    return h;
+}
+
+std::pair<double, double> VolumeHistogram::bandAround(double value) const {
+    if (counts.empty()) return {value, value};
+    const double width = (valueMax - valueMin) / double(counts.size());
+    const int bin = std::clamp(int((value - valueMin) / width), 0, int(counts.size()) - 1);
+    const double floor = double(counts[std::size_t(bin)]) / 3.0;
+    int a = bin, b = bin;
+    const int limit = int(counts.size()) / 4;
+    while (a > 0 && bin - a < limit && double(counts[std::size_t(a - 1)]) >= floor) --a;
+    while (b + 1 < int(counts.size()) && b - bin < limit && double(counts[std::size_t(b + 1)]) >= floor) ++b;
+    return {valueMin + a * width, valueMin + (b + 1) * width};
+}
+
+}  // namespace hvx::core

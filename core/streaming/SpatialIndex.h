@@ -1,0 +1,45 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec4.hpp>
+
+namespace hvx::core {
+
+class OctreeReader;
+
+/// The current cut of the .hvo octree encoded for stackless ray casting (thesis §3.2.1): an
+/// octree whose leaves are the cut's nodes (with a brick slot, or empty), stored as one
+/// linearised array per attribute, with six neighbour links ("ropes") per node. The layout
+/// and the traversal step are defined once in core/streaming/IndexTraversal.glsl.
+///
+/// Threading: a value type; build on one thread, read from many.
+struct SpatialIndex {
+    std::vector<glm::uvec4> nodes;      ///< see IndexTraversal.glsl
+    std::vector<std::uint32_t> ropes;   ///< 6 per node
+    std::vector<glm::vec2> ranges;      ///< min, max of the node's values
+
+    static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+    static constexpr std::uint32_t kLeafBit = 0x100u;
+
+    /// Builds the index of a cut. `cut` lists .hvo node ids forming the leaves; `slotOf(id)`
+    /// gives each leaf's brick slot (kNone for an empty leaf). Regions outside the volume or not
+    /// covered by the cut become empty leaves.
+    template <class SlotOf>
+    static SpatialIndex build(const OctreeReader& reader, const std::vector<std::uint32_t>& cut, SlotOf slotOf);
+    /// Non-template core of build(): slots[i] belongs to cut[i].
+    static SpatialIndex build(const OctreeReader& reader, const std::vector<std::uint32_t>& cut,
+                              const std::vector<std::uint32_t>& slotIds);
+    std::size_t leafCount() const;
+};
+
+template <class SlotOf>
+SpatialIndex SpatialIndex::build(const OctreeReader& reader, const std::vector<std::uint32_t>& cut, SlotOf slotOf) {
+    std::vector<std::uint32_t> slotIds;  // not `slots`: a Qt macro where ui/ includes this header
+    slotIds.reserve(cut.size());
+    for (auto id : cut) slotIds.push_back(slotOf(id));
+    return build(reader, cut, slotIds);
+}
+
+}  // namespace hvx::core

@@ -1,0 +1,132 @@
+#include "core/volume/NrrdHeader.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "core/base/Error.h"
+
+namespace hvx::core {
+
+namespace {
+std::string trim(const std::string& s) {
+    const auto b = s.find_first_not_of(" \t\r");
+    const auto e = s.find_last_not_of(" \t\r");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
+
+std::vector<glm::dvec3> parseVectors(const std::string& text, const std::string& path) {
+    std::vector<glm::dvec3> out;
+    std::size_t pos = 0;
+    while ((pos = text.find('(', pos)) != std::string::npos) {
+        const auto end = text.find(')', pos);
+        if (end == std::string::npos) throw Error(path + ": malformed vector in NRRD header");
+        std::string inner = text.substr(pos + 1, end - pos - 1);
+        for (char& c : inner)
+            if (c == ',') c = ' ';
+        std::istringstream in(inner);
+        glm::dvec3 v;
+        if (!(in >> v.x >> v.y >> v.z)) throw Error(path + ": malformed vector in NRRD header");
+        out.push_back(v);
+        pos = end + 1;
+    }
+    return out;
+}
+}  // namespace
+
+NrrdHeader NrrdHeader::read(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open");
+    std::string line;
+    if (!std::getline(in, line) || line.rfind("NRRD000", 0) != 0) throw Error(path + ": not a NRRD file");
+    NrrdHeader h;
+    VolumeGeometry& g = h.geometry;
+    int dimension = 0;
+    bool sizes = false, ras = false;
+    std::vector<glm::dvec3> dirs;
+    while (std::getline(in, line)) {
+        if (trim(line).empty()) break;
+        if (line[0] == '#') continue;
+        const auto colon = line.find(':');
+        if (colon == std::string::npos) continue;
+        std::string key = trim(line.substr(0, colon));
+        std::string value = trim(line.substr(colon + 1 + (colon + 1 < line.size() && line[colon + 1] == '=')));
+        std::istringstream v(value);
+        if (key == "dimension") {
+            v >> dimension;
+            if (dimension != 3) throw Error(path + ": only 3-D single-component NRRD volumes are supported");
+        } else if (key == "sizes") {
+            sizes = bool(v >> g.dims[0] >> g.dims[1] >> g.dims[2]);
+        } else if (key == "type") {
+            if (value == "uchar" || value == "unsigned char" || value == "uint8" || value == "uint8_t")
+                g.scalarType = ScalarType::UInt8;
+            else if (value == "short" || value == "signed short" || value == "int16" || value == "int16_t" ||
+                     value == "short int" || value == "signed short int")
+                g.scalarType = ScalarType::Int16;
+            else if (value == "ushort" || value == "unsigned short" || value == "uint16" || value == "uint16_t" ||
+                     value == "unsigned short int")
+                g.scalarType = ScalarType::UInt16;
+            else if (value == "float")
+                g.scalarType = ScalarType::Float32;
+            else
+                throw Error(path + ": unsupported NRRD type '" + value + "'");
+        } else if (key == "encoding") {
+            h.encoding = value;
+        } else if (key == "endian") {
+            h.bigEndian = value == "big";
+        } else if (key == "space") {
+            ras = value == "right-anterior-superior" || value == "RAS";
+        } else if (key == "space directions") {
+            dirs = parseVectors(value, path);
+        } else if (key == "space origin") {
+            auto o = parseVectors(value, path);
+            if (o.size() == 1) g.origin = o[0];
+        } else if (key == "spacings") {
+            v >> g.spacing.x >> g.spacing.y >> g.spacing.z;
+        } else if (key == "data file" || key == "datafile") {
+            h.dataFile = value;
+        } else if (key == "modality") {
+            g.modality = value;
+        }
+    }
+    if (!sizes) throw Error(path + ": NRRD header has no sizes");
+    if (dirs.size() == 3) {
+        for (int a = 0; a < 3; ++a) {
+            const double len = std::sqrt(glm::dot(dirs[std::size_t(a)], dirs[std::size_t(a)]));
+            if (!(len > 0)) throw Error(path + ": NRRD space direction is zero");
+            g.spacing[a] = len;
+            g.direction[a] = dirs[std::size_t(a)] / len;
+        }
+    }
+    if (ras) {  // RAS -> LPS
+        g.origin.x = -g.origin.x;
+        g.origin.y = -g.origin.y;
+        for (int a = 0; a < 3; ++a) {
+            g.direction[a].x = -g.direction[a].x;
+            g.direction[a].y = -g.direction[a].y;
+        }
+    }
+    h.headerBytes = h.dataFile.empty() ? std::uint64_t(in.tellg()) : 0;
+    return h;
+}
+
+std::string NrrdHeader::format(const VolumeGeometry& g) {
+    std::ostringstream o;
+    o.precision(17);
+    const char* type = g.scalarType == ScalarType::UInt8    ? "uint8"
+                       : g.scalarType == ScalarType::Int16  ? "int16"
+                       : g.scalarType == ScalarType::UInt16 ? "uint16"
+                                                            : "float";
+    o << "NRRD0004\n# written by Holovox\ntype: " << type << "\ndimension: 3\nspace: left-posterior-superior\n"
+      << "sizes: " << g.dims[0] << ' ' << g.dims[1] << ' ' << g.dims[2] << "\nspace directions:";
+    for (int a = 0; a < 3; ++a) {
+        const glm::dvec3 d = g.direction[a] * g.spacing[a];
+        o << " (" << d.x << ',' << d.y << ',' << d.z << ')';
+    }
+    o << "\nkinds: domain domain domain\nendian: little\nencoding: raw\nspace origin: (" << g.origin.x << ','
+      << g.origin.y << ',' << g.origin.z << ")\nmodality:=" << g.modality << "\n\n";
+    return o.str();
+}
+
+}  // namespace hvx::core

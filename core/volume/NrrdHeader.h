@@ -1,0 +1,26 @@
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "core/volume/VolumeGeometry.h"
+
+namespace hvx::core {
+
+/// The parts of a NRRD header (teem's format) that place a volume in patient space: sizes,
+/// type, encoding, byte order, space, space directions and space origin. Used to write the
+/// phantom and to recover orientation that VTK's NRRD reader ignores.
+class NrrdHeader {
+public:
+    VolumeGeometry geometry;
+    std::string encoding = "raw";
+    bool bigEndian = false;
+    std::string dataFile;  ///< detached data file, empty when attached
+    std::uint64_t headerBytes = 0;  ///< bytes before attached data
+
+    /// Parses a .nrrd/.nhdr header; throws core::Error naming the file and the bad field.
+    static NrrdHeader read(const std::string& path);
+    /// Header text for an attached raw, little-endian LPS volume.
+    static std::string format(const VolumeGeometry& g);
+};
+
+}  // namespace hvx::core

@@ -1,0 +1,40 @@
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "core/volume/VoxelSource.h"
+
+namespace hvx::core {
+
+/// Reads a headerless raw voxel file (i fastest, then j, then k), as described on the command
+/// line: dimensions, scalar type, byte order and an optional header offset to skip.
+class RawVoxelSource final : public VoxelSource {
+public:
+    struct Options {
+        std::array<std::uint32_t, 3> dims{0, 0, 0};
+        ScalarType type = ScalarType::Int16;
+        bool bigEndian = false;
+        std::uint64_t headerBytes = 0;
+        glm::dvec3 spacing{1.0, 1.0, 1.0};
+        glm::dvec3 origin{0.0, 0.0, 0.0};  ///< LPS
+        glm::dmat3 direction{1.0};         ///< LPS direction cosines (columns)
+        std::string modality = "OT";
+    };
+    /// Opens the file and checks that its size matches the dimensions; throws core::Error.
+    RawVoxelSource(std::string path, const Options& options);
+    ~RawVoxelSource() override;
+    RawVoxelSource(const RawVoxelSource&) = delete;
+    RawVoxelSource& operator=(const RawVoxelSource&) = delete;
+
+    const VolumeGeometry& geometry() const override { return geometry_; }
+    void readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) override;
+    std::string describe() const override { return path_; }
+
+private:
+    std::string path_;
+    Options options_;
+    VolumeGeometry geometry_;
+    int fd_ = -1;
+};
+
+}  // namespace hvx::core

@@ -1,0 +1,32 @@
+#include "core/volume/VolumeGeometry.h"
+
+#include <cmath>
+
+#include "core/base/Error.h"
+
+namespace hvx::core {
+
+glm::dmat4 VolumeGeometry::indexToPatient() const {
+    glm::dmat4 m(1.0);
+    for (int c = 0; c < 3; ++c) {
+        for (int r = 0; r < 3; ++r) m[c][r] = direction[c][r] * spacing[c];
+    }
+    m[3] = glm::dvec4(origin, 1.0);
+    return m;
+}
+
+void VolumeGeometry::validate(const std::string& what) const {
+    for (int a = 0; a < 3; ++a) {
+        if (dims[a] == 0) throw Error(what + ": volume has a zero dimension");
+        if (dims[a] > 65535u * 16u) throw Error(what + ": dimension " + std::to_string(dims[a]) + " is too large");
+        if (!(spacing[a] > 0.0) || !std::isfinite(spacing[a]))
+            throw Error(what + ": voxel spacing must be positive and finite");
+        double len = std::sqrt(direction[a][0] * direction[a][0] + direction[a][1] * direction[a][1] +
+                               direction[a][2] * direction[a][2]);
+        if (std::abs(len - 1.0) > 1e-3) throw Error(what + ": direction cosines are not unit vectors");
+    }
+    if (!std::isfinite(rescaleSlope) || rescaleSlope == 0.0 || !std::isfinite(rescaleIntercept))
+        throw Error(what + ": invalid rescale slope/intercept");
+}
+
+}  // namespace hvx::core

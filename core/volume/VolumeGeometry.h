@@ -1,0 +1,43 @@
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include <glm/mat3x3.hpp>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/volume/ScalarType.h"
+
+namespace hvx::core {
+
+/// Everything needed to place a voxel grid in the patient and to turn stored values into
+/// physical ones. Patient space is DICOM LPS: +x towards the patient's left, +y posterior,
+/// +z superior. Stored value v maps to v * rescaleSlope + rescaleIntercept (HU for CT).
+struct VolumeGeometry {
+    std::array<std::uint32_t, 3> dims{0, 0, 0};   ///< voxels along i, j, k
+    glm::dvec3 spacing{1.0, 1.0, 1.0};            ///< mm between voxel centres along i, j, k
+    glm::dvec3 origin{0.0, 0.0, 0.0};             ///< LPS position (mm) of voxel (0,0,0)'s centre
+    glm::dmat3 direction{1.0};                    ///< columns: unit LPS directions of i, j, k
+    ScalarType scalarType = ScalarType::Int16;
+    double rescaleSlope = 1.0;
+    double rescaleIntercept = 0.0;
+    double valueMin = 0.0;  ///< smallest stored value in the volume (0 when unknown)
+    double valueMax = 0.0;  ///< largest stored value in the volume (0 when unknown)
+    std::string modality = "OT";  ///< DICOM modality code (CT, MR, ...), "OT" when unknown
+    bool isLabel = false;         ///< label map: values are classes, filtered by mode not mean
+    bool monochrome1 = false;     ///< DICOM MONOCHROME1: display with inverted grey scale
+
+    /// Number of voxels (as 64-bit, volumes may exceed 2^32 voxels).
+    std::uint64_t voxelCount() const {
+        return std::uint64_t(dims[0]) * dims[1] * dims[2];
+    }
+    /// Bytes of the uncompressed voxel data.
+    std::uint64_t byteSize() const { return voxelCount() * scalarSize(scalarType); }
+    /// 4×4 matrix mapping continuous voxel index (i, j, k, 1) to LPS millimetres.
+    glm::dmat4 indexToPatient() const;
+    /// Throws core::Error (prefixed by `what`) when dims, spacing or direction are unusable.
+    void validate(const std::string& what) const;
+};
+
+}  // namespace hvx::core

@@ -1,0 +1,71 @@
+#include "core/volume/VoxelSourceFactory.h"
+
+#include <filesystem>
+
+#include "core/base/Error.h"
+#include "core/volume/NrrdHeader.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "core/volume/VtkImageSource.h"
+
+namespace hvx::core {
+
+std::array<std::uint32_t, 3> VoxelSourceFactory::parseDims(const std::string& text) {
+    std::array<std::uint32_t, 3> d{};
+    std::size_t pos = 0;
+    for (int a = 0; a < 3; ++a) {
+        const std::size_t end = a < 2 ? text.find('x', pos) : text.size();
+        if (end == std::string::npos || end == pos) throw Error("size '" + text + "' is not of the form XxYxZ");
+        const std::string part = text.substr(pos, end - pos);
+        if (part.find_first_not_of("0123456789") != std::string::npos || part.size() > 7)
+            throw Error("size '" + text + "' is not of the form XxYxZ");
+        const unsigned long v = std::stoul(part);
+        if (v == 0 || v > (1u << 20)) throw Error("size '" + text + "' has a dimension out of range 1..1048576");
+        d[std::size_t(a)] = std::uint32_t(v);
+        pos = end + 1;
+    }
+    return d;
+}
+
+std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, const RawVoxelSource::Options& raw) {
+    if (input.rfind("phantom:", 0) == 0) {
+        std::string spec = input.substr(8);
+        std::uint64_t seed = 1;
+        const auto colon = spec.find(':');
+        if (colon != std::string::npos) {
+            const std::string s = spec.substr(colon + 1);
+            if (s.empty() || s.find_first_not_of("0123456789") != std::string::npos || s.size() > 18)
+                throw Error("phantom seed '" + s + "' is not a number");
+            seed = std::stoull(s);
+            spec = spec.substr(0, colon);
+        }
+        return std::make_unique<PhantomVoxelSource>(parseDims(spec), seed);
+    }
+    const std::filesystem::path p(input);
+    const std::string ext = p.extension().string();
+    if (ext == ".nrrd" || ext == ".nhdr") {
+        const NrrdHeader h = NrrdHeader::read(input);
+        if (h.encoding != "raw")
+            throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (use raw)");
+        RawVoxelSource::Options o;
+        o.dims = h.geometry.dims;
+        o.type = h.geometry.scalarType;
+        o.bigEndian = h.bigEndian && scalarSize(o.type) > 1;
+        o.headerBytes = h.headerBytes;
+        o.spacing = h.geometry.spacing;
+        o.origin = h.geometry.origin;
+        o.direction = h.geometry.direction;
+        o.modality = h.geometry.modality;
+        std::string data = input;
+        if (!h.dataFile.empty()) data = (p.parent_path() / h.dataFile).string();
+        return std::make_unique<RawVoxelSource>(data, o);
+    }
+    if (VtkImageSource::handles(input)) return std::make_unique<VtkImageSource>(input);
+    if (raw.dims[0] == 0) {
+        std::error_code ec;
+        if (!std::filesystem::exists(p, ec)) throw Error(input + ": no such file");
+        throw Error(input + ": unknown file type (raw files need --dims XxYxZ and --type)");
+    }
+    return std::make_unique<RawVoxelSource>(input, raw);
+}
+
+}  // namespace hvx::core

@@ -1,0 +1,23 @@
+#pragma once
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/volume/RawVoxelSource.h"
+#include "core/volume/VoxelSource.h"
+
+namespace hvx::core {
+
+/// Picks the VoxelSource for an input name: `phantom:XxYxZ[:seed]`, .raw (with RawOptions),
+/// .nrrd/.nhdr (raw encoding, streamed), or anything VtkImageSource reads.
+class VoxelSourceFactory {
+public:
+    /// Opens `input`; `raw` describes headerless files (dims must be set for .raw).
+    /// Throws core::Error naming the input.
+    static std::unique_ptr<VoxelSource> open(const std::string& input, const RawVoxelSource::Options& raw = {});
+    /// Parses "XxYxZ" (each 1..2^20); throws core::Error otherwise.
+    static std::array<std::uint32_t, 3> parseDims(const std::string& text);
+};
+
+}  // namespace hvx::core

@@ -1,0 +1,199 @@
+#include "core/volume/VtkImageSource.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkImageReader2.h>
+#include <vtkMatrix3x3.h>
+#include <vtkMatrix4x4.h>
+#include <vtkMetaImageReader.h>
+#include <vtkNIFTIImageHeader.h>
+#include <vtkNIFTIImageReader.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStructuredPointsReader.h>
+#include <vtkXMLImageDataReader.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkInformation.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <vector>
+
+#include "core/base/Error.h"
+
+namespace hvx::core {
+
+namespace {
+bool endsWith(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() && std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
+                                                   [](char a, char b) { return std::tolower(a) == b; });
+}
+
+// Converts the file's scalar type to a supported one, or explains why not.
+ScalarType mapType(int vtkType, const std::string& path, int& convertFrom) {
+    convertFrom = -1;
+    switch (vtkType) {
+    case VTK_UNSIGNED_CHAR: return ScalarType::UInt8;
+    case VTK_SHORT: return ScalarType::Int16;
+    case VTK_UNSIGNED_SHORT: return ScalarType::UInt16;
+    case VTK_FLOAT: return ScalarType::Float32;
+    case VTK_SIGNED_CHAR:
+    case VTK_CHAR: convertFrom = vtkType; return ScalarType::Int16;  // exact
+    case VTK_DOUBLE: convertFrom = vtkType; return ScalarType::Float32;
+    default: break;
+    }
+    throw Error(path + ": unsupported voxel type (" + std::string(vtkImageScalarTypeNameMacro(vtkType)) +
+                "); supported: uint8, int8, int16, uint16, float32, float64");
+}
+}  // namespace
+
+struct VtkImageSource::Impl {
+    vtkSmartPointer<vtkAlgorithm> reader;
+    int extent[6] = {0, -1, 0, -1, 0, -1};
+    int convertFrom = -1;
+    bool streams = true;
+    std::vector<unsigned char> cache;  // slices [cacheFirst, cacheFirst + cacheCount)
+    std::uint32_t cacheFirst = 0, cacheCount = 0;
+};
+
+bool VtkImageSource::handles(const std::string& path) {
+    for (const char* ext : {".nii", ".nii.gz", ".mha", ".mhd", ".vtk", ".vti"})
+        if (endsWith(path, ext)) return true;
+    return false;
+}
+
+VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)), impl_(std::make_unique<Impl>()) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path_, ec)) throw Error(path_ + ": no such file");
+    vtkSmartPointer<vtkNIFTIImageReader> nifti;
+    if (endsWith(path_, ".nii") || endsWith(path_, ".nii.gz")) {
+        nifti = vtkSmartPointer<vtkNIFTIImageReader>::New();
+        if (!nifti->CanReadFile(path_.c_str())) throw Error(path_ + ": not a NIfTI file");
+        nifti->SetFileName(path_.c_str());
+        impl_->reader = nifti;
+    } else if (endsWith(path_, ".mha") || endsWith(path_, ".mhd")) {
+        auto r = vtkSmartPointer<vtkMetaImageReader>::New();
+        if (!r->CanReadFile(path_.c_str())) throw Error(path_ + ": not a MetaImage file");
+        r->SetFileName(path_.c_str());
+        impl_->reader = r;
+    } else if (endsWith(path_, ".vti")) {
+        auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
+        if (!r->CanReadFile(path_.c_str())) throw Error(path_ + ": not a VTK XML image file");
+        r->SetFileName(path_.c_str());
+        impl_->reader = r;
+    } else if (endsWith(path_, ".vtk")) {
+        auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
+        r->SetFileName(path_.c_str());
+        if (!r->IsFileStructuredPoints()) throw Error(path_ + ": not a legacy VTK structured-points file");
+        impl_->reader = r;
+        impl_->streams = false;
+    } else {
+        throw Error(path_ + ": unknown image file type");
+    }
+    impl_->reader->GlobalWarningDisplayOff();
+    impl_->reader->UpdateInformation();
+    if (impl_->reader->GetErrorCode() != 0) throw Error(path_ + ": cannot read the image header");
+    vtkInformation* info = impl_->reader->GetOutputInformation(0);
+    info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), impl_->extent);
+    double spacing[3] = {1, 1, 1}, origin[3] = {0, 0, 0};
+    if (info->Has(vtkDataObject::SPACING())) info->Get(vtkDataObject::SPACING(), spacing);
+    if (info->Has(vtkDataObject::ORIGIN())) info->Get(vtkDataObject::ORIGIN(), origin);
+    vtkInformation* scalarInfo = vtkDataObject::GetActiveFieldInformation(
+        info, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+    if (!scalarInfo) throw Error(path_ + ": image has no scalar data");
+    const int components = scalarInfo->Has(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS())
+                               ? scalarInfo->Get(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS()) : 1;
+    if (components != 1) throw Error(path_ + ": only single-component images are supported");
+    const int vtkType = scalarInfo->Get(vtkDataObject::FIELD_ARRAY_TYPE());
+    geometry_.scalarType = mapType(vtkType, path_, impl_->convertFrom);
+    for (int a = 0; a < 3; ++a) {
+        const int n = impl_->extent[2 * a + 1] - impl_->extent[2 * a] + 1;
+        if (n <= 0) throw Error(path_ + ": image is empty");
+        geometry_.dims[std::size_t(a)] = std::uint32_t(n);
+    }
+    // Continuous VTK point p(i) = origin + (extent0 + i) * spacing; patient LPS = F * M * p.
+    glm::dmat4 toPatient(1.0);
+    if (nifti) {
+        vtkMatrix4x4* m = nullptr;
+        if (nifti->GetNIFTIHeader()->GetQFormCode() > 0) m = nifti->GetQFormMatrix();
+        if (!m && nifti->GetNIFTIHeader()->GetSFormCode() > 0) m = nifti->GetSFormMatrix();
+        if (m) {
+            for (int r = 0; r < 4; ++r)
+                for (int c = 0; c < 4; ++c) toPatient[c][r] = m->GetElement(r, c);
+        }
+        glm::dmat4 rasToLps(1.0);
+        rasToLps[0][0] = -1.0;
+        rasToLps[1][1] = -1.0;
+        toPatient = rasToLps * toPatient;
+        const double slope = nifti->GetRescaleSlope();
+        if (slope != 0.0) {
+            geometry_.rescaleSlope = slope;
+            geometry_.rescaleIntercept = nifti->GetRescaleIntercept();
+        }
+        geometry_.modality = "MR";
+    }
+    glm::dvec3 first;
+    for (int a = 0; a < 3; ++a) first[a] = origin[a] + impl_->extent[2 * a] * spacing[a];
+    geometry_.origin = glm::dvec3(toPatient * glm::dvec4(first, 1.0));
+    for (int a = 0; a < 3; ++a) {
+        glm::dvec3 step = glm::dmat3(toPatient)[a] * spacing[a];
+        const double len = glm::length(step);
+        if (!(len > 0)) throw Error(path_ + ": degenerate voxel spacing or orientation");
+        geometry_.spacing[a] = len;
+        geometry_.direction[a] = step / len;
+    }
+    geometry_.validate(path_);
+}
+
+VtkImageSource::~VtkImageSource() = default;
+
+void VtkImageSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) {
+    const std::size_t outWidth = scalarSize(geometry_.scalarType);
+    const std::size_t sliceVoxels = std::size_t(geometry_.dims[0]) * geometry_.dims[1];
+    auto* out = static_cast<unsigned char*>(dst);
+    for (std::uint32_t s = firstSlice; s < firstSlice + count; ++s) {
+        if (s < impl_->cacheFirst || s >= impl_->cacheFirst + impl_->cacheCount) {
+            const std::uint32_t chunk = impl_->streams ? std::min<std::uint32_t>(32, geometry_.dims[2] - s)
+                                                       : geometry_.dims[2] - s;
+            int ext[6] = {impl_->extent[0], impl_->extent[1], impl_->extent[2], impl_->extent[3],
+                          impl_->extent[4] + int(s), impl_->extent[4] + int(s + chunk) - 1};
+            impl_->reader->UpdateExtent(ext);
+            auto* image = vtkImageData::SafeDownCast(impl_->reader->GetOutputDataObject(0));
+            if (impl_->reader->GetErrorCode() != 0 || !image || !image->GetPointData()->GetScalars())
+                throw Error(path_ + ": cannot read voxel data (file truncated or corrupt?)");
+            int got[6];
+            image->GetExtent(got);
+            vtkDataArray* arr = image->GetPointData()->GetScalars();
+            const std::size_t need = sliceVoxels * chunk;
+            const vtkIdType offset = vtkIdType(ext[4] - got[4]) * vtkIdType(sliceVoxels);
+            if (got[0] != ext[0] || got[1] != ext[1] || got[2] != ext[2] || got[3] != ext[3] || got[4] > ext[4] ||
+                got[5] < ext[5] || arr->GetNumberOfTuples() < offset + vtkIdType(need))
+                throw Error(path_ + ": reader returned fewer voxels than the header promises (truncated file?)");
+            impl_->cache.resize(need * outWidth);
+            if (impl_->convertFrom < 0) {
+                std::memcpy(impl_->cache.data(), static_cast<unsigned char*>(arr->GetVoidPointer(0)) + offset * vtkIdType(outWidth),
+                            need * outWidth);
+            } else {
+                for (std::size_t i = 0; i < need; ++i) {
+                    const double v = arr->GetComponent(offset + vtkIdType(i), 0);
+                    if (geometry_.scalarType == ScalarType::Int16) {
+                        const auto x = std::int16_t(v);
+                        std::memcpy(&impl_->cache[i * 2], &x, 2);
+                    } else {
+                        const auto x = float(v);
+                        std::memcpy(&impl_->cache[i * 4], &x, 4);
+                    }
+                }
+            }
+            impl_->cacheFirst = s;
+            impl_->cacheCount = chunk;
+        }
+        std::memcpy(out, impl_->cache.data() + (s - impl_->cacheFirst) * sliceVoxels * outWidth, sliceVoxels * outWidth);
+        out += sliceVoxels * outWidth;
+    }
+}
+
+}  // namespace hvx::core
