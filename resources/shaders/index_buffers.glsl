@@ -1,5 +1,5 @@
 // The spatial index as shader storage buffers, and the accessor macros that let
-// core/shared/IndexTraversal.glsl run unchanged on the GPU.
+// core/streaming/IndexTraversal.glsl run unchanged on the GPU.
 layout(std430, binding = 0) readonly buffer IndexNodes { uvec4 hvxNodes[]; };
 layout(std430, binding = 1) readonly buffer IndexRopes { uint hvxRopes[]; };
 

@@ -1,5 +1,5 @@
 // Single-pass ray casting over the spatial index, one invocation per pixel (thesis ch. 2–3).
-// It mirrors core/CpuRayCaster.cpp step for step; MODE selects a static variant
+// It mirrors core/reference/CpuRayCaster.cpp step for step; MODE selects a static variant
 // (0 DVR, 1 isosurface, 2 MIP, 3 MinIP, 4 average).
 layout(local_size_x = 8, local_size_y = 8) in;
 

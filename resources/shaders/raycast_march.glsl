@@ -1,6 +1,6 @@
 // The ray march: clip to the volume, walk the index leaf by leaf (shared traversal step),
 // sample each non-empty leaf at its voxel size and composite. The samples and their order of
-// operations are those of core/CpuRayCaster.cpp; two accelerations leave the image as it is:
+// operations are those of core/reference/CpuRayCaster.cpp; two accelerations leave the image as it is:
 // the costly work runs once per significant sample (see the loops below), and the cells of a
 // brick that cannot show (core::BrickCells) are stepped over.
 #ifndef MODE
@@ -79,7 +79,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
         bool inLeaf = false;
         // For a leaf with a brick: its sampler, step and first sample on the ray's own sampling
         // grid. After empty space, the segment leading into the brick starts at its border
-        // sample, as a dense marcher would (core/CpuRayCaster.cpp). An empty leaf breaks the
+        // sample, as a dense marcher would (core/reference/CpuRayCaster.cpp). An empty leaf breaks the
         // chain of segments.
         if (tOut > tIn) {
             uvec4 nd = hvxNodes[n];
@@ -149,7 +149,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
             }
             if (!significant) break;
 #if MODE == 0 && HVX_TOOLS != 0
-            {  // enhancers, shading and MImDA as core/CpuRayCaster.cpp
+            {  // enhancers, shading and MImDA as core/reference/CpuRayCaster.cpp
                 vec4 f = tfSegment(sPrev, s);
                 vec3 g = transpose(mat3(patientToOctree)) * leafGradient(L, p);
                 HvxSample x;
