@@ -24,7 +24,7 @@ glm::dvec3 parseSpacing(const std::string& text) {
 int buildCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"o", "output", "brick", "border", "empty-below", "codec", "level", "dims", "type", "endian",
-                        "header-bytes", "spacing"},
+                        "header-bytes", "spacing", "volume"},
                        {"labels", "lossy8", "quiet"});
     if (args.positional().size() != 1) throw core::Error("usage: holovox-cli build INPUT -o OUT.hvo [options]");
     const auto out = args.value("o") ? args.value("o") : args.value("output");
@@ -49,7 +49,9 @@ int buildCommand(int argc, char** argv) {
     if (const auto c = args.value("codec")) opt.codec = core::BrickCodec::parse(*c);
     opt.codecLevel = int(args.integer("level", 0, -7, 19));
 
-    auto source = core::VoxelSourceFactory::open(args.positional()[0], raw);
+    const auto volume = std::uint32_t(args.integer("volume", 1, 1, 1 << 20) - 1);  // 1-based on the command line
+    auto source = core::VoxelSourceFactory::open(args.positional()[0], raw, volume);
+    for (const auto& w : source->warnings()) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
     OctreeBuildRunner::run(*source, *out, opt, !args.flag("quiet"));
     return 0;
 }

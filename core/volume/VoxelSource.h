@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/volume/VolumeGeometry.h"
 
@@ -21,6 +22,9 @@ public:
     virtual void readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) = 0;
     /// Human-readable name of the input, used in messages.
     virtual std::string describe() const = 0;
+    /// Sentences about what the input leaves open or contradicts (e.g. a NIfTI qform and sform
+    /// that disagree), each naming the input; shown before a build.
+    virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 }  // namespace hvx::core

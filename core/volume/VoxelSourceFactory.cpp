@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "core/base/Error.h"
+#include "core/volume/NiftiVoxelSource.h"
 #include "core/volume/NrrdHeader.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "core/volume/VtkImageSource.h"
@@ -26,7 +27,8 @@ std::array<std::uint32_t, 3> VoxelSourceFactory::parseDims(const std::string& te
     return d;
 }
 
-std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, const RawVoxelSource::Options& raw) {
+std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, const RawVoxelSource::Options& raw,
+                                                      std::uint32_t volume) {
     if (input.rfind("phantom:", 0) == 0) {
         std::string spec = input.substr(8);
         std::uint64_t seed = 1;
@@ -59,6 +61,8 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
         if (!h.dataFile.empty()) data = (p.parent_path() / h.dataFile).string();
         return std::make_unique<RawVoxelSource>(data, o);
     }
+    if (NiftiVoxelSource::handles(input)) return std::make_unique<NiftiVoxelSource>(input, volume);
+    if (volume > 0) throw Error(input + ": --volume applies to 4D NIfTI files only");
     if (VtkImageSource::handles(input)) return std::make_unique<VtkImageSource>(input);
     if (raw.dims[0] == 0) {
         std::error_code ec;

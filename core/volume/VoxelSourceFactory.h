@@ -10,12 +10,14 @@
 namespace hvx::core {
 
 /// Picks the VoxelSource for an input name: `phantom:XxYxZ[:seed]`, .raw (with RawOptions),
-/// .nrrd/.nhdr (raw encoding, streamed), or anything VtkImageSource reads.
+/// .nrrd/.nhdr (raw encoding, streamed), .nii/.nii.gz (NiftiVoxelSource), or anything
+/// VtkImageSource reads.
 class VoxelSourceFactory {
 public:
-    /// Opens `input`; `raw` describes headerless files (dims must be set for .raw).
-    /// Throws core::Error naming the input.
-    static std::unique_ptr<VoxelSource> open(const std::string& input, const RawVoxelSource::Options& raw = {});
+    /// Opens `input`; `raw` describes headerless files (dims must be set for .raw); `volume`
+    /// picks one volume (0-based) of a 4D file. Throws core::Error naming the input.
+    static std::unique_ptr<VoxelSource> open(const std::string& input, const RawVoxelSource::Options& raw = {},
+                                             std::uint32_t volume = 0);
     /// Parses "XxYxZ" (each 1..2^20); throws core::Error otherwise.
     static std::array<std::uint32_t, 3> parseDims(const std::string& text);
 };

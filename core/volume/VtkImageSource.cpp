@@ -7,8 +7,6 @@
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
 #include <vtkMetaImageReader.h>
-#include <vtkNIFTIImageHeader.h>
-#include <vtkNIFTIImageReader.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
@@ -60,7 +58,7 @@ struct VtkImageSource::Impl {
 };
 
 bool VtkImageSource::handles(const std::string& path) {
-    for (const char* ext : {".nii", ".nii.gz", ".mha", ".mhd", ".vtk", ".vti"})
+    for (const char* ext : {".mha", ".mhd", ".vtk", ".vti"})
         if (endsWith(path, ext)) return true;
     return false;
 }
@@ -68,13 +66,7 @@ bool VtkImageSource::handles(const std::string& path) {
 VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)), impl_(std::make_unique<Impl>()) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path_, ec)) throw Error(path_ + ": no such file");
-    vtkSmartPointer<vtkNIFTIImageReader> nifti;
-    if (endsWith(path_, ".nii") || endsWith(path_, ".nii.gz")) {
-        nifti = vtkSmartPointer<vtkNIFTIImageReader>::New();
-        if (!nifti->CanReadFile(path_.c_str())) throw Error(path_ + ": not a NIfTI file");
-        nifti->SetFileName(path_.c_str());
-        impl_->reader = nifti;
-    } else if (endsWith(path_, ".mha") || endsWith(path_, ".mhd")) {
+    if (endsWith(path_, ".mha") || endsWith(path_, ".mhd")) {
         auto r = vtkSmartPointer<vtkMetaImageReader>::New();
         if (!r->CanReadFile(path_.c_str())) throw Error(path_ + ": not a MetaImage file");
         r->SetFileName(path_.c_str());
@@ -116,25 +108,6 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)), impl_
     }
     // Continuous VTK point p(i) = origin + (extent0 + i) * spacing; patient LPS = F * M * p.
     glm::dmat4 toPatient(1.0);
-    if (nifti) {
-        vtkMatrix4x4* m = nullptr;
-        if (nifti->GetNIFTIHeader()->GetQFormCode() > 0) m = nifti->GetQFormMatrix();
-        if (!m && nifti->GetNIFTIHeader()->GetSFormCode() > 0) m = nifti->GetSFormMatrix();
-        if (m) {
-            for (int r = 0; r < 4; ++r)
-                for (int c = 0; c < 4; ++c) toPatient[c][r] = m->GetElement(r, c);
-        }
-        glm::dmat4 rasToLps(1.0);
-        rasToLps[0][0] = -1.0;
-        rasToLps[1][1] = -1.0;
-        toPatient = rasToLps * toPatient;
-        const double slope = nifti->GetRescaleSlope();
-        if (slope != 0.0) {
-            geometry_.rescaleSlope = slope;
-            geometry_.rescaleIntercept = nifti->GetRescaleIntercept();
-        }
-        geometry_.modality = "MR";
-    }
     glm::dvec3 first;
     for (int a = 0; a < 3; ++a) first[a] = origin[a] + impl_->extent[2 * a] * spacing[a];
     geometry_.origin = glm::dvec3(toPatient * glm::dvec4(first, 1.0));
