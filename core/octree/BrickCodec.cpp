@@ -1,5 +1,7 @@
 #include "core/octree/BrickCodec.h"
 
+#include <memory>
+
 #include <lz4.h>
 #include <xxhash.h>
 #include <zstd.h>
@@ -65,8 +67,10 @@ void BrickCodec::compress(hvo::Codec codec, const void* src, std::size_t size, s
         return;
     case hvo::Codec::Zstd: {
         out.resize(ZSTD_compressBound(size));
-        thread_local ZSTD_CCtx* ctx = ZSTD_createCCtx();
-        const std::size_t n = ZSTD_compressCCtx(ctx, out.data(), out.size(), src, size, level != 0 ? level : 1);
+        // One context per thread, freed when the thread ends (a worker pool's threads come and go).
+        thread_local const std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> ctx(ZSTD_createCCtx(), &ZSTD_freeCCtx);
+        if (!ctx) throw Error("zstd compression failed: no memory for its context");
+        const std::size_t n = ZSTD_compressCCtx(ctx.get(), out.data(), out.size(), src, size, level != 0 ? level : 1);
         if (ZSTD_isError(n)) throw Error(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
         out.resize(n);
         return;
@@ -99,8 +103,9 @@ bool BrickCodec::decompress(hvo::Codec codec, const void* src, std::size_t size,
         if (size) std::memcpy(dst, src, size);
         return true;
     case hvo::Codec::Zstd: {
-        thread_local ZSTD_DCtx* ctx = ZSTD_createDCtx();
-        const std::size_t n = ZSTD_decompressDCtx(ctx, dst, dstSize, src, size);
+        thread_local const std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> ctx(ZSTD_createDCtx(), &ZSTD_freeDCtx);
+        if (!ctx) return false;
+        const std::size_t n = ZSTD_decompressDCtx(ctx.get(), dst, dstSize, src, size);
         return !ZSTD_isError(n) && n == dstSize;
     }
     case hvo::Codec::Lz4: {
