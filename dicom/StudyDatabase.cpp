@@ -11,6 +11,8 @@
 namespace hvx::dicom {
 
 namespace {
+/// 1: the first schema; 2: instances.offline.
+constexpr std::int64_t kSchemaVersion = 2;
 const char* kSchema = R"sql(
 PRAGMA foreign_keys = ON;
 CREATE TABLE IF NOT EXISTS patients (
@@ -28,7 +30,8 @@ CREATE TABLE IF NOT EXISTS series (
 CREATE TABLE IF NOT EXISTS instances (
   id INTEGER PRIMARY KEY, sop_uid TEXT NOT NULL UNIQUE,
   series INTEGER NOT NULL REFERENCES series(id) ON DELETE CASCADE,
-  path TEXT NOT NULL, transfer_syntax TEXT, sop_class TEXT, instance_number INTEGER, file_size INTEGER);
+  path TEXT NOT NULL, transfer_syntax TEXT, sop_class TEXT, instance_number INTEGER, file_size INTEGER,
+  offline INTEGER NOT NULL DEFAULT 0);
 CREATE INDEX IF NOT EXISTS instances_series ON instances(series);
 CREATE INDEX IF NOT EXISTS series_study ON series(study);
 CREATE INDEX IF NOT EXISTS studies_patient ON studies(patient);
@@ -103,6 +106,7 @@ StudyDatabase::StudyDatabase(const std::string& path) : path_(path) {
     try {
         exec("PRAGMA journal_mode = WAL;");
         exec(kSchema);
+        migrate();
     } catch (const core::Error& e) {
         sqlite3_close(db_);
         db_ = nullptr;
@@ -119,6 +123,33 @@ std::string StudyDatabase::defaultPath() {
     else if (const char* h = std::getenv("HOME"); h && *h) base = std::filesystem::path(h) / ".local/share";
     else base = std::filesystem::temp_directory_path();
     return (base / "holovox" / "studies.sqlite").string();
+}
+
+void StudyDatabase::migrate() {
+    std::int64_t version = 0;
+    {
+        Stmt v(db_, "PRAGMA user_version;");
+        if (v.step()) version = v.integer(0);
+    }
+    if (version > kSchemaVersion)
+        throw core::Error("it was written by a newer Holovox (schema version " + std::to_string(version) + ", this one reads " +
+                          std::to_string(kSchemaVersion) + ")");
+    if (version >= kSchemaVersion) return;
+    // Version 1 (no user_version): instances had no offline flag.
+    bool hasOffline = false;
+    {
+        Stmt cols(db_, "PRAGMA table_info(instances);");
+        while (cols.step()) hasOffline = hasOffline || cols.text(1) == "offline";
+    }
+    exec("BEGIN IMMEDIATE;");
+    try {
+        if (!hasOffline) exec("ALTER TABLE instances ADD COLUMN offline INTEGER NOT NULL DEFAULT 0;");
+        exec(("PRAGMA user_version = " + std::to_string(kSchemaVersion) + ";").c_str());
+        exec("COMMIT;");
+    } catch (...) {
+        exec("ROLLBACK;");
+        throw;
+    }
 }
 
 void StudyDatabase::exec(const char* sql) const {
@@ -205,13 +236,55 @@ StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomIn
     return stats;
 }
 
-std::size_t StudyDatabase::removeMissingFiles() {
+StudyDatabase::FileCheck StudyDatabase::checkFiles() {
+    std::vector<std::pair<std::int64_t, bool>> changed;  // id, offline now
+    FileCheck check;
+    {
+        Stmt all(db_, "SELECT id, path, offline FROM instances;");
+        std::error_code ec;
+        while (all.step()) {
+            const bool offline = !std::filesystem::exists(all.text(1), ec);
+            const bool was = all.integer(2) != 0;
+            if (offline) ++check.offline;
+            if (offline != was) changed.emplace_back(all.integer(0), offline);
+            if (was && !offline) ++check.backOnline;
+        }
+    }
+    if (changed.empty()) return check;
+    exec("BEGIN IMMEDIATE;");
+    try {
+        Stmt set(db_, "UPDATE instances SET offline = ?2 WHERE id = ?1;");
+        for (const auto& [id, offline] : changed) {
+            set.reset();
+            set.bind(1, id);
+            set.bind(2, std::int64_t(offline ? 1 : 0));
+            set.step();
+        }
+        exec("COMMIT;");
+    } catch (...) {
+        exec("ROLLBACK;");
+        throw;
+    }
+    return check;
+}
+
+std::size_t StudyDatabase::offlineCount() const {
+    Stmt s(db_, "SELECT count(*) FROM instances WHERE offline != 0;");
+    return s.step() ? std::size_t(s.integer(0)) : 0;
+}
+
+StudyDatabase::PruneResult StudyDatabase::prune() {
     std::vector<std::int64_t> gone;
+    PruneResult result;
     {
         Stmt all(db_, "SELECT id, path FROM instances;");
         std::error_code ec;
-        while (all.step())
-            if (!std::filesystem::exists(all.text(1), ec)) gone.push_back(all.integer(0));
+        while (all.step()) {
+            const std::filesystem::path file = all.text(1);
+            if (std::filesystem::exists(file, ec)) continue;
+            if (std::filesystem::is_directory(file.parent_path(), ec)) gone.push_back(all.integer(0));
+            else ++result.kept;
+        }
     }
     exec("BEGIN IMMEDIATE;");
     try {
@@ -230,7 +303,8 @@ std::size_t StudyDatabase::removeMissingFiles() {
         exec("ROLLBACK;");
         throw;
     }
-    return gone.size();
+    result.removed = gone.size();
+    return result;
 }
 
 std::vector<StudyRow> StudyDatabase::findStudies(const StudyQuery& q) const {

@@ -34,8 +34,9 @@ struct SeriesRow {
 };
 
 /// The local index of imported DICOM: patients → studies → series → instances, in one SQLite
-/// file. Importing the same files again changes nothing; files deleted from disk are found by
-/// removeMissingFiles().
+/// file (schema version 2, WAL journal). Importing the same files again changes nothing; files
+/// that cannot be reached are marked offline by checkFiles(), and rows are deleted only by an
+/// explicit prune().
 ///
 /// Threading: one thread at a time per object (open one object per thread if needed; SQLite
 /// serialises writers across connections).
@@ -57,9 +58,23 @@ public:
     };
     /// Adds instances (and their patients, studies, series) in one transaction.
     ImportStats addInstances(const std::vector<DicomInstance>& instances);
-    /// Deletes instances whose files no longer exist, then empty series, studies and patients.
-    /// Returns the number of instances removed.
-    std::size_t removeMissingFiles();
+    struct FileCheck {
+        std::size_t offline = 0;     ///< instances whose files cannot be reached now
+        std::size_t backOnline = 0;  ///< instances that were offline and are reachable again
+    };
+    /// Marks the instances whose files cannot be reached as offline, and those reachable again
+    /// as online. Never deletes a row: an unmounted or renamed storage folder loses nothing.
+    FileCheck checkFiles();
+    struct PruneResult {
+        std::size_t removed = 0;  ///< rows of files deleted from a folder that still exists
+        std::size_t kept = 0;     ///< rows kept because the file's folder itself is missing
+    };
+    /// Deletes the instances whose files were deleted (the file is missing but its folder is
+    /// there), then empty series, studies and patients. A file whose folder is missing too is
+    /// taken as unreachable (an unmounted or renamed folder), kept and counted.
+    PruneResult prune();
+    /// Instances marked offline by the last checkFiles().
+    std::size_t offlineCount() const;
 
     std::vector<StudyRow> findStudies(const StudyQuery& query) const;
     std::vector<SeriesRow> seriesOfStudy(const std::string& studyUid) const;
@@ -74,6 +89,8 @@ public:
 
 private:
     void exec(const char* sql) const;
+    /// Brings an older schema to kSchemaVersion; refuses a newer one.
+    void migrate();
     std::string path_;
     sqlite3* db_ = nullptr;
 };

@@ -95,11 +95,27 @@ int importCommand(int argc, char** argv) {
     return scan.instances.empty() && scan.broken > 0 ? 1 : 0;
 }
 
+int pruneCommand(int argc, char** argv) {
+    const CliArgs args(argc, argv, 2, {"db"}, {});
+    dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
+    const auto r = db.prune();
+    std::printf("removed %zu instances whose files were deleted\n", r.removed);
+    if (r.kept)
+        std::printf("kept %zu instances whose folders are missing (an unmounted or renamed storage folder?); "
+                    "they come back online when the folder does\n",
+                    r.kept);
+    return 0;
+}
+
 int studiesCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2, {"db", "patient", "from", "to", "modality"}, {});
     dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
-    const std::size_t removed = db.removeMissingFiles();
-    if (removed) std::printf("%zu instances whose files were deleted were removed from the index\n", removed);
+    const auto check = db.checkFiles();
+    if (check.offline)
+        std::printf("%zu instances are offline: their files cannot be reached now (kept in the index; "
+                    "`holovox-cli prune` removes the rows of deleted files)\n",
+                    check.offline);
+    if (check.backOnline) std::printf("%zu instances are back online\n", check.backOnline);
     dicom::StudyQuery q;
     q.text = args.value("patient").value_or("");
     q.dateFrom = args.value("from").value_or("");

@@ -22,6 +22,7 @@ void usage() {
         "        start the demo archive (local Orthanc with demo studies, default node 'demo')\n"
         "  import PATH... [--db FILE] [--build]   scan folders/DICOMDIR/files into the study database\n"
         "  studies [--db FILE] [--patient TEXT] [--from YYYYMMDD] [--to YYYYMMDD] [--modality CT]\n"
+        "  prune [--db FILE]             remove the rows of deleted files (unreachable folders are kept)\n"
         "  build-series SERIES_UID -o OUT.hvo [--db FILE] [--stack N]\n"
         "  export-dicom INPUT -o FOLDER [--syntax explicit-little|implicit-little|explicit-big|deflate|rle|\n"
         "        jpeg-lossless|jpeg-ls] [--enhanced] [--patient NAME] [--patient-id ID] [--study TEXT]\n"
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
         if (cmd == "gl-info") return hvx::app::glInfoCommand(argc, argv);
         if (cmd == "import") return hvx::app::importCommand(argc, argv);
         if (cmd == "studies") return hvx::app::studiesCommand(argc, argv);
+        if (cmd == "prune") return hvx::app::pruneCommand(argc, argv);
         if (cmd == "build-series") return hvx::app::buildSeriesCommand(argc, argv);
         if (cmd == "export-dicom") return hvx::app::exportDicomCommand(argc, argv);
         if (cmd == "pacs") return hvx::app::pacsCommand(argc, argv);

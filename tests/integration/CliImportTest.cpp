@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "tests/support/ProcessRunner.h"
@@ -43,10 +44,27 @@ TEST(CliImport, ImportPrintsTheTableBuildsOctreesAndIsIdempotent) {
     r = test::runCommand(cli + " studies" + db + " --from 20240101 --to 20241231 --modality MR");
     EXPECT_TRUE(contains(r.output, "0 studies")) << r.output;
 
-    // Deleting files is noticed.
+    // Deleting files is noticed, and rows are removed only by prune.
     std::filesystem::remove(dir.file("dcm/CT_small.dcm"));
     r = test::runCommand(cli + " studies" + db);
-    EXPECT_TRUE(contains(r.output, "1 instances whose files were deleted")) << r.output;
+    EXPECT_TRUE(contains(r.output, "1 instances are offline")) << r.output;
+    EXPECT_TRUE(contains(r.output, "2 studies")) << r.output;
+    r = test::runCommand(cli + " prune" + db);
+    EXPECT_TRUE(contains(r.output, "removed 1 instances whose files were deleted")) << r.output;
+    r = test::runCommand(cli + " studies" + db);
+    EXPECT_TRUE(contains(r.output, "1 studies")) << r.output;
+
+    // The folder renamed away (an unmounted disk): nothing is deleted, even by prune.
+    std::filesystem::rename(dir.file("dcm"), dir.file("away"));
+    r = test::runCommand(cli + " studies" + db);
+    EXPECT_TRUE(contains(r.output, "24 instances are offline")) << r.output;
+    EXPECT_TRUE(contains(r.output, "1 studies")) << r.output;
+    r = test::runCommand(cli + " prune" + db);
+    EXPECT_TRUE(contains(r.output, "kept 24 instances whose folders are missing")) << r.output;
+    std::filesystem::rename(dir.file("away"), dir.file("dcm"));
+    r = test::runCommand(cli + " studies" + db);
+    EXPECT_TRUE(contains(r.output, "24 instances are back online")) << r.output;
+    EXPECT_TRUE(contains(r.output, "24 images")) << r.output;
 }
 
 TEST(CliImport, BuildSeriesFromTheDatabase) {
@@ -83,3 +101,4 @@ TEST(CliImport, BrokenFilesAreCountedWithReasonsAndMissingPathsRefused) {
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_TRUE(contains(r.output, dir.file("nowhere") + ": no such file or folder")) << r.output;
 }
+

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+
 #include <fstream>
 
 #include "core/base/Error.h"
@@ -77,19 +79,82 @@ TEST(StudyDatabase, QueriesByNameIdDateRangeAndModality) {
     EXPECT_EQ(q({"nobody", "", "", ""}), 0u);
 }
 
-TEST(StudyDatabase, DeletedFilesAreDetectedAndEmptyStudiesPruned) {
+TEST(StudyDatabase, DeletedFilesArePrunedOnlyWhenAsked) {
     test::TempDir dir;
     dicom::StudyDatabase db(dir.file("s.sqlite"));
     db.addInstances(sample(dir));
     std::filesystem::remove(dir.file("c0"));
     std::filesystem::remove(dir.file("a1"));
-    EXPECT_EQ(db.removeMissingFiles(), 2u);
+    const auto check = db.checkFiles();  // what `studies` and the browser run: marks, never deletes
+    EXPECT_EQ(check.offline, 2u);
+    EXPECT_EQ(db.offlineCount(), 2u);
+    EXPECT_EQ(db.instanceCount(), 5u);
+    EXPECT_EQ(db.findStudies({}).size(), 2u);
+    const auto pruned = db.prune();  // the files are gone from a folder that is still there
+    EXPECT_EQ(pruned.removed, 2u);
+    EXPECT_EQ(pruned.kept, 0u);
     EXPECT_EQ(db.findStudies({}).size(), 1u);
     EXPECT_EQ(db.filesOfSeries("1.1.1").size(), 2u);
     dicom::SeriesRow row;
     EXPECT_FALSE(db.findSeries("2.1.1", row));
     ASSERT_TRUE(db.findSeries("1.1.1", row));
     EXPECT_EQ(row.instanceCount, 2);
+}
+
+// The storage folder unmounted or renamed: every row stays, marked offline, and comes back
+// online with the folder; even prune keeps rows whose folder is missing.
+TEST(StudyDatabase, UnreachableFolderLosesNothing) {
+    test::TempDir dir;
+    const auto store = dir.path() / "store" / "study";
+    std::filesystem::create_directories(store);
+    std::vector<dicom::DicomInstance> in;
+    for (int i = 0; i < 4; ++i) {
+        const std::string f = (store / ("i" + std::to_string(i))).string();
+        std::ofstream(f) << "x";
+        in.push_back(instance(f, "DOE^JANE", "P1", "1.1", "20240105", "1.1.1", "CT", "1.1.1." + std::to_string(i)));
+    }
+    dicom::StudyDatabase db(dir.file("s.sqlite"));
+    db.addInstances(in);
+    db.setSeriesOctree("1.1.1", "/somewhere/x.hvo");
+    std::filesystem::rename(dir.path() / "store", dir.path() / "elsewhere");
+    EXPECT_EQ(db.checkFiles().offline, 4u);
+    const auto pruned = db.prune();
+    EXPECT_EQ(pruned.removed, 0u);
+    EXPECT_EQ(pruned.kept, 4u);
+    EXPECT_EQ(db.instanceCount(), 4u);
+    dicom::SeriesRow row;
+    ASSERT_TRUE(db.findSeries("1.1.1", row));
+    EXPECT_EQ(row.octreePath, "/somewhere/x.hvo");
+    std::filesystem::rename(dir.path() / "elsewhere", dir.path() / "store");
+    const auto back = db.checkFiles();
+    EXPECT_EQ(back.offline, 0u);
+    EXPECT_EQ(back.backOnline, 4u);
+    EXPECT_EQ(db.offlineCount(), 0u);
+}
+
+// A database written before the offline flag (schema 1) is migrated, and one from a newer
+// Holovox is refused with a sentence.
+TEST(StudyDatabase, SchemaIsMigratedAndNewerRefused) {
+    test::TempDir dir;
+    const std::string path = dir.file("old.sqlite");
+    ASSERT_EQ(std::system(("sqlite3 " + path +
+                           " \"CREATE TABLE instances (id INTEGER PRIMARY KEY, sop_uid TEXT NOT NULL UNIQUE, series INTEGER "
+                           "NOT NULL, path TEXT NOT NULL, transfer_syntax TEXT, sop_class TEXT, instance_number INTEGER, "
+                           "file_size INTEGER);\"").c_str()),
+              0);
+    {
+        dicom::StudyDatabase db(path);
+        EXPECT_EQ(db.checkFiles().offline, 0u);
+        db.addInstances(sample(dir));
+        EXPECT_EQ(db.instanceCount(), 5u);
+    }
+    ASSERT_EQ(std::system(("sqlite3 " + path + " 'PRAGMA user_version = 9;'").c_str()), 0);
+    try {
+        dicom::StudyDatabase db(path);
+        FAIL() << "a newer schema was opened";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("newer Holovox"), std::string::npos) << e.what();
+    }
 }
 
 TEST(StudyDatabase, OctreePathIsRecordedAndCorruptFileRefused) {
