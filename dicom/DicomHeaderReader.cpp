@@ -7,6 +7,7 @@
 #include <dcmtk/dcmdata/dcsequen.h>
 #include <dcmtk/dcmdata/dcxfer.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -75,6 +76,32 @@ void readFunctionalGroup(DcmItem* group, FrameGeometry& g) {
     readPlane(firstItem(group, DCM_PixelValueTransformationSequence), g);
 }
 
+/// The most frames one object may claim; the largest real multi-frame objects (breast
+/// tomosynthesis, 4D ultrasound, whole enhanced CT series) stay far below it.
+constexpr std::uint64_t kMaxFrames = 1u << 18;
+
+/// A hostile NumberOfFrames must not size anything (the per-frame geometry below, the
+/// assembler's slices): every frame takes room in the file, a whole frame when the pixels are
+/// stored as they are, at least a fragment's 8-byte item header when encapsulated, and a
+/// 1/1032 of a frame (deflate's best ratio) when the dataset is deflated.
+void checkFrameCount(DcmDataset* ds, const DicomInstance& p) {
+    if (p.frames <= 1) return;
+    const DcmXfer xfer(ds->getOriginalXfer());
+    const std::uint64_t frameBytes = std::uint64_t(p.rows) * p.columns * std::max<std::uint16_t>(1, p.samplesPerPixel) *
+                                     std::max<std::uint16_t>(8, p.bitsAllocated) / 8;
+    std::uint64_t least = frameBytes;
+    if (xfer.isEncapsulated()) least = 8;
+    else if (xfer.getStreamCompression() != ESC_none) least = std::max<std::uint64_t>(1, frameBytes / 1032);
+    const std::uint64_t fits = p.fileSize / std::max<std::uint64_t>(1, least);
+    if (p.frames > fits)
+        throw core::Error(p.path + ": NumberOfFrames " + std::to_string(p.frames) + " cannot be right: the file's " +
+                          std::to_string(p.fileSize) + " bytes hold at most " + std::to_string(fits) + " frames of " +
+                          std::to_string(p.columns) + "x" + std::to_string(p.rows));
+    if (p.frames > kMaxFrames)
+        throw core::Error(p.path + ": NumberOfFrames " + std::to_string(p.frames) + " is more than Holovox reads (" +
+                          std::to_string(kMaxFrames) + ")");
+}
+
 void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     p.sopClassUid = text(ds, DCM_SOPClassUID);
     if (p.sopClassUid.empty()) p.sopClassUid = text(meta, DCM_MediaStorageSOPClassUID);
@@ -110,6 +137,7 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     if (ds->findAndGetSint32(DCM_NumberOfFrames, i32).bad() || i32 < 1) i32 = 1;
     const bool pixels = ds->tagExists(DCM_PixelData) || ds->tagExists(DCM_FloatPixelData);
     p.frames = (p.rows && p.columns && (pixels || p.bitsAllocated)) ? std::uint32_t(i32) : 0;
+    checkFrameCount(ds, p);
     double d = 0;
     if (number(ds, DCM_SliceThickness, d)) p.sliceThickness = d;
     {

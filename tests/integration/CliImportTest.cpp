@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 
@@ -102,3 +103,38 @@ TEST(CliImport, BrokenFilesAreCountedWithReasonsAndMissingPathsRefused) {
     EXPECT_TRUE(contains(r.output, dir.file("nowhere") + ": no such file or folder")) << r.output;
 }
 
+// A small file that claims 2^31 - 1 frames (with a per-frame sequence, as RT dose, and as
+// encapsulated RLE) must be refused at once, in little memory, never sized from the claim.
+TEST(CliImport, HostileFrameCountIsRefusedQuicklyInLittleMemory) {
+    test::TempDir dir;
+    const std::string script = R"(
+import sys, pydicom
+from pydicom.dataset import Dataset
+from pydicom.sequence import Sequence
+src = '/usr/lib/python3/dist-packages/pydicom/data/test_files/'
+out = sys.argv[1]
+ds = pydicom.dcmread(src + 'CT_small.dcm')
+ds.NumberOfFrames = 2147483647
+ds.PerFrameFunctionalGroupsSequence = Sequence([Dataset()])
+ds.save_as(out + '/perframe.dcm')
+ds = pydicom.dcmread(src + 'CT_small.dcm')
+ds.NumberOfFrames = 2147483647
+ds.GridFrameOffsetVector = [0, 1]
+ds.save_as(out + '/dose.dcm')
+ds = pydicom.dcmread(src + 'MR_small_RLE.dcm')
+ds.NumberOfFrames = 2147483647
+ds.save_as(out + '/rle.dcm')
+)";
+    std::ofstream(dir.file("make.py")) << script;
+    std::filesystem::create_directory(dir.file("in"));
+    auto r = test::runCommand("/usr/bin/python3 " + dir.file("make.py") + " " + dir.file("in"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto start = std::chrono::steady_clock::now();
+    r = test::runCommand(cli + " import " + dir.file("in") + " --db " + dir.file("db.sqlite"));
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_TRUE(contains(r.output, "3 broken")) << r.output;
+    EXPECT_TRUE(contains(r.output, "NumberOfFrames 2147483647 cannot be right")) << r.output;
+    EXPECT_EQ(r.exitCode, 1) << "nothing was imported";
+    EXPECT_LT(seconds, 1.0) << "the CLI's start and the database are in this time too (measured 0.07 s)";
+    EXPECT_LT(r.maxRssKiB, 100 * 1024) << "peak memory of the import";
+}
