@@ -69,7 +69,60 @@ void readPlane(DcmItem* item, FrameGeometry& g) {
     if (number(item, DCM_RescaleIntercept, v[0])) g.rescaleIntercept = v[0];
 }
 
+bool integer(DcmItem* item, const DcmTagKey& key, int& out) {
+    Sint32 v = 0;
+    if (item && item->findAndGetSint32(key, v).good()) {
+        out = v;
+        return true;
+    }
+    Uint32 u = 0;
+    if (item && item->findAndGetUint32(key, u).good() && u <= 0x7fffffffu) {
+        out = int(u);
+        return true;
+    }
+    return false;
+}
+
+// Reads what tells images at one position apart (FrameDimensions) from an item: the classic
+// attributes of a dataset, or the enhanced functional groups of a frame.
+void readDimensions(DcmItem* item, FrameDimensions& d) {
+    if (!item) return;
+    double v = 0;
+    int i = 0;
+    if (const std::string t = text(item, DCM_ImageType); !t.empty()) d.imageType = t;
+    if (integer(item, DCM_EchoNumbers, i)) d.echoNumber = i;
+    if (number(item, DCM_EchoTime, v)) d.echoTime = v;
+    if (number(item, DCM_DiffusionBValue, v)) d.bValue = v;
+    double g[3];
+    if (number(item, DCM_DiffusionGradientOrientation, g[0], 0) && number(item, DCM_DiffusionGradientOrientation, g[1], 1) &&
+        number(item, DCM_DiffusionGradientOrientation, g[2], 2))
+        d.gradient = glm::dvec3(g[0], g[1], g[2]);
+    if (integer(item, DCM_TemporalPositionIdentifier, i)) d.temporalPosition = i;
+    if (number(item, DCM_TriggerTime, v)) d.triggerTime = v;
+    if (integer(item, DCM_AcquisitionNumber, i)) d.acquisitionNumber = i;
+}
+
+void readFrameDimensions(DcmItem* group, FrameDimensions& d) {
+    if (!group) return;
+    if (DcmItem* content = firstItem(group, DCM_FrameContentSequence)) {
+        int i = 0;
+        if (integer(content, DCM_TemporalPositionIndex, i)) d.temporalPosition = i;
+        if (const std::string s = text(content, DCM_StackID); !s.empty()) d.stackId = s;
+    }
+    double v = 0;
+    if (number(firstItem(group, DCM_MREchoSequence), DCM_EffectiveEchoTime, v)) d.echoTime = v;
+    if (DcmItem* diffusion = firstItem(group, DCM_MRDiffusionSequence)) {
+        readDimensions(diffusion, d);
+        readDimensions(firstItem(diffusion, DCM_DiffusionGradientDirectionSequence), d);
+    }
+    if (number(firstItem(group, DCM_CardiacSynchronizationSequence), DCM_NominalCardiacTriggerDelayTime, v))
+        d.triggerTime = v;
+    for (const DcmTagKey& seq : {DCM_MRImageFrameTypeSequence, DCM_CTImageFrameTypeSequence})
+        if (const std::string t = text(firstItem(group, seq), DCM_FrameType); !t.empty()) d.imageType = t;
+}
+
 void readFunctionalGroup(DcmItem* group, FrameGeometry& g) {
+    readFrameDimensions(group, g.dimensions);
     readPlane(firstItem(group, DCM_PlanePositionSequence), g);
     readPlane(firstItem(group, DCM_PlaneOrientationSequence), g);
     readPlane(firstItem(group, DCM_PixelMeasuresSequence), g);
@@ -149,6 +202,7 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     }
     FrameGeometry base;
     readPlane(ds, base);
+    readDimensions(ds, base.dimensions);
     DcmItem* shared = firstItem(ds, DCM_SharedFunctionalGroupsSequence);
     readFunctionalGroup(shared, base);
     DcmSequenceOfItems* perFrame = nullptr;

@@ -7,6 +7,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "dicom/FrameDimensions.h"
+
 namespace hvx::dicom {
 
 /// Plane geometry and value transform of one frame (a single-frame image, or one frame of an
@@ -21,6 +23,7 @@ struct FrameGeometry {
     glm::dvec2 pixelSpacing{1.0, 1.0};  ///< PixelSpacing: (between rows, between columns) mm
     double rescaleSlope = 1.0;
     double rescaleIntercept = 0.0;
+    FrameDimensions dimensions;  ///< what tells this frame apart from others at its position
 };
 
 /// What the scanner reads from one DICOM file's header: the identifiers the study database

@@ -10,6 +10,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "dicom/VolumeSplitter.h"
+
 namespace hvx::dicom {
 
 namespace {
@@ -108,7 +110,7 @@ void finishGeometry(SeriesVolume& v) {
 
 std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInstance>& instances,
                                                     std::vector<std::string>& notes) {
-    std::map<GroupKey, std::vector<std::pair<std::size_t, std::uint32_t>>> groups;
+    std::map<GroupKey, std::vector<VolumeSplitter::Member>> groups;
     std::map<std::string, std::set<std::string>> sizesPerSeries;
     std::map<std::string, std::size_t> skipped;
     for (std::size_t i = 0; i < instances.size(); ++i) {
@@ -140,64 +142,71 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
     for (const auto& [key, members] : groups) ++stacksPerSeries[key.series];
     std::map<std::string, int> stackIndex;
     std::vector<SeriesVolume> out;
-    for (const auto& [key, members] : groups) {
-        SeriesVolume v;
-        v.seriesUid = key.series;
-        std::map<std::size_t, std::size_t> local;
+    for (auto& [key, members] : groups) {
         const DicomInstance& ref = instances[members.front().first];
         const FrameGeometry& rg = ref.frameGeometry[0];
         const glm::dvec3 n = glm::normalize(glm::cross(rg.rowDirection, rg.columnDirection));
-        bool missingPosition = false;
-        for (const auto& [idx, frame] : members) {
-            const auto& in = instances[idx];
-            if (!local.count(idx)) {
-                local[idx] = v.instances.size();
-                v.instances.push_back(in);
-            }
-            const auto& fg = in.frameGeometry[std::min<std::size_t>(frame, in.frameGeometry.size() - 1)];
-            missingPosition = missingPosition || !fg.hasPosition;
-            SliceRef s;
-            s.instance = local[idx];
-            s.frame = frame;
-            s.position = fg.hasPosition ? fg.position : glm::dvec3(0.0, 0.0, double(v.slices.size()));
-            s.along = glm::dot(s.position, n);
-            s.rescaleSlope = fg.rescaleSlope;
-            s.rescaleIntercept = fg.rescaleIntercept;
-            v.slices.push_back(s);
-        }
-        if (missingPosition)
-            v.warnings.push_back("images have no ImagePositionPatient: stacked in file order with 1 mm spacing");
-        std::stable_sort(v.slices.begin(), v.slices.end(),
-                         [](const SliceRef& a, const SliceRef& b) { return a.along < b.along; });
-        // Several images at one position (repeated acquisitions): keep the first of each.
-        std::size_t duplicates = 0;
-        std::vector<SliceRef> unique;
-        for (const auto& s : v.slices) {
-            if (!unique.empty() && std::abs(s.along - unique.back().along) < 1e-3) {
-                ++duplicates;
-                continue;
-            }
-            unique.push_back(s);
-        }
-        if (duplicates)
-            v.warnings.push_back(std::to_string(duplicates) +
-                                 " images share a position with another (repeated acquisitions?): kept the first");
-        v.slices = std::move(unique);
-        if (stacksPerSeries[key.series] > 1) {
-            std::string sizes;
-            for (const auto& sz : sizesPerSeries[key.series]) sizes += (sizes.empty() ? "" : ", ") + sz;
-            v.warnings.push_back("series holds " + std::to_string(stacksPerSeries[key.series]) +
-                                 " stacks of different geometry" +
-                                 (sizesPerSeries[key.series].size() > 1 ? " and mixed image sizes (" + sizes + ")" : "") +
-                                 ": split into separate volumes");
-        }
-        finishGeometry(v);
-        v.label = (ref.modality.empty() ? std::string("OT") : ref.modality) + " #" + std::to_string(ref.seriesNumber) +
-                  (ref.seriesDescription.empty() ? "" : " " + ref.seriesDescription);
+        // The same instance found twice (two copies of a file) is one image.
+        std::set<std::pair<std::string, std::uint32_t>> seen;
+        std::size_t copies = 0;
+        members.erase(std::remove_if(members.begin(), members.end(),
+                                     [&](const VolumeSplitter::Member& m) {
+                                         const bool copy = !seen.insert({instances[m.first].sopInstanceUid, m.second}).second;
+                                         copies += copy ? 1 : 0;
+                                         return copy;
+                                     }),
+                      members.end());
+        std::string stackLabel;
         if (stacksPerSeries[key.series] > 1)
-            v.label += " (stack " + std::to_string(++stackIndex[key.series]) + " of " +
-                       std::to_string(stacksPerSeries[key.series]) + ")";
-        out.push_back(std::move(v));
+            stackLabel = " (stack " + std::to_string(++stackIndex[key.series]) + " of " +
+                         std::to_string(stacksPerSeries[key.series]) + ")";
+        const auto split = VolumeSplitter::split(instances, members, n);
+        const std::string seriesName = (ref.modality.empty() ? std::string("OT") : ref.modality) + " #" +
+                                       std::to_string(ref.seriesNumber) +
+                                       (ref.seriesDescription.empty() ? "" : " " + ref.seriesDescription);
+        for (const auto& why : split.refused) notes.push_back(seriesName + stackLabel + ": " + why);
+        for (const auto& part : split.parts) {
+            SeriesVolume v;
+            v.seriesUid = key.series;
+            v.varying = part.varying;
+            std::map<std::size_t, std::size_t> local;
+            bool missingPosition = false;
+            for (const auto& [idx, frame] : part.members) {
+                const auto& in = instances[idx];
+                if (!local.count(idx)) {
+                    local[idx] = v.instances.size();
+                    v.instances.push_back(in);
+                }
+                const auto& fg = in.frameGeometry[std::min<std::size_t>(frame, in.frameGeometry.size() - 1)];
+                missingPosition = missingPosition || !fg.hasPosition;
+                SliceRef s;
+                s.instance = local[idx];
+                s.frame = frame;
+                s.position = fg.hasPosition ? fg.position : glm::dvec3(0.0, 0.0, double(v.slices.size()));
+                s.along = glm::dot(s.position, n);
+                s.rescaleSlope = fg.rescaleSlope;
+                s.rescaleIntercept = fg.rescaleIntercept;
+                v.slices.push_back(s);
+            }
+            if (missingPosition)
+                v.warnings.push_back("images have no ImagePositionPatient: stacked in file order with 1 mm spacing");
+            if (copies)
+                v.warnings.push_back(std::to_string(copies) + " files are copies of instances already found (same SOP "
+                                     "Instance UID): each instance is used once");
+            std::stable_sort(v.slices.begin(), v.slices.end(),
+                             [](const SliceRef& a, const SliceRef& b) { return a.along < b.along; });
+            if (stacksPerSeries[key.series] > 1) {
+                std::string sizes;
+                for (const auto& sz : sizesPerSeries[key.series]) sizes += (sizes.empty() ? "" : ", ") + sz;
+                v.warnings.push_back("series holds " + std::to_string(stacksPerSeries[key.series]) +
+                                     " stacks of different geometry" +
+                                     (sizesPerSeries[key.series].size() > 1 ? " and mixed image sizes (" + sizes + ")" : "") +
+                                     ": split into separate volumes");
+            }
+            finishGeometry(v);
+            v.label = seriesName + stackLabel + (v.varying.empty() ? "" : " \u2014 " + v.varying);
+            out.push_back(std::move(v));
+        }
     }
     // Patient, then study, then series order, as a browser lists them.
     std::stable_sort(out.begin(), out.end(), [](const SeriesVolume& a, const SeriesVolume& b) {

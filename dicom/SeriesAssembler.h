@@ -10,7 +10,9 @@ namespace hvx::dicom {
 /// (orientation, rows and columns, pixel spacing, pixel format), so a series holding a scout
 /// and an axial stack gives two volumes; sorts each group by ImagePositionPatient projected on
 /// the slice normal (never by InstanceNumber); derives spacing from the positions; and warns
-/// about non-uniform spacing, missing slices, gantry tilt and mixed sizes.
+/// about non-uniform spacing, missing slices, gantry tilt and mixed sizes. Images that share a
+/// position are split into the volumes of a 4D series by what varies between them
+/// (VolumeSplitter: echo, diffusion, time, ...), or refused with a note, never mixed.
 ///
 /// Gantry tilt: the stack is kept sheared, with the exact (non-orthogonal) index-to-patient
 /// transform stored in the geometry; no resampling blurs it.

@@ -22,7 +22,10 @@ struct SliceRef {
 /// on a uniform grid at the smallest regular spacing and slices are interpolated linearly.
 struct SeriesVolume {
     std::string seriesUid;
-    std::string label;  ///< "CT #3 Abdomen", plus "(stack 2 of 2)" when a series split
+    std::string label;  ///< "CT #3 Abdomen", plus "(stack 2 of 2)" and what varies when a series split
+    /// What tells this volume from the series' others at the same positions (a 4D series):
+    /// "echo 2 (TE 20 ms)", "b 1000 (0.71, 0.71, 0)", "time 3"; empty for a plain volume.
+    std::string varying;
     std::vector<DicomInstance> instances;
     std::vector<SliceRef> slices;  ///< sorted by position along the normal
     core::VolumeGeometry geometry;

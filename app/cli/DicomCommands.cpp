@@ -24,9 +24,12 @@ std::string octreeFolder(const std::string& dbPath) {
     return (std::filesystem::path(dbPath).parent_path() / "octrees").string();
 }
 
-void printVolume(const dicom::SeriesVolume& v) {
+/// One line per volume; `number` (1-based) is its place among the series' volumes, shown when
+/// a series holds several (the N of build-series --volume N).
+void printVolume(const dicom::SeriesVolume& v, std::size_t number = 0) {
     const auto& g = v.geometry;
-    std::printf("    %-40s %4u x %4u x %4u  %.3g x %.3g x %.3g mm  %s%s\n", v.label.c_str(), g.dims[0], g.dims[1],
+    const std::string label = (number ? "#" + std::to_string(number) + " " : std::string()) + v.label;
+    std::printf("    %-40s %4u x %4u x %4u  %.3g x %.3g x %.3g mm  %s%s\n", label.c_str(), g.dims[0], g.dims[1],
                 g.dims[2], g.spacing.x, g.spacing.y, g.spacing.z, std::string(core::scalarName(g.scalarType)).c_str(),
                 g.monochrome1 ? " MONOCHROME1" : "");
     for (const auto& w : v.warnings) std::printf("      warning: %s\n", w.c_str());
@@ -64,6 +67,8 @@ int importCommand(int argc, char** argv) {
     for (const auto& n : notes) std::printf("  note: %s\n", n.c_str());
     // Patient -> study -> series table of what was found.
     std::string lastPatient, lastStudy;
+    std::map<std::string, std::size_t> volumesPerSeries, volumeNumber;
+    for (const auto& v : volumes) ++volumesPerSeries[v.seriesUid];
     for (const auto& v : volumes) {
         const auto& in = v.instances.front();
         if (in.patientId + in.patientName != lastPatient) {
@@ -77,7 +82,7 @@ int importCommand(int argc, char** argv) {
                         in.studyDescription.c_str(), in.accessionNumber.c_str());
             lastStudy = in.studyInstanceUid;
         }
-        printVolume(v);
+        printVolume(v, volumesPerSeries[v.seriesUid] > 1 ? ++volumeNumber[v.seriesUid] : 0);
     }
     if (args.flag("build")) {
         std::filesystem::create_directories(octreeFolder(dbPath));
@@ -135,10 +140,10 @@ int studiesCommand(int argc, char** argv) {
 }
 
 int buildSeriesCommand(int argc, char** argv) {
-    const CliArgs args(argc, argv, 2, {"db", "o", "output", "stack"}, {});
+    const CliArgs args(argc, argv, 2, {"db", "o", "output", "stack", "volume"}, {});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
-        throw core::Error("usage: holovox-cli build-series SERIES_UID -o OUT.hvo [--db FILE] [--stack N]");
+        throw core::Error("usage: holovox-cli build-series SERIES_UID -o OUT.hvo [--db FILE] [--volume N]");
     const std::string uid = args.positional()[0];
     dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
     const auto files = db.filesOfSeries(uid);
@@ -151,13 +156,13 @@ int buildSeriesCommand(int argc, char** argv) {
                   volumes.end());
     if (volumes.empty()) throw core::Error("series " + uid + " has no image volume");
     std::size_t pick = 0;
-    if (args.value("stack")) {
-        pick = std::size_t(args.integer("stack", 1, 1, long(volumes.size()))) - 1;
+    if (const char* name = args.value("volume") ? "volume" : args.value("stack") ? "stack" : nullptr) {
+        pick = std::size_t(args.integer(name, 1, 1, long(volumes.size()))) - 1;
     } else {
         for (std::size_t i = 1; i < volumes.size(); ++i)
             if (volumes[i].slices.size() > volumes[pick].slices.size()) pick = i;
     }
-    printVolume(volumes[pick]);
+    printVolume(volumes[pick], volumes.size() > 1 ? pick + 1 : 0);
     dicom::DicomSeriesSource source(volumes[pick]);
     OctreeBuildRunner::run(source, *out, core::BuildOptions{}, true);
     db.setSeriesOctree(uid, *out);

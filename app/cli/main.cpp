@@ -23,7 +23,7 @@ void usage() {
         "  import PATH... [--db FILE] [--build]   scan folders/DICOMDIR/files into the study database\n"
         "  studies [--db FILE] [--patient TEXT] [--from YYYYMMDD] [--to YYYYMMDD] [--modality CT]\n"
         "  prune [--db FILE]             remove the rows of deleted files (unreachable folders are kept)\n"
-        "  build-series SERIES_UID -o OUT.hvo [--db FILE] [--stack N]\n"
+        "  build-series SERIES_UID -o OUT.hvo [--db FILE] [--volume N]   (N as import numbers them)\n"
         "  export-dicom INPUT -o FOLDER [--syntax explicit-little|implicit-little|explicit-big|deflate|rle|\n"
         "        jpeg-lossless|jpeg-ls] [--enhanced] [--patient NAME] [--patient-id ID] [--study TEXT]\n"
         "  pacs nodes | add NAME --ae AE --host H --port P [--move] [--default] [--tls --tls-ca CA.pem]\n"

@@ -1,0 +1,36 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "dicom/DicomInstance.h"
+
+namespace hvx::dicom {
+
+/// Splits the frames of one stack (one series, one geometry) into volumes when several images
+/// share a position, as dcm2niix and 3D Slicer's multi-volume importer do: by image type
+/// (magnitude, phase, ...), echo, diffusion b-value and gradient, temporal position, trigger
+/// time, acquisition number and enhanced stack, in that order, each only where positions still
+/// repeat. A part whose images still share a position cannot be told apart: it is refused,
+/// never mixed and never reduced to "the first".
+///
+/// Threading: pure functions.
+class VolumeSplitter {
+public:
+    /// A frame of the stack: instance index and frame number.
+    using Member = std::pair<std::size_t, std::uint32_t>;
+    struct Part {
+        std::vector<Member> members;
+        std::string varying;  ///< what tells it from its siblings, e.g. "echo 2 (TE 20 ms)"; empty when alone
+    };
+    struct Result {
+        std::vector<Part> parts;
+        std::vector<std::string> refused;  ///< one sentence per part refused
+    };
+    /// `normal`: the stack's slice normal, along which positions are compared (to 1 µm).
+    static Result split(const std::vector<DicomInstance>& instances, const std::vector<Member>& members,
+                        const glm::dvec3& normal);
+};
+
+}  // namespace hvx::dicom

@@ -1,0 +1,173 @@
+// Series whose images share positions (multi-echo, diffusion, dynamic), written by pydicom in
+// shuffled order, split into volumes as dcm2niix splits them, and each volume compared voxel by
+// voxel with dcm2niix's NIfTI for the same files (placed through each one's own geometry, so a
+// flipped axis or a swapped slice shows). Images nothing tells apart are refused, never mixed.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+
+#include <glm/matrix.hpp>
+
+#include "core/volume/NiftiVoxelSource.h"
+#include "dicom/DicomScanner.h"
+#include "dicom/DicomSeriesSource.h"
+#include "dicom/SeriesAssembler.h"
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+
+std::vector<double> physical(core::VoxelSource& s) {
+    const auto& g = s.geometry();
+    const std::size_t n = std::size_t(g.dims[0]) * g.dims[1] * g.dims[2];
+    std::vector<double> out(n);
+    core::dispatchScalar(g.scalarType, [&](auto tag) {
+        using T = decltype(tag);
+        std::vector<T> buf(n);
+        s.readSlices(0, g.dims[2], buf.data());
+        for (std::size_t i = 0; i < n; ++i) out[i] = double(buf[i]) * g.rescaleSlope + g.rescaleIntercept;
+    });
+    return out;
+}
+
+/// Every voxel of `ours` placed in `theirs` by the two geometries: the index found must be a
+/// whole voxel of theirs, holding the same value.
+void expectSameVoxels(core::VoxelSource& ours, core::VoxelSource& theirs) {
+    const auto& a = ours.geometry();
+    const auto& b = theirs.geometry();
+    ASSERT_EQ(a.voxelCount(), b.voxelCount());
+    const auto va = physical(ours), vb = physical(theirs);
+    const glm::dmat4 toTheirs = glm::inverse(b.indexToPatient()) * a.indexToPatient();
+    std::size_t misplaced = 0, wrong = 0;
+    for (std::uint32_t k = 0; k < a.dims[2]; ++k)
+        for (std::uint32_t j = 0; j < a.dims[1]; ++j)
+            for (std::uint32_t i = 0; i < a.dims[0]; ++i) {
+                const glm::dvec4 t = toTheirs * glm::dvec4(i, j, k, 1);
+                long idx[3];
+                bool ok = true;
+                for (int c = 0; c < 3; ++c) {
+                    idx[c] = std::lround(t[c]);
+                    ok = ok && std::abs(t[c] - double(idx[c])) < 1e-3 && idx[c] >= 0 && idx[c] < long(b.dims[std::size_t(c)]);
+                }
+                if (!ok) {
+                    ++misplaced;
+                    continue;
+                }
+                const std::size_t ia = (std::size_t(k) * a.dims[1] + j) * a.dims[0] + i;
+                const std::size_t ib = (std::size_t(idx[2]) * b.dims[1] + std::size_t(idx[1])) * b.dims[0] + std::size_t(idx[0]);
+                if (std::abs(va[ia] - vb[ib]) > 1e-3) ++wrong;
+            }
+    EXPECT_EQ(misplaced, 0u) << "voxels that land between or outside dcm2niix's";
+    EXPECT_EQ(wrong, 0u) << "voxels whose values differ from dcm2niix's";
+}
+
+class MultiVolumeSeries : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        dir_ = std::make_unique<test::TempDir>();
+        const auto r = test::runCommand("/usr/bin/python3 " + std::string(HVX_SOURCE_DIR) + "/tests/support/dicom_cases.py " +
+                                        dir_->file("dcm"));
+        log_ = r.output;
+        ok_ = r.exitCode == 0;
+        for (const std::string c : {"echo", "diffusion", "dynamic"}) {
+            std::filesystem::create_directories(dir_->file("nii/" + c));
+            const auto n = test::runCommand("dcm2niix -z n -f %s -o " + dir_->file("nii/" + c) + " " + dir_->file("dcm/" + c));
+            ok_ = ok_ && n.exitCode == 0;
+            log_ += n.output;
+        }
+    }
+    static void TearDownTestSuite() { dir_.reset(); }
+    void SetUp() override { ASSERT_TRUE(ok_) << "pydicom or dcm2niix failed (installer/install-deps.sh installs both):\n" << log_; }
+
+    static std::vector<dicom::SeriesVolume> import(const std::string& name, std::vector<std::string>* notes = nullptr) {
+        core::JobContext job;
+        const auto scan = dicom::DicomScanner::scan({dir_->file("dcm/" + name)}, job);
+        std::vector<std::string> n;
+        auto v = dicom::SeriesAssembler::assemble(scan.instances, n);
+        if (notes) *notes = n;
+        return v;
+    }
+    static std::string nii(const std::string& name) { return dir_->file("nii/" + name); }
+
+    static std::unique_ptr<test::TempDir> dir_;
+    static std::string log_;
+    static bool ok_;
+};
+std::unique_ptr<test::TempDir> MultiVolumeSeries::dir_;
+std::string MultiVolumeSeries::log_;
+bool MultiVolumeSeries::ok_ = false;
+
+}  // namespace
+
+TEST_F(MultiVolumeSeries, DualEchoBecomesTwoVolumesLikeDcm2niixE1E2) {
+    const auto volumes = import("echo");
+    ASSERT_EQ(volumes.size(), 2u);
+    EXPECT_EQ(volumes[0].varying, "echo 1 (TE 10 ms)");
+    EXPECT_EQ(volumes[1].varying, "echo 2 (TE 20 ms)");
+    for (int e = 0; e < 2; ++e) {
+        SCOPED_TRACE(e);
+        EXPECT_EQ(volumes[std::size_t(e)].geometry.dims[2], 12u);
+        EXPECT_TRUE(volumes[std::size_t(e)].warnings.empty()) << volumes[std::size_t(e)].warnings.front();
+        dicom::DicomSeriesSource ours(volumes[std::size_t(e)]);
+        core::NiftiVoxelSource theirs(nii("echo/7_e" + std::to_string(e + 1) + ".nii"));
+        expectSameVoxels(ours, theirs);
+    }
+}
+
+TEST_F(MultiVolumeSeries, ThreeBValuesBecomeThreeVolumesInDcm2niixOrder) {
+    const auto volumes = import("diffusion");
+    ASSERT_EQ(volumes.size(), 3u);
+    EXPECT_EQ(volumes[0].varying, "b 0");
+    EXPECT_EQ(volumes[1].varying, "b 500 (0.6, 0.8, 0)");
+    EXPECT_EQ(volumes[2].varying, "b 1000 (0.6, 0.8, 0)");
+    std::ifstream bval(nii("diffusion/7.bval"));
+    std::vector<double> b{std::istream_iterator<double>(bval), std::istream_iterator<double>()};
+    ASSERT_EQ(b, (std::vector<double>{0, 500, 1000})) << "dcm2niix's volume order";
+    for (std::uint32_t t = 0; t < 3; ++t) {
+        SCOPED_TRACE(t);
+        dicom::DicomSeriesSource ours(volumes[t]);
+        core::NiftiVoxelSource theirs(nii("diffusion/7.nii"), t);
+        expectSameVoxels(ours, theirs);
+    }
+}
+
+TEST_F(MultiVolumeSeries, TenTimePointsBecomeTenVolumes) {
+    const auto volumes = import("dynamic");
+    ASSERT_EQ(volumes.size(), 10u);
+    for (std::uint32_t t = 0; t < 10; ++t) {
+        SCOPED_TRACE(t);
+        EXPECT_EQ(volumes[t].varying, "time " + std::to_string(t + 1));
+        EXPECT_NE(volumes[t].label.find("time " + std::to_string(t + 1)), std::string::npos) << volumes[t].label;
+        dicom::DicomSeriesSource ours(volumes[t]);
+        core::NiftiVoxelSource theirs(nii("dynamic/7.nii"), t);
+        expectSameVoxels(ours, theirs);
+    }
+}
+
+TEST_F(MultiVolumeSeries, ImagesNothingTellsApartAreRefusedNotMixed) {
+    std::vector<std::string> notes;
+    const auto volumes = import("twins", &notes);
+    EXPECT_TRUE(volumes.empty()) << "a volume was made of images that share positions";
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("10 images share positions and nothing tells them apart"), std::string::npos) << notes[0];
+    EXPECT_NE(notes[0].find("refused"), std::string::npos) << notes[0];
+}
+
+TEST_F(MultiVolumeSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
+    const std::string db = " --db " + dir_->file("db.sqlite");
+    auto r = test::runCommand(std::string(HVX_CLI) + " import " + dir_->file("dcm/echo") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("#1 MR #7 \u2014 echo 1 (TE 10 ms)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("#2 MR #7 \u2014 echo 2 (TE 20 ms)"), std::string::npos) << r.output;
+    const auto volumes = import("echo");
+    r = test::runCommand(std::string(HVX_CLI) + " build-series " + volumes[1].seriesUid + " --volume 2 -o " +
+                         dir_->file("e2.hvo") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("echo 2 (TE 20 ms)"), std::string::npos) << r.output;
+}
