@@ -206,23 +206,28 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     DcmItem* shared = firstItem(ds, DCM_SharedFunctionalGroupsSequence);
     readFunctionalGroup(shared, base);
     DcmSequenceOfItems* perFrame = nullptr;
+    // RT dose grids scale their stored values by DoseGridScaling, one plane or many.
+    if (double scaling = 0; number(ds, DCM_DoseGridScaling, scaling) && scaling > 0) base.rescaleSlope = scaling;
     if (ds->findAndGetSequence(DCM_PerFrameFunctionalGroupsSequence, perFrame).good() && perFrame &&
-        p.frames > 1) {
+        p.frames >= 1) {  // an enhanced object of one frame has its position in its per-frame group too
         for (std::uint32_t f = 0; f < p.frames; ++f) {
             FrameGeometry g = base;
             if (f < perFrame->card()) readFunctionalGroup(perFrame->getItem(f), g);
             p.frameGeometry.push_back(g);
         }
     } else if (p.frames > 1 && ds->tagExists(DCM_GridFrameOffsetVector)) {
-        // RT Dose: frames are planes offset along the normal from ImagePositionPatient.
-        double scaling = 0;
-        if (number(ds, DCM_DoseGridScaling, scaling) && scaling > 0) base.rescaleSlope = scaling;
+        // RT Dose: frames are planes along the normal (PS3.3 C.8.8.3.2). The offsets are relative
+        // to ImagePositionPatient when the first is 0, else absolute coordinates along the normal
+        // whose first is the plane at ImagePositionPatient; both are the first plane plus the
+        // difference from the first offset.
         const glm::dvec3 n = glm::cross(base.rowDirection, base.columnDirection);
+        double first = 0;
+        const bool hasFirst = number(ds, DCM_GridFrameOffsetVector, first, 0);
         for (std::uint32_t f = 0; f < p.frames; ++f) {
             FrameGeometry g = base;
             double offset = 0;
-            if (!number(ds, DCM_GridFrameOffsetVector, offset, f)) g.hasPosition = false;
-            g.position = base.position + n * offset;
+            if (!hasFirst || !number(ds, DCM_GridFrameOffsetVector, offset, f)) g.hasPosition = false;
+            g.position = base.position + n * (offset - first);
             p.frameGeometry.push_back(g);
         }
     } else if (p.frames > 0) {

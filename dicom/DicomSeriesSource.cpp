@@ -83,8 +83,11 @@ void DicomSeriesSource::writeSlice(std::uint32_t z, T* out) {
         }
     }
     auto value = [&](const DicomInstance& in, const SliceRef& s, std::int32_t v) -> double {
-        const bool padded = in.pixelPadding && double(v) == *in.pixelPadding;
-        const double stored = padded ? paddingStored_ : double(v);
+        // The decoder hands 32-bit samples over as int32: unsigned ones at or above 2^31 are
+        // taken back as unsigned here, never as negative numbers.
+        const double raw = in.bitsAllocated == 32 && in.pixelRepresentation == 0 ? double(std::uint32_t(v)) : double(v);
+        const bool padded = in.pixelPadding && raw == *in.pixelPadding;
+        const double stored = padded ? paddingStored_ : raw;
         return volume_.applyRescale ? stored * s.rescaleSlope + s.rescaleIntercept : stored;
     };
     for (std::size_t i = 0; i < n; ++i) {

@@ -38,6 +38,30 @@ core::ScalarType storageType(const DicomInstance& in, bool applyRescale) {
     return in.pixelRepresentation ? core::ScalarType::Int16 : core::ScalarType::UInt16;
 }
 
+/// Positions off the line from the first slice to the last by more than a tenth of a pixel are
+/// named: such a stack is not one straight volume, and is placed by position along the line.
+void checkOnLine(SeriesVolume& v, const glm::dvec3& k) {
+    const auto& first = v.slices.front();
+    const DicomInstance& in = v.instances[first.instance];
+    const auto& fg = in.frameGeometry[std::min<std::size_t>(first.frame, in.frameGeometry.size() - 1)];
+    const double tolerance = 0.1 * std::min(fg.pixelSpacing.x, fg.pixelSpacing.y);
+    double worst = 0;
+    std::vector<std::string> off;
+    for (const auto& s : v.slices) {
+        const glm::dvec3 d = s.position - first.position;
+        const double away = glm::length(d - glm::dot(d, k) * k);
+        if (away <= tolerance) continue;
+        worst = std::max(worst, away);
+        if (off.size() < 5) off.push_back(std::to_string(v.instances[s.instance].instanceNumber));
+        else if (off.size() == 5) off.push_back("...");
+    }
+    if (off.empty()) return;
+    std::string names;
+    for (const auto& o : off) names += (names.empty() ? "" : ", ") + o;
+    v.warnings.push_back(fmt("slices lie off the stack's line by up to %.3g mm", worst) + " (instances " + names +
+                         "): placed by their position along it");
+}
+
 void finishGeometry(SeriesVolume& v) {
     const DicomInstance& first = v.instances[v.slices.front().instance];
     const FrameGeometry& fg = first.frameGeometry[std::min<std::size_t>(v.slices.front().frame, first.frameGeometry.size() - 1)];
@@ -82,11 +106,16 @@ void finishGeometry(SeriesVolume& v) {
                 v.warnings.push_back(fmt("non-uniform slice spacing (%.3g to %.3g mm): resampled to %.4g mm", minGap,
                                          maxGap, step));
         }
+        checkOnLine(v, k);
         // Step along k that advances `step` along the normal.
         g.spacing.z = step / glm::dot(k, n);
         g.dims[2] = outSlices;
     }
     g.direction = glm::dmat3(r, c, k);
+    if (!fg.hasSpacing) v.warnings.push_back("PixelSpacing is missing: spacing unknown, assumed 1 mm");
+    if (!fg.hasOrientation)
+        v.warnings.push_back("ImageOrientationPatient is missing: orientation unknown, assumed axial; left and right "
+                             "are not known");
     g.modality = first.modality.empty() ? "OT" : first.modality;
     g.monochrome1 = first.photometric == "MONOCHROME1";
     // One rescale for every slice keeps stored values; otherwise convert to physical floats.
@@ -144,7 +173,9 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
     std::vector<SeriesVolume> out;
     for (auto& [key, members] : groups) {
         const DicomInstance& ref = instances[members.front().first];
-        const FrameGeometry& rg = ref.frameGeometry[0];
+        // The group's own orientation (a three-plane localizer's frames differ from frame 0's).
+        const FrameGeometry& rg =
+            ref.frameGeometry[std::min<std::size_t>(members.front().second, ref.frameGeometry.size() - 1)];
         const glm::dvec3 n = glm::normalize(glm::cross(rg.rowDirection, rg.columnDirection));
         // The same instance found twice (two copies of a file) is one image.
         std::set<std::pair<std::string, std::uint32_t>> seen;

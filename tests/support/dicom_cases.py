@@ -6,6 +6,12 @@ real multi-volume acquisitions do, in shuffled file-name order:
   diffusion/  three b-values (0, 500, 1000 s/mm2), 8 slices each
   dynamic/    ten time points (TemporalPositionIdentifier 1..10), 6 slices each
   twins/      two images at each of 5 positions that nothing tells apart
+  offline/    6 slices, the 4th (instance 4) moved 2 mm off the stack's line
+  nogeometry/ 4 slices without PixelSpacing and ImageOrientationPatient
+  localizer/  one enhanced MR object: 3 frames in each of 3 orientations (a three-plane localizer)
+  enhanced1/  a single-frame enhanced MR object whose position and rescale are per-frame only
+  dose/       RT dose: 3 planes with absolute GridFrameOffsetVector, and a single plane, scaled
+  uint32/     4 slices of 32-bit unsigned pixels at and above 2^31
 
 Each volume's pixels differ (value = 1000 * volume + 100 * slice + column + 7 * row), so
 a mixed volume cannot pass. usage: dicom_cases.py OUT_DIR
@@ -79,6 +85,99 @@ def series(out, name, volumes, slices, extra_of, twins=False):
     return uid
 
 
+def save(ds, path):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    ds.save_as(path, write_like_original=False)
+
+
+def extras(out):
+    uid, study, frame = generate_uid(), generate_uid(), generate_uid()
+    for s in range(6):
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        if s == 3:
+            pos = [float(v) for v in ds.ImagePositionPatient]
+            ds.ImagePositionPatient = [f'{pos[0] + 2.0:.4f}', f'{pos[1]:.4f}', f'{pos[2]:.4f}']
+        save(ds, os.path.join(out, 'offline', f'IM{s}'))
+    uid = generate_uid()
+    for s in range(4):
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        del ds.PixelSpacing
+        del ds.ImageOrientationPatient
+        save(ds, os.path.join(out, 'nogeometry', f'IM{s}'))
+
+    def enhanced(frames, name):
+        """frames: list of (iop, ipp, slope, intercept); pixels = 1000 * frame + column."""
+        ds = image(generate_uid(), study, frame, 1, 0, 0, {})
+        ds.SOPClassUID = ds.file_meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.4.1'
+        for k in ['ImageOrientationPatient', 'ImagePositionPatient', 'PixelSpacing', 'SliceThickness']:
+            delattr(ds, k)
+        shared = Dataset()
+        pm = Dataset()
+        pm.PixelSpacing = ['0.9', '1.1']
+        pm.SliceThickness = '3'
+        shared.PixelMeasuresSequence = [pm]
+        ds.SharedFunctionalGroupsSequence = [shared]
+        per = []
+        for iop, ipp, slope, intercept in frames:
+            item = Dataset()
+            po = Dataset()
+            po.ImageOrientationPatient = [f'{v:.6f}' for v in iop]
+            pp = Dataset()
+            pp.ImagePositionPatient = [f'{v:.4f}' for v in ipp]
+            tr = Dataset()
+            tr.RescaleSlope = str(slope)
+            tr.RescaleIntercept = str(intercept)
+            tr.RescaleType = 'US'
+            item.PlaneOrientationSequence = [po]
+            item.PlanePositionSequence = [pp]
+            item.PixelValueTransformationSequence = [tr]
+            per.append(item)
+        ds.PerFrameFunctionalGroupsSequence = per
+        ds.NumberOfFrames = len(frames)
+        r, c = np.mgrid[0:ROWS, 0:COLS]
+        ds.PixelData = b''.join((1000 * f + c + 0 * r).astype('<i2').tobytes() for f in range(len(frames)))
+        save(ds, os.path.join(out, name, 'IM0'))
+
+    axial = [1, 0, 0, 0, 1, 0]
+    coronal = [1, 0, 0, 0, 0, -1]
+    sagittal = [0, 1, 0, 0, 0, -1]
+    frames = []
+    for p in range(3):  # interleaved, as scanners store them
+        frames.append((axial, [-10, -8, 5.0 + 4 * p], 1, 0))
+        frames.append((coronal, [-10, 3.0 + 4 * p, 20], 1, 0))
+        frames.append((sagittal, [2.0 + 4 * p, -8, 20], 1, 0))
+    enhanced(frames, 'localizer')
+    enhanced([(axial, [11.5, -7.25, 42.0], 2, -100)], 'enhanced1')
+
+    def dose(name, planes, offsets):
+        ds = image(generate_uid(), study, frame, 1, 0, 0, {})
+        ds.SOPClassUID = ds.file_meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.481.2'
+        ds.Modality = 'RTDOSE'
+        ds.ImageOrientationPatient = ['1', '0', '0', '0', '1', '0']
+        ds.ImagePositionPatient = ['-10', '-8', '-40']
+        ds.PixelRepresentation = 0
+        ds.DoseGridScaling = '0.001'
+        ds.DoseUnits = 'GY'
+        ds.NumberOfFrames = planes
+        if offsets is not None:
+            ds.GridFrameOffsetVector = [str(o) for o in offsets]
+        r, c = np.mgrid[0:ROWS, 0:COLS]
+        ds.PixelData = b''.join((1000 * (f + 1) + c).astype('<u2').tobytes() for f in range(planes))
+        save(ds, os.path.join(out, name, 'IM0'))
+
+    dose('dose', 3, [-40, -37, -34])   # absolute: the first is the plane at ImagePositionPatient
+    dose('dose1', 1, None)
+    uid = generate_uid()
+    for s in range(4):
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        ds.BitsAllocated = ds.BitsStored = 32
+        ds.HighBit = 31
+        ds.PixelRepresentation = 0
+        r, c = np.mgrid[0:ROWS, 0:COLS]
+        ds.PixelData = (2147483648 + 1000 * s + c + 0 * r).astype('<u4').tobytes()
+        save(ds, os.path.join(out, 'uint32', f'IM{s}'))
+
+
 def main(out):
     os.makedirs(out, exist_ok=True)
     series(out, 'echo', 2, 12, lambda v: {'EchoNumbers': v + 1, 'EchoTime': str(10 * (v + 1))})
@@ -88,6 +187,7 @@ def main(out):
     series(out, 'dynamic', 10, 6, lambda v: {'TemporalPositionIdentifier': v + 1,
                                              'NumberOfTemporalPositions': 10, 'EchoTime': '5'})
     series(out, 'twins', 2, 5, lambda v: {}, twins=True)
+    extras(out)
     print('written', sorted(os.listdir(out)))
 
 

@@ -1,7 +1,11 @@
-// Series whose images share positions (multi-echo, diffusion, dynamic), written by pydicom in
-// shuffled order, split into volumes as dcm2niix splits them, and each volume compared voxel by
-// voxel with dcm2niix's NIfTI for the same files (placed through each one's own geometry, so a
-// flipped axis or a swapped slice shows). Images nothing tells apart are refused, never mixed.
+// Series written by pydicom (tests/support/dicom_cases.py), an independent writer.
+// Images that share positions (multi-echo, diffusion, dynamic), in shuffled order, are split
+// into volumes as dcm2niix splits them, and each volume is compared voxel by voxel with
+// dcm2niix's NIfTI for the same files (placed through each one's own geometry, so a flipped
+// axis or a swapped slice shows). Images nothing tells apart are refused, never mixed. Then the
+// geometry and value cases whose answer is known by construction: an off-line slice, missing
+// spacing and orientation, a three-plane enhanced localizer, a single-frame enhanced object,
+// RT dose offsets and scaling, 32-bit unsigned pixels.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -67,7 +71,7 @@ void expectSameVoxels(core::VoxelSource& ours, core::VoxelSource& theirs) {
     EXPECT_EQ(wrong, 0u) << "voxels whose values differ from dcm2niix's";
 }
 
-class MultiVolumeSeries : public ::testing::Test {
+class PydicomSeries : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = std::make_unique<test::TempDir>();
@@ -99,13 +103,13 @@ protected:
     static std::string log_;
     static bool ok_;
 };
-std::unique_ptr<test::TempDir> MultiVolumeSeries::dir_;
-std::string MultiVolumeSeries::log_;
-bool MultiVolumeSeries::ok_ = false;
+std::unique_ptr<test::TempDir> PydicomSeries::dir_;
+std::string PydicomSeries::log_;
+bool PydicomSeries::ok_ = false;
 
 }  // namespace
 
-TEST_F(MultiVolumeSeries, DualEchoBecomesTwoVolumesLikeDcm2niixE1E2) {
+TEST_F(PydicomSeries, DualEchoBecomesTwoVolumesLikeDcm2niixE1E2) {
     const auto volumes = import("echo");
     ASSERT_EQ(volumes.size(), 2u);
     EXPECT_EQ(volumes[0].varying, "echo 1 (TE 10 ms)");
@@ -120,7 +124,7 @@ TEST_F(MultiVolumeSeries, DualEchoBecomesTwoVolumesLikeDcm2niixE1E2) {
     }
 }
 
-TEST_F(MultiVolumeSeries, ThreeBValuesBecomeThreeVolumesInDcm2niixOrder) {
+TEST_F(PydicomSeries, ThreeBValuesBecomeThreeVolumesInDcm2niixOrder) {
     const auto volumes = import("diffusion");
     ASSERT_EQ(volumes.size(), 3u);
     EXPECT_EQ(volumes[0].varying, "b 0");
@@ -137,7 +141,7 @@ TEST_F(MultiVolumeSeries, ThreeBValuesBecomeThreeVolumesInDcm2niixOrder) {
     }
 }
 
-TEST_F(MultiVolumeSeries, TenTimePointsBecomeTenVolumes) {
+TEST_F(PydicomSeries, TenTimePointsBecomeTenVolumes) {
     const auto volumes = import("dynamic");
     ASSERT_EQ(volumes.size(), 10u);
     for (std::uint32_t t = 0; t < 10; ++t) {
@@ -150,7 +154,7 @@ TEST_F(MultiVolumeSeries, TenTimePointsBecomeTenVolumes) {
     }
 }
 
-TEST_F(MultiVolumeSeries, ImagesNothingTellsApartAreRefusedNotMixed) {
+TEST_F(PydicomSeries, ImagesNothingTellsApartAreRefusedNotMixed) {
     std::vector<std::string> notes;
     const auto volumes = import("twins", &notes);
     EXPECT_TRUE(volumes.empty()) << "a volume was made of images that share positions";
@@ -159,7 +163,7 @@ TEST_F(MultiVolumeSeries, ImagesNothingTellsApartAreRefusedNotMixed) {
     EXPECT_NE(notes[0].find("refused"), std::string::npos) << notes[0];
 }
 
-TEST_F(MultiVolumeSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
+TEST_F(PydicomSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
     const std::string db = " --db " + dir_->file("db.sqlite");
     auto r = test::runCommand(std::string(HVX_CLI) + " import " + dir_->file("dcm/echo") + db);
     ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -170,4 +174,91 @@ TEST_F(MultiVolumeSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
                          dir_->file("e2.hvo") + db);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("echo 2 (TE 20 ms)"), std::string::npos) << r.output;
+}
+
+namespace {
+bool anyContains(const std::vector<std::string>& v, const std::string& part) {
+    for (const auto& s : v)
+        if (s.find(part) != std::string::npos) return true;
+    return false;
+}
+}  // namespace
+
+TEST_F(PydicomSeries, SliceOffTheStackLineIsNamed) {
+    const auto volumes = import("offline");
+    ASSERT_EQ(volumes.size(), 1u);
+    EXPECT_TRUE(anyContains(volumes[0].warnings, "off the stack's line by up to 2 mm (instances 4)"))
+        << ::testing::PrintToString(volumes[0].warnings);
+    const auto plain = import("echo");
+    EXPECT_FALSE(anyContains(plain[0].warnings, "off the stack's line"));
+}
+
+TEST_F(PydicomSeries, MissingSpacingAndOrientationAreNamed) {
+    const auto volumes = import("nogeometry");
+    ASSERT_EQ(volumes.size(), 1u);
+    EXPECT_TRUE(anyContains(volumes[0].warnings, "spacing unknown, assumed 1 mm")) << ::testing::PrintToString(volumes[0].warnings);
+    EXPECT_TRUE(anyContains(volumes[0].warnings, "orientation unknown")) << ::testing::PrintToString(volumes[0].warnings);
+}
+
+// Nine frames of one object, interleaved axial, coronal and sagittal: three stacks, each along
+// its own normal (taking frame 0's normal for all collapsed two of them onto one position).
+TEST_F(PydicomSeries, ThreePlaneEnhancedLocalizerBecomesThreeStacks) {
+    const auto volumes = import("localizer");
+    ASSERT_EQ(volumes.size(), 3u);
+    struct Expect {
+        glm::dvec3 k, origin;
+        double firstValue;
+    };
+    // Sorted along each normal: axial z 5, 9, 13 (frames 0, 3, 6); coronal (normal +y) y 3, 7, 11
+    // (frames 1, 4, 7); sagittal (normal -x) x 10, 6, 2 (frames 8, 5, 2).
+    const Expect expect[3] = {{{0, 0, 1}, {-10, -8, 5}, 0}, {{0, 1, 0}, {-10, 3, 20}, 1000}, {{-1, 0, 0}, {10, -8, 20}, 8000}};
+    int found = 0;
+    for (const auto& v : volumes) {
+        EXPECT_EQ(v.geometry.dims[2], 3u);
+        for (const auto& e : expect) {
+            if (glm::length(v.geometry.direction[2] - e.k) > 1e-9) continue;
+            ++found;
+            EXPECT_NEAR(glm::length(v.geometry.origin - e.origin), 0.0, 1e-6) << v.label;
+            EXPECT_NEAR(v.geometry.spacing.z, 4.0, 1e-9);
+            dicom::DicomSeriesSource src(v);
+            EXPECT_EQ(physical(src)[0], e.firstValue) << v.label;
+        }
+    }
+    EXPECT_EQ(found, 3);
+}
+
+TEST_F(PydicomSeries, SingleFrameEnhancedUsesItsPerFrameGroups) {
+    const auto volumes = import("enhanced1");
+    ASSERT_EQ(volumes.size(), 1u);
+    EXPECT_EQ(volumes[0].geometry.origin, glm::dvec3(11.5, -7.25, 42.0));
+    dicom::DicomSeriesSource src(volumes[0]);
+    EXPECT_EQ(physical(src)[5], 2.0 * 5 - 100) << "stored 5 at column 5, slope 2, intercept -100";
+}
+
+TEST_F(PydicomSeries, RtDoseAbsoluteOffsetsAndSinglePlaneScaling) {
+    const auto volumes = import("dose");
+    ASSERT_EQ(volumes.size(), 1u);
+    const auto& g = volumes[0].geometry;
+    EXPECT_EQ(g.dims[2], 3u);
+    EXPECT_NEAR(glm::length(g.origin - glm::dvec3(-10, -8, -40)), 0.0, 1e-9) << "absolute offsets taken as relative";
+    EXPECT_NEAR(g.spacing.z, 3.0, 1e-9);
+    dicom::DicomSeriesSource src(volumes[0]);
+    const auto v = physical(src);
+    EXPECT_NEAR(v[0], 1.0, 1e-9);
+    EXPECT_NEAR(v[std::size_t(2) * 12 * 16 + 3], 3.003, 1e-9);
+    const auto single = import("dose1");
+    ASSERT_EQ(single.size(), 1u);
+    dicom::DicomSeriesSource one(single[0]);
+    EXPECT_NEAR(physical(one)[7], 1.007, 1e-9) << "DoseGridScaling of a single plane";
+}
+
+TEST_F(PydicomSeries, UnsignedThirtyTwoBitPixelsNeverWrapNegative) {
+    const auto volumes = import("uint32");
+    ASSERT_EQ(volumes.size(), 1u);
+    dicom::DicomSeriesSource src(volumes[0]);
+    const auto v = physical(src);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        const double expected = 2147483648.0 + 1000.0 * double(i / (12 * 16)) + double(i % 16);
+        ASSERT_NEAR(v[i], expected, 256.0) << "voxel " << i << " (float32 keeps 24 bits)";
+    }
 }
