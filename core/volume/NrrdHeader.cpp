@@ -43,7 +43,8 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     NrrdHeader h;
     VolumeGeometry& g = h.geometry;
     int dimension = 0;
-    bool sizes = false, ras = false;
+    bool sizes = false;
+    std::string space;
     std::vector<glm::dvec3> dirs;
     while (std::getline(in, line)) {
         if (trim(line).empty()) break;
@@ -76,7 +77,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
         } else if (key == "endian") {
             h.bigEndian = value == "big";
         } else if (key == "space") {
-            ras = value == "right-anterior-superior" || value == "RAS";
+            space = value;
         } else if (key == "space directions") {
             dirs = parseVectors(value, path);
         } else if (key == "space origin") {
@@ -99,14 +100,25 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
             g.direction[a] = dirs[std::size_t(a)] / len;
         }
     }
-    if (ras) {  // RAS -> LPS
-        g.origin.x = -g.origin.x;
-        g.origin.y = -g.origin.y;
-        for (int a = 0; a < 3; ++a) {
-            g.direction[a].x = -g.direction[a].x;
-            g.direction[a].y = -g.direction[a].y;
-        }
+    // The patient spaces NRRD names, turned into LPS by the axes they flip; anything else cannot
+    // be placed in the patient and is refused.
+    glm::dvec3 flip(1.0);
+    if (space == "left-posterior-superior" || space == "LPS") {
+    } else if (space == "right-anterior-superior" || space == "RAS") {
+        flip = {-1, -1, 1};
+    } else if (space == "left-anterior-superior" || space == "LAS") {
+        flip = {1, -1, 1};
+    } else if (space == "scanner-xyz") {
+        h.warnings.push_back(path + ": NRRD space scanner-xyz is taken as LPS (the DICOM patient axes), as ITK does");
+    } else if (space.empty()) {
+        if (dirs.size() == 3)
+            throw Error(path + ": NRRD header has space directions but no space, so they cannot be placed");
+        h.warnings.push_back(path + ": NRRD header has no space: orientation unknown, the axes taken as L, P and S");
+    } else {
+        throw Error(path + ": NRRD space '" + space + "' is not a patient space Holovox can place (LPS, RAS, LAS, scanner-xyz)");
     }
+    g.origin *= flip;
+    for (int a = 0; a < 3; ++a) g.direction[a] *= flip;
     h.headerBytes = h.dataFile.empty() ? std::uint64_t(in.tellg()) : 0;
     return h;
 }

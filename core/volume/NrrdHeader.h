@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/volume/VolumeGeometry.h"
 
@@ -16,6 +17,7 @@ public:
     bool bigEndian = false;
     std::string dataFile;  ///< detached data file, empty when attached
     std::uint64_t headerBytes = 0;  ///< bytes before attached data
+    std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
 
     /// Parses a .nrrd/.nhdr header; throws core::Error naming the file and the bad field.
     static NrrdHeader read(const std::string& path);

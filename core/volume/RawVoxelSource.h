@@ -19,6 +19,7 @@ public:
         glm::dvec3 origin{0.0, 0.0, 0.0};  ///< LPS
         glm::dmat3 direction{1.0};         ///< LPS direction cosines (columns)
         std::string modality = "OT";
+        std::vector<std::string> warnings;  ///< passed on by warnings() (e.g. from a NRRD header)
     };
     /// Opens the file and checks that its size matches the dimensions; throws core::Error.
     RawVoxelSource(std::string path, const Options& options);
@@ -29,6 +30,7 @@ public:
     const VolumeGeometry& geometry() const override { return geometry_; }
     void readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) override;
     std::string describe() const override { return path_; }
+    std::vector<std::string> warnings() const override { return options_.warnings; }
 
 private:
     std::string path_;

@@ -57,6 +57,7 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
         o.origin = h.geometry.origin;
         o.direction = h.geometry.direction;
         o.modality = h.geometry.modality;
+        o.warnings = h.warnings;
         std::string data = input;
         if (!h.dataFile.empty()) data = (p.parent_path() / h.dataFile).string();
         return std::make_unique<RawVoxelSource>(data, o);

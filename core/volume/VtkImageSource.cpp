@@ -18,7 +18,12 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "core/base/Error.h"
 
@@ -45,6 +50,32 @@ ScalarType mapType(int vtkType, const std::string& path, int& convertFrom) {
     }
     throw Error(path + ": unsupported voxel type (" + std::string(vtkImageScalarTypeNameMacro(vtkType)) +
                 "); supported: uint8, int8, int16, uint16, float32, float64");
+}
+/// The direction cosines of a MetaImage header (TransformMatrix, or its aliases Rotation and
+/// Orientation): row a of the nine numbers is axis a's direction in LPS, as ITK writes it.
+/// Identity when the header has none; refused when it is not three independent unit vectors.
+glm::dmat3 metaImageDirection(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string line;
+    glm::dmat3 m(1.0);
+    for (int n = 0; n < 200 && std::getline(in, line); ++n) {
+        const auto eq = line.find('=');
+        if (eq == std::string::npos) continue;
+        std::string key = line.substr(0, eq);
+        key.erase(key.find_last_not_of(" \t") + 1);
+        if (key == "ElementDataFile") break;
+        if (key != "TransformMatrix" && key != "Rotation" && key != "Orientation") continue;
+        std::istringstream v(line.substr(eq + 1));
+        double d[9];
+        for (double& x : d)
+            if (!(v >> x)) throw Error(path + ": its " + key + " is not nine numbers");
+        for (int a = 0; a < 3; ++a) m[a] = glm::dvec3(d[3 * a], d[3 * a + 1], d[3 * a + 2]);
+        for (int a = 0; a < 3; ++a)
+            if (std::abs(glm::length(m[a]) - 1.0) > 1e-3)
+                throw Error(path + ": its " + key + " row " + std::to_string(a) + " is not a unit direction");
+        if (std::abs(glm::determinant(m)) < 1e-3) throw Error(path + ": its " + key + " has dependent directions");
+    }
+    return m;
 }
 }  // namespace
 
@@ -106,11 +137,19 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)), impl_
         if (n <= 0) throw Error(path_ + ": image is empty");
         geometry_.dims[std::size_t(a)] = std::uint32_t(n);
     }
-    // Continuous VTK point p(i) = origin + (extent0 + i) * spacing; patient LPS = F * M * p.
+    // VTK's point p(i) = origin + D (extent0 + i) * spacing, D the direction matrix: from the VTI
+    // file's Direction, or the MetaImage header's TransformMatrix (which VTK's reader ignores).
     glm::dmat4 toPatient(1.0);
+    if (info->Has(vtkDataObject::DIRECTION())) {
+        double d[9];
+        info->Get(vtkDataObject::DIRECTION(), d);
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) toPatient[c][r] = d[3 * r + c];
+    }
+    if (endsWith(path_, ".mha") || endsWith(path_, ".mhd")) toPatient = glm::dmat4(metaImageDirection(path_));
     glm::dvec3 first;
-    for (int a = 0; a < 3; ++a) first[a] = origin[a] + impl_->extent[2 * a] * spacing[a];
-    geometry_.origin = glm::dvec3(toPatient * glm::dvec4(first, 1.0));
+    for (int a = 0; a < 3; ++a) first[a] = impl_->extent[2 * a] * spacing[a];
+    geometry_.origin = glm::dvec3(origin[0], origin[1], origin[2]) + glm::dmat3(toPatient) * first;
     for (int a = 0; a < 3; ++a) {
         glm::dvec3 step = glm::dmat3(toPatient)[a] * spacing[a];
         const double len = glm::length(step);

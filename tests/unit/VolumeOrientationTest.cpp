@@ -1,0 +1,131 @@
+// Orientation of the non-DICOM, non-NIfTI inputs: a VTK XML image's Direction (written and
+// placed by VTK itself, python3-vtk9, as the oracle), a MetaImage TransformMatrix (worked by
+// hand from the MetaIO convention: row a is axis a's direction), and every NRRD space.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+
+#include "core/base/Error.h"
+#include "core/volume/VoxelSourceFactory.h"
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+glm::dvec3 patientOf(const core::VolumeGeometry& g, glm::dvec3 index) {
+    return glm::dvec3(g.indexToPatient() * glm::dvec4(index, 1.0));
+}
+
+bool mentions(const std::vector<std::string>& w, const std::string& text) {
+    for (const auto& s : w)
+        if (s.find(text) != std::string::npos) return true;
+    return false;
+}
+
+std::string refusal(const std::string& path) {
+    try {
+        core::VoxelSourceFactory::open(path);
+    } catch (const core::Error& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+}  // namespace
+
+TEST(VolumeOrientation, VtiDirectionIsWhereVtkPutsEachVoxel) {
+    test::TempDir dir;
+    const std::string script = R"(
+import sys, vtk
+img = vtk.vtkImageData()
+img.SetDimensions(5, 4, 3)
+img.SetSpacing(0.5, 0.75, 2.0)
+img.SetOrigin(10.0, 20.0, 30.0)
+img.SetDirectionMatrix(0.0, -0.8, 0.6,  1.0, 0.0, 0.0,  0.0, 0.6, 0.8)
+img.AllocateScalars(vtk.VTK_SHORT, 1)
+for k in range(3):
+    for j in range(4):
+        for i in range(5):
+            img.SetScalarComponentFromDouble(i, j, k, 0, i + 10 * j + 100 * k)
+w = vtk.vtkXMLImageDataWriter()
+w.SetFileName(sys.argv[1] + '/d.vti')
+w.SetInputData(img)
+w.Write()
+with open(sys.argv[1] + '/points.txt', 'w') as f:
+    for idx in [(0, 0, 0), (4, 0, 0), (0, 3, 0), (0, 0, 2), (3, 2, 1)]:
+        p = [0.0, 0.0, 0.0]
+        img.TransformIndexToPhysicalPoint(list(idx), p)
+        f.write('%d %d %d %.9f %.9f %.9f\n' % (idx + tuple(p)))
+)";
+    std::ofstream(dir.file("w.py")) << script;
+    const auto r = test::runCommand("/usr/bin/python3 " + dir.file("w.py") + " " + dir.path().string());
+    ASSERT_EQ(r.exitCode, 0) << "python3-vtk9 (installer/install-deps.sh) could not write the file:\n" << r.output;
+    auto src = core::VoxelSourceFactory::open(dir.file("d.vti"));
+    std::ifstream points(dir.file("points.txt"));
+    int checked = 0;
+    for (double i, j, k, x, y, z; points >> i >> j >> k >> x >> y >> z; ++checked) {
+        const glm::dvec3 p = patientOf(src->geometry(), {i, j, k});
+        EXPECT_NEAR(glm::length(p - glm::dvec3(x, y, z)), 0.0, 1e-6) << i << "," << j << "," << k;
+    }
+    EXPECT_EQ(checked, 5);
+    std::vector<std::int16_t> v(5 * 4 * 3);
+    src->readSlices(0, 3, v.data());
+    EXPECT_EQ(v[(1 * 4 + 2) * 5 + 3], 3 + 20 + 100);
+}
+
+TEST(VolumeOrientation, MetaImageTransformMatrixIsHonoured) {
+    test::TempDir dir;
+    {
+        std::ofstream f(dir.file("m.mha"), std::ios::binary);
+        // Rows: axis i towards -y, axis j towards +x (0.8) and +z (0.6), axis k the cross.
+        f << "ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n"
+             "TransformMatrix = 0 -1 0 0.8 0 0.6 -0.6 0 0.8\nOffset = 1 2 3\nElementSpacing = 0.5 0.75 2\n"
+             "DimSize = 4 3 2\nElementType = MET_SHORT\nElementDataFile = LOCAL\n";
+        for (short s = 0; s < 24; ++s) f.write(reinterpret_cast<const char*>(&s), 2);
+    }
+    auto src = core::VoxelSourceFactory::open(dir.file("m.mha"));
+    // (1, 2, 1): 1*0.5*(0,-1,0) + 2*0.75*(0.8,0,0.6) + 1*2*(-0.6,0,0.8) + (1,2,3).
+    const glm::dvec3 expected = glm::dvec3(0, -0.5, 0) + glm::dvec3(1.2, 0, 0.9) + glm::dvec3(-1.2, 0, 1.6) + glm::dvec3(1, 2, 3);
+    EXPECT_NEAR(glm::length(patientOf(src->geometry(), {1, 2, 1}) - expected), 0.0, 1e-9);
+    {
+        std::ofstream f(dir.file("bad.mha"), std::ios::binary);
+        f << "ObjectType = Image\nNDims = 3\nTransformMatrix = 1 0 0 1 0 0 0 0 1\nDimSize = 2 2 2\n"
+             "ElementType = MET_UCHAR\nElementDataFile = LOCAL\n" << std::string(8, '\0');
+    }
+    EXPECT_NE(refusal(dir.file("bad.mha")).find("dependent directions"), std::string::npos) << refusal(dir.file("bad.mha"));
+}
+
+TEST(VolumeOrientation, EveryNrrdPatientSpaceBecomesLps) {
+    test::TempDir dir;
+    auto write = [&](const std::string& name, const std::string& space) {
+        std::ofstream f(dir.file(name), std::ios::binary);
+        f << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n";
+        if (!space.empty()) f << "space: " << space << "\n";
+        if (!space.empty()) f << "space directions: (0,2,0) (-1.5,0,0) (0,0,3)\nspace origin: (10,20,30)\n";
+        f << "\n" << std::string(8, '\0');
+        return dir.file(name);
+    };
+    // Index (1, 1, 1) is (10 - 1.5, 20 + 2, 30 + 3) in the file's own space.
+    const glm::dvec3 own(8.5, 22, 33);
+    struct Case {
+        const char* space;
+        glm::dvec3 lps;
+    };
+    for (const Case& c : {Case{"left-posterior-superior", own}, Case{"LPS", own},
+                          Case{"right-anterior-superior", {-8.5, -22, 33}}, Case{"RAS", {-8.5, -22, 33}},
+                          Case{"left-anterior-superior", {8.5, -22, 33}}, Case{"LAS", {8.5, -22, 33}},
+                          Case{"scanner-xyz", own}}) {
+        SCOPED_TRACE(c.space);
+        auto src = core::VoxelSourceFactory::open(write(std::string(c.space) + ".nrrd", c.space));
+        EXPECT_NEAR(glm::length(patientOf(src->geometry(), {1, 1, 1}) - c.lps), 0.0, 1e-9);
+        EXPECT_EQ(mentions(src->warnings(), "scanner-xyz is taken as LPS"), std::string(c.space) == "scanner-xyz");
+    }
+    auto none = core::VoxelSourceFactory::open(write("none.nrrd", ""));
+    EXPECT_TRUE(mentions(none->warnings(), "no space: orientation unknown"));
+    for (const char* space : {"3D-right-handed", "right-anterior-superior-time", "scanner-xyz-time"})
+        EXPECT_NE(refusal(write("r.nrrd", space)).find("not a patient space"), std::string::npos) << space;
+}
