@@ -1,9 +1,16 @@
 #include "dicom/IncomingStore.h"
 
+#include <fcntl.h>
+#include <stdio.h>
 #include <unistd.h>
 
+#include <atomic>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <random>
 
 #include "core/base/Error.h"
 #include "dicom/DicomHeaderReader.h"
@@ -13,6 +20,36 @@ namespace fs = std::filesystem;
 
 namespace hvx::dicom {
 
+namespace {
+/// One counter for the whole process: two stores (two retrieves at once) never share a name.
+std::atomic<unsigned long> processCounter{0};
+
+void fsyncPath(const std::string& path, int flags) {
+    const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
+bool sameBytes(const std::string& a, const std::string& b) {
+    std::error_code ec;
+    if (fs::file_size(a, ec) != fs::file_size(b, ec) || ec) return false;
+    std::ifstream fa(a, std::ios::binary), fb(b, std::ios::binary);
+    char x[65536], y[65536];
+    while (fa && fb) {
+        fa.read(x, sizeof x);
+        fb.read(y, sizeof y);
+        if (fa.gcount() != fb.gcount() || std::memcmp(x, y, std::size_t(fa.gcount())) != 0) return false;
+    }
+    return !fa && !fb;
+}
+
+/// rename() that never replaces: EEXIST when the target is there.
+int renameNoReplace(const std::string& from, const std::string& to) {
+    return ::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), RENAME_NOREPLACE);
+}
+}  // namespace
+
 IncomingStore::IncomingStore(std::string storageDir) : dir_(std::move(storageDir)) {
     std::error_code ec;
     fs::create_directories(fs::path(dir_) / ".incoming", ec);
@@ -20,9 +57,22 @@ IncomingStore::IncomingStore(std::string storageDir) : dir_(std::move(storageDir
 }
 
 std::string IncomingStore::temporaryPath() {
-    return (fs::path(dir_) / ".incoming" /
-            ("rx-" + std::to_string(::getpid()) + "-" + std::to_string(++counter_) + ".part"))
-        .string();
+    thread_local std::mt19937_64 random(std::random_device{}());
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        char name[96];
+        std::snprintf(name, sizeof name, "rx-%d-%lu-%016llx.part", int(::getpid()), ++processCounter,
+                      static_cast<unsigned long long>(random()));
+        const std::string path = (fs::path(dir_) / ".incoming" / name).string();
+        // Created here, exclusively and without following a link, so the name is ours alone.
+        const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+        if (fd >= 0) {
+            ::close(fd);
+            return path;
+        }
+        if (errno != EEXIST)
+            throw core::Error(dir_ + ": cannot create a file for a received instance (" + std::strerror(errno) + ")");
+    }
+    throw core::Error(dir_ + ": cannot find a free name for a received instance");
 }
 
 DicomInstance IncomingStore::finalize(const std::string& temporary) {
@@ -39,12 +89,28 @@ DicomInstance IncomingStore::finalize(const std::string& temporary) {
     std::error_code ec;
     fs::create_directories(folder, ec);
     const fs::path target = folder / (UidPath::component(in.sopInstanceUid) + ".dcm");
-    if (ec || std::rename(temporary.c_str(), target.c_str()) != 0) {
-        std::remove(temporary.c_str());
-        throw core::Error(target.string() + ": cannot store the received instance");
+    fsyncPath(temporary, O_RDONLY);  // the bytes are on disk before the name points at them
+    if (!ec && renameNoReplace(temporary, target.string()) == 0) {
+        fsyncPath(folder.string(), O_RDONLY | O_DIRECTORY);  // and the name is on disk too
+        in.path = target.string();
+        return in;
     }
-    in.path = target.string();
-    return in;
+    if (!ec && errno == EEXIST) {
+        if (sameBytes(temporary, target.string())) {  // the same instance again: nothing to do
+            std::remove(temporary.c_str());
+            in.path = target.string();
+            return in;
+        }
+        // Another object under the same SOP Instance UID: never replace what is stored.
+        const fs::path aside = fs::path(dir_) / ".conflicts";
+        fs::create_directories(aside, ec);
+        const fs::path kept = aside / (UidPath::component(in.sopInstanceUid) + "-" + fs::path(temporary).stem().string() + ".dcm");
+        if (!ec && std::rename(temporary.c_str(), kept.c_str()) == 0)
+            throw core::Error("instance " + in.sopInstanceUid + " arrived again with different content: the stored one is "
+                              "kept, the new one set aside as " + kept.string());
+    }
+    std::remove(temporary.c_str());
+    throw core::Error(target.string() + ": cannot store the received instance");
 }
 
 }  // namespace hvx::dicom

@@ -1,5 +1,4 @@
 #pragma once
-#include <atomic>
 #include <string>
 
 #include "dicom/DicomInstance.h"
@@ -8,8 +7,12 @@ namespace hvx::dicom {
 
 /// Where received instances land: `storageDir/<study>/<series>/<sop>.dcm`, each UID made a
 /// safe path component (UidPath). A receiver writes the incoming stream to temporaryPath()
-/// (under storageDir/.incoming), then finalize() reads its header and renames it into place,
-/// so no half-written file ever appears in the tree and no UID can escape the folder.
+/// (under storageDir/.incoming; the name is unique in the process and created exclusively),
+/// then finalize() reads its header, flushes it and renames it into place without replacing
+/// anything, then flushes the folder: no half-written file ever appears in the tree and no UID
+/// can escape the folder. The same instance arriving again with the same bytes changes
+/// nothing; with other bytes it is set aside under storageDir/.conflicts and reported, and the
+/// stored one is kept.
 ///
 /// Threading: temporaryPath() and finalize() may be called from several threads.
 class IncomingStore {
@@ -25,7 +28,6 @@ public:
 
 private:
     std::string dir_;
-    std::atomic<unsigned long> counter_{0};
 };
 
 }  // namespace hvx::dicom

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -15,8 +16,14 @@ namespace hvx::core {
 AtomicFileWriter::AtomicFileWriter(std::string target) : target_(std::move(target)) {
     // A file over RLIMIT_FSIZE would raise SIGXFSZ and kill us; we want EFBIG and a message.
     std::signal(SIGXFSZ, SIG_IGN);
-    temp_ = target_ + ".partial-" + std::to_string(::getpid());
-    fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    // A name no other writer has, in this process or another, created exclusively and without
+    // following a link planted under it.
+    static std::atomic<unsigned long> counter{0};
+    for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
+        temp_ = target_ + ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(++counter);
+        fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+        if (fd_ < 0 && errno != EEXIST) break;
+    }
     if (fd_ < 0) {
         const int err = errno;
         throw Error(target_ + ": cannot write output (" + std::strerror(err) + ")");
@@ -69,6 +76,14 @@ void AtomicFileWriter::commit() {
     fd_ = -1;
     if (std::rename(temp_.c_str(), target_.c_str()) != 0) fail("rename", errno);
     committed_ = true;
+    // The rename is durable only once the folder is on disk too.
+    const auto slash = target_.find_last_of('/');
+    const std::string folder = slash == std::string::npos ? "." : (slash == 0 ? "/" : target_.substr(0, slash));
+    const int dir = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir >= 0) {
+        ::fsync(dir);
+        ::close(dir);
+    }
 }
 
 }  // namespace hvx::core

@@ -12,7 +12,8 @@ namespace hvx::core {
 /// Threading: one thread at a time.
 class AtomicFileWriter {
 public:
-    /// Creates `<target>.partial-<pid>`; throws core::Error naming the target if it cannot.
+    /// Creates `<target>.partial-<pid>-<n>` exclusively (O_EXCL, no link followed); throws
+    /// core::Error naming the target if it cannot.
     explicit AtomicFileWriter(std::string target);
     ~AtomicFileWriter();
     AtomicFileWriter(const AtomicFileWriter&) = delete;
