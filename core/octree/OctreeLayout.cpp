@@ -60,6 +60,27 @@ OctreeLayout::OctreeLayout(Dims volumeDims, std::uint32_t brickSize) : brickSize
     }
 }
 
+OctreeLayout::Counts OctreeLayout::count(Dims d, std::uint32_t brickSize) {
+    Counts c;
+    if (brickSize == 0) return {UINT64_MAX, 0};
+    for (;;) {
+        std::uint64_t level = 1;
+        bool single = true;
+        for (int a = 0; a < 3; ++a) {
+            const std::uint64_t n = (std::uint64_t(d[a]) + brickSize - 1) / brickSize;
+            if (n > 65535) return {UINT64_MAX, c.levels};
+            level *= n;  // at most 65535^3 < 2^48
+            single = single && n == 1;
+        }
+        c.nodes += level;
+        ++c.levels;
+        if (c.nodes > (1ull << 32)) return {UINT64_MAX, c.levels};
+        if (single) return c;
+        if (c.levels > 32) return {UINT64_MAX, c.levels};
+        for (int a = 0; a < 3; ++a) d[a] = (d[a] + 1) / 2;
+    }
+}
+
 std::uint32_t OctreeLayout::nodeId(int level, std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
     if (level < 0 || level >= levelCount()) return hvo::kNoNode;
     const auto& n = levelNodes_[std::size_t(level)];

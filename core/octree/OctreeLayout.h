@@ -16,6 +16,14 @@ public:
     /// Computes the layout; brickSize must be >= 1.
     OctreeLayout(Dims volumeDims, std::uint32_t brickSize);
 
+    /// The node and level counts a volume of `volumeDims` in bricks of `brickSize` has, worked
+    /// out without building anything (so a hostile header cannot make a reader allocate);
+    /// nodes is UINT64_MAX when it would exceed 2^32 or need more than 65535 bricks per axis.
+    struct Counts {
+        std::uint64_t nodes = 0;
+        int levels = 0;
+    };
+    static Counts count(Dims volumeDims, std::uint32_t brickSize);
     int levelCount() const { return int(levelDims_.size()); }
     std::uint32_t brickSize() const { return brickSize_; }
     /// Voxel dimensions of the volume at `level` (level 0 = full resolution).

@@ -60,7 +60,7 @@ void OctreeReader::load() {
     if (h.brickSize < 1 || h.brickSize > 256 || h.border > 8) throw bad("brick size or border out of range");
     const std::uint64_t tableBytes = h.nodeCount * sizeof(hvo::NodeRecord);
     if (h.nodeCount == 0 || h.nodeCount > (1ull << 32) || h.nodeTableOffset < sizeof h ||
-        h.nodeTableOffset + tableBytes != h.fileSize)
+        h.nodeTableOffset > h.fileSize || tableBytes != h.fileSize - h.nodeTableOffset)
         throw bad("node table out of bounds");
 
     VolumeGeometry& g = geometry_;
@@ -85,7 +85,13 @@ void OctreeReader::load() {
     }
 
     // The structure must be exactly the one the dimensions imply: a hostile table cannot send
-    // traversal out of bounds or into cycles.
+    // traversal out of bounds or into cycles. The counts come first, by arithmetic: the table's
+    // size is bounded by the file's, so nothing below is sized from an unchecked header field.
+    const auto counts = OctreeLayout::count(g.dims, h.brickSize);
+    if (counts.nodes != h.nodeCount || counts.levels != int(h.levelCount))
+        throw bad("node count " + std::to_string(h.nodeCount) + " does not match the volume dimensions " +
+                  std::to_string(g.dims[0]) + "x" + std::to_string(g.dims[1]) + "x" + std::to_string(g.dims[2]) +
+                  " in bricks of " + std::to_string(h.brickSize));
     const OctreeLayout layout(g.dims, h.brickSize);
     if (layout.levelCount() != int(h.levelCount) || layout.nodes().size() != h.nodeCount)
         throw bad("node count does not match the volume dimensions");
@@ -100,8 +106,8 @@ void OctreeReader::load() {
         if (n.parent != e.parent || n.firstChild != e.firstChild || n.childMask != e.childMask || n.x != e.x ||
             n.y != e.y || n.z != e.z || n.level != e.level)
             throw bad("node " + std::to_string(i) + " has an inconsistent structure");
-        if (!(n.flags & hvo::NodeEmpty) &&
-            (n.payloadOffset < sizeof h || n.payloadOffset + n.payloadSize > h.nodeTableOffset))
+        if (!(n.flags & hvo::NodeEmpty) && (n.payloadOffset < sizeof h || n.payloadOffset > h.nodeTableOffset ||
+                                             n.payloadSize > h.nodeTableOffset - n.payloadOffset))
             throw bad("payload of node " + std::to_string(i) + " is out of bounds");
     }
 }

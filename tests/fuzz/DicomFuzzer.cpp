@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,10 @@
 
 namespace {
 const std::string& scratchFile() {
-    static const std::string path = "/tmp/hvx-fuzz-" + std::to_string(::getpid()) + ".dcm";
+    static const std::string path = [] {
+        const char* dir = std::getenv("HVX_FUZZ_SCRATCH");  // run_fuzz.sh's own folder
+        return std::string(dir && *dir ? dir : "/tmp") + "/hvx-fuzz-" + std::to_string(::getpid()) + ".dcm";
+    }();
     return path;
 }
 }  // namespace

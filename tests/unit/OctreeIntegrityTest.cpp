@@ -1,7 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstddef>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 
+#include "core/octree/BrickCodec.h"
 #include "core/octree/OctreeBuilder.h"
 #include "core/octree/OctreeReader.h"
 #include "core/volume/PhantomVoxelSource.h"
@@ -121,4 +126,82 @@ TEST(OctreeIntegrity, UnwritableOutputIsAnErrorNamingTheFile) {
         EXPECT_NE(std::string(e.what()).find(out), std::string::npos) << e.what();
     }
     EXPECT_TRUE(dir.entries().empty());
+}
+
+namespace {
+/// Rewrites the header through `edit` and gives it a valid checksum again: a forged file.
+void forgeHeader(const std::string& from, const std::string& to, const std::function<void(core::hvo::FileHeader&)>& edit) {
+    std::filesystem::copy_file(from, to, std::filesystem::copy_options::overwrite_existing);
+    core::hvo::FileHeader h{};
+    {
+        std::ifstream in(to, std::ios::binary);
+        in.read(reinterpret_cast<char*>(&h), sizeof h);
+    }
+    edit(h);
+    h.headerChecksum = core::BrickCodec::checksum(&h, offsetof(core::hvo::FileHeader, headerChecksum));
+    std::fstream f(to, std::ios::in | std::ios::out | std::ios::binary);
+    f.write(reinterpret_cast<const char*>(&h), sizeof h);
+}
+
+void forgeNode(const std::string& from, const std::string& to, const std::function<void(core::hvo::NodeRecord&)>& edit) {
+    std::filesystem::copy_file(from, to, std::filesystem::copy_options::overwrite_existing);
+    core::hvo::FileHeader h{};
+    std::vector<core::hvo::NodeRecord> nodes;
+    {
+        std::ifstream in(to, std::ios::binary);
+        in.read(reinterpret_cast<char*>(&h), sizeof h);
+        nodes.resize(h.nodeCount);
+        in.seekg(std::streamoff(h.nodeTableOffset));
+        in.read(reinterpret_cast<char*>(nodes.data()), std::streamsize(nodes.size() * sizeof nodes[0]));
+    }
+    for (auto& n : nodes)
+        if (n.payloadSize > 0) {
+            edit(n);
+            break;
+        }
+    h.nodeTableChecksum = core::BrickCodec::checksum(nodes.data(), nodes.size() * sizeof nodes[0]);
+    h.headerChecksum = core::BrickCodec::checksum(&h, offsetof(core::hvo::FileHeader, headerChecksum));
+    std::fstream f(to, std::ios::in | std::ios::out | std::ios::binary);
+    f.write(reinterpret_cast<const char*>(&h), sizeof h);
+    f.seekp(std::streamoff(h.nodeTableOffset));
+    f.write(reinterpret_cast<const char*>(nodes.data()), std::streamsize(nodes.size() * sizeof nodes[0]));
+}
+}  // namespace
+
+// Headers and node tables with valid checksums but hostile fields: each refused with a sentence,
+// at once, without allocating from what the file claims.
+TEST(OctreeIntegrity, ForgedFilesWithValidChecksumsAreRefused) {
+    test::TempDir dir;
+    const auto path = buildPhantom(dir);
+    ASSERT_EQ(openError(path), "");
+    const auto forged = dir.file("forged.hvo");
+    struct Case {
+        const char* what;
+        std::function<void(core::hvo::FileHeader&)> edit;
+        const char* expect;
+    };
+    const Case cases[] = {
+        {"huge dimensions in bricks of 1",
+         [](auto& h) { h.dims[0] = h.dims[1] = h.dims[2] = 65535; h.brickSize = 1; }, "does not match the volume dimensions"},
+        {"dimensions needing more bricks than the table has", [](auto& h) { h.dims[2] = 600; }, "does not match the volume dimensions"},
+        {"a dimension past what Holovox reads", [](auto& h) { h.dims[2] = 4000000; }, "is too large"},
+        {"a node table offset that wraps around",
+         [](auto& h) { h.nodeTableOffset = ~std::uint64_t(0) - 100; }, "node table out of bounds"},
+        {"a node count that overflows the table's size",
+         [](auto& h) { h.nodeCount = (std::uint64_t(1) << 58) + h.nodeCount; }, "node table out of bounds"},
+        {"brick size 0", [](auto& h) { h.brickSize = 0; }, "brick size or border out of range"},
+        {"zero spacing", [](auto& h) { h.spacing[1] = 0.0; }, "not a valid .hvo file"},
+    };
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.what);
+        forgeHeader(path, forged, c.edit);
+        const auto start = std::chrono::steady_clock::now();
+        const std::string e = openError(forged);
+        EXPECT_NE(e.find(c.expect), std::string::npos) << e;
+        EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 0.5);
+    }
+    forgeNode(path, forged, [](auto& n) { n.payloadOffset = ~std::uint64_t(0) - 10; });
+    EXPECT_NE(openError(forged).find("is out of bounds"), std::string::npos) << openError(forged);
+    forgeNode(path, forged, [](auto& n) { n.payloadSize = 0xffffffffu; });
+    EXPECT_NE(openError(forged).find("is out of bounds"), std::string::npos) << openError(forged);
 }
