@@ -4,6 +4,7 @@
 #include <dcmtk/dcmdata/dcrledrg.h>
 #include <dcmtk/dcmjpeg/djdecode.h>
 #include <dcmtk/dcmjpls/djdecode.h>
+#include <dcmtk/dcmnet/dcmtrans.h>
 #include <dcmtk/oflog/oflog.h>
 
 #include <mutex>
@@ -17,6 +18,11 @@ void DcmtkSetup::ensure() {
         DJDecoderRegistration::registerCodecs();
         DJLSDecoderRegistration::registerCodecs();
         DcmRLEDecoderRegistration::registerCodecs();
+        // A read that gets no byte for this long fails, instead of DCMTK's 60 s. Waiting for the
+        // next DIMSE message is a select() bounded by each node's own timeout; this bounds a
+        // peer that stops in the middle of a PDU, and the storage listener's read of an
+        // A-ASSOCIATE-RQ, which DCMTK does on the listening thread itself.
+        dcmSocketReceiveTimeout.set(kSocketReadTimeoutSeconds);
     });
 }
 

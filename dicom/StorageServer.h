@@ -14,9 +14,13 @@ namespace hvx::dicom {
 /// Holovox's storage SCP: accepts C-ECHO and C-STORE from calling AE titles on its allow-list
 /// only, receives each instance bit-preserving into a temporary file and moves it into the
 /// storage folder under sanitized UID paths (IncomingStore). It is the C-MOVE destination and
-/// the target of pushes from modalities and workstations.
+/// the target of pushes from modalities and workstations. Associations are served at once, up
+/// to kMaxAssociations, each on a worker thread of DCMTK's SCP pool, with TCP_NODELAY; a peer
+/// that connects and sends nothing holds the listener at most kRequestTimeoutSeconds, and one
+/// that stalls inside an association holds only its own worker until the DIMSE timeout.
 ///
-/// Threading: start() and stop() from one thread; onStored runs on the server's thread.
+/// Threading: start() and stop() from one thread; onStored runs on the workers' threads, one
+/// instance at a time.
 class StorageServer {
 public:
     StorageServer(LocalNode local, std::vector<std::string> allowedCallers,
@@ -27,8 +31,12 @@ public:
     /// Opens the port (throws core::Error naming it when it is in use) and serves in the
     /// background until stop().
     void start();
-    /// Stops accepting and returns within about a second (an association in progress ends first).
+    /// Stops accepting, cuts the associations in progress and returns within about a second.
     void stop();
+    static constexpr int kMaxAssociations = 16;
+    /// How long a connection that sends no complete A-ASSOCIATE-RQ holds the listener (DCMTK
+    /// reads the request on the listening thread): DcmtkSetup's socket read timeout.
+    static constexpr int kRequestTimeoutSeconds = 10;
     /// Instances stored so far.
     std::size_t received() const { return received_.load(); }
 
@@ -36,7 +44,6 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     std::thread thread_;
-    std::atomic<bool> stopping_{false};
     std::atomic<std::size_t> received_{0};
 };
 
