@@ -193,6 +193,15 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     checkFrameCount(ds, p);
     double d = 0;
     if (number(ds, DCM_SliceThickness, d)) p.sliceThickness = d;
+    for (unsigned long i = 0; i < 8; ++i) {  // the presets a modality offers, first the default
+        double centre = 0, width = 0;
+        if (!number(ds, DCM_WindowCenter, centre, i) || !number(ds, DCM_WindowWidth, width, i)) break;
+        if (!(width >= 1.0)) continue;  // PS3.3 C.11.2.1.2: a width below 1 is not a window
+        OFString name;
+        if (ds->findAndGetOFString(DCM_WindowCenterWidthExplanation, name, i).bad() || name.empty())
+            name = ("DICOM " + std::to_string(i + 1)).c_str();
+        p.windows.push_back({name.c_str(), centre, width});
+    }
     {
         // PixelPaddingValue is US or SS depending on PixelRepresentation.
         Uint16 pu = 0;

@@ -7,6 +7,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/volume/DisplayWindow.h"
 #include "dicom/FrameDimensions.h"
 
 namespace hvx::dicom {
@@ -42,6 +43,8 @@ struct DicomInstance {
     std::string photometric;
     std::optional<double> pixelPadding;
     double sliceThickness = 0.0;
+    /// WindowCenter/WindowWidth pairs (physical units) with their explanations, first the default.
+    std::vector<core::DisplayWindow> windows;
     std::uint64_t fileSize = 0;
     /// Geometry per frame (one entry for single-frame images).
     std::vector<FrameGeometry> frameGeometry;

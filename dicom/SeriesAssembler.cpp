@@ -118,6 +118,7 @@ void finishGeometry(SeriesVolume& v) {
                              "are not known");
     g.modality = first.modality.empty() ? "OT" : first.modality;
     g.monochrome1 = first.photometric == "MONOCHROME1";
+    g.windows = first.windows;
     // One rescale for every slice keeps stored values; otherwise convert to physical floats.
     bool sameRescale = true;
     for (const auto& s : v.slices)

@@ -3,6 +3,7 @@
 #include "ui/EdgeLabels.h"
 
 #include <QMouseEvent>
+#include <QKeyEvent>
 #include <QPainter>
 #include <QWheelEvent>
 
@@ -16,7 +17,10 @@ namespace hvx::ui {
 SliceView::SliceView(core::SlicePlane::Orientation orientation, QWidget* parent)
     : QWidget(parent), orientation_(orientation) {
     setMinimumSize(120, 120);
-    setToolTip(tr("Click or drag: move the cursor \u2022 Wheel: next slice \u2022 Right drag: window/level"));
+    setFocusPolicy(Qt::StrongFocus);
+    setToolTip(tr("Click or drag: move the cursor \u2022 Wheel: next slice \u2022 Right drag: window/level\n"
+                  "1-9: window presets (the DICOM's, then for CT: brain, subdural, stroke, bone, lung, "
+                  "mediastinum, abdomen, liver)"));
 }
 
 void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
@@ -29,20 +33,45 @@ void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
         const auto& s = sampler_->space();
         point_ = s.centre();
         volumeCentre_ = point_;
+        // Every volume opens with its own window: never the previous volume's.
         const auto& g = reader_->geometry();
-        if (g.modality != "CT") {
-            const double lo = g.valueMin * g.rescaleSlope + g.rescaleIntercept, hi = g.valueMax * g.rescaleSlope + g.rescaleIntercept;
-            centre_ = 0.5 * (lo + hi);
-            width_ = std::max(1e-6, hi - lo);
-        }
+        const auto w = core::DisplayWindow::initial(g);
+        centre_ = w.centre;
+        width_ = std::max(1e-6, w.width);
+        windowName_ = QString::fromStdString(w.name);
+        windowChosen_ = false;
+        presets_ = core::DisplayWindow::presetsFor(g);
+    } else {
+        presets_.clear();
     }
     resample();
 }
 
-void SliceView::setWindow(double centre, double width) {
+void SliceView::setWindow(double centre, double width, const QString& name) {
     centre_ = centre;
     width_ = std::max(1e-6, width);
+    windowName_ = name;
+    windowChosen_ = true;
     resample();
+}
+
+void SliceView::setAutomaticWindow(const core::DisplayWindow& w) {
+    if (windowChosen_ || !reader_) return;
+    centre_ = w.centre;
+    width_ = std::max(1e-6, w.width);
+    windowName_ = QString::fromStdString(w.name);
+    resample();
+}
+
+void SliceView::keyPressEvent(QKeyEvent* e) {
+    const int k = e->key() - Qt::Key_1;
+    if (k >= 0 && k < 9 && std::size_t(k) < presets_.size()) {
+        const auto& w = presets_[std::size_t(k)];
+        setWindow(w.centre, w.width, QString::fromStdString(w.name));
+        emit windowChosen(centre_, width_, windowName_);
+        return;
+    }
+    QWidget::keyPressEvent(e);
 }
 
 void SliceView::setPoint(const glm::dvec3& patient) {
@@ -121,8 +150,9 @@ void SliceView::paintEvent(QPaintEvent*) {
     QFont info = font();
     info.setPointSizeF(info.pointSizeF() * 0.85);
     p.setFont(info);
-    p.drawText(r, Qt::AlignBottom | Qt::AlignLeft, QStringLiteral("%1\nW %2\nL %3").arg(names[int(orientation_)])
-                                                     .arg(width_, 0, 'f', 0).arg(centre_, 0, 'f', 0));
+    p.drawText(r, Qt::AlignBottom | Qt::AlignLeft,
+               QStringLiteral("%1\nW %2\nL %3%4").arg(names[int(orientation_)]).arg(width_, 0, 'f', 0).arg(centre_, 0, 'f', 0)
+                   .arg(windowName_.isEmpty() ? QString() : QStringLiteral(" (%1)").arg(windowName_)));
 }
 
 void SliceView::mousePressEvent(QMouseEvent* e) {
@@ -140,6 +170,7 @@ void SliceView::mouseMoveEvent(QMouseEvent* e) {
     if (e->buttons() & Qt::RightButton) {  // window/level: horizontal width, vertical level
         const QPointF d = e->position() - pressPos_;
         setWindow(pressCentre_ - d.y() * pressWidth_ / 200.0, pressWidth_ * std::pow(2.0, d.x() / 150.0));
+        emit windowChosen(centre_, width_, windowName_);
     } else if (e->buttons() & Qt::LeftButton) {
         point_ = patientAt(e->position());
         emit pointChanged(point_);

@@ -3,19 +3,23 @@
 #include <QWidget>
 
 #include <memory>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "core/streaming/BrickCache.h"
 #include "core/octree/OctreeReader.h"
 #include "core/reference/SliceSampler.h"
+#include "core/volume/DisplayWindow.h"
 
 namespace hvx::ui {
 
 /// One 2D slice view (axial, coronal or sagittal) through the current point, read from the
 /// octree at the level matching its pixels, with window/level (right drag), a cursor linked to
 /// the other views (click or drag sets the point; the wheel steps through slices) and
-/// orientation labels. For orientation, not a full MPR suite.
+/// orientation labels. Each volume opens with its own window (core::DisplayWindow::initial:
+/// the DICOM's, else CT's W 400 / L 40, else its value range until the histogram's 1st-99th
+/// percentile arrives); the number keys pick its presets. For orientation, not a full MPR suite.
 ///
 /// Threading: GUI thread only.
 class SliceView : public QWidget {
@@ -23,10 +27,17 @@ class SliceView : public QWidget {
 public:
     SliceView(core::SlicePlane::Orientation orientation, QWidget* parent = nullptr);
     void setVolume(std::shared_ptr<const core::OctreeReader> reader);
-    /// Window centre and width in physical units (HU for CT).
-    void setWindow(double centre, double width);
+    /// Window centre and width in physical units (HU for CT); `name` is shown with it (a
+    /// preset's), empty for a window dragged by hand.
+    void setWindow(double centre, double width, const QString& name = {});
     double windowCentre() const { return centre_; }
     double windowWidth() const { return width_; }
+    const QString& windowName() const { return windowName_; }
+    /// A window worked out later (the histogram's percentiles): taken only while the user has
+    /// not chosen one for this volume.
+    void setAutomaticWindow(const core::DisplayWindow& w);
+    /// Presets of the open volume, keys 1.. (the DICOM's, then CT's usual ones for CT).
+    const std::vector<core::DisplayWindow>& presets() const { return presets_; }
     void setPoint(const glm::dvec3& patient);
     const glm::dvec3& point() const { return point_; }
     /// The last sampled image (grey, without overlays) and its octree level.
@@ -37,6 +48,8 @@ public:
 
 signals:
     void pointChanged(const glm::dvec3& patient);
+    /// The user chose a window (a drag or a preset key), in physical units.
+    void windowChosen(double centre, double width, const QString& name);
 
 protected:
     void paintEvent(QPaintEvent*) override;
@@ -44,6 +57,7 @@ protected:
     void mousePressEvent(QMouseEvent* e) override;
     void mouseMoveEvent(QMouseEvent* e) override;
     void wheelEvent(QWheelEvent* e) override;
+    void keyPressEvent(QKeyEvent* e) override;
 
 private:
     core::SlicePlane plane() const;
@@ -57,6 +71,9 @@ private:
     glm::dvec3 volumeCentre_{0.0};
     double pixelMm_ = 1.0;
     double centre_ = 40, width_ = 400;
+    QString windowName_;
+    bool windowChosen_ = false;  // by the user, for this volume
+    std::vector<core::DisplayWindow> presets_;
     QImage image_;
     int level_ = 0;
     QPointF pressPos_;

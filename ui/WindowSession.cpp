@@ -2,7 +2,7 @@
 
 #include <QSettings>
 
-#include <algorithm>
+#include <exception>
 
 #include "core/base/Error.h"
 #include "ui/MainWindow.h"
@@ -11,21 +11,39 @@
 namespace hvx::ui {
 
 QStringList WindowSession::restore(MainWindow& window) {
+    // Whatever is saved may be of another type or damaged (another version, a hand edit): each
+    // value that cannot be used is reset, with a sentence, and the window starts regardless.
     QStringList ignored;
     QSettings settings;
-    window.restoreGeometry(settings.value("window/geometry").toByteArray());
-    window.restoreState(settings.value("window/state").toByteArray());
+    auto reset = [&](const QString& key, const QString& why) {
+        settings.remove(key);
+        ignored << QObject::tr("Saved %1 reset: %2").arg(key, why);
+    };
+    if (settings.contains("window/geometry") &&
+        (!settings.value("window/geometry").canConvert<QByteArray>() ||
+         !window.restoreGeometry(settings.value("window/geometry").toByteArray())))
+        reset("window/geometry", QObject::tr("not a window geometry"));
+    if (settings.contains("window/state") &&
+        (!settings.value("window/state").canConvert<QByteArray>() ||
+         !window.restoreState(settings.value("window/state").toByteArray())))
+        reset("window/state", QObject::tr("not a dock layout"));
     if (settings.contains("tools/json")) {
         try {
             window.setTools(core::ToolSet::fromJson(settings.value("tools/json").toString().toStdString()));
-        } catch (const core::Error& e) {
-            ignored << QObject::tr("Saved tools ignored: %1").arg(QString::fromStdString(e.what()));
+        } catch (const std::exception& e) {
+            reset("tools/json", QString::fromStdString(e.what()));
         }
     }
     if (settings.contains("render/mode")) {
-        auto rs = window.renderControls()->settings();
-        rs.mode = core::RenderSettings::Mode(std::clamp(settings.value("render/mode").toInt(), 0, 4));
-        window.renderControls()->setSettings(rs);
+        bool ok = false;
+        const int mode = settings.value("render/mode").toInt(&ok);
+        if (!ok || mode < 0 || mode > 4) {
+            reset("render/mode", QObject::tr("not a rendering mode"));
+        } else {
+            auto rs = window.renderControls()->settings();
+            rs.mode = core::RenderSettings::Mode(mode);
+            window.renderControls()->setSettings(rs);
+        }
     }
     return ignored;
 }

@@ -11,7 +11,8 @@ class MainWindow;
 /// Threading: GUI thread.
 class WindowSession {
 public:
-    /// Restores what was saved; returns a sentence for each saved value that was ignored.
+    /// Restores what was saved; a value that cannot be used (wrong type, damaged, out of range)
+    /// is removed and named in the sentences returned. Never throws.
     static QStringList restore(MainWindow& window);
     static void save(const MainWindow& window);
 };

@@ -64,7 +64,14 @@ struct FileHeader {
     std::uint64_t fileSize;
     std::uint64_t payloadBytes;  ///< sum of compressed payload sizes
     std::uint64_t rawBrickBytes; ///< sum of uncompressed sizes of stored payloads
-    std::uint8_t reserved[512 - 296 - 8];
+    /// The source's display windows (DICOM presets), unused entries with width 0. Written in
+    /// what older versions kept as reserved zeros, so their files read as "no window".
+    struct Window {
+        double centre;
+        double width;
+        char name[16];
+    } windows[4];
+    std::uint8_t reserved[512 - 296 - 4 * 32 - 8];
     std::uint64_t headerChecksum;  ///< XXH3-64 of the first 504 bytes
 };
 static_assert(sizeof(FileHeader) == 512);

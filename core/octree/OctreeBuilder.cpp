@@ -244,6 +244,11 @@ void fillHeader(hvo::FileHeader& h, const VolumeGeometry& g, const BuildOptions&
     h.rescaleIntercept = g.rescaleIntercept;
     h.emptyBelow = opt.emptyBelow ? *opt.emptyBelow : 0.0;
     std::strncpy(h.modality, g.modality.c_str(), sizeof h.modality - 1);
+    for (std::size_t i = 0; i < std::min<std::size_t>(4, g.windows.size()); ++i) {
+        h.windows[i].centre = g.windows[i].centre;
+        h.windows[i].width = g.windows[i].width;
+        std::strncpy(h.windows[i].name, g.windows[i].name.c_str(), sizeof h.windows[i].name - 1);
+    }
 }
 
 }  // namespace

@@ -56,4 +56,20 @@ std::pair<double, double> VolumeHistogram::bandAround(double value) const {
     return {valueMin + a * width, valueMin + (b + 1) * width};
 }
 
+double VolumeHistogram::percentile(double p) const {
+    std::uint64_t total = 0;
+    for (auto c : counts) total += c;
+    if (total == 0) return valueMin;
+    const double target = std::clamp(p, 0.0, 1.0) * double(total);
+    const double width = (valueMax - valueMin) / double(counts.size());
+    double seen = 0;
+    for (std::size_t b = 0; b < counts.size(); ++b) {
+        const double next = seen + double(counts[b]);
+        if (next >= target && counts[b] > 0)
+            return valueMin + (double(b) + (target - seen) / double(counts[b])) * width;
+        seen = next;
+    }
+    return valueMax;
+}
+
 }  // namespace hvx::core

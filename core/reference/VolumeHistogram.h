@@ -21,6 +21,10 @@ struct VolumeHistogram {
     /// away on each side (region growing, as Huang's band picker). [value, value] when empty.
     std::pair<double, double> bandAround(double value) const;
 
+    /// The stored value below which a fraction `p` (0..1) of the voxels lie, interpolated
+    /// within the bin; valueMin when empty.
+    double percentile(double p) const;
+
     /// Throws core::Error when a brick cannot be read.
     static VolumeHistogram compute(const OctreeReader& reader, int bins = 256, std::size_t maxBricks = 512);
 };

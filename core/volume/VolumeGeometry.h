@@ -2,11 +2,13 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
+#include "core/volume/DisplayWindow.h"
 #include "core/volume/ScalarType.h"
 
 namespace hvx::core {
@@ -27,6 +29,9 @@ struct VolumeGeometry {
     std::string modality = "OT";  ///< DICOM modality code (CT, MR, ...), "OT" when unknown
     bool isLabel = false;         ///< label map: values are classes, filtered by mode not mean
     bool monochrome1 = false;     ///< DICOM MONOCHROME1: display with inverted grey scale
+    /// The source's own windows (DICOM WindowCenter/WindowWidth and their explanations), first
+    /// the default; at most 4 are kept in an .hvo.
+    std::vector<DisplayWindow> windows;
 
     /// Number of voxels (as 64-bit, volumes may exceed 2^32 voxels).
     std::uint64_t voxelCount() const {

@@ -12,6 +12,7 @@ real multi-volume acquisitions do, in shuffled file-name order:
   enhanced1/  a single-frame enhanced MR object whose position and rescale are per-frame only
   dose/       RT dose: 3 planes with absolute GridFrameOffsetVector, and a single plane, scaled
   uint32/     4 slices of 32-bit unsigned pixels at and above 2^31
+  windows/    3 CT slices with two windows (WindowCenter/Width and their explanations)
 
 Each volume's pixels differ (value = 1000 * volume + 100 * slice + column + 7 * row), so
 a mixed volume cannot pass. usage: dicom_cases.py OUT_DIR
@@ -176,6 +177,15 @@ def extras(out):
         r, c = np.mgrid[0:ROWS, 0:COLS]
         ds.PixelData = (2147483648 + 1000 * s + c + 0 * r).astype('<u4').tobytes()
         save(ds, os.path.join(out, 'uint32', f'IM{s}'))
+    uid = generate_uid()
+    for s in range(3):
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        ds.Modality = 'CT'
+        ds.RescaleSlope, ds.RescaleIntercept = '1', '-1024'
+        ds.WindowCenter = ['40', '300']
+        ds.WindowWidth = ['400', '1500']
+        ds.WindowCenterWidthExplanation = ['SOFT TISSUE', 'BONE']
+        save(ds, os.path.join(out, 'windows', f'IM{s}'))
 
 
 def main(out):

@@ -262,3 +262,17 @@ TEST_F(PydicomSeries, UnsignedThirtyTwoBitPixelsNeverWrapNegative) {
         ASSERT_NEAR(v[i], expected, 256.0) << "voxel " << i << " (float32 keeps 24 bits)";
     }
 }
+
+TEST_F(PydicomSeries, DicomWindowsAreTheVolumesOwn) {
+    const auto volumes = import("windows");
+    ASSERT_EQ(volumes.size(), 1u);
+    const auto& w = volumes[0].geometry.windows;
+    ASSERT_EQ(w.size(), 2u);
+    EXPECT_EQ(w[0].name, "SOFT TISSUE");
+    EXPECT_DOUBLE_EQ(w[0].centre, 40);
+    EXPECT_DOUBLE_EQ(w[0].width, 400);
+    EXPECT_EQ(w[1].name, "BONE");
+    EXPECT_DOUBLE_EQ(w[1].centre, 300);
+    EXPECT_DOUBLE_EQ(w[1].width, 1500);
+    EXPECT_TRUE(import("echo")[0].geometry.windows.empty());
+}
