@@ -3,6 +3,7 @@
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
+#include <QCryptographicHash>
 #include <QDockWidget>
 #include <QFile>
 #include <QFileDialog>
@@ -15,6 +16,7 @@
 #include <QMessageBox>
 #include <QPointer>
 #include <QScrollArea>
+#include <QSettings>
 #include <QStatusBar>
 #include <QTimer>
 #include <QTreeWidget>
@@ -112,11 +114,20 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
         tools_ = t;
         for (auto* panel : toolPanels_) panel->setTools(tools_);
     });
-    for (auto* s : slices_)
+    for (auto* s : slices_) {
         connect(s, &SliceView::pointChanged, this, [this, s](const glm::dvec3& p) {
             for (auto* other : slices_)
                 if (other != s) other->setPoint(p);
         });
+        // One window for the three views, remembered per volume for the next time it opens.
+        connect(s, &SliceView::windowChosen, this, [this, s](double centre, double width, const QString& name) {
+            for (auto* other : slices_)
+                if (other != s) other->setWindow(centre, width, name);
+            if (!openPath_.isEmpty())
+                QSettings().setValue("windows/" + openPath_, QStringList{QString::number(centre, 'g', 17),
+                                                                        QString::number(width, 'g', 17), name});
+        });
+    }
 
     resize(1400, 900);
     for (const QString& message : WindowSession::restore(*this)) showError(message);
@@ -213,6 +224,11 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
         view_->setRenderSettings(controls_->settings());
         applyTransferFunction();
         for (auto* s : slices_) s->setVolume(reader);
+        openPath_ = QString::fromLatin1(
+            QCryptographicHash::hash(QFileInfo(path).absoluteFilePath().toUtf8(), QCryptographicHash::Sha1).toHex());
+        const QStringList saved = QSettings().value("windows/" + openPath_).toStringList();
+        if (saved.size() == 3 && saved[1].toDouble() > 0)  // the window chosen last time for this volume
+            for (auto* s : slices_) s->setWindow(saved[0].toDouble(), saved[1].toDouble(), saved[2]);
         // The histogram reads a few hundred bricks: in the background.
         QPointer<MainWindow> self(this);
         auto histogram = std::make_shared<core::VolumeHistogram>();
@@ -228,6 +244,11 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
                              const auto spec = self->tfEditor_->spec();
                              self->tfEditor_->setVolume(geo.valueMin, geo.valueMax, geo.rescaleSlope, geo.rescaleIntercept, geo.modality, *histogram);
                              self->tfEditor_->setSpec(spec);  // keep what the user chose meanwhile
+                             // Without a DICOM or CT window: the 1st-99th percentile, unless chosen.
+                             const auto physical = [&](double v) { return v * geo.rescaleSlope + geo.rescaleIntercept; };
+                             const auto w = core::DisplayWindow::initial(
+                                 geo, std::make_pair(physical(histogram->percentile(0.01)), physical(histogram->percentile(0.99))));
+                             for (auto* s : self->slices_) s->setAutomaticWindow(w);
                          }
                      });
         statusBar()->showMessage(tr("Opened %1").arg(openLabel_), 5000);
@@ -246,36 +267,42 @@ void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath,
     const std::string db = browser_->databasePath().toStdString(), uid = seriesUid.toStdString();
     QPointer<MainWindow> self(this);
     // First a quick preview (every 4th voxel), shown as soon as it exists; then the full octree,
-    // which replaces it in place with the same camera.
-    auto preview = std::make_shared<QString>();
-    auto fullOpened = std::make_shared<bool>(false);
-    jobs_->start(
+    // which replaces it in place with the same camera. The full build starts once the preview
+    // is on screen (or has failed), so the preview is always seen first and never raced.
+    auto buildFull = [self, db, uid, label](const QString& preview) {
+        if (!self) return;
+        self->jobs_->start(
+            tr("Build octree: %1").arg(label),
+            [db, uid](core::JobContext& job) {
+                dicom::StudyDatabase database(db);
+                std::vector<std::string> warnings;
+                return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, &warnings));
+            },
+            [self, label, preview](const QString& path) {
+                if (!self) return;
+                self->browser_->refresh();
+                self->openOctree(path, label, !preview.isEmpty());
+                if (!preview.isEmpty()) QFile::remove(preview);
+            });
+    };
+    const int previewJob = jobs_->start(
         tr("Preview: %1").arg(label),
         [db, uid](core::JobContext& job) {
             dicom::StudyDatabase database(db);
             return QString::fromStdString(dicom::SeriesOctree::buildPreview(database, uid, job));
         },
-        [self, label, preview, fullOpened](const QString& path) {
-            if (!self || *fullOpened) {  // the full octree was quicker: the preview is not needed
-                QFile::remove(path);
-                return;
-            }
-            if (self->openOctree(path, label + tr(" (preview)"))) *preview = path;
-        });
-    jobs_->start(
-        tr("Build octree: %1").arg(label),
-        [db, uid](core::JobContext& job) {
-            dicom::StudyDatabase database(db);
-            std::vector<std::string> warnings;
-            return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, &warnings));
-        },
-        [self, label, preview, fullOpened](const QString& path) {
+        [self, label, buildFull](const QString& path) {
             if (!self) return;
-            *fullOpened = true;
-            self->browser_->refresh();
-            self->openOctree(path, label, !preview->isEmpty());
-            if (!preview->isEmpty()) QFile::remove(*preview);
+            buildFull(self->openOctree(path, label + tr(" (preview)")) ? path : QString());
         });
+    // A preview that fails (or is cancelled) still leads to the full octree.
+    auto once = std::make_shared<QMetaObject::Connection>();
+    *once = connect(jobs_.get(), &JobManager::finished, this,
+                    [once, previewJob, buildFull](int id, const QString& state, const QString&) {
+                        if (id != previewJob) return;
+                        QObject::disconnect(*once);
+                        if (state != "done") buildFull(QString());
+                    });
     statusBar()->showMessage(tr("Building the octree of %1 in the background; a preview comes first\u2026").arg(label), 5000);
 }
 

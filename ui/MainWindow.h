@@ -91,6 +91,7 @@ private:
     std::shared_ptr<const core::OctreeReader> reader_;
     double referenceLength_ = 1.0;
     QString openLabel_, lastError_;
+    QString openPath_;  // the open octree's key in the session: a hash of its absolute path
     QList<QDockWidget*> docks_;
     ToolsPanel* toolPanels_[3] = {};
     core::ToolSet tools_;

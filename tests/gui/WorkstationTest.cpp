@@ -8,6 +8,7 @@
 #include <QDir>
 #include <QElapsedTimer>
 #include <QLineEdit>
+#include <QMouseEvent>
 #include <QGroupBox>
 #include <QPushButton>
 #include <QSettings>
@@ -24,6 +25,7 @@
 #include "core/octree/OctreeBuilder.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "dicom/DicomSeriesWriter.h"
+#include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/PacsPeer.h"
 #include "tests/support/TempDir.h"
 #include "ui/JobManager.h"
@@ -346,6 +348,71 @@ private slots:
         saveArtifact("pacs.png");
     }
 
+    // A CT opened after an MR gets its own window (not the MR's), the number keys pick the CT
+    // presets in all three views, a window chosen for a volume comes back when it is opened
+    // again, and the pixels follow.
+    void eachVolumeOpensWithItsOwnWindowAndPresetsByKey() {
+        core::JobContext job;
+        core::PhantomVoxelSource ct({48, 48, 48}, 5, {300, 300, 300}, 5.0);
+        core::OctreeBuilder(core::BuildOptions{}).build(ct, dir_.file("w-ct.hvo"), job);
+        core::VolumeGeometry mrg = ct.geometry();
+        mrg.modality = "MR";
+        mrg.scalarType = core::ScalarType::UInt16;
+        mrg.rescaleSlope = 1;
+        mrg.rescaleIntercept = 0;
+        test::DenseVolume mv;
+        mv.dims = mrg.dims;
+        for (std::size_t i = 0; i < std::size_t(48 * 48 * 48); ++i) mv.values.push_back(double((i * 37) % 1000));
+        test::MemoryVoxelSource mr(mrg, mv);
+        core::OctreeBuilder(core::BuildOptions{}).build(mr, dir_.file("w-mr.hvo"), job);
+        auto* axial = window_->slice(0);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-mr.hvo"))));
+        QVERIFY(window_->jobs()->waitIdle(60000));  // the histogram's percentile window
+        QVERIFY2(axial->windowWidth() < 1000.0 && axial->windowWidth() > 900.0, qPrintable(QString::number(axial->windowWidth())));
+        // The user narrows the MR's window with a right drag: remembered for this volume.
+        QTest::mousePress(axial, Qt::RightButton, {}, QPoint(40, 40));
+        QMouseEvent drag(QEvent::MouseMove, QPointF(10, 40), axial->mapToGlobal(QPointF(10, 40)), Qt::NoButton,
+                         Qt::RightButton, Qt::NoModifier);
+        QApplication::sendEvent(axial, &drag);
+        QTest::mouseRelease(axial, Qt::RightButton, {}, QPoint(10, 40));
+        const double mrWidth = axial->windowWidth(), mrCentre = axial->windowCentre();
+        QVERIFY(mrWidth < 900.0);
+        QCOMPARE(window_->slice(1)->windowWidth(), mrWidth);  // one window for the three views
+
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        QCOMPARE(axial->windowCentre(), 40.0);
+        QCOMPARE(axial->windowWidth(), 400.0);
+        const QImage soft = axial->image();
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_5);  // CT presets: 1 brain ... 5 lung
+        QCOMPARE(axial->windowName(), QString("lung"));
+        QCOMPARE(window_->slice(2)->windowCentre(), -600.0);
+        QVERIFY2(difference(soft, axial->image()) > 5.0, "the lung window shows the same pixels as W 400 / L 40");
+        saveArtifact("slices-lung-window.png");
+
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-mr.hvo"))));
+        QCOMPARE(axial->windowWidth(), mrWidth);
+        QCOMPARE(axial->windowCentre(), mrCentre);
+        QVERIFY(window_->jobs()->waitIdle(60000));
+        QCOMPARE(axial->windowWidth(), mrWidth);  // the percentile window does not override a choice
+    }
+
+    // A damaged or wrongly typed saved session is reset with a message, never a crash.
+    void damagedSavedSessionIsResetWithAMessage() {
+        {
+            QSettings s;
+            s.setValue("tools/json", QVariantList{1, 2, 3});
+            s.setValue("render/mode", QStringLiteral("not a mode"));
+            s.setValue("window/state", 12345);
+        }
+        ui::MainWindow second(QString::fromStdString(dir_.file("db2/studies.sqlite")),
+                              QString::fromStdString(dir_.file("pacs2.json")));
+        QVERIFY2(second.lastError().contains("reset"), qPrintable(second.lastError()));
+        QSettings s;
+        QVERIFY(!s.contains("render/mode"));
+        QVERIFY(!s.contains("tools/json"));
+    }
+
     void cleanupTestCase() {
         window_->jobs()->waitIdle(30000);
         window_.reset();
@@ -357,8 +424,7 @@ int main(int argc, char** argv) {
     format.setVersion(4, 5);
     format.setProfile(QSurfaceFormat::CoreProfile);
     QSurfaceFormat::setDefaultFormat(format);
-    // Keep the tests' window layout out of the user's settings.
-    qputenv("XDG_CONFIG_HOME", QByteArray(HVX_BINARY_DIR "/test-artifacts/gui-config"));
+    // HOME and the XDG folders are a temporary folder of this process (tests/support/Hermetic.cpp).
     QApplication app(argc, argv);
     QApplication::setOrganizationName("HolovoxTests");
     WorkstationTest t;

@@ -65,7 +65,7 @@ TEST(LightField, GpuScreenRaysMatchTheCpuReference) {
     for (std::size_t i = 0; i < some.size(); ++i) {
         const double db = psnr(gpuImages[i], cpu[i]);
         std::printf("projector view %zu: GPU vs CPU %.1f dB\n", i, db);
-        EXPECT_GT(db, 40.0);
+        EXPECT_GT(db, 80.0) << "measured 89.5 dB and up";
     }
 }
 
@@ -88,11 +88,11 @@ TEST(LightField, SimulatorAtTheVirtualViewerMatchesADirectPerspectiveRender) {
     const auto want = gpu.render(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, {}, direct);
     const double db = psnr(seen, want);
     std::printf("simulated view at V vs direct perspective render: PSNR %.1f dB\n", db);
-    if (db < 24.0) {
+    if (db < 35.0) {
         core::ImageWriter::write(seen, HVX_BINARY_DIR "/test-artifacts/lightfield-simulated.png");
         core::ImageWriter::write(want, HVX_BINARY_DIR "/test-artifacts/lightfield-direct.png");
     }
-    EXPECT_GT(db, 24.0) << "each column comes from the nearest of 48 projectors, within 1 degree";
+    EXPECT_GT(db, 35.0) << "each column comes from the nearest of 48 projectors, within 1 degree (measured 38.6 dB)";
 }
 
 TEST(LightField, AMarkerInFrontOfTheScreenShiftsByTheGeometricAmountForShiftedObservers) {
@@ -133,7 +133,7 @@ TEST(LightField, AMarkerInFrontOfTheScreenShiftsByTheGeometricAmountForShiftedOb
         const double screenX = px + (0.0 - px) * (0.0 - Pz) / (Qz - Pz);
         const double expected = screenX / pixelMm + display.projectorWidth / 2.0;
         std::printf("observer x %+.0f mm: marker at column %.2f, geometry says %.2f\n", px, column, expected);
-        EXPECT_NEAR(column, expected, 1.5);
+        EXPECT_NEAR(column, expected, 0.5) << "measured within 0.25 px";
         if (px == 0.0) reference = column;
     }
     EXPECT_GT(reference, 0);

@@ -140,6 +140,10 @@ namespace {
 using test::psnr;
 }  // namespace
 
+/// GPU against the CPU reference, same cut: measured 89.5 dB (isosurface) to 133.7 dB (X-ray),
+/// so the bar sits 9.5 dB under the lowest.
+constexpr double kGpuVsCpuDb = 80.0;
+
 TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
     test::TempDir dir;
     core::PhantomVoxelSource phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0);
@@ -177,7 +181,7 @@ TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
         const auto got = gpu.render(*reader, ws.index(), ws.slotBricks(), tf, rs, view);
         const double db = psnr(got, want);
         std::printf("mode %d: GPU vs CPU reference PSNR %.1f dB\n", int(mode), db);
-        if (db < 40.0) {
+        if (db < kGpuVsCpuDb) {
             core::ImageWriter::write(got, dir.file("gpu.png"));
             core::ImageWriter::write(want, dir.file("cpu.png"));
             std::filesystem::create_directories(HVX_BINARY_DIR "/test-artifacts");
@@ -188,7 +192,7 @@ TEST(GpuRayCaster, EveryModeMatchesTheCpuReference) {
                                                                 std::to_string(int(mode)) + ".png",
                                        std::filesystem::copy_options::overwrite_existing);
         }
-        EXPECT_GT(db, 40.0) << "mode " << int(mode) << " (images in test-artifacts/)";
+        EXPECT_GT(db, kGpuVsCpuDb) << "mode " << int(mode) << " (images in test-artifacts/)";
     }
 }
 

@@ -83,12 +83,12 @@ TEST(Tools, EachToolAndThreeTogetherOnTheGpuEqualTheCpuReference) {
         const auto got = gpu.render(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, rs, s.view);
         const double db = psnr(got, want);
         std::printf("tools %2d: GPU vs CPU %.1f dB (tool vs plain DVR %.1f dB)\n", bits, db, psnr(want, plain));
-        if (db < 40.0) {
+        if (db < 75.0) {
             std::filesystem::create_directories(HVX_BINARY_DIR "/test-artifacts");
             core::ImageWriter::write(got, HVX_BINARY_DIR "/test-artifacts/tools-gpu-" + std::to_string(bits) + ".png");
             core::ImageWriter::write(want, HVX_BINARY_DIR "/test-artifacts/tools-cpu-" + std::to_string(bits) + ".png");
         }
-        EXPECT_GT(db, 40.0) << "tools " << bits;
+        EXPECT_GT(db, 75.0) << "tools " << bits << " (measured 84.4 to 98.7 dB; the bar is 9.4 dB under)";
         EXPECT_LT(psnr(want, plain), 60.0) << "tools " << bits << " change the image";
     }
 }

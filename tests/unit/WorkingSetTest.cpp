@@ -290,17 +290,22 @@ TEST(WorkingSet, RefinementRespectsBudgetCullingAndConvergesToTheAccuracyTarget)
         EXPECT_FALSE(tf.isEmpty(n.minValue, n.maxValue)) << "empty node " << id << " in the cut";
         const int depth = r->levelCount() - 1 - n.level;
         const double size = std::ldexp(1.0, -depth);
-        bool kept = false, onScreen = false;
+        bool kept = false;
+        // Off screen for certain when all eight corners lie beyond one side of the frustum.
+        int beyond[4] = {0, 0, 0, 0};  // left, right, bottom, top
         for (int c = 0; c < 8; ++c) {
             glm::dvec3 p = glm::dvec3(n.x + (c & 1), n.y + ((c >> 1) & 1), n.z + ((c >> 2) & 1)) * size;
             p = glm::min(p, space.extent);
             const glm::dvec3 w(space.octreeToPatient * glm::dvec4(p, 1));
             kept = kept || w.z >= 0;
             const glm::dvec4 q = clip * glm::dvec4(w, 1);
-            onScreen = onScreen || (std::abs(q.x) <= q.w && std::abs(q.y) <= q.w);
+            beyond[0] += q.x < -q.w;
+            beyond[1] += q.x > q.w;
+            beyond[2] += q.y < -q.w;
+            beyond[3] += q.y > q.w;
         }
         EXPECT_TRUE(kept) << "clipped node " << id << " in the cut";
-        (void)onScreen;
+        for (int side = 0; side < 4; ++side) EXPECT_LT(beyond[side], 8) << "node " << id << " is off screen";
     }
     // Unlimited budget, a small image: every cut node meets the target, or has full resolution.
     opt.maxBricks = 100000;
