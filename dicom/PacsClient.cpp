@@ -6,6 +6,11 @@
 #include <dcmtk/dcmnet/diutil.h>
 #include <dcmtk/dcmnet/scu.h>
 #include <dcmtk/dcmtls/tlslayer.h>
+#include <openssl/ssl.h>
+#include <openssl/x509_vfy.h>
+#include <openssl/x509v3.h>
+
+#include <arpa/inet.h>
 
 #include <cstring>
 #include <set>
@@ -55,6 +60,20 @@ QueryResult toResult(DcmDataset* ds, QueryLevel level) {
 
 // DcmSCU with Holovox's handlers: streaming C-FIND answers, sub-operation progress, and C-GET
 // instances received bit-preserving into the IncomingStore.
+/// The last certificate verification error on this thread (the TLS handshake runs on the
+/// thread that connects), so that a refused certificate is explained in words.
+thread_local int lastVerifyError = X509_V_OK;
+
+int recordVerifyError(int ok, X509_STORE_CTX* store) {
+    if (!ok) lastVerifyError = X509_STORE_CTX_get_error(store);
+    return ok;
+}
+
+bool isIpAddress(const std::string& host) {
+    unsigned char buf[16];
+    return ::inet_pton(AF_INET, host.c_str(), buf) == 1 || ::inet_pton(AF_INET6, host.c_str(), buf) == 1;
+}
+
 class Scu : public DcmSCU {
 public:
     std::function<bool(const QueryResult&)> onFind;
@@ -143,6 +162,16 @@ struct PacsClient::Impl {
         if (c.bad())
             throw core::Error(where() + ": cannot set up TLS with " + remote.tlsTrustedCertificate + " (" + c.text() + ")");
         tls->setCertificateVerification(DCV_requireCertificate);
+        // The chain alone is not enough: the certificate must name the host we dialled (a DNS or
+        // IP subjectAltName), as a browser checks, or any certificate the CA signed would do.
+        SSL_CTX* native = tls->getNativeHandle();
+        X509_VERIFY_PARAM* param = SSL_CTX_get0_param(native);
+        X509_VERIFY_PARAM_set_hostflags(param, X509_CHECK_FLAG_NO_PARTIAL_WILDCARDS);
+        const int named = isIpAddress(remote.host) ? X509_VERIFY_PARAM_set1_ip_asc(param, remote.host.c_str())
+                                                   : X509_VERIFY_PARAM_set1_host(param, remote.host.c_str(), 0);
+        if (named != 1) throw core::Error(where() + ": '" + remote.host + "' cannot be checked against a TLS certificate");
+        SSL_CTX_set_verify(native, SSL_VERIFY_PEER | SSL_VERIFY_FAIL_IF_NO_PEER_CERT, recordVerifyError);
+        lastVerifyError = X509_V_OK;
         if (!remote.tlsCertificate.empty()) {
             c = tls->setPrivateKeyFile(remote.tlsPrivateKey.c_str(), DCF_Filetype_PEM);
             if (c.good()) c = tls->setCertificateFile(remote.tlsCertificate.c_str(), DCF_Filetype_PEM);
@@ -189,6 +218,14 @@ struct PacsClient::Impl {
         if (c.bad()) throw core::Error(where() + ": cannot start networking (" + std::string(c.text()) + ")");
         if (remote.tls) secure(scu);
         c = scu.negotiateAssociation();
+        if (c.bad() && remote.tls &&
+            (lastVerifyError == X509_V_ERR_HOSTNAME_MISMATCH || lastVerifyError == X509_V_ERR_IP_ADDRESS_MISMATCH))
+            throw core::Error(where() + ": its TLS certificate does not name " + remote.host +
+                              " (it was issued for another host); connect by a name the certificate holds, or ask "
+                              "for a certificate that names this one");
+        if (c.bad() && remote.tls && lastVerifyError != X509_V_OK)
+            throw core::Error(where() + ": its TLS certificate was refused (" +
+                              X509_verify_cert_error_string(lastVerifyError) + ")");
         if (c.bad()) throw core::Error(PacsProtocol::describeAssociationFailure(where(), c.text(), local.aeTitle,
                                                                                remote.aeTitle, local.timeoutSeconds));
     }

@@ -11,7 +11,7 @@ PACKAGES=(
   libglm-dev libzstd-dev liblz4-dev libxxhash-dev libopenexr-dev libpng-dev zlib1g-dev
   libvtk9-dev
   # dicom
-  libdcmtk-dev dcmtk libopenjp2-7-dev libsqlite3-dev sqlite3 nlohmann-json3-dev
+  libdcmtk-dev dcmtk libssl-dev libopenjp2-7-dev libsqlite3-dev sqlite3 nlohmann-json3-dev
   # render
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri mesa-utils
   # ui

@@ -342,4 +342,22 @@ TEST(PacsTls, EchoAndFindOverTlsAndAnUntrustedServerIsRefused) {
     s.nodes[0].tlsTrustedCertificate = "";
     EXPECT_NE(errorOf([&] { dicom::PacsClient(s.local, s.nodes[0]).echo(); }).find("tlsTrustedCertificate"),
               std::string::npos);
+    // Its certificate names 127.0.0.1 and localhost: both accepted by name.
+    s.nodes[0].tlsTrustedCertificate = peer.tlsCa();
+    s.nodes[0].host = "localhost";
+    EXPECT_NO_THROW(dicom::PacsClient(s.local, s.nodes[0]).echo());
+}
+
+// A certificate signed by the trusted CA but issued for another host name is refused, in words.
+TEST(PacsTls, ACertificateForAnotherHostIsRefused) {
+    test::PacsPeer peer(test::PacsPeer::Kind::Orthanc, true, "DNS:pacs.example.org");
+    peer.start();
+    auto s = peer.settings();
+    s.nodes[0].tls = true;
+    s.nodes[0].tlsTrustedCertificate = peer.tlsCa();
+    const auto e = errorOf([&] { dicom::PacsClient(s.local, s.nodes[0]).echo(); });
+    EXPECT_NE(e.find("does not name 127.0.0.1"), std::string::npos) << e;
+    s.nodes[0].host = "localhost";
+    const auto named = errorOf([&] { dicom::PacsClient(s.local, s.nodes[0]).echo(); });
+    EXPECT_NE(named.find("does not name localhost"), std::string::npos) << named;
 }

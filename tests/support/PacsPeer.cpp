@@ -47,7 +47,7 @@ bool waitForPort(std::uint16_t port, double seconds) {
     return false;
 }
 
-PacsPeer::PacsPeer(Kind kind, bool tls)
+PacsPeer::PacsPeer(Kind kind, bool tls, const std::string& certificateNames)
     : kind_(kind), tls_(tls), ae_(kind == Kind::Orthanc ? "ORTHANC" : "DCMQR"), dicomPort_(freePort()), httpPort_(freePort()),
       localPort_(freePort()) {
     std::filesystem::create_directories(dir_.file("storage"));
@@ -55,11 +55,12 @@ PacsPeer::PacsPeer(Kind kind, bool tls)
     std::string tlsConfig;
     if (tls_) {
         const std::string d = dir_.path().string();
+        std::ofstream(dir_.file("names.cnf")) << "subjectAltName=" << certificateNames << "\n";
         const auto r = runCommand(
             "cd " + d + " && openssl req -x509 -newkey rsa:2048 -nodes -keyout ca.key -out ca.crt -days 2 "
             "-subj /CN=HolovoxTestCA && openssl req -newkey rsa:2048 -nodes -keyout server.key -out server.csr "
-            "-subj /CN=127.0.0.1 && openssl x509 -req -in server.csr -CA ca.crt -CAkey ca.key -CAcreateserial "
-            "-out server.crt -days 2 2>&1");
+            "-subj /CN=HolovoxTestPacs && openssl x509 -req -in server.csr -CA ca.crt -CAkey ca.key -CAcreateserial "
+            "-extfile names.cnf -out server.crt -days 2 2>&1");
         if (r.exitCode != 0) throw std::runtime_error("openssl failed: " + r.output);
         tlsConfig = ", \"DicomTlsEnabled\": true, \"DicomTlsCertificate\": \"" + d + "/server.crt\", "
                     "\"DicomTlsPrivateKey\": \"" + d + "/server.key\", \"DicomTlsTrustedCertificates\": \"" + d +

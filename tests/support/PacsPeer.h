@@ -23,7 +23,8 @@ public:
     enum class Kind { Orthanc, Dcmqrscp };
     /// With `tls`, Orthanc speaks DICOM over TLS only, with a CA and certificate made here by
     /// openssl (tlsCa() signs the server certificate).
-    explicit PacsPeer(Kind kind, bool tls = false);
+    /// With `tls`, the peer's certificate names `certificateNames` (subjectAltName entries).
+    explicit PacsPeer(Kind kind, bool tls = false, const std::string& certificateNames = "IP:127.0.0.1,DNS:localhost");
     ~PacsPeer();
     PacsPeer(const PacsPeer&) = delete;
     PacsPeer& operator=(const PacsPeer&) = delete;
