@@ -10,6 +10,7 @@
 #include <dcmtk/dcmjpls/djencode.h>
 #include <dcmtk/dcmjpls/djrparam.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -99,6 +100,9 @@ void putCommon(DcmItem* ds, const DicomWriteOptions& o, const core::VolumeGeomet
     ds->putAndInsertString(DCM_SeriesInstanceUID, seriesUid.c_str());
     ds->putAndInsertString(DCM_FrameOfReferenceUID, frameOfReference.c_str());
     ds->putAndInsertString(DCM_PositionReferenceIndicator, "");
+    // Type 2 and 2C attributes of General Series and Patient: present, empty where unknown.
+    ds->putAndInsertString(DCM_Laterality, "");
+    ds->putAndInsertString(DCM_PatientPosition, "");
     ds->putAndInsertString(DCM_SeriesNumber, std::to_string(o.seriesNumber).c_str());
     ds->putAndInsertUint16(DCM_SamplesPerPixel, 1);
     ds->putAndInsertString(DCM_PhotometricInterpretation, g.monochrome1 ? "MONOCHROME1" : "MONOCHROME2");
@@ -109,6 +113,49 @@ void putCommon(DcmItem* ds, const DicomWriteOptions& o, const core::VolumeGeomet
     ds->putAndInsertUint16(DCM_BitsStored, bits);
     ds->putAndInsertUint16(DCM_HighBit, Uint16(bits - 1));
     ds->putAndInsertUint16(DCM_PixelRepresentation, g.scalarType == core::ScalarType::Int16 ? 1 : 0);
+}
+
+/// The SOP class an export uses for a modality: CT and MR images as such, anything else (PET,
+/// NM, a NIfTI of unknown origin...) as Secondary Capture, which claims no acquisition.
+const char* sopClassFor(const std::string& modality) {
+    if (modality == "CT") return UID_CTImageStorage;
+    if (modality == "MR") return UID_MRImageStorage;
+    return UID_SecondaryCaptureImageStorage;
+}
+
+/// PatientOrientation letters of a direction: the patient axes it runs along, largest first
+/// (L/R, P/A, H/F), as Secondary Capture images state their orientation.
+std::string orientationLetters(const glm::dvec3& d) {
+    std::vector<std::pair<double, char>> parts = {{std::abs(d.x), d.x > 0 ? 'L' : 'R'},
+                                                  {std::abs(d.y), d.y > 0 ? 'P' : 'A'},
+                                                  {std::abs(d.z), d.z > 0 ? 'H' : 'F'}};
+    std::sort(parts.begin(), parts.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::string out;
+    for (const auto& [size, letter] : parts)
+        if (size > 0.25) out += letter;
+    return out;
+}
+
+/// What the single-frame IODs require beyond the common modules: the CT and MR Image modules'
+/// Type 1 and 2 attributes (empty where the acquisition is unknown), or SC Equipment.
+void putModalityModule(DcmItem* ds, const std::string& modality, const core::VolumeGeometry& g) {
+    if (modality == "CT") {
+        ds->putAndInsertString(DCM_KVP, "");
+        ds->putAndInsertString(DCM_AcquisitionNumber, "");
+    } else if (modality == "MR") {
+        ds->putAndInsertString(DCM_ScanningSequence, "RM");  // research mode: the sequence is not known
+        ds->putAndInsertString(DCM_SequenceVariant, "NONE");
+        ds->putAndInsertString(DCM_ScanOptions, "");
+        ds->putAndInsertString(DCM_MRAcquisitionType, "");
+        ds->putAndInsertString(DCM_RepetitionTime, "");
+        ds->putAndInsertString(DCM_EchoTime, "");
+        ds->putAndInsertString(DCM_EchoTrainLength, "");
+        ds->putAndInsertString(DCM_AcquisitionNumber, "");
+    } else {
+        ds->putAndInsertString(DCM_ConversionType, "WSD");  // workstation
+        ds->putAndInsertString(DCM_PatientOrientation,
+                               (orientationLetters(g.direction[0]) + "\\" + orientationLetters(g.direction[1])).c_str());
+    }
 }
 
 void putPlane(DcmItem* item, const core::VolumeGeometry& g, std::uint32_t k, bool position, bool orientation,
@@ -166,22 +213,27 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
     registerEncoders();
     const core::VolumeGeometry& g = source.geometry();
     if (g.scalarType == core::ScalarType::Float32)
-        throw core::Error(source.describe() + ": float volumes cannot be exported as DICOM images");
+        throw core::Error(source.describe() + ": float volumes are exported through FloatToInt16Source (holovox-cli "
+                                              "export-dicom does it), not directly");
     if (g.dims[0] > 65535 || g.dims[1] > 65535) throw core::Error(source.describe() + ": slices too large for DICOM");
     DcmRepresentationParameter* param = nullptr;
     const E_TransferSyntax xfer = syntaxOf(o.transferSyntax, param);
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
     if (ec) throw core::Error(folder + ": cannot create folder (" + ec.message() + ")");
-    const std::string modality = o.modality.empty() ? (g.modality == "CT" ? "CT" : "MR") : o.modality;
+    const std::string modality = o.modality.empty() ? (g.modality.empty() ? std::string("OT") : g.modality) : o.modality;
     const bool ct = modality == "CT";
     const std::string studyUid = o.studyUid.empty() ? newUid() : o.studyUid;
     const std::string seriesUid = o.seriesUid.empty() ? newUid() : o.seriesUid;
-    const std::string frameOfReference = newUid();
+    // Kept from a DICOM source, so the export registers with it; new otherwise.
+    const std::string frameOfReference = o.frameOfReferenceUid.empty() ? newUid() : o.frameOfReferenceUid;
     const std::size_t sliceBytes = std::size_t(g.dims[0]) * g.dims[1] * core::scalarSize(g.scalarType);
     const bool eightBit = g.scalarType == core::ScalarType::UInt8;
     std::vector<std::string> paths;
 
+    if (o.enhancedMultiframe && modality != "CT" && modality != "MR")
+        throw core::Error("an enhanced multi-frame export is Enhanced CT or MR; " + modality +
+                          " is written as single-frame images (leave out --enhanced)");
     if (o.enhancedMultiframe) {
         DcmFileFormat file;
         DcmDataset* ds = file.getDataset();
@@ -225,16 +277,13 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
         DcmFileFormat file;
         DcmDataset* ds = file.getDataset();
         const std::string sopUid = newUid();
-        ds->putAndInsertString(DCM_SOPClassUID, ct ? UID_CTImageStorage : UID_MRImageStorage);
+        ds->putAndInsertString(DCM_SOPClassUID, sopClassFor(modality));
         ds->putAndInsertString(DCM_SOPInstanceUID, sopUid.c_str());
-        ds->putAndInsertString(DCM_ImageType, "ORIGINAL\\PRIMARY\\AXIAL");
+        ds->putAndInsertString(DCM_ImageType, "DERIVED\\SECONDARY\\AXIAL");
         putCommon(ds, o, g, modality, studyUid, seriesUid, frameOfReference);
         ds->putAndInsertString(DCM_InstanceNumber, std::to_string(k + 1).c_str());
         putPlane(ds, g, k, true, true, true, true);
-        if (!ct) {
-            ds->putAndInsertString(DCM_ScanningSequence, "GR");
-            ds->putAndInsertString(DCM_SequenceVariant, "NONE");
-        }
+        putModalityModule(ds, modality, g);
         source.readSlices(k, 1, slice.data());
         putPixels(ds, slice, eightBit);
         char name[32];

@@ -18,8 +18,11 @@ struct DicomWriteOptions {
     std::string studyDate;  ///< YYYYMMDD; today when empty
     std::string accessionNumber;
     std::string studyUid, seriesUid;  ///< generated when empty
+    std::string frameOfReferenceUid;  ///< a DICOM source's, so the export registers with it; new when empty
     int seriesNumber = 1;
-    std::string modality;  ///< from the volume when empty ("CT" -> CT Image Storage, else MR)
+    /// From the volume when empty. CT and MR are written as CT and MR Image Storage; any other
+    /// modality (PT, NM, OT...) as Secondary Capture, which claims no acquisition it cannot know.
+    std::string modality;
     /// explicit-little (default), implicit-little, explicit-big, deflate, rle, jpeg-lossless,
     /// jpeg-ls
     std::string transferSyntax = "explicit-little";

@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
@@ -9,6 +10,7 @@
 #include "app/cli/ProgressBar.h"
 #include "app/cli/SignalCancel.h"
 #include "core/base/Error.h"
+#include "core/volume/RescaledInt16Source.h"
 #include "core/volume/VoxelSourceFactory.h"
 #include "dicom/DicomScanner.h"
 #include "dicom/DicomSeriesSource.h"
@@ -171,13 +173,30 @@ int buildSeriesCommand(int argc, char** argv) {
 
 int exportDicomCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
-                       {"o", "output", "syntax", "patient", "patient-id", "study", "series", "date", "accession"},
+                       {"o", "output", "syntax", "patient", "patient-id", "study", "series", "date", "accession",
+                        "modality"},
                        {"enhanced"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
-        throw core::Error("usage: holovox-cli export-dicom INPUT -o FOLDER [--syntax S] [--enhanced] [--patient NAME]");
-    auto source = core::VoxelSourceFactory::open(args.positional()[0]);
+        throw core::Error("usage: holovox-cli export-dicom INPUT -o FOLDER [--syntax S] [--enhanced] [--patient NAME] "
+                          "[--modality CT|MR|PT|NM|OT]");
+    const std::string input = args.positional()[0];
+    std::unique_ptr<core::VoxelSource> source = core::VoxelSourceFactory::open(input);
+    core::RescaledInt16Source* rescaled = nullptr;
+    if (source->geometry().scalarType == core::ScalarType::Float32) {
+        // DICOM images hold integers: a first pass finds the range, the second writes 16 bits
+        // over it, and the largest error is reported.
+        const auto [lo, hi] = core::RescaledInt16Source::physicalRange(*source);
+        auto r = std::make_unique<core::RescaledInt16Source>(core::VoxelSourceFactory::open(input), lo, hi);
+        rescaled = r.get();
+        source = std::move(r);
+    }
     dicom::DicomWriteOptions o;
+    if (auto v = args.value("modality")) {
+        static const std::set<std::string> known = {"CT", "MR", "PT", "NM", "OT", "US", "XA", "CR", "DX", "RTDOSE", "SEG"};
+        if (!known.count(*v)) throw core::Error("--modality " + *v + " is not a DICOM modality Holovox writes");
+        o.modality = *v;
+    }
     if (auto v = args.value("syntax")) o.transferSyntax = *v;
     if (auto v = args.value("patient")) o.patientName = *v;
     if (auto v = args.value("patient-id")) o.patientId = *v;
@@ -192,6 +211,9 @@ int exportDicomCommand(int argc, char** argv) {
     const auto files = dicom::DicomSeriesWriter::write(*source, *out, o, job);
     bar.finish();
     std::printf("wrote %zu DICOM files to %s\n", files.size(), out->c_str());
+    if (rescaled)
+        std::printf("float values written as 16-bit integers with slope %.9g and intercept %.9g: largest error %.3g\n",
+                    source->geometry().rescaleSlope, source->geometry().rescaleIntercept, rescaled->largestError());
     return 0;
 }
 

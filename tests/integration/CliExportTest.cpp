@@ -1,0 +1,93 @@
+// export-dicom checked by an independent validator, dicom3tools' dciodvfy (no "Error" line for
+// CT, MR and Secondary Capture exports), and float volumes exported as 16-bit with a rescale:
+// read back, every value within the largest error the command reports, itself within half a
+// step of the 16-bit scale.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "core/base/JobContext.h"
+#include "dicom/DicomScanner.h"
+#include "dicom/DicomSeriesSource.h"
+#include "dicom/SeriesAssembler.h"
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+const std::string cli = HVX_CLI;
+
+std::size_t errorLines(const std::string& file) {
+    const auto r = test::runCommand("dciodvfy " + file + " 2>&1");
+    std::istringstream in(r.output);
+    std::size_t n = 0;
+    for (std::string line; std::getline(in, line);) n += line.rfind("Error", 0) == 0;
+    return n;
+}
+}  // namespace
+
+TEST(CliExport, EveryModalityPassesDciodvfy) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 32x24x6 -o " + dir.file("p.nrrd")).exitCode, 0);
+    ASSERT_EQ(test::runCommand("command -v dciodvfy").exitCode, 0) << "dicom3tools (installer/install-deps.sh)";
+    for (const std::string m : {"CT", "MR", "PT", "OT"}) {
+        const auto r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " --modality " + m + " -o " +
+                                        dir.file("out-" + m));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        const std::string first = dir.file("out-" + m + "/IMG00001.dcm");
+        EXPECT_EQ(errorLines(first), 0u) << m << ":\n" << test::runCommand("dciodvfy " + first + " 2>&1").output;
+        const auto iod = test::runCommand("dciodvfy " + first + " 2>&1").output;
+        const char* expected = m == "CT" ? "CTImage" : m == "MR" ? "MRImage" : "SCImage";
+        EXPECT_NE(iod.find(expected), std::string::npos) << m << " written as " << iod.substr(0, 40);
+    }
+    const auto r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " --modality PT --enhanced -o " +
+                                    dir.file("out-enh"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("is written as single-frame images"), std::string::npos) << r.output;
+}
+
+TEST(CliExport, FloatVolumeIsWrittenAsSixteenBitWithinTheReportedError) {
+    test::TempDir dir;
+    const int nx = 20, ny = 16, nz = 5;
+    std::vector<float> values;
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) values.push_back(float(std::sin(0.3 * i + 0.7 * j) * 123.456 + k * 10.25 - 3.5));
+    {
+        std::ofstream f(dir.file("f.nrrd"), std::ios::binary);
+        f << "NRRD0004\ntype: float\ndimension: 3\nsizes: " << nx << " " << ny << " " << nz
+          << "\nspace: left-posterior-superior\nspace directions: (0.5,0,0) (0,0.5,0) (0,0,2)\nspace origin: (0,0,0)\n"
+             "endian: little\nencoding: raw\nmodality:=MR\n\n";
+        f.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(float)));
+    }
+    const auto r = test::runCommand(cli + " export-dicom " + dir.file("f.nrrd") + " -o " + dir.file("out"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    double slope = 0, intercept = 0, reported = 0;
+    const auto at = r.output.find("slope ");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    ASSERT_EQ(std::sscanf(r.output.c_str() + at, "slope %lf and intercept %lf: largest error %lf", &slope, &intercept,
+                          &reported),
+              3)
+        << r.output;
+    EXPECT_LE(reported, slope / 2 * 1.0001) << "within half a step";
+    EXPECT_EQ(errorLines(dir.file("out/IMG00001.dcm")), 0u);
+    core::JobContext job;
+    const auto scan = dicom::DicomScanner::scan({dir.file("out")}, job);
+    std::vector<std::string> notes;
+    auto volumes = dicom::SeriesAssembler::assemble(scan.instances, notes);
+    ASSERT_EQ(volumes.size(), 1u);
+    dicom::DicomSeriesSource src(volumes[0]);
+    const auto& g = src.geometry();
+    ASSERT_EQ(g.voxelCount(), values.size());
+    std::vector<std::int16_t> stored(values.size());
+    ASSERT_EQ(g.scalarType, core::ScalarType::Int16);
+    src.readSlices(0, g.dims[2], stored.data());
+    double worst = 0;
+    for (std::size_t i = 0; i < values.size(); ++i)
+        worst = std::max(worst, std::abs(stored[i] * g.rescaleSlope + g.rescaleIntercept - double(values[i])));
+    EXPECT_LE(worst, reported * 1.0001 + 1e-6) << "read back through Holovox's DICOM import";
+}
