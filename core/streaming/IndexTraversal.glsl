@@ -53,13 +53,37 @@ HVX_FN int hvxExitFace(vec3 o, vec3 invDir, vec3 lo, vec3 hi, HVX_INOUT(float) t
 // One traversal step: leave leaf n through its exit face at tExit, follow the rope, snap the
 // box to the neighbour's depth and descend to the leaf that contains the next point.
 // Returns false when the ray leaves the octree.
+// A ray that leaves through an edge or a corner (several faces at once, as rays along the edge
+// where four bricks meet do) enters a diagonal neighbour, not the rope's node: the rope's box
+// is taken where the ray crosses the exit face only, and when the next point is not in it the
+// leaf is found from the root. (Taking the rope's node with the diagonal box sampled a brick
+// far outside its own extent: thin bright lines in air along brick edges.)
 HVX_FN bool hvxNextLeaf(HVX_INDEX_PARAM, vec3 o, vec3 dir, int face, float tExit, float nudge, HVX_INOUT(uint) n,
                  HVX_INOUT(vec3) lo, HVX_INOUT(vec3) hi) {
     uint next = HVX_ROPE(n, face);
     if (next == HVX_NONE) return false;
     vec3 p = o + (tExit + nudge) * dir;
-    n = next;
-    hvxSnapBox(hvxDepth(HVX_NODE(n).y), p, lo, hi);
+    int axis = face / 2;
+    // The leaf's centre moved across the exit face only: inside the rope's node, which spans
+    // at least the leaf's extent along the other two axes.
+    vec3 across = 0.5f * (lo + hi);
+    if (axis == 0) across.x = p.x;
+    if (axis == 1) across.y = p.y;
+    if (axis == 2) across.z = p.z;
+    vec3 ropeLo = lo;
+    vec3 ropeHi = hi;
+    hvxSnapBox(hvxDepth(HVX_NODE(next).y), across, ropeLo, ropeHi);
+    bool inRope = p.x >= ropeLo.x && p.x < ropeHi.x && p.y >= ropeLo.y && p.y < ropeHi.y && p.z >= ropeLo.z && p.z < ropeHi.z;
+    if (inRope) {
+        n = next;
+        lo = ropeLo;
+        hi = ropeHi;
+    } else {
+        n = 0u;
+        lo = vec3(0.0f);
+        hi = vec3(1.0f);
+        if (p.x < 0.0f || p.y < 0.0f || p.z < 0.0f || p.x >= 1.0f || p.y >= 1.0f || p.z >= 1.0f) return false;
+    }
     hvxDescend(HVX_INDEX_ARG, n, lo, hi, p);
     return true;
 }
