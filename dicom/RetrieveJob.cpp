@@ -1,5 +1,7 @@
 #include "dicom/RetrieveJob.h"
 
+#include <algorithm>
+
 #include <filesystem>
 #include <future>
 #include <map>
@@ -52,14 +54,15 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
 
     std::future<void> building = std::async(std::launch::deferred, [] {});
     auto buildSeries = [&, buildOctrees](std::size_t index) {
-        std::vector<DicomInstance> instances;
-        {
-            std::lock_guard lock(mutex);
-            instances = received[series[index].seriesUid];
-            db_.addInstances(instances);
-        }
-        if (!buildOctrees || instances.empty()) return;
+        // Runs on its own thread: every failure is kept in the series' status, none is lost.
         try {
+            std::vector<DicomInstance> instances;
+            {
+                std::lock_guard lock(mutex);
+                instances = received[series[index].seriesUid];
+                db_.addInstances(instances);
+            }
+            if (!buildOctrees || instances.empty() || !series[index].retrieved) return;
             std::vector<std::string> notes;
             auto volumes = SeriesAssembler::assemble(instances, notes);
             if (volumes.empty()) return;
@@ -75,7 +78,7 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
             std::lock_guard lock(mutex);
             db_.setSeriesOctree(series[index].seriesUid, out);
             series[index].octreePath = out;
-        } catch (const core::Error& e) {
+        } catch (const std::exception& e) {
             std::lock_guard lock(mutex);
             series[index].error = e.what();
         }
@@ -99,11 +102,18 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
                 client.get(studyUid, s.seriesUid, settings_.local.storageDir, onStored, progress);
             else
                 client.move(studyUid, s.seriesUid, settings_.local.aeTitle, progress);
+            checkComplete(client, studyUid, s, [&] {
+                std::lock_guard lock(mutex);
+                return received[s.seriesUid].size();
+            }());
             s.retrieved = true;
-        } catch (const core::Error& e) {
+        } catch (const std::exception& e) {
             s.error = e.what();
             ++failures;
             if (onUpdate) onUpdate(s);
+            // What did arrive is indexed (never lost), but a partial series is not built.
+            building.wait();
+            building = std::async(std::launch::async, buildSeries, i);
             continue;
         }
         if (onUpdate) onUpdate(s);
@@ -116,6 +126,33 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
     job.report(1.0, "done");
     if (failures == series.size()) throw core::Error(series.front().error);
     return series;
+}
+
+void RetrieveJob::checkComplete(PacsClient& client, const std::string& studyUid, const SeriesRetrieveStatus& s,
+                                std::size_t arrived) const {
+    // How many instances the series has: the PACS's image-level answer, else its sub-operations.
+    std::size_t expected = 0;
+    try {
+        QueryKeys keys;
+        keys.studyUid = studyUid;
+        keys.seriesUid = s.seriesUid;
+        client.find(QueryLevel::Image, keys, [&](const QueryResult&) {
+            ++expected;
+            return true;
+        });
+    } catch (const core::Error&) {
+        expected = 0;  // a PACS without image-level queries: trust the sub-operation counts
+    }
+    if (expected == 0) expected = std::size_t(std::max(0, s.progress.completed + s.progress.failed + s.progress.warning));
+    if (node_.retrieve == RetrieveMethod::Move && arrived == 0 && expected > 0)
+        throw core::Error("series " + s.description + ": the PACS reported the C-MOVE done but none of its " +
+                          std::to_string(expected) + " instances reached Holovox's storage SCP; check the PACS's entry "
+                          "for AE title '" + settings_.local.aeTitle + "' (it must point at this computer and port " +
+                          std::to_string(settings_.local.port) + ")");
+    if (arrived < expected)
+        throw core::Error("series " + s.description + " is partial: " + std::to_string(arrived) + " of " +
+                          std::to_string(expected) + " instances arrived (" + std::to_string(s.progress.failed) +
+                          " failed on the PACS side); what arrived is indexed, the series is not built; retrieve it again");
 }
 
 }  // namespace hvx::dicom

@@ -24,7 +24,10 @@ struct SeriesRetrieveStatus {
 /// Retrieves a study (or one series) from a PACS series by series, by C-GET or by C-MOVE to
 /// Holovox's own storage SCP (started for the duration), indexes every received instance into
 /// the study database, and builds each finished series' octree in the background while the
-/// next series is still arriving. Progress per series comes from the sub-operation counts.
+/// next series is still arriving. Progress per series comes from the sub-operation counts. At
+/// the end of each series the instances that arrived are counted against the PACS's own count
+/// (an image-level C-FIND): a partial series is reported as such, indexed but not built, and a
+/// C-MOVE of which nothing arrived names the PACS's entry for our AE title as the likely cause.
 ///
 /// Threading: run() blocks the calling (job) thread; onUpdate runs on it or on the build thread.
 class RetrieveJob {
@@ -37,6 +40,12 @@ public:
                                           const std::function<void(const SeriesRetrieveStatus&)>& onUpdate);
 
 private:
+    /// Throws core::Error when fewer instances of the series arrived than it has (counted by an
+    /// image-level C-FIND, else by the sub-operations), naming the likely cause of a C-MOVE of
+    /// which nothing arrived.
+    void checkComplete(PacsClient& client, const std::string& studyUid, const SeriesRetrieveStatus& s,
+                       std::size_t arrived) const;
+
     PacsSettings settings_;
     PacsNode node_;
     StudyDatabase& db_;

@@ -82,7 +82,7 @@ void BrickLoader::load(std::uint32_t node) {
     try {
         cache_.put(node, std::make_shared<const Brick>(reader_.readBrick(node)));
         ++loaded_;
-    } catch (const Error& e) {
+    } catch (const std::exception& e) {  // not only Error: a worker thread must never end the process
         std::lock_guard lock(mutex_);
         failed_.insert(node);
         if (errors_.size() < 16) errors_.push_back(e.what());

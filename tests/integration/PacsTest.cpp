@@ -323,6 +323,37 @@ TEST(PacsFaults, PeerKilledMidRetrieveThenRetryCompletes) {
     EXPECT_EQ(n, 60u);
 }
 
+// A C-MOVE the PACS reports done while nothing reaches our receiver (its entry for our AE title
+// points at another SCP, here a decoy): an error naming that entry, never "0 failed".
+TEST(PacsFaults, MoveThatDeliversNothingHereIsAnErrorNamingThePacsEntry) {
+    test::TempDir seedDir, out;
+    dicom::DicomWriteOptions o;
+    o.studyUid = "1.2.826.0.1.3680043.9.7777.40";
+    o.seriesUid = "1.2.826.0.1.3680043.9.7777.41";
+    const auto files = writeSeries(seedDir.file("s"), {32, 32, 6}, o);
+    test::PacsPeer peer(test::PacsPeer::Kind::Orthanc);
+    peer.start();
+    peer.seed(files);
+    auto s = peer.settings();
+    dicom::LocalNode decoyNode = s.local;  // where the PACS sends what it thinks is ours
+    decoyNode.storageDir = out.file("decoy");
+    dicom::StorageServer decoy(decoyNode, {s.nodes[0].aeTitle}, {});
+    decoy.start();
+    s.local.port = test::freePort();  // ours listens elsewhere
+    s.local.storageDir = out.file("rx");
+    auto node = s.nodes[0];
+    node.retrieve = dicom::RetrieveMethod::Move;
+    dicom::StudyDatabase db(out.file("db.sqlite"));
+    dicom::RetrieveJob job(s, node, db, out.file("octrees"));
+    core::JobContext ctx;
+    const auto e = errorOf([&] { job.run(o.studyUid, "", true, ctx, {}); });
+    EXPECT_NE(e.find("none of its 6 instances reached"), std::string::npos) << e;
+    EXPECT_NE(e.find("AE title 'HOLOVOX'"), std::string::npos) << e;
+    EXPECT_EQ(decoy.received(), 6u) << "the PACS did send them, to the decoy";
+    EXPECT_EQ(db.instanceCount(), 0u);
+    EXPECT_FALSE(std::filesystem::exists(out.file("octrees"))) << "nothing built";
+}
+
 TEST(PacsTls, EchoAndFindOverTlsAndAnUntrustedServerIsRefused) {
     test::PacsPeer peer(test::PacsPeer::Kind::Orthanc, true);
     peer.start();
