@@ -11,6 +11,7 @@
 #include "core/octree/OctreeBuilder.h"
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/SeriesAssembler.h"
+#include "dicom/SeriesOctree.h"
 #include "dicom/StorageServer.h"
 #include "dicom/StudyDatabase.h"
 #include "dicom/UidPath.h"
@@ -65,6 +66,10 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
             if (!buildOctrees || instances.empty() || !series[index].retrieved) return;
             std::vector<std::string> notes;
             auto volumes = SeriesAssembler::assemble(instances, notes);
+            {
+                std::lock_guard lock(mutex);
+                SeriesOctree::recordVolumes(db_, volumes);
+            }
             if (volumes.empty()) return;
             std::size_t pick = 0;
             for (std::size_t i = 1; i < volumes.size(); ++i)

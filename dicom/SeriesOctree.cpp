@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 
 #include "core/base/Error.h"
 #include "core/octree/OctreeBuilder.h"
@@ -21,7 +22,7 @@ std::string SeriesOctree::folderFor(const std::string& dbPath) {
 namespace {
 // The series' largest stack, assembled from its files in the database.
 SeriesVolume assembleSeries(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
-                            std::vector<std::string>* warnings) {
+                            std::vector<std::string>* warnings, int volume) {
     const auto files = db.filesOfSeries(seriesUid);
     if (files.empty()) throw core::Error("series " + seriesUid + " is not in the database (import it first)");
     core::JobContext scanJob;  // header scanning is quick next to building; progress comes from the build
@@ -34,8 +35,15 @@ SeriesVolume assembleSeries(StudyDatabase& db, const std::string& seriesUid, cor
                   volumes.end());
     if (volumes.empty()) throw core::Error("series " + seriesUid + " has no image volume to build");
     std::size_t pick = 0;
-    for (std::size_t i = 1; i < volumes.size(); ++i)
-        if (volumes[i].slices.size() > volumes[pick].slices.size()) pick = i;
+    if (volume > 0) {
+        if (std::size_t(volume) > volumes.size())
+            throw core::Error("series " + seriesUid + " has " + std::to_string(volumes.size()) + " volume(s), not " +
+                              std::to_string(volume));
+        pick = std::size_t(volume - 1);
+    } else {
+        for (std::size_t i = 1; i < volumes.size(); ++i)
+            if (volumes[i].slices.size() > volumes[pick].slices.size()) pick = i;
+    }
     if (warnings) {
         warnings->insert(warnings->end(), notes.begin(), notes.end());
         warnings->insert(warnings->end(), volumes[pick].warnings.begin(), volumes[pick].warnings.end());
@@ -50,21 +58,31 @@ std::string defaultPath(StudyDatabase& db, const std::string& seriesUid, const s
 }  // namespace
 
 std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
-                                std::vector<std::string>* warnings, std::string outPath) {
-    DicomSeriesSource source(assembleSeries(db, seriesUid, job, warnings));
-    if (outPath.empty()) outPath = defaultPath(db, seriesUid, ".hvo");
+                                std::vector<std::string>* warnings, std::string outPath, int volume) {
+    DicomSeriesSource source(assembleSeries(db, seriesUid, job, warnings, volume));
+    const std::string suffix = volume > 0 ? "-v" + std::to_string(volume) : std::string();
+    if (outPath.empty()) outPath = defaultPath(db, seriesUid, suffix + ".hvo");
     core::OctreeBuilder(core::BuildOptions{}).build(source, outPath, job);
-    db.setSeriesOctree(seriesUid, outPath);
+    if (volume > 0) db.setVolumeOctree(seriesUid, volume, outPath);
+    else db.setSeriesOctree(seriesUid, outPath);
     return outPath;
 }
 
 std::string SeriesOctree::buildPreview(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
-                                       std::uint32_t factor) {
-    core::SubsampledVoxelSource source(std::make_unique<DicomSeriesSource>(assembleSeries(db, seriesUid, job, nullptr)),
-                                       factor);
-    const std::string out = defaultPath(db, seriesUid, ".preview.hvo");
+                                       std::uint32_t factor, int volume) {
+    core::SubsampledVoxelSource source(
+        std::make_unique<DicomSeriesSource>(assembleSeries(db, seriesUid, job, nullptr, volume)), factor);
+    const std::string suffix = volume > 0 ? "-v" + std::to_string(volume) : std::string();
+    const std::string out = defaultPath(db, seriesUid, suffix + ".preview.hvo");
     core::OctreeBuilder(core::BuildOptions{}).build(source, out, job);
     return out;
+}
+
+void SeriesOctree::recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes) {
+    std::map<std::string, std::vector<std::string>> bySeries;
+    for (const auto& v : volumes)
+        bySeries[v.seriesUid].push_back(v.varying.empty() ? v.label : v.varying);
+    for (const auto& [uid, varying] : bySeries) db.setSeriesVolumes(uid, varying.size() > 1 ? varying : std::vector<std::string>{});
 }
 
 }  // namespace hvx::dicom

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/base/JobContext.h"
+#include "dicom/SeriesVolume.h"
 
 namespace hvx::dicom {
 
@@ -21,13 +22,18 @@ public:
     /// Builds `seriesUid` into `outPath` (default: folderFor(db)/<uid>.hvo) and returns the
     /// path; warnings of assembly (gaps, tilt...) are appended to `warnings`. Throws core::Error
     /// for an unknown series or one with no image volume; core::Cancelled when cancelled.
+    /// `volume` 0 is the series' largest volume; N >= 1 is the N-th volume of a 4D series (as
+    /// StudyDatabase::volumesOfSeries numbers them), kept at `<uid>-vN.hvo`.
     static std::string build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
-                             std::vector<std::string>* warnings = nullptr, std::string outPath = {});
+                             std::vector<std::string>* warnings = nullptr, std::string outPath = {}, int volume = 0);
     /// A quick preview octree of every `factor`-th voxel (reading one slice in `factor`), at
     /// `<folder>/<uid>.preview.hvo`, for showing a series while its full octree builds. Not
     /// recorded in the database.
     static std::string buildPreview(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
-                                    std::uint32_t factor = 4);
+                                    std::uint32_t factor = 4, int volume = 0);
+    /// Records in the database the volumes of every series in `volumes` that splits into several
+    /// (what varies between them), as import and retrieve find them.
+    static void recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes);
 };
 
 }  // namespace hvx::dicom

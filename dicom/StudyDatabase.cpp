@@ -11,8 +11,8 @@
 namespace hvx::dicom {
 
 namespace {
-/// 1: the first schema; 2: instances.offline.
-constexpr std::int64_t kSchemaVersion = 2;
+/// 1: the first schema; 2: instances.offline; 3: volumes (the volumes of a 4D series).
+constexpr std::int64_t kSchemaVersion = 3;
 const char* kSchema = R"sql(
 PRAGMA foreign_keys = ON;
 CREATE TABLE IF NOT EXISTS patients (
@@ -32,6 +32,9 @@ CREATE TABLE IF NOT EXISTS instances (
   series INTEGER NOT NULL REFERENCES series(id) ON DELETE CASCADE,
   path TEXT NOT NULL, transfer_syntax TEXT, sop_class TEXT, instance_number INTEGER, file_size INTEGER,
   offline INTEGER NOT NULL DEFAULT 0);
+CREATE TABLE IF NOT EXISTS volumes (
+  series INTEGER NOT NULL REFERENCES series(id) ON DELETE CASCADE, number INTEGER NOT NULL,
+  varying TEXT NOT NULL, octree TEXT, PRIMARY KEY(series, number));
 CREATE INDEX IF NOT EXISTS instances_series ON instances(series);
 CREATE INDEX IF NOT EXISTS series_study ON series(study);
 CREATE INDEX IF NOT EXISTS studies_patient ON studies(patient);
@@ -383,6 +386,44 @@ std::vector<std::string> StudyDatabase::filesOfSeries(const std::string& seriesU
 void StudyDatabase::setSeriesOctree(const std::string& seriesUid, const std::string& octreePath) {
     Stmt s(db_, "UPDATE series SET octree = ?2 WHERE uid = ?1;");
     s.bind(1, seriesUid).bind(2, octreePath);
+    s.step();
+}
+
+void StudyDatabase::setSeriesVolumes(const std::string& seriesUid, const std::vector<std::string>& varying) {
+    exec("BEGIN IMMEDIATE;");
+    try {
+        // A volume keeps its octree while what it is stays the same.
+        Stmt up(db_,
+                "INSERT INTO volumes(series, number, varying) SELECT id, ?2, ?3 FROM series WHERE uid = ?1 "
+                "ON CONFLICT(series, number) DO UPDATE SET varying = excluded.varying, "
+                "octree = CASE WHEN volumes.varying = excluded.varying THEN volumes.octree ELSE NULL END;");
+        for (std::size_t i = 0; i < varying.size(); ++i) {
+            up.reset();
+            up.bind(1, seriesUid).bind(2, std::int64_t(i + 1)).bind(3, varying[i]);
+            up.step();
+        }
+        Stmt drop(db_, "DELETE FROM volumes WHERE number > ?2 AND series = (SELECT id FROM series WHERE uid = ?1);");
+        drop.bind(1, seriesUid).bind(2, std::int64_t(varying.size()));
+        drop.step();
+        exec("COMMIT;");
+    } catch (...) {
+        exec("ROLLBACK;");
+        throw;
+    }
+}
+
+std::vector<VolumeRow> StudyDatabase::volumesOfSeries(const std::string& seriesUid) const {
+    Stmt s(db_, "SELECT v.number, v.varying, coalesce(v.octree, '') FROM volumes v JOIN series se ON se.id = v.series "
+                "WHERE se.uid = ?1 ORDER BY v.number;");
+    s.bind(1, seriesUid);
+    std::vector<VolumeRow> out;
+    while (s.step()) out.push_back({int(s.integer(0)), s.text(1), s.text(2)});
+    return out;
+}
+
+void StudyDatabase::setVolumeOctree(const std::string& seriesUid, int number, const std::string& octreePath) {
+    Stmt s(db_, "UPDATE volumes SET octree = ?3 WHERE number = ?2 AND series = (SELECT id FROM series WHERE uid = ?1);");
+    s.bind(1, seriesUid).bind(2, std::int64_t(number)).bind(3, octreePath);
     s.step();
 }
 

@@ -26,6 +26,13 @@ struct StudyRow {
     int seriesCount = 0;
 };
 
+/// One volume of a 4D series (a series whose images split into several volumes).
+struct VolumeRow {
+    int number = 0;        ///< 1-based, in the order import lists them (build-series --volume N)
+    std::string varying;   ///< what tells it apart: "echo 2 (TE 20 ms)", "b 1000 (...)", "time 3"
+    std::string octreePath;
+};
+
 /// One series of a study.
 struct SeriesRow {
     std::string seriesUid, studyUid, modality, description, bodyPart, octreePath;
@@ -84,6 +91,11 @@ public:
     std::vector<std::string> filesOfSeries(const std::string& seriesUid) const;
     /// Records the octree built for a series.
     void setSeriesOctree(const std::string& seriesUid, const std::string& octreePath);
+    /// Records the volumes a series splits into (what varies, in order); a series of one volume
+    /// has none. Octrees of volumes that stay the same are kept.
+    void setSeriesVolumes(const std::string& seriesUid, const std::vector<std::string>& varying);
+    std::vector<VolumeRow> volumesOfSeries(const std::string& seriesUid) const;
+    void setVolumeOctree(const std::string& seriesUid, int number, const std::string& octreePath);
     std::size_t instanceCount() const;
     const std::string& path() const { return path_; }
 

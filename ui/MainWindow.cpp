@@ -259,7 +259,7 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
     }
 }
 
-void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath, const QString& label) {
+void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume) {
     if (!octreePath.isEmpty()) {
         openOctree(octreePath, label);
         return;
@@ -269,14 +269,14 @@ void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath,
     // First a quick preview (every 4th voxel), shown as soon as it exists; then the full octree,
     // which replaces it in place with the same camera. The full build starts once the preview
     // is on screen (or has failed), so the preview is always seen first and never raced.
-    auto buildFull = [self, db, uid, label](const QString& preview) {
+    auto buildFull = [self, db, uid, label, volume](const QString& preview) {
         if (!self) return;
         self->jobs_->start(
             tr("Build octree: %1").arg(label),
-            [db, uid](core::JobContext& job) {
+            [db, uid, volume](core::JobContext& job) {
                 dicom::StudyDatabase database(db);
                 std::vector<std::string> warnings;
-                return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, &warnings));
+                return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, &warnings, {}, volume));
             },
             [self, label, preview](const QString& path) {
                 if (!self) return;
@@ -287,9 +287,9 @@ void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath,
     };
     const int previewJob = jobs_->start(
         tr("Preview: %1").arg(label),
-        [db, uid](core::JobContext& job) {
+        [db, uid, volume](core::JobContext& job) {
             dicom::StudyDatabase database(db);
-            return QString::fromStdString(dicom::SeriesOctree::buildPreview(database, uid, job));
+            return QString::fromStdString(dicom::SeriesOctree::buildPreview(database, uid, job, 4, volume));
         },
         [self, label, buildFull](const QString& path) {
             if (!self) return;

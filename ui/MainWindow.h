@@ -42,7 +42,8 @@ public:
     /// Opens an .hvo octree in the 3D and slice views.
     bool openOctree(const QString& path, const QString& label = {}, bool keepCamera = false);
     /// Opens an imported series, building its octree in the background when missing.
-    void openSeries(const QString& seriesUid, const QString& octreePath, const QString& label);
+    /// `volume` 0: the series' largest volume; N: volume N of a 4D series.
+    void openSeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume = 0);
 
     VolumeView* view() const { return view_; }
     StudyBrowser* browser() const { return browser_; }

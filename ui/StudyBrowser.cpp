@@ -24,13 +24,15 @@
 #include "dicom/DicomInstance.h"
 #include "dicom/DicomScanner.h"
 #include "dicom/PixelDecoder.h"
+#include "dicom/SeriesAssembler.h"
+#include "dicom/SeriesOctree.h"
 #include "dicom/StudyDatabase.h"
 #include "ui/JobManager.h"
 
 namespace hvx::ui {
 
 namespace {
-enum Role { SeriesUidRole = Qt::UserRole + 1, OctreeRole, LabelRole };
+enum Role { SeriesUidRole = Qt::UserRole + 1, OctreeRole, LabelRole, VolumeRole };
 
 // A 64-pixel axial thumbnail from the octree's coarse levels (a few bricks).
 QIcon thumbnail(const std::string& octreePath) {
@@ -171,6 +173,16 @@ void StudyBrowser::refresh() {
                 item->setIcon(0, *cached);
                 item->setToolTip(0, se.octreePath.empty() ? tr("No octree yet: opening builds it in the background")
                                                           : tr("Octree: %1").arg(QString::fromStdString(se.octreePath)));
+                // A 4D series: one row per volume, with what varies (echo, b-value, time).
+                for (const auto& v : db.volumesOfSeries(se.seriesUid)) {
+                    const QString vlabel = QStringLiteral("#%1 %2").arg(v.number).arg(QString::fromStdString(v.varying));
+                    auto* vitem = new QTreeWidgetItem(item, {vlabel, {}, QString::fromStdString(se.modality), {}});
+                    vitem->setData(0, SeriesUidRole, QString::fromStdString(se.seriesUid));
+                    vitem->setData(0, OctreeRole, QString::fromStdString(v.octreePath));
+                    vitem->setData(0, LabelRole, QString::fromStdString(s.patientName) + " \u2014 " + label + " " + vlabel);
+                    vitem->setData(0, VolumeRole, v.number);
+                    vitem->setToolTip(0, tr("Volume %1 of the series: %2").arg(v.number).arg(QString::fromStdString(v.varying)));
+                }
             }
         }
         tree_->expandAll();
@@ -192,7 +204,7 @@ void StudyBrowser::activated(QTreeWidgetItem* item) {
     if (uid.isEmpty()) return;
     QString octree = item->data(0, OctreeRole).toString();
     if (!octree.isEmpty() && !QFileInfo::exists(octree)) octree.clear();
-    emit openSeries(uid, octree, item->data(0, LabelRole).toString());
+    emit openSeries(uid, octree, item->data(0, LabelRole).toString(), item->data(0, VolumeRole).toInt());
 }
 
 int StudyBrowser::importPaths(const QStringList& paths) {
@@ -205,6 +217,8 @@ int StudyBrowser::importPaths(const QStringList& paths) {
             const auto scan = dicom::DicomScanner::scan(list, job);
             dicom::StudyDatabase database(db);
             const auto stats = database.addInstances(scan.instances);
+            std::vector<std::string> notes;  // a 4D series' volumes, for the rows below it
+            dicom::SeriesOctree::recordVolumes(database, dicom::SeriesAssembler::assemble(scan.instances, notes));
             if (scan.instances.empty())
                 throw core::Error(scan.broken ? "no readable DICOM found: " + std::to_string(scan.broken) + " broken files"
                                               : std::string("no DICOM files found there"));

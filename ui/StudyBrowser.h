@@ -34,7 +34,8 @@ public:
 
 signals:
     /// octreePath is empty when the series has no octree yet.
-    void openSeries(const QString& seriesUid, const QString& octreePath, const QString& label);
+    /// `volume` 0 opens the series (its largest volume); N opens volume N of a 4D series.
+    void openSeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume);
     void imported(const QString& summary);
     void failed(const QString& message);
 

@@ -16,6 +16,7 @@
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/DicomSeriesWriter.h"
 #include "dicom/SeriesAssembler.h"
+#include "dicom/SeriesOctree.h"
 #include "dicom/StudyDatabase.h"
 #include "dicom/UidPath.h"
 
@@ -61,6 +62,7 @@ int importCommand(int argc, char** argv) {
     std::vector<std::string> notes;
     const auto volumes = scanAndAssemble(args.positional(), scan, notes);
     const auto stats = db.addInstances(scan.instances);
+    dicom::SeriesOctree::recordVolumes(db, volumes);
     std::printf("scanned %zu files: %zu DICOM, %zu not DICOM (skipped), %zu broken\n", scan.filesSeen,
                 scan.instances.size(), scan.notDicom, scan.broken);
     for (const auto& r : scan.brokenReasons) std::printf("  broken: %s\n", r.c_str());
@@ -132,10 +134,14 @@ int studiesCommand(int argc, char** argv) {
     for (const auto& s : studies) {
         std::printf("%-24s %-12s %s %-6s %-30s %s\n", s.patientName.c_str(), s.patientId.c_str(), s.date.c_str(),
                     s.modalities.c_str(), s.description.c_str(), s.studyUid.c_str());
-        for (const auto& se : db.seriesOfStudy(s.studyUid))
+        for (const auto& se : db.seriesOfStudy(s.studyUid)) {
             std::printf("    series %3d %-4s %-28s %4d images  %s%s%s\n", se.number, se.modality.c_str(),
                         se.description.c_str(), se.instanceCount, se.seriesUid.c_str(),
                         se.octreePath.empty() ? "" : "  octree: ", se.octreePath.c_str());
+            for (const auto& v : db.volumesOfSeries(se.seriesUid))  // a 4D series' volumes
+                std::printf("      #%d %s%s%s\n", v.number, v.varying.c_str(), v.octreePath.empty() ? "" : "  octree: ",
+                            v.octreePath.c_str());
+        }
     }
     std::printf("%zu studies\n", studies.size());
     return 0;

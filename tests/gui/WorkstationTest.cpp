@@ -17,6 +17,7 @@
 #include <QSurfaceFormat>
 #include <QTest>
 #include <QTreeWidget>
+#include <QTreeWidgetItemIterator>
 #include <QWheelEvent>
 
 #include <cmath>
@@ -27,6 +28,7 @@
 #include "dicom/DicomSeriesWriter.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/PacsPeer.h"
+#include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
 #include "ui/JobManager.h"
 #include "ui/JobsPanel.h"
@@ -395,6 +397,37 @@ private slots:
         QCOMPARE(axial->windowCentre(), mrCentre);
         QVERIFY(window_->jobs()->waitIdle(60000));
         QCOMPARE(axial->windowWidth(), mrWidth);  // the percentile window does not override a choice
+    }
+
+    // A 4D series (dual echo, written by pydicom) lists one row per volume with what varies;
+    // double-clicking a volume's row opens that volume.
+    void fourDimensionalSeriesListsItsVolumesAndOpensOne() {
+        const auto r = test::runCommand("/usr/bin/python3 " HVX_SOURCE_DIR "/tests/support/dicom_cases.py " +
+                                        dir_.file("cases"));
+        QVERIFY2(r.exitCode == 0, r.output.c_str());
+        QSignalSpy imported(window_->browser(), &ui::StudyBrowser::imported);
+        window_->browser()->importPaths({QString::fromStdString(dir_.file("cases/echo"))});
+        QTRY_COMPARE_WITH_TIMEOUT(imported.count(), 1, 60000);
+        auto* tree = window_->browser()->tree();
+        QTreeWidgetItem* second = nullptr;
+        QStringList rows;
+        for (QTreeWidgetItemIterator it(tree); *it; ++it)
+            if ((*it)->text(0).startsWith("#")) {
+                rows << (*it)->text(0);
+                if ((*it)->text(0).contains("echo 2 (TE 20 ms)")) second = *it;
+            }
+        QCOMPARE(rows, (QStringList{"#1 echo 1 (TE 10 ms)", "#2 echo 2 (TE 20 ms)"}));
+        QVERIFY(second);
+        tree->scrollToItem(second);
+        const QRect rect = tree->visualItemRect(second);
+        QTest::mouseClick(tree->viewport(), Qt::LeftButton, {}, rect.center());
+        QTest::mouseDClick(tree->viewport(), Qt::LeftButton, {}, rect.center());
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        QTRY_VERIFY_WITH_TIMEOUT(window_->openLabel().contains("echo 2") && !window_->openLabel().endsWith("(preview)"),
+                                 10000);
+        // Echo 2's pixels are 1000 above echo 1's (tests/support/dicom_cases.py): the view shows them.
+        QVERIFY2(window_->slice(0)->windowCentre() > 900.0, qPrintable(QString::number(window_->slice(0)->windowCentre())));
+        saveArtifact("browser-4d-series.png");
     }
 
     // A damaged or wrongly typed saved session is reset with a message, never a crash.

@@ -20,6 +20,8 @@
 #include "dicom/DicomScanner.h"
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/SeriesAssembler.h"
+#include "dicom/SeriesOctree.h"
+#include "dicom/StudyDatabase.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
 
@@ -174,6 +176,22 @@ TEST_F(PydicomSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
                          dir_->file("e2.hvo") + db);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("echo 2 (TE 20 ms)"), std::string::npos) << r.output;
+    // The study database knows the series' volumes and what varies between them.
+    r = test::runCommand(std::string(HVX_CLI) + " studies" + db);
+    EXPECT_NE(r.output.find("#1 echo 1 (TE 10 ms)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("#2 echo 2 (TE 20 ms)"), std::string::npos) << r.output;
+    dicom::StudyDatabase database(dir_->file("db.sqlite"));
+    const auto rows = database.volumesOfSeries(volumes[1].seriesUid);
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[1].varying, "echo 2 (TE 20 ms)");
+    // Building volume 2 records its octree; importing again keeps it; a changed split drops it.
+    core::JobContext job;
+    const auto path = dicom::SeriesOctree::build(database, volumes[1].seriesUid, job, nullptr, {}, 2);
+    EXPECT_EQ(database.volumesOfSeries(volumes[1].seriesUid)[1].octreePath, path);
+    database.setSeriesVolumes(volumes[1].seriesUid, {"echo 1 (TE 10 ms)", "echo 2 (TE 20 ms)"});
+    EXPECT_EQ(database.volumesOfSeries(volumes[1].seriesUid)[1].octreePath, path);
+    database.setSeriesVolumes(volumes[1].seriesUid, {"echo 1 (TE 10 ms)"});
+    EXPECT_EQ(database.volumesOfSeries(volumes[1].seriesUid).size(), 1u);
 }
 
 namespace {
