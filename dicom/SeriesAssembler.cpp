@@ -153,6 +153,12 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
             ++skipped["colour images (not volumes)"];
             continue;
         }
+        // NM multi-frame objects are placed by their Detector Information Sequence (and, for
+        // tomography, by rotation), which Holovox does not read: refused rather than stacked.
+        if (in.modality == "NM" && in.frames > 1) {
+            ++skipped["NM multi-frame objects (placed by a Detector Information Sequence Holovox does not read yet)"];
+            continue;
+        }
         for (std::uint32_t f = 0; f < in.frames; ++f) {
             const auto& fg = in.frameGeometry[std::min<std::size_t>(f, in.frameGeometry.size() - 1)];
             GroupKey k{in.seriesInstanceUid, in.rows, in.columns, in.bitsAllocated, in.pixelRepresentation,

@@ -13,6 +13,7 @@ real multi-volume acquisitions do, in shuffled file-name order:
   dose/       RT dose: 3 planes with absolute GridFrameOffsetVector, and a single plane, scaled
   uint32/     4 slices of 32-bit unsigned pixels at and above 2^31
   windows/    3 CT slices with two windows (WindowCenter/Width and their explanations)
+  nm/         an NM multi-frame object (4 frames), which Holovox cannot place
 
 Each volume's pixels differ (value = 1000 * volume + 100 * slice + column + 7 * row), so
 a mixed volume cannot pass. usage: dicom_cases.py OUT_DIR
@@ -186,6 +187,12 @@ def extras(out):
         ds.WindowWidth = ['400', '1500']
         ds.WindowCenterWidthExplanation = ['SOFT TISSUE', 'BONE']
         save(ds, os.path.join(out, 'windows', f'IM{s}'))
+    ds = image(generate_uid(), study, frame, 1, 0, 0, {})
+    ds.SOPClassUID = ds.file_meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.20'
+    ds.Modality = 'NM'
+    ds.NumberOfFrames = 4
+    ds.PixelData = ds.PixelData * 4
+    save(ds, os.path.join(out, 'nm', 'IM0'))
 
 
 def main(out):

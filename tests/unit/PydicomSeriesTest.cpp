@@ -294,3 +294,11 @@ TEST_F(PydicomSeries, DicomWindowsAreTheVolumesOwn) {
     EXPECT_DOUBLE_EQ(w[1].width, 1500);
     EXPECT_TRUE(import("echo")[0].geometry.windows.empty());
 }
+
+TEST_F(PydicomSeries, NmMultiFrameIsRefusedNotStackedInFileOrder) {
+    std::vector<std::string> notes;
+    const auto volumes = import("nm", &notes);
+    EXPECT_TRUE(volumes.empty());
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("NM multi-frame objects"), std::string::npos) << notes[0];
+}
