@@ -188,7 +188,12 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     if (p.bitsStored == 0) p.bitsStored = p.bitsAllocated;
     p.photometric = text(ds, DCM_PhotometricInterpretation);
     if (ds->findAndGetSint32(DCM_NumberOfFrames, i32).bad() || i32 < 1) i32 = 1;
-    const bool pixels = ds->tagExists(DCM_PixelData) || ds->tagExists(DCM_FloatPixelData);
+    if (!ds->tagExists(DCM_PixelData)) {  // float images: the bits are given by the element itself
+        if (ds->tagExists(DCM_FloatPixelData)) p.floatPixelBits = 32;
+        if (ds->tagExists(DCM_DoubleFloatPixelData)) p.floatPixelBits = 64;
+        if (p.floatPixelBits) p.bitsAllocated = p.bitsStored = std::uint16_t(p.floatPixelBits);
+    }
+    const bool pixels = ds->tagExists(DCM_PixelData) || p.floatPixelBits != 0;
     p.frames = (p.rows && p.columns && (pixels || p.bitsAllocated)) ? std::uint32_t(i32) : 0;
     checkFrameCount(ds, p);
     double d = 0;

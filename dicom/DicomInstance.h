@@ -40,6 +40,9 @@ struct DicomInstance {
     std::uint16_t rows = 0, columns = 0, samplesPerPixel = 1;
     std::uint16_t bitsAllocated = 0, bitsStored = 0, highBit = 0, pixelRepresentation = 0;
     std::uint32_t frames = 0;  ///< 0 for objects without pixel data
+    /// 32 for Float Pixel Data, 64 for Double Float Pixel Data (decoded as float bits in the
+    /// int32 samples, see PixelDecoder); 0 for integer Pixel Data.
+    int floatPixelBits = 0;
     std::string photometric;
     std::optional<double> pixelPadding;
     double sliceThickness = 0.0;

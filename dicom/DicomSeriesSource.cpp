@@ -1,5 +1,7 @@
 #include "dicom/DicomSeriesSource.h"
 
+#include <cstring>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -85,7 +87,12 @@ void DicomSeriesSource::writeSlice(std::uint32_t z, T* out) {
     auto value = [&](const DicomInstance& in, const SliceRef& s, std::int32_t v) -> double {
         // The decoder hands 32-bit samples over as int32: unsigned ones at or above 2^31 are
         // taken back as unsigned here, never as negative numbers.
-        const double raw = in.bitsAllocated == 32 && in.pixelRepresentation == 0 ? double(std::uint32_t(v)) : double(v);
+        double raw = in.bitsAllocated == 32 && in.pixelRepresentation == 0 ? double(std::uint32_t(v)) : double(v);
+        if (in.floatPixelBits) {  // Float / Double Float Pixel Data: the decoder hands over float bits
+            float f;
+            std::memcpy(&f, &v, sizeof f);
+            raw = double(f);
+        }
         const bool padded = in.pixelPadding && raw == *in.pixelPadding;
         const double stored = padded ? paddingStored_ : raw;
         return volume_.applyRescale ? stored * s.rescaleSlope + s.rescaleIntercept : stored;

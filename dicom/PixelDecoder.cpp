@@ -82,6 +82,7 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
     if (!in.hasPixels()) throw core::Error(in.path + ": has no image pixel data");
     if (frame >= in.frames) throw core::Error(in.path + ": frame " + std::to_string(frame) + " does not exist");
     if (in.samplesPerPixel != 1) throw core::Error(in.path + ": colour images are not supported as volumes");
+    if (in.floatPixelBits) return decodeFloatFrame(in, frame, out);
     if (in.bitsAllocated != 8 && in.bitsAllocated != 16 && in.bitsAllocated != 32)
         throw core::Error(in.path + ": unsupported BitsAllocated " + std::to_string(in.bitsAllocated));
     if (in.bitsStored == 0 || in.bitsStored > in.bitsAllocated || in.highBit >= in.bitsAllocated)
@@ -174,6 +175,35 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
             std::uint32_t u = (std::uint32_t(v) >> (shift > 0 ? shift : 0)) & mask;
             if (in.pixelRepresentation == 1 && (u & sign)) u |= ~mask;
             v = std::int32_t(u);
+        }
+    }
+}
+
+void PixelDecoder::decodeFloatFrame(const DicomInstance& in, std::uint32_t frame, std::vector<std::int32_t>& out) {
+    if (impl_->loaded != in.path) {
+        impl_->loaded.clear();
+        const OFCondition st = impl_->file.loadFile(in.path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength,
+                                                    ERM_autoDetect);
+        if (st.bad()) throw core::Error(in.path + ": cannot read pixel data (" + st.text() + ")");
+        impl_->loaded = in.path;
+    }
+    DcmDataset* ds = impl_->file.getDataset();
+    const std::size_t pixels = std::size_t(in.rows) * in.columns;
+    const std::size_t first = pixels * frame;
+    out.resize(pixels);
+    unsigned long count = 0;
+    if (in.floatPixelBits == 32) {
+        const Float32* v = nullptr;
+        if (ds->findAndGetFloat32Array(DCM_FloatPixelData, v, &count).bad() || !v || count < first + pixels)
+            throw core::Error(in.path + ": Float Pixel Data is shorter than its header promises (truncated file?)");
+        std::memcpy(out.data(), v + first, pixels * sizeof(float));  // float bits, read back as floats
+    } else {
+        const Float64* v = nullptr;
+        if (ds->findAndGetFloat64Array(DCM_DoubleFloatPixelData, v, &count).bad() || !v || count < first + pixels)
+            throw core::Error(in.path + ": Double Float Pixel Data is shorter than its header promises (truncated file?)");
+        for (std::size_t i = 0; i < pixels; ++i) {
+            const float f = float(v[first + i]);  // volumes are stored as float32
+            std::memcpy(&out[i], &f, sizeof f);
         }
     }
 }

@@ -26,6 +26,8 @@ public:
 
 private:
     void decodeFrame(const DicomInstance& instance, std::uint32_t frame, std::vector<std::int32_t>& out);
+    /// Float and Double Float Pixel Data: each sample's float32 bits in an int32.
+    void decodeFloatFrame(const DicomInstance& instance, std::uint32_t frame, std::vector<std::int32_t>& out);
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };

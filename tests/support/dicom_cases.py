@@ -14,6 +14,7 @@ real multi-volume acquisitions do, in shuffled file-name order:
   uint32/     4 slices of 32-bit unsigned pixels at and above 2^31
   windows/    3 CT slices with two windows (WindowCenter/Width and their explanations)
   nm/         an NM multi-frame object (4 frames), which Holovox cannot place
+  float/      3 slices of Float Pixel Data; double/: 3 slices of Double Float Pixel Data
 
 Each volume's pixels differ (value = 1000 * volume + 100 * slice + column + 7 * row), so
 a mixed volume cannot pass. usage: dicom_cases.py OUT_DIR
@@ -193,6 +194,18 @@ def extras(out):
     ds.NumberOfFrames = 4
     ds.PixelData = ds.PixelData * 4
     save(ds, os.path.join(out, 'nm', 'IM0'))
+    for name, element, dtype, bits in [('float', 'FloatPixelData', '<f4', 32), ('double', 'DoubleFloatPixelData', '<f8', 64)]:
+        uid = generate_uid()
+        for s in range(3):
+            ds = image(uid, study, frame, s + 1, s, 0, {})
+            del ds.PixelData
+            del ds.PixelRepresentation
+            del ds.BitsStored
+            del ds.HighBit
+            ds.BitsAllocated = bits
+            r, c = np.mgrid[0:ROWS, 0:COLS]
+            setattr(ds, element, (0.125 * c - 0.5 * r + 1000.25 * s - 3.75).astype(dtype).tobytes())
+            save(ds, os.path.join(out, name, f'IM{s}'))
 
 
 def main(out):

@@ -302,3 +302,19 @@ TEST_F(PydicomSeries, NmMultiFrameIsRefusedNotStackedInFileOrder) {
     ASSERT_EQ(notes.size(), 1u);
     EXPECT_NE(notes[0].find("NM multi-frame objects"), std::string::npos) << notes[0];
 }
+
+TEST_F(PydicomSeries, FloatAndDoubleFloatPixelDataAreImported) {
+    for (const std::string name : {"float", "double"}) {
+        SCOPED_TRACE(name);
+        const auto volumes = import(name);
+        ASSERT_EQ(volumes.size(), 1u);
+        EXPECT_EQ(volumes[0].geometry.scalarType, core::ScalarType::Float32);
+        dicom::DicomSeriesSource src(volumes[0]);
+        const auto v = physical(src);
+        ASSERT_EQ(v.size(), std::size_t(16 * 12 * 3));
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            const double c = double(i % 16), r = double((i / 16) % 12), s = double(i / (16 * 12));
+            ASSERT_NEAR(v[i], 0.125 * c - 0.5 * r + 1000.25 * s - 3.75, 1e-4) << "voxel " << i;
+        }
+    }
+}
