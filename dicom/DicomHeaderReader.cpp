@@ -174,6 +174,7 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     p.modality = text(ds, DCM_Modality);
     p.seriesDescription = text(ds, DCM_SeriesDescription);
     p.bodyPartExamined = text(ds, DCM_BodyPartExamined);
+    p.frameOfReferenceUid = text(ds, DCM_FrameOfReferenceUID);
     Sint32 i32 = 0;
     if (ds->findAndGetSint32(DCM_SeriesNumber, i32).good()) p.seriesNumber = i32;
     if (ds->findAndGetSint32(DCM_InstanceNumber, i32).good()) p.instanceNumber = i32;

@@ -35,6 +35,7 @@ struct DicomInstance {
     std::string patientName, patientId, patientBirthDate, patientSex;
     std::string studyInstanceUid, studyDate, studyTime, studyDescription, accessionNumber;
     std::string seriesInstanceUid, modality, seriesDescription, bodyPartExamined;
+    std::string frameOfReferenceUid;
     int seriesNumber = 0;
     int instanceNumber = 0;
     std::uint16_t rows = 0, columns = 0, samplesPerPixel = 1;

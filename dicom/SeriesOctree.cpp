@@ -85,4 +85,9 @@ void SeriesOctree::recordVolumes(StudyDatabase& db, const std::vector<SeriesVolu
     for (const auto& [uid, varying] : bySeries) db.setSeriesVolumes(uid, varying.size() > 1 ? varying : std::vector<std::string>{});
 }
 
+SeriesVolume SeriesOctree::assemble(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
+                                   std::vector<std::string>* warnings, int volume) {
+    return assembleSeries(db, seriesUid, job, warnings, volume);
+}
+
 }  // namespace hvx::dicom

@@ -31,6 +31,10 @@ public:
     /// recorded in the database.
     static std::string buildPreview(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
                                     std::uint32_t factor = 4, int volume = 0);
+    /// The series' volume (0: its largest; N: the N-th of a 4D series) assembled from its files
+    /// in the database, with the warnings of assembly appended to `warnings`.
+    static SeriesVolume assemble(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
+                                 std::vector<std::string>* warnings = nullptr, int volume = 0);
     /// Records in the database the volumes of every series in `volumes` that splits into several
     /// (what varies between them), as import and retrieve find them.
     static void recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes);

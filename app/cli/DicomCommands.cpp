@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <set>
 
@@ -180,24 +181,52 @@ int buildSeriesCommand(int argc, char** argv) {
 int exportDicomCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"o", "output", "syntax", "patient", "patient-id", "study", "series", "date", "accession",
-                        "modality"},
+                        "modality", "series-uid", "db", "volume"},
                        {"enhanced"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
-    if (args.positional().size() != 1 || !out)
+    const auto fromSeries = args.value("series-uid");
+    if (args.positional().size() != (fromSeries ? 0u : 1u) || !out)
         throw core::Error("usage: holovox-cli export-dicom INPUT -o FOLDER [--syntax S] [--enhanced] [--patient NAME] "
-                          "[--modality CT|MR|PT|NM|OT]");
-    const std::string input = args.positional()[0];
-    std::unique_ptr<core::VoxelSource> source = core::VoxelSourceFactory::open(input);
+                          "[--modality CT|MR|PT|NM|OT]\n       holovox-cli export-dicom --series-uid UID [--db FILE] "
+                          "[--volume N] -o FOLDER   (an imported series, keeping its patient, study and frame of reference)");
+    dicom::DicomWriteOptions o;
+    std::unique_ptr<core::VoxelSource> source;
+    std::function<std::unique_ptr<core::VoxelSource>()> reopen;  // a float volume is read twice
+    std::string input;
+    if (fromSeries) {
+        // A DICOM source keeps who and where it is: patient, study and frame of reference, so
+        // the export files under the same study and registers with its source.
+        dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
+        core::JobContext job;
+        const auto volume =
+            dicom::SeriesOctree::assemble(db, *fromSeries, job, nullptr, int(args.integer("volume", 0, 0, 1 << 20)));
+        const auto& first = volume.instances.front();
+        o.patientName = first.patientName;
+        o.patientId = first.patientId;
+        o.patientBirthDate = first.patientBirthDate;
+        o.patientSex = first.patientSex;
+        o.studyUid = first.studyInstanceUid;
+        o.studyDate = first.studyDate;
+        o.studyDescription = first.studyDescription;
+        o.accessionNumber = first.accessionNumber;
+        o.frameOfReferenceUid = first.frameOfReferenceUid;
+        o.seriesDescription = first.seriesDescription.empty() ? "Holovox export" : first.seriesDescription + " (Holovox)";
+        input = *fromSeries;
+        reopen = [volume] { return std::make_unique<dicom::DicomSeriesSource>(volume); };
+    } else {
+        input = args.positional()[0];
+        reopen = [input] { return core::VoxelSourceFactory::open(input); };
+    }
+    source = reopen();
     core::RescaledInt16Source* rescaled = nullptr;
     if (source->geometry().scalarType == core::ScalarType::Float32) {
         // DICOM images hold integers: a first pass finds the range, the second writes 16 bits
         // over it, and the largest error is reported.
         const auto [lo, hi] = core::RescaledInt16Source::physicalRange(*source);
-        auto r = std::make_unique<core::RescaledInt16Source>(core::VoxelSourceFactory::open(input), lo, hi);
+        auto r = std::make_unique<core::RescaledInt16Source>(reopen(), lo, hi);
         rescaled = r.get();
         source = std::move(r);
     }
-    dicom::DicomWriteOptions o;
     if (auto v = args.value("modality")) {
         static const std::set<std::string> known = {"CT", "MR", "PT", "NM", "OT", "US", "XA", "CR", "DX", "RTDOSE", "SEG"};
         if (!known.count(*v)) throw core::Error("--modality " + *v + " is not a DICOM modality Holovox writes");

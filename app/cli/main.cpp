@@ -26,6 +26,7 @@ void usage() {
         "  build-series SERIES_UID -o OUT.hvo [--db FILE] [--volume N]   (N as import numbers them)\n"
         "  export-dicom INPUT -o FOLDER [--syntax explicit-little|implicit-little|explicit-big|deflate|rle|\n"
         "        jpeg-lossless|jpeg-ls] [--enhanced] [--modality CT|MR|PT|NM|OT] [--patient NAME] [--patient-id ID] [--study TEXT]\n"
+        "  export-dicom --series-uid UID [--db FILE] [--volume N] -o FOLDER   (keeps patient, study, frame of reference)\n"
         "  pacs nodes | add NAME --ae AE --host H --port P [--move] [--default] [--tls --tls-ca CA.pem]\n"
         "  pacs echo NODE\n"
         "  pacs find NODE [--patient P] [--id I] [--date D|D1-D2] [--modality M] [--accession A]\n"

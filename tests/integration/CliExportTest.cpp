@@ -91,3 +91,33 @@ TEST(CliExport, FloatVolumeIsWrittenAsSixteenBitWithinTheReportedError) {
         worst = std::max(worst, std::abs(stored[i] * g.rescaleSlope + g.rescaleIntercept - double(values[i])));
     EXPECT_LE(worst, reported * 1.0001 + 1e-6) << "read back through Holovox's DICOM import";
 }
+
+// Exporting an imported series keeps who and where it is: the same patient, study and frame
+// of reference (so the export registers with its source), under a series of its own.
+TEST(CliExport, ASeriesKeepsItsPatientStudyAndFrameOfReference) {
+    test::TempDir dir;
+    auto r = test::runCommand("/usr/bin/python3 " + std::string(HVX_SOURCE_DIR) + "/tests/support/dicom_cases.py " +
+                              dir.file("cases"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string db = " --db " + dir.file("db.sqlite");
+    r = test::runCommand(cli + " import " + dir.file("cases/echo") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    core::JobContext job;
+    const auto scan = dicom::DicomScanner::scan({dir.file("cases/echo")}, job);
+    const auto& source = scan.instances.front();
+    ASSERT_FALSE(source.frameOfReferenceUid.empty());
+    r = test::runCommand(cli + " export-dicom --series-uid " + source.seriesInstanceUid + " --volume 2" + db + " -o " +
+                         dir.file("out"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto back = dicom::DicomScanner::scan({dir.file("out")}, job);
+    ASSERT_EQ(back.instances.size(), 12u);
+    for (const auto& in : back.instances) {
+        EXPECT_EQ(in.patientId, source.patientId);
+        EXPECT_EQ(in.patientName, source.patientName);
+        EXPECT_EQ(in.studyInstanceUid, source.studyInstanceUid);
+        EXPECT_EQ(in.frameOfReferenceUid, source.frameOfReferenceUid);
+        EXPECT_NE(in.seriesInstanceUid, source.seriesInstanceUid);
+        EXPECT_EQ(in.modality, "MR");
+    }
+    EXPECT_EQ(errorLines(dir.file("out/IMG00001.dcm")), 0u);
+}
