@@ -20,6 +20,18 @@ namespace hvx::dicom {
 struct PixelDecoder::Impl {
     DcmFileFormat file;
     std::string loaded;
+
+    /// The instance's data set, read from its file once for all its frames.
+    DcmDataset* dataset(const DicomInstance& in) {
+        if (loaded != in.path) {
+            loaded.clear();
+            const OFCondition st =
+                file.loadFile(in.path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength, ERM_autoDetect);
+            if (st.bad()) throw core::Error(in.path + ": cannot read pixel data (" + st.text() + ")");
+            loaded = in.path;
+        }
+        return file.getDataset();
+    }
 };
 
 PixelDecoder::PixelDecoder() : impl_(std::make_unique<Impl>()) { DcmtkSetup::ensure(); }
@@ -87,14 +99,7 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
         throw core::Error(in.path + ": unsupported BitsAllocated " + std::to_string(in.bitsAllocated));
     if (in.bitsStored == 0 || in.bitsStored > in.bitsAllocated || in.highBit >= in.bitsAllocated)
         throw core::Error(in.path + ": inconsistent BitsStored/HighBit");
-    if (impl_->loaded != in.path) {
-        impl_->loaded.clear();
-        const OFCondition st = impl_->file.loadFile(in.path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength,
-                                                    ERM_autoDetect);
-        if (st.bad()) throw core::Error(in.path + ": cannot read pixel data (" + st.text() + ")");
-        impl_->loaded = in.path;
-    }
-    DcmDataset* ds = impl_->file.getDataset();
+    DcmDataset* ds = impl_->dataset(in);
     DcmElement* element = nullptr;
     if (ds->findAndGetElement(DCM_PixelData, element).bad() || !element)
         throw core::Error(in.path + ": pixel data is missing (truncated file?)");
@@ -180,14 +185,7 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
 }
 
 void PixelDecoder::decodeFloatFrame(const DicomInstance& in, std::uint32_t frame, std::vector<std::int32_t>& out) {
-    if (impl_->loaded != in.path) {
-        impl_->loaded.clear();
-        const OFCondition st = impl_->file.loadFile(in.path.c_str(), EXS_Unknown, EGL_noChange, DCM_MaxReadLength,
-                                                    ERM_autoDetect);
-        if (st.bad()) throw core::Error(in.path + ": cannot read pixel data (" + st.text() + ")");
-        impl_->loaded = in.path;
-    }
-    DcmDataset* ds = impl_->file.getDataset();
+    DcmDataset* ds = impl_->dataset(in);
     const std::size_t pixels = std::size_t(in.rows) * in.columns;
     const std::size_t first = pixels * frame;
     out.resize(pixels);

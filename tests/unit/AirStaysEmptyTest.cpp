@@ -37,6 +37,20 @@ test::MemoryVoxelSource airWithSpheres(const Spheres& s) {
     return test::MemoryVoxelSource(g, v);
 }
 
+/// As the views do: bricks the transfer function hides become empty leaves of the cut.
+void cullAsTheViewsDo(test::OctreeScene& scene) {
+    core::WorkingSetOptions culled;
+    culled.cullByTransferFunction = true;
+    scene.ws = std::make_unique<core::WorkingSet>(*scene.reader, *scene.cache, *scene.loader, culled);
+}
+
+/// CT bone: air transparent, the spheres (1000 HU) opaque.
+core::TransferFunction boneTf(const test::OctreeScene& scene) {
+    const auto& g = scene.reader->geometry();
+    return core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
+                                          scene.ws->space().minSpacing);
+}
+
 /// Distance from a point to a ray (origin o, unit direction d), behind the origin included.
 double distanceToRay(const glm::dvec3& p, const glm::dvec3& o, const glm::dvec3& d) {
     const glm::dvec3 w = p - o;
@@ -51,13 +65,9 @@ TEST(AirStaysEmpty, NothingIsDrawnWhereRaysMeetOnlyAir) {
     s.centres.push_back({48, 48, 16});
     auto src = airWithSpheres(s);
     test::OctreeScene scene(src);
-    core::WorkingSetOptions culled;  // as the views do: bricks the transfer function hides are empty leaves
-    culled.cullByTransferFunction = true;
-    scene.ws = std::make_unique<core::WorkingSet>(*scene.reader, *scene.cache, *scene.loader, culled);
+    cullAsTheViewsDo(scene);
     const auto& g = scene.reader->geometry();
-    const auto space = scene.ws->space();
-    const auto tf = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
-                                                   space.minSpacing);
+    const auto tf = boneTf(scene);
     const glm::dvec3 c = scene.centre();
     std::size_t badTotal = 0;
     struct Dir {
@@ -98,13 +108,9 @@ TEST(AirStaysEmpty, EveryVisitLiesInItsLeafsBox) {
     s.centres = {{16, 16, 16}, {80, 80, 80}, {16, 80, 48}, {80, 16, 48}};
     auto src = airWithSpheres(s);
     test::OctreeScene scene(src);
-    core::WorkingSetOptions culled;
-    culled.cullByTransferFunction = true;
-    scene.ws = std::make_unique<core::WorkingSet>(*scene.reader, *scene.cache, *scene.loader, culled);
-    const auto& g = scene.reader->geometry();
+    cullAsTheViewsDo(scene);
     const auto space = scene.ws->space();
-    const auto tf = core::TransferFunction::preset("ct-bone", g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
-                                                   space.minSpacing);
+    const auto tf = boneTf(scene);
     const int levels = scene.reader->levelCount();
     std::size_t visits = 0, outside = 0;
     for (double el : {90.0, -90.0, 0.0}) {
