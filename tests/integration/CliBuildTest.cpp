@@ -1,9 +1,12 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <thread>
 
+#include "core/octree/OctreeReader.h"
+#include "core/volume/PhantomVoxelSource.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
 
@@ -36,15 +39,43 @@ TEST(CliBuild, NrrdAndRawInputsWithOptions) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "16^3 interior, border 3, codec lz4")) << r.output;
     EXPECT_TRUE(contains(r.output, "empty below -900")) << r.output;
-    // The same voxels as raw: skip the NRRD header with --header-bytes.
+    // The same voxels as raw: the NRRD file itself, its header skipped with --header-bytes.
     std::ifstream in(dir.file("p.nrrd"), std::ios::binary);
-    std::string all((std::istreambuf_iterator<char>(in)), {});
+    const std::string all((std::istreambuf_iterator<char>(in)), {});
     const auto header = all.find("\n\n") + 2;
-    std::ofstream(dir.file("p.raw"), std::ios::binary) << all.substr(header);
-    r = test::runCommand(cli + " build " + dir.file("p.raw") + " --dims 40x30x20 --type int16 --spacing 1,1,2.5 -o " +
-                         dir.file("b.hvo") + " --lossy8");
+    std::filesystem::copy_file(dir.file("p.nrrd"), dir.file("p.raw"));
+    r = test::runCommand(cli + " build " + dir.file("p.raw") + " --dims 40x30x20 --type int16 --spacing 1,1,2.5 " +
+                         "--header-bytes " + std::to_string(header) + " -o " + dir.file("b.hvo"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "spacing     1 x 1 x 2.5 mm")) << r.output;
+    // Every voxel is the phantom's own (its generator, not a reader, is the oracle).
+    const core::PhantomVoxelSource phantom({40, 30, 20}, 1);
+    const auto reader = core::OctreeReader::open(dir.file("b.hvo"));
+    std::size_t checked = 0, wrong = 0;
+    for (std::uint32_t id = 0; id < reader->nodes().size(); ++id) {
+        const auto& n = reader->nodes()[id];
+        if (n.level != 0) continue;
+        const auto b = reader->readBrick(id);
+        const std::uint32_t bs = reader->brickSize(), border = reader->border();
+        for (std::uint32_t z = 0; z < bs; ++z)
+            for (std::uint32_t y = 0; y < bs; ++y)
+                for (std::uint32_t x = 0; x < bs; ++x) {
+                    const std::uint32_t i = n.x * bs + x, j = n.y * bs + y, k = n.z * bs + z;
+                    if (i >= 40 || j >= 30 || k >= 20) continue;
+                    ++checked;
+                    wrong += b.value(x + border, y + border, z + border) != phantom.voxel(i, j, k);
+                }
+    }
+    EXPECT_EQ(checked, std::size_t(40 * 30 * 20));
+    EXPECT_EQ(wrong, 0u) << "voxels read at the wrong offset or with the wrong value";
+    // A wrong header size is a size mismatch, named.
+    r = test::runCommand(cli + " build " + dir.file("p.raw") + " --dims 40x30x20 --type int16 --header-bytes " +
+                         std::to_string(header + 2) + " -o " + dir.file("c.hvo"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_TRUE(contains(r.output, "need")) << r.output;
+    r = test::runCommand(cli + " build " + dir.file("p.raw") + " --dims 40x30x20 --type int16 --header-bytes " +
+                         std::to_string(header) + " --lossy8 -o " + dir.file("d.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "lossy error RMS")) << r.output;
 }
 
