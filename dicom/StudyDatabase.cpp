@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <set>
 
 #include "core/base/Error.h"
@@ -144,10 +145,16 @@ void StudyDatabase::migrate() {
         Stmt cols(db_, "PRAGMA table_info(instances);");
         while (cols.step()) hasOffline = hasOffline || cols.text(1) == "offline";
     }
-    exec("BEGIN IMMEDIATE;");
-    try {
+    transaction([&] {
         if (!hasOffline) exec("ALTER TABLE instances ADD COLUMN offline INTEGER NOT NULL DEFAULT 0;");
         exec(("PRAGMA user_version = " + std::to_string(kSchemaVersion) + ";").c_str());
+    });
+}
+
+void StudyDatabase::transaction(const std::function<void()>& body) {
+    exec("BEGIN IMMEDIATE;");
+    try {
+        body();
         exec("COMMIT;");
     } catch (...) {
         exec("ROLLBACK;");
@@ -166,8 +173,7 @@ void StudyDatabase::exec(const char* sql) const {
 
 StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomInstance>& instances) {
     ImportStats stats;
-    exec("BEGIN IMMEDIATE;");
-    try {
+    transaction([&] {
         Stmt patient(db_, "INSERT INTO patients(patient_id, name, birth_date, sex) VALUES(?1, ?2, ?3, ?4) "
                           "ON CONFLICT(patient_id, name) DO UPDATE SET birth_date = coalesce(nullif(?3, ''), birth_date), "
                           "sex = coalesce(nullif(?4, ''), sex) RETURNING id;");
@@ -231,11 +237,7 @@ StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomIn
             mods.bind(1, id);
             mods.step();
         }
-        exec("COMMIT;");
-    } catch (...) {
-        exec("ROLLBACK;");
-        throw;
-    }
+    });
     return stats;
 }
 
@@ -254,8 +256,7 @@ StudyDatabase::FileCheck StudyDatabase::checkFiles() {
         }
     }
     if (changed.empty()) return check;
-    exec("BEGIN IMMEDIATE;");
-    try {
+    transaction([&] {
         Stmt set(db_, "UPDATE instances SET offline = ?2 WHERE id = ?1;");
         for (const auto& [id, offline] : changed) {
             set.reset();
@@ -263,11 +264,7 @@ StudyDatabase::FileCheck StudyDatabase::checkFiles() {
             set.bind(2, std::int64_t(offline ? 1 : 0));
             set.step();
         }
-        exec("COMMIT;");
-    } catch (...) {
-        exec("ROLLBACK;");
-        throw;
-    }
+    });
     return check;
 }
 
@@ -289,8 +286,7 @@ StudyDatabase::PruneResult StudyDatabase::prune() {
             else ++result.kept;
         }
     }
-    exec("BEGIN IMMEDIATE;");
-    try {
+    transaction([&] {
         Stmt del(db_, "DELETE FROM instances WHERE id = ?1;");
         for (auto id : gone) {
             del.reset();
@@ -301,11 +297,7 @@ StudyDatabase::PruneResult StudyDatabase::prune() {
              "DELETE FROM series WHERE instance_count = 0;"
              "DELETE FROM studies WHERE id NOT IN (SELECT study FROM series);"
              "DELETE FROM patients WHERE id NOT IN (SELECT patient FROM studies);");
-        exec("COMMIT;");
-    } catch (...) {
-        exec("ROLLBACK;");
-        throw;
-    }
+    });
     result.removed = gone.size();
     return result;
 }
@@ -390,8 +382,7 @@ void StudyDatabase::setSeriesOctree(const std::string& seriesUid, const std::str
 }
 
 void StudyDatabase::setSeriesVolumes(const std::string& seriesUid, const std::vector<std::string>& varying) {
-    exec("BEGIN IMMEDIATE;");
-    try {
+    transaction([&] {
         // A volume keeps its octree while what it is stays the same.
         Stmt up(db_,
                 "INSERT INTO volumes(series, number, varying) SELECT id, ?2, ?3 FROM series WHERE uid = ?1 "
@@ -405,11 +396,7 @@ void StudyDatabase::setSeriesVolumes(const std::string& seriesUid, const std::ve
         Stmt drop(db_, "DELETE FROM volumes WHERE number > ?2 AND series = (SELECT id FROM series WHERE uid = ?1);");
         drop.bind(1, seriesUid).bind(2, std::int64_t(varying.size()));
         drop.step();
-        exec("COMMIT;");
-    } catch (...) {
-        exec("ROLLBACK;");
-        throw;
-    }
+    });
 }
 
 std::vector<VolumeRow> StudyDatabase::volumesOfSeries(const std::string& seriesUid) const {

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,8 @@ public:
 
 private:
     void exec(const char* sql) const;
+    /// Runs `body` in one write transaction, rolled back when it throws.
+    void transaction(const std::function<void()>& body);
     /// Brings an older schema to kSchemaVersion; refuses a newer one.
     void migrate();
     std::string path_;
