@@ -12,6 +12,7 @@
 #include "dicom/SeriesAssembler.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/TempDir.h"
+#include "tests/support/VoxelValues.h"
 
 using namespace hvx;
 
@@ -47,18 +48,7 @@ std::vector<dicom::SeriesVolume> importFolder(const std::string& dir, std::vecto
     return v;
 }
 
-std::vector<double> readVolume(core::VoxelSource& s) {
-    const auto& g = s.geometry();
-    const std::size_t n = std::size_t(g.dims[0]) * g.dims[1] * g.dims[2];
-    std::vector<double> out(n);
-    core::dispatchScalar(g.scalarType, [&](auto tag) {
-        using T = decltype(tag);
-        std::vector<T> buf(n);
-        s.readSlices(0, g.dims[2], buf.data());
-        for (std::size_t i = 0; i < n; ++i) out[i] = double(buf[i]);
-    });
-    return out;
-}
+std::vector<double> readVolume(core::VoxelSource& s) { return test::voxelValues(s); }
 
 // Every imported voxel, placed in patient space, lands on an original voxel with the same value.
 void expectSameVolumeInPatientSpace(const dicom::SeriesVolume& v, test::MemoryVoxelSource& original) {

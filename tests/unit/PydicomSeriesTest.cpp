@@ -24,23 +24,13 @@
 #include "dicom/StudyDatabase.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
+#include "tests/support/VoxelValues.h"
 
 using namespace hvx;
 
 namespace {
 
-std::vector<double> physical(core::VoxelSource& s) {
-    const auto& g = s.geometry();
-    const std::size_t n = std::size_t(g.dims[0]) * g.dims[1] * g.dims[2];
-    std::vector<double> out(n);
-    core::dispatchScalar(g.scalarType, [&](auto tag) {
-        using T = decltype(tag);
-        std::vector<T> buf(n);
-        s.readSlices(0, g.dims[2], buf.data());
-        for (std::size_t i = 0; i < n; ++i) out[i] = double(buf[i]) * g.rescaleSlope + g.rescaleIntercept;
-    });
-    return out;
-}
+std::vector<double> physical(core::VoxelSource& s) { return test::voxelValues(s, true); }
 
 /// Every voxel of `ours` placed in `theirs` by the two geometries: the index found must be a
 /// whole voxel of theirs, holding the same value.
