@@ -12,6 +12,8 @@ WorkingSet::WorkingSet(const OctreeReader& reader, BrickCache& cache, BrickLoade
     : reader_(reader), cache_(cache), loader_(loader), options_(options),
       space_(OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount())) {
     invisible_.assign(reader.nodes().size(), 0);
+    brickBytes_ = std::size_t(reader.brickEdge()) * reader.brickEdge() * reader.brickEdge() *
+                  scalarSize(reader.geometry().scalarType);
 }
 
 void WorkingSet::corners(std::uint32_t node, glm::dvec3 out[8]) const {
@@ -92,6 +94,8 @@ bool WorkingSet::available(std::uint32_t node, double priority) {
     }
     auto brick = cache_.get(node);
     if (!brick) {
+        if (requestLeft_ < brickBytes_) return false;  // asked again next frame, if still needed
+        requestLeft_ -= brickBytes_;
         loader_.request(node, priority);
         ++stats_.requested;
         return false;
@@ -150,6 +154,7 @@ const SpatialIndex& WorkingSet::update(const std::vector<View>& views, const Tra
     stats_ = {};
     changed_.clear();
     uploadLeft_ = options_.uploadBytesPerFrame;
+    requestLeft_ = std::max(cache_.budget() / 2, brickBytes_);  // at least one brick
     loader_.beginFrame();
     std::vector<glm::dmat4> clips;
     for (const auto& v : views) clips.push_back(v.viewProjection());

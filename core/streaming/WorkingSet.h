@@ -39,7 +39,9 @@ struct WorkingSetOptions {
 /// of screen-space error until every node meets the accuracy target, the data is not in memory
 /// yet (it is requested and the parent kept), or the brick pool is full. The cut becomes a
 /// SpatialIndex whose leaves point at pool slots; pool slots are reused least recently used first,
-/// and new slot contents are bounded per frame (upload budget).
+/// and new slot contents are bounded per frame (upload budget). Requests per frame are bounded
+/// by half the CPU cache, most urgent first: a cache smaller than what the view asks for would
+/// otherwise evict bricks before the frame that asked for them takes them, and never settle.
 ///
 /// Threading: frame thread only; loading happens in the BrickLoader's threads.
 class WorkingSet {
@@ -98,6 +100,8 @@ private:
     std::vector<char> invisible_;
     std::uint64_t frame_ = 0;
     std::size_t uploadLeft_ = 0;
+    std::size_t requestLeft_ = 0;  // bytes this frame may still ask the loader for
+    std::size_t brickBytes_ = 0;   // a decoded brick of the stored type, at most
     FrameStats stats_;
 };
 
