@@ -1,0 +1,95 @@
+// Two imports and a retrieve write into one study database at once, each through its own
+// connection, as the GUI's jobs and the storage receiver do. Nothing may be lost, nothing may
+// land under another patient, and no writer may fail on a busy database.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+#include "dicom/StudyDatabase.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+constexpr int kInstances = 120;
+
+struct Writer {
+    std::string patient;  ///< patient ID; also the study and series UID roots
+    int batch;            ///< instances per addInstances call (1: the receiver, one per C-STORE)
+    bool recordsOctrees;  ///< like a retrieve: records an octree and reads the browser's lists
+};
+
+dicom::DicomInstance instanceOf(const test::TempDir& dir, const Writer& w, int i) {
+    dicom::DicomInstance in;
+    in.path = dir.file(w.patient + "_" + std::to_string(i) + ".dcm");
+    std::ofstream(in.path) << w.patient;
+    in.patientName = "PATIENT^" + w.patient;
+    in.patientId = w.patient;
+    in.studyInstanceUid = "1.2." + w.patient.substr(1);
+    in.studyDate = "20240105";
+    in.seriesInstanceUid = in.studyInstanceUid + ".1";
+    in.modality = "CT";
+    in.sopInstanceUid = in.seriesInstanceUid + "." + std::to_string(i + 1);
+    in.instanceNumber = i + 1;
+    in.transferSyntaxUid = "1.2.840.10008.1.2.1";
+    return in;
+}
+
+void write(const test::TempDir& dir, const std::string& dbPath, const Writer& w, const std::atomic<bool>& go) {
+    while (!go.load()) std::this_thread::yield();
+    dicom::StudyDatabase db(dbPath);  // every writer opens (and may create) the file at once
+    std::vector<dicom::DicomInstance> pending;
+    for (int i = 0; i < kInstances; ++i) {
+        pending.push_back(instanceOf(dir, w, i));
+        if (static_cast<int>(pending.size()) < w.batch && i + 1 < kInstances) continue;
+        db.addInstances(pending);
+        pending.clear();
+        if (w.recordsOctrees && i % 10 == 9) {
+            db.setSeriesOctree(instanceOf(dir, w, 0).seriesInstanceUid, dir.file(w.patient + ".hvo"));
+            (void)db.findStudies({});
+        }
+    }
+}
+}  // namespace
+
+TEST(StudyDatabaseConcurrency, TwoImportsAndARetrieveAtOnceLoseNothingAndMixNoPatients) {
+    test::TempDir dir;
+    const std::string dbPath = dir.file("db/studies.sqlite");
+    const std::vector<Writer> writers = {{"P1", 7, false}, {"P2", 13, false}, {"P3", 1, true}};
+    std::atomic<bool> go{false};
+    std::mutex failuresLock;
+    std::vector<std::string> failures;
+    std::vector<std::thread> threads;
+    for (const Writer& w : writers) {
+        threads.emplace_back([&, w] {
+            try {
+                write(dir, dbPath, w, go);
+            } catch (const std::exception& e) {
+                std::lock_guard<std::mutex> lock(failuresLock);
+                failures.push_back(w.patient + ": " + e.what());
+            }
+        });
+    }
+    go = true;
+    for (auto& t : threads) t.join();
+    for (const auto& f : failures) ADD_FAILURE() << f;
+
+    dicom::StudyDatabase db(dbPath);
+    EXPECT_EQ(db.instanceCount(), writers.size() * kInstances);
+    const auto studies = db.findStudies({});
+    ASSERT_EQ(studies.size(), writers.size());
+    for (const Writer& w : writers) {
+        const auto first = instanceOf(dir, w, 0);
+        const auto series = db.seriesOfStudy(first.studyInstanceUid);
+        ASSERT_EQ(series.size(), 1u) << w.patient;
+        EXPECT_EQ(series[0].instanceCount, kInstances) << w.patient;
+        const auto files = db.filesOfSeries(first.seriesInstanceUid);
+        ASSERT_EQ(files.size(), static_cast<std::size_t>(kInstances)) << w.patient;
+        for (int i = 0; i < kInstances; ++i) EXPECT_EQ(files[i], instanceOf(dir, w, i).path) << w.patient;
+        EXPECT_EQ(series[0].octreePath, w.recordsOctrees ? dir.file(w.patient + ".hvo") : "") << w.patient;
+    }
+    for (const auto& s : studies) EXPECT_EQ(s.patientName, "PATIENT^" + s.patientId);
+}
