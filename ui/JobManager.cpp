@@ -2,8 +2,6 @@
 
 #include <QCoreApplication>
 #include <QElapsedTimer>
-#include <QMetaObject>
-#include <QPointer>
 #include <QThread>
 
 #include <thread>
@@ -17,7 +15,16 @@ struct JobManager::Job {
     std::thread thread;
 };
 
-JobManager::JobManager(QObject* parent) : QObject(parent) {}
+struct JobManager::Mailbox {
+    std::mutex mutex;
+    std::deque<std::function<void()>> items;
+};
+
+JobManager::JobManager(QObject* parent)
+    : QObject(parent), mailbox_(std::make_shared<Mailbox>()), drainTimer_(new QTimer(this)) {
+    drainTimer_->setInterval(15);
+    connect(drainTimer_, &QTimer::timeout, this, &JobManager::drain);
+}
 
 JobManager::~JobManager() {
     for (auto& [id, job] : jobs_) job->context->cancel();
@@ -25,22 +32,35 @@ JobManager::~JobManager() {
         if (job->thread.joinable()) job->thread.join();
 }
 
+void JobManager::post(std::function<void()> onGuiThread) {
+    std::lock_guard lock(mailbox_->mutex);
+    mailbox_->items.push_back(std::move(onGuiThread));
+}
+
+void JobManager::drain() {
+    std::deque<std::function<void()>> items;
+    {
+        std::lock_guard lock(mailbox_->mutex);
+        items.swap(mailbox_->items);
+    }
+    for (auto& f : items) f();
+    if (jobs_.empty()) {
+        std::lock_guard lock(mailbox_->mutex);
+        if (mailbox_->items.empty()) drainTimer_->stop();
+    }
+}
+
 int JobManager::start(const QString& title, Work work, Done done) {
     const int id = nextId_++;
     auto job = std::make_shared<Job>();
-    QPointer<JobManager> self(this);
-    job->context = std::make_shared<core::JobContext>([self, id](const core::JobProgress& p) {
-        QMetaObject::invokeMethod(
-            self.data(),
-            [self, id, p] {
-                if (self) emit self->progressed(id, p.fraction, p.etaSeconds, QString::fromStdString(p.stage));
-            },
-            Qt::QueuedConnection);
+    job->context = std::make_shared<core::JobContext>([this, id](const core::JobProgress& p) {
+        post([this, id, p] { emit progressed(id, p.fraction, p.etaSeconds, QString::fromStdString(p.stage)); });
     });
     jobs_[id] = job;
+    if (!drainTimer_->isActive()) drainTimer_->start();
     emit started(id, title);
     auto context = job->context;
-    job->thread = std::thread([self, id, context, work = std::move(work), done = std::move(done)] {
+    job->thread = std::thread([this, id, context, work = std::move(work), done = std::move(done)] {
         QString state = "done", message;
         try {
             message = work(*context);
@@ -51,19 +71,15 @@ int JobManager::start(const QString& title, Work work, Done done) {
             state = "failed";
             message = QString::fromStdString(e.what());
         }
-        QMetaObject::invokeMethod(
-            self.data(),
-            [self, id, state, message, done] {
-                if (!self) return;
-                auto it = self->jobs_.find(id);
-                if (it != self->jobs_.end()) {
-                    if (it->second->thread.joinable()) it->second->thread.join();
-                    self->jobs_.erase(it);
-                }
-                if (state == "done" && done) done(message);
-                emit self->finished(id, state, message);
-            },
-            Qt::QueuedConnection);
+        post([this, id, state, message, done] {
+            auto it = jobs_.find(id);
+            if (it != jobs_.end()) {
+                if (it->second->thread.joinable()) it->second->thread.join();
+                jobs_.erase(it);
+            }
+            if (state == "done" && done) done(message);
+            emit finished(id, state, message);
+        });
     });
     return id;
 }

@@ -1,9 +1,12 @@
 #pragma once
 #include <QObject>
 #include <QString>
+#include <QTimer>
 
 #include <functional>
+#include <deque>
 #include <map>
+#include <mutex>
 #include <memory>
 
 #include "core/base/JobContext.h"
@@ -12,10 +15,15 @@ namespace hvx::ui {
 
 /// Runs background jobs (import, build, retrieve) on worker threads and reports them on the
 /// GUI thread: progress (fraction, ETA, stage), completion and errors. Each job gets a
-/// core::JobContext whose observer is bound to Qt's event loop (DESIGN.md decision 6: the
+/// core::JobContext whose observer posts to the GUI thread (DESIGN.md decision 6: the
 /// post-to-main hook); cancel() asks the job to stop at its next check.
 ///
-/// Threading: create, start and cancel on the GUI thread; signals arrive on the GUI thread.
+/// Workers never call into Qt: what they report goes into a mailbox (a std::mutex and a queue)
+/// that a timer on the GUI thread empties, in order, so every hand-over between threads is one
+/// that ThreadSanitizer sees, and a job's own posts arrive before its end.
+///
+/// Threading: create, start and cancel on the GUI thread; post() from any thread; signals and
+/// posted functions run on the GUI thread.
 class JobManager : public QObject {
     Q_OBJECT
 public:
@@ -36,6 +44,9 @@ public:
     int runningCount() const { return int(jobs_.size()); }
     /// Blocks (processing events) until no job runs or `timeoutMs` passes; true when idle (tests, quit).
     bool waitIdle(int timeoutMs);
+    /// Runs `onGuiThread` on the GUI thread soon (from a job: results as they arrive). Dropped
+    /// when the manager is destroyed first.
+    void post(std::function<void()> onGuiThread);
 
 signals:
     void started(int id, const QString& title);
@@ -45,7 +56,11 @@ signals:
 
 private:
     struct Job;
+    struct Mailbox;
+    void drain();
     std::map<int, std::shared_ptr<Job>> jobs_;
+    std::shared_ptr<Mailbox> mailbox_;
+    QTimer* drainTimer_ = nullptr;
     int nextId_ = 1;
 };
 

@@ -7,7 +7,6 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QLineEdit>
-#include <QMetaObject>
 #include <QPointer>
 #include <QPushButton>
 #include <QTreeWidget>
@@ -161,19 +160,20 @@ int PacsPanel::search() {
     status_->setText(tr("Searching %1\u2026").arg(q(node.name)));
     QPointer<PacsPanel> self(this);
     const auto local = settings_.local;
+    JobManager* jobs = &jobs_;
     return track(jobs_.start(
         tr("Search %1").arg(q(node.name)),
-        [self, local, node, keys](core::JobContext& job) {
+        [self, jobs, local, node, keys](core::JobContext& job) {
             dicom::PacsClient client(local, node);
             const auto n = client.find(dicom::QueryLevel::Study, keys, [&](const dicom::QueryResult& r) {
-                QMetaObject::invokeMethod(self.data(), [self, r] {  // each answer as it arrives
+                jobs->post([self, r] {  // each answer as it arrives
                     if (!self) return;
                     auto* item = new QTreeWidgetItem(self->results_, {q(r.patientName).replace('^', ' ') + QStringLiteral(" \u2014 ") + q(r.studyDescription),
                                                                       q(r.patientId), q(r.studyDate), q(r.modalitiesInStudy),
                                                                       q(r.accessionNumber)});
                     item->setData(0, StudyUidRole, q(r.studyUid));
                     item->setChildIndicatorPolicy(QTreeWidgetItem::ShowIndicator);
-                }, Qt::QueuedConnection);
+                });
                 return !job.cancelled();
             });
             return QObject::tr("%n studies found", nullptr, int(n));
@@ -203,10 +203,11 @@ void PacsPanel::expandStudy(QTreeWidgetItem* item) {
     QPointer<PacsPanel> self(this);
     const QString studyUid = item->data(0, StudyUidRole).toString();
     const auto local = settings_.local;
-    track(jobs_.start(tr("Series of a study on %1").arg(q(node.name)), [self, local, node, keys, studyUid](core::JobContext&) {
+    JobManager* jobs = &jobs_;
+    track(jobs_.start(tr("Series of a study on %1").arg(q(node.name)), [self, jobs, local, node, keys, studyUid](core::JobContext&) {
         dicom::PacsClient client(local, node);
         client.find(dicom::QueryLevel::Series, keys, [&](const dicom::QueryResult& r) {
-            QMetaObject::invokeMethod(self.data(), [self, r, studyUid] {
+            jobs->post([self, r, studyUid] {
                 if (!self) return;
                 for (int i = 0; i < self->results_->topLevelItemCount(); ++i) {
                     auto* study = self->results_->topLevelItem(i);
@@ -216,7 +217,7 @@ void PacsPanel::expandStudy(QTreeWidgetItem* item) {
                     s->setData(0, StudyUidRole, studyUid);
                     s->setData(0, SeriesUidRole, q(r.seriesUid));
                 }
-            }, Qt::QueuedConnection);
+            });
             return true;
         });
         return QString();
