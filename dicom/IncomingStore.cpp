@@ -1,6 +1,7 @@
 #include "dicom/IncomingStore.h"
 
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <stdio.h>
 #include <unistd.h>
 
@@ -50,13 +51,26 @@ int renameNoReplace(const std::string& from, const std::string& to) {
 }
 }  // namespace
 
-IncomingStore::IncomingStore(std::string storageDir) : dir_(std::move(storageDir)) {
+IncomingStore::IncomingStore(std::string storageDir, std::uint64_t minFreeBytes)
+    : dir_(std::move(storageDir)), minFreeBytes_(minFreeBytes) {
     std::error_code ec;
     fs::create_directories(fs::path(dir_) / ".incoming", ec);
     if (ec) throw core::Error(dir_ + ": cannot create the storage folder (" + ec.message() + ")");
 }
 
+std::uint64_t IncomingStore::freeBytes() const {
+    struct statvfs s {};
+    if (::statvfs(dir_.c_str(), &s) != 0) return 0;
+    return std::uint64_t(s.f_bavail) * s.f_frsize;
+}
+
 std::string IncomingStore::temporaryPath() {
+    if (minFreeBytes_ > 0) {
+        const std::uint64_t free = freeBytes();
+        if (free < minFreeBytes_)
+            throw core::Error(dir_ + ": only " + std::to_string(free >> 20) + " MiB free; Holovox keeps " +
+                              std::to_string(minFreeBytes_ >> 20) + " MiB free and takes no more instances");
+    }
     thread_local std::mt19937_64 random(std::random_device{}());
     for (int attempt = 0; attempt < 100; ++attempt) {
         char name[96];

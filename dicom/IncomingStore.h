@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "dicom/DicomInstance.h"
@@ -17,10 +18,14 @@ namespace hvx::dicom {
 /// Threading: temporaryPath() and finalize() may be called from several threads.
 class IncomingStore {
 public:
-    /// Creates the folders; throws core::Error naming the folder when it cannot.
-    explicit IncomingStore(std::string storageDir);
-    /// A fresh temporary file name inside the storage folder.
+    /// Creates the folders; throws core::Error naming the folder when it cannot. No instance is
+    /// taken while the folder's file system has less than `minFreeBytes` free.
+    explicit IncomingStore(std::string storageDir, std::uint64_t minFreeBytes = 0);
+    /// A fresh temporary file name inside the storage folder. Throws core::Error when it cannot
+    /// be made, or when the free space is below the floor (saying how much is free).
     std::string temporaryPath();
+    /// Bytes free for an unprivileged writer on the storage folder's file system.
+    std::uint64_t freeBytes() const;
     /// Moves a completely received temporary file into place and returns its header (path set
     /// to the final file). Throws core::Error (and removes the file) when it is not valid DICOM.
     DicomInstance finalize(const std::string& temporary);
@@ -28,6 +33,7 @@ public:
 
 private:
     std::string dir_;
+    std::uint64_t minFreeBytes_ = 0;
 };
 
 }  // namespace hvx::dicom

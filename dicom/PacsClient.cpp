@@ -127,7 +127,13 @@ public:
         // DCMTK would name the file after the (untrusted) SOP Instance UID; we receive into a
         // temporary name and let the IncomingStore place it.
         if (!store) return EC_IllegalCall;
-        const std::string tmp = store->temporaryPath();
+        std::string tmp;
+        try {
+            tmp = store->temporaryPath();
+        } catch (const core::Error& e) {  // no room: the retrieve stops and says why
+            storeError = e.what();
+            return EC_IllegalCall;
+        }
         OFCondition c = DcmSCU::handleSTORERequestFile(presID, tmp.c_str(), request);
         if (c.bad()) return c;
         try {
@@ -279,7 +285,7 @@ RetrieveProgress PacsClient::get(const std::string& studyUid, const std::string&
                                  const std::string& storageDir,
                                  const std::function<void(const DicomInstance&)>& onStored,
                                  const std::function<void(const RetrieveProgress&)>& onProgress) {
-    IncomingStore store(storageDir);
+    IncomingStore store(storageDir, impl_->local.minFreeBytes);
     Scu scu;
     scu.store = &store;
     scu.onStored = onStored;

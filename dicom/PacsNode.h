@@ -29,6 +29,12 @@ struct LocalNode {
     std::string storageDir;
     std::vector<std::string> allowedCallers;  ///< empty: the AE titles of the configured nodes
     int timeoutSeconds = 30;                  ///< network timeout (connect, ACSE, DIMSE)
+    /// Below this free space on the storage folder's disk, instances are refused ("Out of
+    /// Resources", A700) rather than written until the disk is full.
+    std::uint64_t minFreeBytes = std::uint64_t(512) << 20;
+    /// A pushed instance larger than this is cut off and its association aborted (no DICOM
+    /// image a workstation reads comes near it; a hostile stream would fill the disk).
+    std::uint64_t maxInstanceBytes = std::uint64_t(4) << 30;
 };
 
 }  // namespace hvx::dicom

@@ -47,6 +47,9 @@ PacsSettings PacsSettings::load(const std::string& path) {
         s.local.storageDir = l.value("storageDir", s.local.storageDir);
         s.local.allowedCallers = l.value("allowedCallers", std::vector<std::string>{});
         s.local.timeoutSeconds = l.value("timeoutSeconds", s.local.timeoutSeconds);
+        s.local.minFreeBytes = std::uint64_t(l.value("minFreeMiB", s.local.minFreeBytes >> 20)) << 20;
+        s.local.maxInstanceBytes = std::uint64_t(l.value("maxInstanceMiB", s.local.maxInstanceBytes >> 20)) << 20;
+        if (s.local.maxInstanceBytes == 0) throw core::Error(path + ": local maxInstanceMiB must be at least 1");
         checkAe(s.local.aeTitle, path);
         for (const auto& n : j.value("nodes", nlohmann::json::array())) {
             PacsNode node;
@@ -74,7 +77,8 @@ PacsSettings PacsSettings::load(const std::string& path) {
 void PacsSettings::save(const std::string& path) const {
     nlohmann::json j;
     j["local"] = {{"aeTitle", local.aeTitle},       {"port", local.port}, {"storageDir", local.storageDir},
-                  {"allowedCallers", local.allowedCallers}, {"timeoutSeconds", local.timeoutSeconds}};
+                  {"allowedCallers", local.allowedCallers}, {"timeoutSeconds", local.timeoutSeconds},
+                  {"minFreeMiB", local.minFreeBytes >> 20}, {"maxInstanceMiB", local.maxInstanceBytes >> 20}};
     j["nodes"] = nlohmann::json::array();
     for (const auto& n : nodes)
         j["nodes"].push_back({{"name", n.name}, {"aeTitle", n.aeTitle}, {"host", n.host}, {"port", n.port},

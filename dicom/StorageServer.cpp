@@ -5,7 +5,7 @@
 #include <dcmtk/dcmnet/dcmtrans.h>
 #include <dcmtk/dcmnet/diutil.h>
 #include <dcmtk/dcmnet/dul.h>
-#include <dcmtk/dcmnet/scppool.h>
+#include <dcmtk/dcmnet/scpcfg.h>
 #include <dcmtk/dcmnet/scpthrd.h>
 
 #include <netinet/in.h>
@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cstdio>
 #include <future>
+#include <map>
 #include <mutex>
 #include <set>
 
@@ -34,9 +35,11 @@ struct Shared {
     std::mutex onStoredMutex;  // onStored runs for one instance at a time
     std::vector<std::string> allowed;
     std::atomic<std::size_t>* received = nullptr;
+    std::uint64_t maxInstanceBytes = 0;
     bool stopped = false;  // under onStoredMutex: no callback once stop() has returned
     std::mutex socketsMutex;
     std::set<int> sockets;  // of the associations being served, for stop()
+    bool closing = false;   // under socketsMutex: stop() has cut the sockets
 };
 
 /// The socket of an association's transport connection, which DCMTK keeps protected: it is
@@ -59,11 +62,15 @@ public:
         try {
             tmp = shared_->store->temporaryPath();
         } catch (const std::exception&) {
+            // No room (or no folder): the data set that follows the command is read and
+            // dropped, then refused, so the sender knows and the association stays usable.
+            const OFCondition c = receiveSTORERequest(req, info.presentationContextID, "/dev/null");
+            if (c.bad()) return c;
             return sendSTOREResponse(info.presentationContextID, req, STATUS_STORE_Refused_OutOfResources);
         }
         const OFCondition c = receiveSTORERequest(req, info.presentationContextID, tmp.c_str());
         if (c.bad()) {
-            std::remove(tmp.c_str());  // interrupted: nothing half-written stays
+            std::remove(tmp.c_str());  // interrupted or cut off: nothing half-written stays
             return c;
         }
         Uint16 status = STATUS_Success;
@@ -81,60 +88,118 @@ public:
         }
         return sendSTOREResponse(info.presentationContextID, req, status);
     }
+    /// An instance growing past the cap cuts its association: DCMTK would write it to the end.
+    void notifyRECEIVEProgress(const unsigned long byteCount) override {
+        if (socket_ >= 0 && byteCount > shared_->maxInstanceBytes) ::shutdown(socket_, SHUT_RDWR);
+    }
     OFBool checkCallingAETitleAccepted(const OFString& callingAE) override {
         return std::find(shared_->allowed.begin(), shared_->allowed.end(), std::string(callingAE.c_str())) !=
                shared_->allowed.end();
     }
 
-protected:
-    Shared* shared_;
-};
-
-/// DCMTK's pool of association workers (dcmnet/scppool.h), with workers that know the shared
-/// state: each accepted association is served on a thread of its own, so a slow or stalled peer
-/// holds one worker and nobody else waits for it.
-class Pool : public DcmBaseSCPPool {
-public:
-    explicit Pool(Shared* shared) : shared_(shared) {}
-
-protected:
-    struct Worker : public DcmBaseSCPWorker, private Scp {
-        explicit Worker(Pool& pool) : DcmBaseSCPWorker(pool), Scp(pool.shared_) {}
-        OFCondition setSharedConfig(const DcmSharedSCPConfig& config) override { return Scp::setSharedConfig(config); }
-        OFBool busy() override { return Scp::isConnected(); }
-        OFCondition workerListen(T_ASC_Association* const assoc) override {
-            int fd = -1;
-            if (DcmTransportConnection* c = DUL_getTransportConnection(assoc->DULassociation)) fd = SocketOf::of(c);
-            if (fd >= 0) {
-                const int one = 1;  // answer each DIMSE message at once, not after a delayed ACK
-                ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-                std::lock_guard lock(shared_->socketsMutex);
-                shared_->sockets.insert(fd);
-            }
-            const OFCondition result = Scp::run(assoc);
-            if (fd >= 0) {
-                std::lock_guard lock(shared_->socketsMutex);
-                shared_->sockets.erase(fd);
-            }
-            return result;
+    /// Serves one association to its end: TCP_NODELAY, and its socket registered for stop().
+    void serve(T_ASC_Association* assoc) {
+        if (DcmTransportConnection* c = DUL_getTransportConnection(assoc->DULassociation)) socket_ = SocketOf::of(c);
+        if (socket_ >= 0) {
+            const int one = 1;  // answer each DIMSE message at once, not after a delayed ACK
+            ::setsockopt(socket_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+            std::lock_guard lock(shared_->socketsMutex);
+            shared_->sockets.insert(socket_);
+            if (shared_->closing) ::shutdown(socket_, SHUT_RDWR);  // accepted as stop() began
         }
-    };
-    DcmBaseSCPWorker* createSCPWorker() override { return new Worker(*this); }
+        run(assoc);
+        if (socket_ >= 0) {
+            std::lock_guard lock(shared_->socketsMutex);
+            shared_->sockets.erase(socket_);
+        }
+        socket_ = -1;
+    }
 
 private:
     Shared* shared_;
+    int socket_ = -1;  // of the association being served
 };
-}  // namespace
 
-/// One run of the listener, kept alive by its thread: stop() may return before a listener
-/// stuck reading a half-sent A-ASSOCIATE-RQ notices, and the pool, the shared state and the
-/// store must outlive it.
+/// The listener and its association workers. DCMTK's DcmBaseSCPPool deletes a finished worker
+/// without joining or detaching its thread (dcmnet/libsrc/scppool.cc, 3.6.7), so every
+/// association would leave a thread's stack behind; here each worker is a std::thread that the
+/// listener joins as soon as it has ended, and all of them before the listener itself ends.
+/// Kept alive by the listener's thread: stop() may return before a listener stuck reading a
+/// half-sent A-ASSOCIATE-RQ notices, and what it uses must outlive it.
 struct Listening {
     std::shared_ptr<Shared> shared;
     std::shared_ptr<IncomingStore> store;
-    std::unique_ptr<Pool> pool;
+    DcmSCPConfig config;
+    std::atomic<bool> stopping{false};
     OFCondition result = EC_Normal;
+    std::mutex workersMutex;
+    std::map<long, std::thread> workers;  // by association number
+    std::vector<long> finished;           // ended, not joined yet
+
+    /// Opens the port and accepts associations until `stopping`; each is served on a worker
+    /// thread of its own, at most `maxAssociations` at once (more are rejected as busy).
+    void listen(std::uint16_t port, int maxAssociations) {
+        T_ASC_Network* network = nullptr;
+        result = ASC_initializeNetwork(NET_ACCEPTOR, int(port), int(config.getACSETimeout()), &network);
+        if (result.bad()) return;
+        const DcmSharedSCPConfig sharedConfig(config);
+        for (long number = 0; !stopping.load(); ++number) {
+            T_ASC_Association* assoc = nullptr;
+            const OFCondition c = ASC_receiveAssociation(network, &assoc, long(config.getMaxReceivePDULength()),
+                                                         nullptr, nullptr, OFFalse, DUL_NOBLOCK, 1);  // wakes each second
+            reap();
+            if (c.bad() || stopping.load()) {
+                if (c != DUL_NOASSOCIATIONREQUEST && assoc) ASC_dropAssociation(assoc);
+                ASC_destroyAssociation(&assoc);
+                continue;
+            }
+            std::lock_guard lock(workersMutex);
+            if (long(workers.size()) >= maxAssociations) {  // busy: the caller may try again later
+                T_ASC_RejectParameters rej{ASC_RESULT_REJECTEDTRANSIENT, ASC_SOURCE_SERVICEPROVIDER_PRESENTATION_RELATED,
+                                           ASC_REASON_SP_PRES_LOCALLIMITEXCEEDED};
+                ASC_rejectAssociation(assoc, &rej);
+                ASC_dropAssociation(assoc);
+                ASC_destroyAssociation(&assoc);
+                continue;
+            }
+            workers[number] = std::thread([this, assoc, number, &sharedConfig] {
+                {
+                    Scp scp(shared.get());
+                    scp.setSharedConfig(sharedConfig);
+                    scp.serve(assoc);  // DcmThreadSCP takes the association over
+                }
+                std::lock_guard done(workersMutex);
+                finished.push_back(number);
+            });
+        }
+        std::unique_lock lock(workersMutex);
+        while (!workers.empty()) {  // stop() has cut their connections: they end soon
+            std::thread w = std::move(workers.begin()->second);
+            workers.erase(workers.begin());
+            lock.unlock();
+            w.join();
+            lock.lock();
+        }
+        finished.clear();
+        lock.unlock();
+        ASC_dropNetwork(&network);
+    }
+
+    /// Joins the workers that have ended.
+    void reap() {
+        std::vector<std::thread> ended;
+        {
+            std::lock_guard lock(workersMutex);
+            for (long n : finished) {
+                ended.push_back(std::move(workers[n]));
+                workers.erase(n);
+            }
+            finished.clear();
+        }
+        for (auto& t : ended) t.join();
+    }
 };
+}  // namespace
 
 struct StorageServer::Impl {
     LocalNode local;
@@ -159,26 +224,24 @@ StorageServer::~StorageServer() { stop(); }
 void StorageServer::start() {
     stop();
     auto l = std::make_shared<Listening>();
-    l->store = std::make_shared<IncomingStore>(impl_->local.storageDir);
+    l->store = std::make_shared<IncomingStore>(impl_->local.storageDir, impl_->local.minFreeBytes);
     l->shared = std::make_shared<Shared>();
     l->shared->store = l->store.get();
     l->shared->onStored = impl_->onStored;
     l->shared->allowed = impl_->allowed;
     l->shared->received = &received_;
-    l->pool = std::make_unique<Pool>(l->shared.get());
-    Pool& pool = *l->pool;
-    pool.setMaxThreads(Uint16(kMaxAssociations));
-    DcmSCPConfig& cfg = pool.getConfig();
+    l->shared->maxInstanceBytes = impl_->local.maxInstanceBytes;
+    DcmSCPConfig& cfg = l->config;
     cfg.setPort(impl_->local.port);
     cfg.setAETitle(impl_->local.aeTitle.c_str());
     cfg.setConnectionBlockingMode(DUL_NOBLOCK);
-    cfg.setConnectionTimeout(1);  // the listener wakes up every second to notice stop()
     cfg.setDIMSEBlockingMode(DIMSE_NONBLOCKING);
     const Uint32 t = Uint32(std::max(1, impl_->local.timeoutSeconds));
     cfg.setDIMSETimeout(t);
     cfg.setACSETimeout(t);
     cfg.setMaxReceivePDULength(ASC_DEFAULTMAXPDU);
     cfg.setHostLookupEnabled(OFFalse);
+    cfg.setProgressNotificationMode(OFTrue);  // for the instance size cap
     OFList<OFString> basic, storage;
     for (const auto& s : PacsProtocol::basicSyntaxes()) basic.push_back(s.c_str());
     for (const auto& s : PacsProtocol::storageSyntaxes()) storage.push_back(s.c_str());
@@ -186,12 +249,13 @@ void StorageServer::start() {
     for (int i = 0; i < numberOfDcmAllStorageSOPClassUIDs; ++i)
         cfg.addPresentationContext(dcmAllStorageSOPClassUIDs[i], storage);
 
-    // The port is opened by the pool's listen(), on its thread, which returns at once when the
-    // port cannot be opened and otherwise only after stop().
+    // The port is opened on the listener's thread, which returns at once when it cannot be
+    // opened and otherwise only after stop().
     auto done = std::make_shared<std::promise<void>>();
     impl_->finished = done->get_future().share();
-    thread_ = std::thread([l, done] {
-        l->result = l->pool->listen();
+    const std::uint16_t port = impl_->local.port;
+    thread_ = std::thread([l, done, port] {
+        l->listen(port, kMaxAssociations);
         done->set_value();
     });
     if (impl_->finished.wait_for(std::chrono::milliseconds(300)) == std::future_status::ready) {
@@ -206,7 +270,7 @@ void StorageServer::start() {
 void StorageServer::stop() {
     const auto l = std::move(impl_->listening);
     if (!l) return;
-    l->pool->stopAfterCurrentAssociations();
+    l->stopping = true;
     {
         std::lock_guard lock(l->shared->onStoredMutex);
         l->shared->stopped = true;
@@ -215,6 +279,7 @@ void StorageServer::stop() {
         // Associations still being served (a stalled sender) are cut, so stop() does not wait
         // out their timeouts: their workers see the connection close and end.
         std::lock_guard lock(l->shared->socketsMutex);
+        l->shared->closing = true;
         for (int fd : l->shared->sockets) ::shutdown(fd, SHUT_RDWR);
     }
     // A listener reading a half-sent association request ends within the socket read timeout;

@@ -15,7 +15,9 @@ namespace hvx::dicom {
 /// only, receives each instance bit-preserving into a temporary file and moves it into the
 /// storage folder under sanitized UID paths (IncomingStore). It is the C-MOVE destination and
 /// the target of pushes from modalities and workstations. Associations are served at once, up
-/// to kMaxAssociations, each on a worker thread of DCMTK's SCP pool, with TCP_NODELAY; a peer
+/// to kMaxAssociations, each on a worker thread of its own (joined when it ends), with
+/// TCP_NODELAY; below the free-space floor instances are refused as Out of Resources, and one
+/// larger than the cap is cut off (LocalNode::minFreeBytes, maxInstanceBytes); a peer
 /// that connects and sends nothing holds the listener at most kRequestTimeoutSeconds, and one
 /// that stalls inside an association holds only its own worker until the DIMSE timeout.
 ///

@@ -24,6 +24,7 @@
 #include "dicom/StorageServer.h"
 #include "tests/support/PacsPeer.h"
 #include "tests/support/ProcessRunner.h"
+#include "tests/support/StorageListener.h"
 
 using namespace hvx;
 
@@ -56,30 +57,7 @@ void sendRaw(std::uint16_t port, const std::string& bytes) {
     ::close(s);
 }
 
-struct Listener {
-    test::TempDir dir;
-    dicom::LocalNode local;
-    std::mutex mutex;
-    std::vector<dicom::DicomInstance> got;
-    std::unique_ptr<dicom::StorageServer> server;
-    Listener() {
-        local.port = test::freePort();
-        local.storageDir = dir.file("rx");
-        local.timeoutSeconds = 5;
-        server = std::make_unique<dicom::StorageServer>(local, std::vector<std::string>{"MODALITY1"},
-                                                        [this](const dicom::DicomInstance& in) {
-                                                            std::lock_guard lock(mutex);
-                                                            got.push_back(in);
-                                                        });
-        server->start();
-    }
-    std::string store(const std::string& callingAe, const std::vector<std::string>& files) {
-        std::string cmd = "storescu -aet " + callingAe + " -aec HOLOVOX 127.0.0.1 " + std::to_string(local.port);
-        for (const auto& f : files) cmd += " " + f;
-        const auto r = test::runCommand(cmd + " 2>&1");
-        return r.exitCode == 0 ? "" : r.output;
-    }
-};
+using Listener = test::StorageListener;
 }  // namespace
 
 TEST(StorageServer, AcceptsPushesAndEchoFromAllowedCallers) {
