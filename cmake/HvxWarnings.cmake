@@ -7,9 +7,18 @@ function(hvx_apply_flags target)
   endif()
 endfunction()
 
+# Sanitizer trees keep line tables only (-g1): reports name file and line, and the trees build
+# in CI's time.
 if(HVX_SANITIZE)
-  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined -g1)
   add_link_options(-fsanitize=address,undefined)
+  add_compile_definitions(HVX_SANITIZED=1)
+endif()
+
+if(HVX_TSAN)
+  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer -O1 -g1)
+  add_link_options(-fsanitize=thread)
+  add_compile_definitions(HVX_SANITIZED=1)
 endif()
 
 if(HVX_FUZZ)

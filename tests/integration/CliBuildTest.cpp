@@ -134,6 +134,9 @@ TEST(CliBuild, InterruptedBuildCleansUpAfterItself) {
 
 TEST(CliBuild, PeakMemoryOf512CubedPhantomBuildIsBounded) {
     // 512^3 int16 is 256 MiB of voxels; the streaming builder keeps ~36 slices per level.
+#ifdef HVX_SANITIZED
+    GTEST_SKIP() << "a sanitizer's shadow memory makes peak RSS meaningless; the ci preset checks this bound";
+#endif
     test::TempDir dir;
     const auto r = test::runCommand(cli + " phantom --size 512x512x512 --quiet -o " + dir.file("p.hvo"));
     ASSERT_EQ(r.exitCode, 0) << r.output;

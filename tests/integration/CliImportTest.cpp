@@ -136,5 +136,7 @@ ds.save_as(out + '/rle.dcm')
     EXPECT_TRUE(contains(r.output, "NumberOfFrames 2147483647 cannot be right")) << r.output;
     EXPECT_EQ(r.exitCode, 1) << "nothing was imported";
     EXPECT_LT(seconds, 1.0) << "the CLI's start and the database are in this time too (measured 0.07 s)";
+#ifndef HVX_SANITIZED  // shadow memory: the ci preset checks this bound
     EXPECT_LT(r.maxRssKiB, 100 * 1024) << "peak memory of the import";
+#endif
 }
