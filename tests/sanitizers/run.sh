@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# The sanitizer suites, which .ci/run runs after the ci preset's whole suite:
+#   ASan + UBSan + LeakSanitizer (preset asan): the unit and integration labels, and the storage
+#     receiver's tests;
+#   ThreadSanitizer (preset tsan): the unit, integration and render labels, and the storage
+#     receiver's tests (its association threads, several senders, stop while peers stall).
+# Any sanitizer report ends the test's process with a failing status, so the test fails.
+# Left to the ci preset, with the reason: the fuzz label (its own clang ASan/UBSan build and
+# corpus), the .deb package test (it packages the ci tree), the gui label and the Orthanc PACS
+# tests (minutes of peer set-up each; the receiver's own tests above cover Holovox's threads).
+#
+#   bash tests/sanitizers/run.sh [asan|tsan]    both when no argument
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+here="$PWD/tests/sanitizers"
+export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=1:check_initialization_order=1:strict_init_order=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+export LSAN_OPTIONS="suppressions=$here/lsan.supp:print_suppressions=0"
+export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$here/tsan.supp:print_suppressions=0"
+targets="core_unit_tests dicom_unit_tests ui_unit_tests cli_tests render_context_tests pacs_tests holovox-cli holovox-lightfield-mpi"
+receiver='^(StorageServer|StorageLimits)\.'
+
+suite() {  # preset labels
+    local preset=$1 labels=$2 start=$SECONDS
+    cmake --preset "$preset" >/dev/null
+    # shellcheck disable=SC2086
+    cmake --build --preset "$preset" --target $targets
+    ctest --test-dir "build/$preset" -L "$labels" -LE fuzz -E package_deb -j2 --timeout 900 --output-on-failure
+    ctest --test-dir "build/$preset" -R "$receiver" --timeout 900 --output-on-failure
+    echo "sanitizers: $preset ($labels and the receiver) passed in $((SECONDS - start)) s"
+}
+
+case "${1:-both}" in
+    asan) suite asan 'unit|integration' ;;
+    tsan) suite tsan 'unit|integration|render' ;;
+    both) suite asan 'unit|integration' && suite tsan 'unit|integration|render' ;;
+    *) echo "usage: $0 [asan|tsan]" >&2; exit 2 ;;
+esac
