@@ -35,6 +35,12 @@ struct LocalNode {
     /// A pushed instance larger than this is cut off and its association aborted (no DICOM
     /// image a workstation reads comes near it; a hostile stream would fill the disk).
     std::uint64_t maxInstanceBytes = std::uint64_t(4) << 30;
+    /// DICOM over TLS for the storage SCP (BCP 195), when a certificate and key are given: then
+    /// it speaks TLS only. With tlsTrustedCertificate, callers must present a certificate that
+    /// CA signed.
+    std::string tlsCertificate;         ///< our PEM certificate
+    std::string tlsPrivateKey;          ///< its PEM private key (unencrypted)
+    std::string tlsTrustedCertificate;  ///< PEM CA(s) whose client certificates are required
 };
 
 }  // namespace hvx::dicom

@@ -50,6 +50,9 @@ PacsSettings PacsSettings::load(const std::string& path) {
         s.local.minFreeBytes = std::uint64_t(l.value("minFreeMiB", s.local.minFreeBytes >> 20)) << 20;
         s.local.maxInstanceBytes = std::uint64_t(l.value("maxInstanceMiB", s.local.maxInstanceBytes >> 20)) << 20;
         if (s.local.maxInstanceBytes == 0) throw core::Error(path + ": local maxInstanceMiB must be at least 1");
+        s.local.tlsCertificate = l.value("tlsCertificate", std::string());
+        s.local.tlsPrivateKey = l.value("tlsPrivateKey", std::string());
+        s.local.tlsTrustedCertificate = l.value("tlsTrustedCertificate", std::string());
         checkAe(s.local.aeTitle, path);
         for (const auto& n : j.value("nodes", nlohmann::json::array())) {
             PacsNode node;
@@ -78,7 +81,9 @@ void PacsSettings::save(const std::string& path) const {
     nlohmann::json j;
     j["local"] = {{"aeTitle", local.aeTitle},       {"port", local.port}, {"storageDir", local.storageDir},
                   {"allowedCallers", local.allowedCallers}, {"timeoutSeconds", local.timeoutSeconds},
-                  {"minFreeMiB", local.minFreeBytes >> 20}, {"maxInstanceMiB", local.maxInstanceBytes >> 20}};
+                  {"minFreeMiB", local.minFreeBytes >> 20}, {"maxInstanceMiB", local.maxInstanceBytes >> 20},
+                  {"tlsCertificate", local.tlsCertificate}, {"tlsPrivateKey", local.tlsPrivateKey},
+                  {"tlsTrustedCertificate", local.tlsTrustedCertificate}};
     j["nodes"] = nlohmann::json::array();
     for (const auto& n : nodes)
         j["nodes"].push_back({{"name", n.name}, {"aeTitle", n.aeTitle}, {"host", n.host}, {"port", n.port},

@@ -9,6 +9,7 @@
 
 #include "core/base/Error.h"
 #include "core/octree/OctreeBuilder.h"
+#include "dicom/DicomHeaderReader.h"
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/SeriesAssembler.h"
 #include "dicom/SeriesOctree.h"
@@ -18,6 +19,20 @@
 
 namespace hvx::dicom {
 
+namespace {
+/// The header of a file that is there and is DICOM (a file deleted or damaged since it was
+/// indexed is fetched again).
+bool readable(const std::string& path, DicomInstance& in) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) return false;
+    try {
+        return DicomHeaderReader::read(path, in) == DicomHeaderReader::Kind::Dicom;
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+}  // namespace
+
 RetrieveJob::RetrieveJob(PacsSettings settings, PacsNode node, StudyDatabase& db, std::string octreeDir)
     : settings_(std::move(settings)), node_(std::move(node)), db_(db), octreeDir_(std::move(octreeDir)) {}
 
@@ -25,6 +40,7 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
                                                    bool buildOctrees, core::JobContext& job,
                                                    const std::function<void(const SeriesRetrieveStatus&)>& onUpdate) {
     PacsClient client(settings_.local, node_);
+    client.cancelWith(job);
     std::vector<SeriesRetrieveStatus> series;
     if (!seriesUid.empty()) {
         series.push_back({seriesUid, "", {}, false, "", ""});
@@ -50,6 +66,7 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
         std::vector<std::string> allowed = settings_.local.allowedCallers;
         allowed.push_back(node_.aeTitle);
         server = std::make_unique<StorageServer>(settings_.local, allowed, onStored);
+        server->requireHost(node_.aeTitle, node_.host);
         server->start();
     }
 
@@ -78,7 +95,7 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
             const std::string out =
                 (std::filesystem::path(octreeDir_) / (UidPath::component(series[index].seriesUid) + ".hvo")).string();
             DicomSeriesSource source(volumes[pick]);
-            core::JobContext buildJob;
+            core::JobContext buildJob(job, {});  // cancelling the retrieve cancels its builds
             core::OctreeBuilder(core::BuildOptions{}).build(source, out, buildJob);
             std::lock_guard lock(mutex);
             db_.setSeriesOctree(series[index].seriesUid, out);
@@ -103,15 +120,43 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
             if (onUpdate) onUpdate(series[i]);
         };
         try {
-            if (node_.retrieve == RetrieveMethod::Get)
-                client.get(studyUid, s.seriesUid, settings_.local.storageDir, onStored, progress);
-            else
-                client.move(studyUid, s.seriesUid, settings_.local.aeTitle, progress);
-            checkComplete(client, studyUid, s, [&] {
+            // What the PACS has, and which of it is here already (indexed, and its file there).
+            const std::vector<std::string> onPacs = instancesOnPacs(client, studyUid, s.seriesUid);
+            std::vector<std::string> missing;
+            std::vector<DicomInstance> here;
+            const auto indexed = db_.onlineInstancesOfSeries(s.seriesUid);
+            for (const auto& sop : onPacs) {
+                const auto it = indexed.find(sop);
+                DicomInstance in;
+                if (it != indexed.end() && readable(it->second, in) && in.sopInstanceUid == sop)
+                    here.push_back(in);
+                else
+                    missing.push_back(sop);
+            }
+            s.alreadyHere = int(here.size());
+            {
+                std::lock_guard lock(mutex);
+                received[s.seriesUid] = here;
+            }
+            // Only what is missing when part is here; the whole series otherwise.
+            const std::vector<std::string> only = here.empty() ? std::vector<std::string>{} : missing;
+            if (here.empty() || !missing.empty()) {
+                if (node_.retrieve == RetrieveMethod::Get)
+                    client.get(studyUid, s.seriesUid, settings_.local.storageDir, onStored, progress, only);
+                else
+                    client.move(studyUid, s.seriesUid, settings_.local.aeTitle, progress, only);
+            }
+            const std::size_t expected =
+                !onPacs.empty() ? onPacs.size()
+                                : std::size_t(std::max(0, s.progress.completed + s.progress.failed + s.progress.warning));
+            checkComplete(s, expected, [&] {
                 std::lock_guard lock(mutex);
                 return received[s.seriesUid].size();
             }());
             s.retrieved = true;
+        } catch (const core::Cancelled&) {
+            building.wait();  // its build sees the same cancellation
+            throw;
         } catch (const std::exception& e) {
             s.error = e.what();
             ++failures;
@@ -133,22 +178,24 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
     return series;
 }
 
-void RetrieveJob::checkComplete(PacsClient& client, const std::string& studyUid, const SeriesRetrieveStatus& s,
-                                std::size_t arrived) const {
-    // How many instances the series has: the PACS's image-level answer, else its sub-operations.
-    std::size_t expected = 0;
+std::vector<std::string> RetrieveJob::instancesOnPacs(PacsClient& client, const std::string& studyUid,
+                                                     const std::string& seriesUid) const {
+    std::vector<std::string> sops;
     try {
         QueryKeys keys;
         keys.studyUid = studyUid;
-        keys.seriesUid = s.seriesUid;
-        client.find(QueryLevel::Image, keys, [&](const QueryResult&) {
-            ++expected;
+        keys.seriesUid = seriesUid;
+        client.find(QueryLevel::Image, keys, [&](const QueryResult& r) {
+            if (!r.sopInstanceUid.empty()) sops.push_back(r.sopInstanceUid);
             return true;
         });
     } catch (const core::Error&) {
-        expected = 0;  // a PACS without image-level queries: trust the sub-operation counts
+        sops.clear();  // a PACS without image-level queries: the sub-operation counts will do
     }
-    if (expected == 0) expected = std::size_t(std::max(0, s.progress.completed + s.progress.failed + s.progress.warning));
+    return sops;
+}
+
+void RetrieveJob::checkComplete(const SeriesRetrieveStatus& s, std::size_t expected, std::size_t arrived) const {
     if (node_.retrieve == RetrieveMethod::Move && arrived == 0 && expected > 0)
         throw core::Error("series " + s.description + ": the PACS reported the C-MOVE done but none of its " +
                           std::to_string(expected) + " instances reached Holovox's storage SCP; check the PACS's entry "
@@ -156,8 +203,9 @@ void RetrieveJob::checkComplete(PacsClient& client, const std::string& studyUid,
                           std::to_string(settings_.local.port) + ")");
     if (arrived < expected)
         throw core::Error("series " + s.description + " is partial: " + std::to_string(arrived) + " of " +
-                          std::to_string(expected) + " instances arrived (" + std::to_string(s.progress.failed) +
-                          " failed on the PACS side); what arrived is indexed, the series is not built; retrieve it again");
+                          std::to_string(expected) + " instances are here (" + std::to_string(s.progress.failed) +
+                          " failed on the PACS side); what arrived is indexed, the series is not built; retrieve it "
+                          "again to fetch only the " + std::to_string(expected - arrived) + " missing");
 }
 
 }  // namespace hvx::dicom

@@ -7,7 +7,10 @@
 #include <dcmtk/dcmnet/dul.h>
 #include <dcmtk/dcmnet/scpcfg.h>
 #include <dcmtk/dcmnet/scpthrd.h>
+#include <dcmtk/dcmtls/tlslayer.h>
 
+#include <arpa/inet.h>
+#include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <sys/socket.h>
@@ -33,7 +36,9 @@ struct Shared {
     IncomingStore* store = nullptr;
     std::function<void(const DicomInstance&)> onStored;
     std::mutex onStoredMutex;  // onStored runs for one instance at a time
+    std::string aeTitle;  // ours: the called AE title must be it
     std::vector<std::string> allowed;
+    std::map<std::string, std::set<std::string>> hostsOf;  // calling AE -> the addresses it may call from
     std::atomic<std::size_t>* received = nullptr;
     std::uint64_t maxInstanceBytes = 0;
     bool stopped = false;  // under onStoredMutex: no callback once stop() has returned
@@ -92,6 +97,15 @@ public:
     void notifyRECEIVEProgress(const unsigned long byteCount) override {
         if (socket_ >= 0 && byteCount > shared_->maxInstanceBytes) ::shutdown(socket_, SHUT_RDWR);
     }
+    OFBool checkCalledAETitleAccepted(const OFString& calledAE) override {
+        return std::string(calledAE.c_str()) == shared_->aeTitle;
+    }
+    /// DCMTK 3.6.7 passes the *called* presentation address here (scp.cc), so the peer's own
+    /// address is asked for.
+    OFBool checkCallingHostAccepted(const OFString&) override {
+        const auto it = shared_->hostsOf.find(getPeerAETitle().c_str());
+        return it == shared_->hostsOf.end() || it->second.count(getPeerIP().c_str()) != 0;
+    }
     OFBool checkCallingAETitleAccepted(const OFString& callingAE) override {
         return std::find(shared_->allowed.begin(), shared_->allowed.end(), std::string(callingAE.c_str())) !=
                shared_->allowed.end();
@@ -130,6 +144,7 @@ struct Listening {
     std::shared_ptr<Shared> shared;
     std::shared_ptr<IncomingStore> store;
     DcmSCPConfig config;
+    std::unique_ptr<DcmTLSTransportLayer> tls;  // when the node speaks TLS; outlives the network
     std::atomic<bool> stopping{false};
     OFCondition result = EC_Normal;
     std::mutex workersMutex;
@@ -142,11 +157,19 @@ struct Listening {
         T_ASC_Network* network = nullptr;
         result = ASC_initializeNetwork(NET_ACCEPTOR, int(port), int(config.getACSETimeout()), &network);
         if (result.bad()) return;
+        if (tls) {
+            result = ASC_setTransportLayer(network, tls.get(), 0);
+            if (result.bad()) {
+                ASC_dropNetwork(&network);
+                return;
+            }
+        }
         const DcmSharedSCPConfig sharedConfig(config);
         for (long number = 0; !stopping.load(); ++number) {
             T_ASC_Association* assoc = nullptr;
             const OFCondition c = ASC_receiveAssociation(network, &assoc, long(config.getMaxReceivePDULength()),
-                                                         nullptr, nullptr, OFFalse, DUL_NOBLOCK, 1);  // wakes each second
+                                                         nullptr, nullptr, tls ? OFTrue : OFFalse, DUL_NOBLOCK,
+                                                         1);  // wakes each second
             reap();
             if (c.bad() || stopping.load()) {
                 if (c != DUL_NOASSOCIATIONREQUEST && assoc) ASC_dropAssociation(assoc);
@@ -204,6 +227,7 @@ struct Listening {
 struct StorageServer::Impl {
     LocalNode local;
     std::vector<std::string> allowed;
+    std::map<std::string, std::vector<std::string>> hostsOf;  // calling AE -> its nodes' hosts
     std::function<void(const DicomInstance&)> onStored;
     std::shared_ptr<Listening> listening;
     std::shared_future<void> finished;
@@ -221,6 +245,52 @@ StorageServer::StorageServer(LocalNode local, std::vector<std::string> allowedCa
 
 StorageServer::~StorageServer() { stop(); }
 
+void StorageServer::requireHost(const std::string& aeTitle, const std::string& host) {
+    if (!host.empty()) impl_->hostsOf[aeTitle].push_back(host);
+}
+
+namespace {
+/// The receiver's TLS layer (BCP 195), or null when the node has no certificate.
+std::unique_ptr<DcmTLSTransportLayer> secureLayer(const LocalNode& local) {
+    if (local.tlsCertificate.empty() && local.tlsPrivateKey.empty()) return nullptr;
+    auto tls = std::make_unique<DcmTLSTransportLayer>(NET_ACCEPTOR, nullptr, OFTrue);
+    OFCondition c = tls->setTLSProfile(TSP_Profile_BCP195);
+    if (c.good()) c = tls->activateCipherSuites();
+    if (c.good()) c = tls->setPrivateKeyFile(local.tlsPrivateKey.c_str(), DCF_Filetype_PEM);
+    if (c.good()) c = tls->setCertificateFile(local.tlsCertificate.c_str(), DCF_Filetype_PEM);
+    if (c.bad() || !tls->checkPrivateKeyMatchesCertificate())
+        throw core::Error("the storage SCP's TLS certificate or key is unusable (" + local.tlsCertificate + ", " +
+                          local.tlsPrivateKey + ")");
+    if (!local.tlsTrustedCertificate.empty()) {
+        if (tls->addTrustedCertificateFile(local.tlsTrustedCertificate.c_str(), DCF_Filetype_PEM).bad())
+            throw core::Error("cannot read the trusted certificate " + local.tlsTrustedCertificate);
+        tls->setCertificateVerification(DCV_requireCertificate);
+    } else {
+        tls->setCertificateVerification(DCV_ignoreCertificate);
+    }
+    return tls;
+}
+
+/// The numeric addresses a host name or address stands for, as DCMTK reports a peer's.
+std::set<std::string> addressesOf(const std::string& host) {
+    addrinfo hints{};
+    hints.ai_socktype = SOCK_STREAM;
+    addrinfo* found = nullptr;
+    if (::getaddrinfo(host.c_str(), nullptr, &hints, &found) != 0)
+        throw core::Error("the node host '" + host + "' does not resolve to an address");
+    std::set<std::string> out;
+    for (addrinfo* a = found; a; a = a->ai_next) {
+        char text[INET6_ADDRSTRLEN] = {};
+        const void* where = a->ai_family == AF_INET
+                                ? static_cast<const void*>(&reinterpret_cast<sockaddr_in*>(a->ai_addr)->sin_addr)
+                                : static_cast<const void*>(&reinterpret_cast<sockaddr_in6*>(a->ai_addr)->sin6_addr);
+        if (::inet_ntop(a->ai_family, where, text, sizeof text)) out.insert(text);
+    }
+    ::freeaddrinfo(found);
+    return out;
+}
+}  // namespace
+
 void StorageServer::start() {
     stop();
     auto l = std::make_shared<Listening>();
@@ -229,8 +299,12 @@ void StorageServer::start() {
     l->shared->store = l->store.get();
     l->shared->onStored = impl_->onStored;
     l->shared->allowed = impl_->allowed;
+    l->shared->aeTitle = impl_->local.aeTitle;
+    for (const auto& [ae, hosts] : impl_->hostsOf)
+        for (const auto& host : hosts) l->shared->hostsOf[ae].merge(addressesOf(host));
     l->shared->received = &received_;
     l->shared->maxInstanceBytes = impl_->local.maxInstanceBytes;
+    l->tls = secureLayer(impl_->local);
     DcmSCPConfig& cfg = l->config;
     cfg.setPort(impl_->local.port);
     cfg.setAETitle(impl_->local.aeTitle.c_str());

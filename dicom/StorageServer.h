@@ -11,8 +11,8 @@
 
 namespace hvx::dicom {
 
-/// Holovox's storage SCP: accepts C-ECHO and C-STORE from calling AE titles on its allow-list
-/// only, receives each instance bit-preserving into a temporary file and moves it into the
+/// Holovox's storage SCP: accepts C-ECHO and C-STORE called to its own AE title, from calling
+/// AE titles on its allow-list only (and from their node's address when it has one), receives each instance bit-preserving into a temporary file and moves it into the
 /// storage folder under sanitized UID paths (IncomingStore). It is the C-MOVE destination and
 /// the target of pushes from modalities and workstations. Associations are served at once, up
 /// to kMaxAssociations, each on a worker thread of its own (joined when it ends), with
@@ -30,8 +30,11 @@ public:
     ~StorageServer();
     StorageServer(const StorageServer&) = delete;
     StorageServer& operator=(const StorageServer&) = delete;
-    /// Opens the port (throws core::Error naming it when it is in use) and serves in the
-    /// background until stop().
+    /// Accepts `aeTitle` only from the addresses `host` resolves to (a node's entry in the node
+    /// table); an allowed AE title without such an entry is accepted from anywhere. Before start().
+    void requireHost(const std::string& aeTitle, const std::string& host);
+    /// Opens the port (throws core::Error naming it when it is in use, or a required host that
+    /// does not resolve) and serves in the background until stop().
     void start();
     /// Stops accepting, cuts the associations in progress and returns within about a second.
     void stop();

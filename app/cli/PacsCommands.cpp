@@ -185,6 +185,7 @@ int listenCommand(int argc, char** argv) {
         std::printf("received %s %s -> %s\n", in.modality.c_str(), in.sopInstanceUid.c_str(), in.path.c_str());
         std::fflush(stdout);
     });
+    for (const auto& n : s.nodes) server.requireHost(n.aeTitle, n.host);
     server.start();
     std::string who;
     for (const auto& a : allowed) who += (who.empty() ? "" : ", ") + a;

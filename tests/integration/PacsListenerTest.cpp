@@ -25,6 +25,7 @@
 #include "tests/support/PacsPeer.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/StorageListener.h"
+#include "tests/support/TestCertificates.h"
 
 using namespace hvx;
 
@@ -83,6 +84,60 @@ TEST(StorageServer, RefusesCallingAeTitlesNotOnTheAllowList) {
     const auto out = l.store("STRANGER", series(src.file("s")));
     EXPECT_NE(out.find("Rejected"), std::string::npos) << out;
     EXPECT_EQ(filesUnder(l.local.storageDir), 0u);
+}
+
+// Associations called to another AE title, and a node's AE title calling from an address its
+// node entry does not name, are refused before anything is stored.
+TEST(StorageServer, RefusesAnotherCalledAeTitleAndANodesTitleFromAnotherAddress) {
+    test::TempDir src;
+    const auto files = series(src.file("s"));
+    {
+        Listener l;
+        const auto r = test::runCommand("storescu -aet MODALITY1 -aec SOMEONEELSE 127.0.0.1 " +
+                                        std::to_string(l.local.port) + " " + files[0] + " 2>&1");
+        EXPECT_NE(r.exitCode, 0);
+        EXPECT_NE(r.output.find("Called AE Title Not Recognized"), std::string::npos) << r.output;
+        EXPECT_EQ(l.server->received(), 0u);
+    }
+    {
+        Listener l({}, [](dicom::StorageServer& s) { s.requireHost("MODALITY1", "192.0.2.7"); });  // TEST-NET-1
+        EXPECT_NE(l.store("MODALITY1", files), "");
+        EXPECT_EQ(l.server->received(), 0u);
+    }
+    {
+        Listener l({}, [](dicom::StorageServer& s) { s.requireHost("MODALITY1", "localhost"); });
+        EXPECT_EQ(l.store("MODALITY1", files), "");
+        EXPECT_EQ(l.server->received(), files.size());
+    }
+    EXPECT_THROW(Listener({}, [](dicom::StorageServer& s) { s.requireHost("MODALITY1", "no-such-host.invalid"); }),
+                 core::Error);
+}
+
+// The receiver over TLS: a modality with a certificate the trusted CA signed stores; plain
+// DICOM, and TLS without a client certificate, are refused.
+TEST(StorageServer, OverTlsOnlyCallersWithATrustedCertificateStore) {
+    test::TempDir certs;
+    test::makeTestCertificates(certs.path().string());
+    const std::string d = certs.path().string() + "/";
+    Listener l([&](dicom::LocalNode& n) {
+        n.tlsCertificate = d + "server.crt";
+        n.tlsPrivateKey = d + "server.key";
+        n.tlsTrustedCertificate = d + "ca.crt";
+    });
+    test::TempDir src;
+    const auto files = series(src.file("s"));
+    const std::string to = " -aet MODALITY1 -aec HOLOVOX 127.0.0.1 " + std::to_string(l.local.port) + " ";
+    std::string all;
+    for (const auto& f : files) all += " " + f;
+    auto r = test::runCommand("storescu +tls " + d + "client.key " + d + "client.crt +cf " + d + "ca.crt" + to + all + " 2>&1");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(l.server->received(), files.size());
+    r = test::runCommand("storescu" + to + files[0] + " 2>&1");
+    EXPECT_NE(r.exitCode, 0) << "plain DICOM to the TLS port: " << r.output;
+    r = test::runCommand("storescu +tla +cf " + d + "ca.crt" + to + files[0] + " 2>&1");
+    EXPECT_NE(r.exitCode, 0) << "TLS without a client certificate: " << r.output;
+    EXPECT_EQ(l.server->received(), files.size());
+    EXPECT_FALSE(l.echoes()) << "echoscu without TLS must not be answered";
 }
 
 TEST(StorageServer, HostileUidsNeverEscapeTheStorageFolder) {

@@ -1,4 +1,5 @@
 #include "tests/support/PacsPeer.h"
+#include "tests/support/TestCertificates.h"
 
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -55,13 +56,7 @@ PacsPeer::PacsPeer(Kind kind, bool tls, const std::string& certificateNames)
     std::string tlsConfig;
     if (tls_) {
         const std::string d = dir_.path().string();
-        std::ofstream(dir_.file("names.cnf")) << "subjectAltName=" << certificateNames << "\n";
-        const auto r = runCommand(
-            "cd " + d + " && openssl req -x509 -newkey rsa:2048 -nodes -keyout ca.key -out ca.crt -days 2 "
-            "-subj /CN=HolovoxTestCA && openssl req -newkey rsa:2048 -nodes -keyout server.key -out server.csr "
-            "-subj /CN=HolovoxTestPacs && openssl x509 -req -in server.csr -CA ca.crt -CAkey ca.key -CAcreateserial "
-            "-extfile names.cnf -out server.crt -days 2 2>&1");
-        if (r.exitCode != 0) throw std::runtime_error("openssl failed: " + r.output);
+        makeTestCertificates(d, certificateNames);
         tlsConfig = ", \"DicomTlsEnabled\": true, \"DicomTlsCertificate\": \"" + d + "/server.crt\", "
                     "\"DicomTlsPrivateKey\": \"" + d + "/server.key\", \"DicomTlsTrustedCertificates\": \"" + d +
                     "/ca.crt\", \"DicomTlsRemoteCertificateRequired\": false";

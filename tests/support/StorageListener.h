@@ -13,14 +13,16 @@
 namespace hvx::test {
 
 /// Holovox's storage SCP on a free port, storing under its own temporary folder, accepting
-/// MODALITY1; what arrives is kept in `got`. `configure` may change the node before start.
+/// MODALITY1; what arrives is kept in `got`. `configure` may change the node, and `prepare` the
+/// server, before it starts.
 struct StorageListener {
     TempDir dir;
     dicom::LocalNode local;
     std::mutex mutex;
     std::vector<dicom::DicomInstance> got;
     std::unique_ptr<dicom::StorageServer> server;
-    explicit StorageListener(const std::function<void(dicom::LocalNode&)>& configure = {}) {
+    explicit StorageListener(const std::function<void(dicom::LocalNode&)>& configure = {},
+                             const std::function<void(dicom::StorageServer&)>& prepare = {}) {
         local.port = freePort();
         local.storageDir = dir.file("rx");
         local.timeoutSeconds = 5;
@@ -30,6 +32,7 @@ struct StorageListener {
                                                             std::lock_guard lock(mutex);
                                                             got.push_back(in);
                                                         });
+        if (prepare) prepare(*server);
         server->start();
     }
     /// Sends the files with DCMTK's storescu in one association; "" when it succeeded, else
