@@ -86,6 +86,15 @@ public:
     std::function<void(const RetrieveProgress&)> onProgress;
     RetrieveProgress progress;
     std::string storeError;
+    const core::JobContext* job = nullptr;  // cancels retrieves
+    bool cancelSent = false;
+    bool jobCancelled() const { return job && job->cancelled(); }
+    /// Sends C-CANCEL once when the job was cancelled.
+    void cancelIfAsked(T_ASC_PresentationContextID presID) {
+        if (!jobCancelled() || cancelSent) return;
+        cancelSent = true;
+        sendCANCELRequest(presID);
+    }
 
     OFCondition handleFINDResponse(const T_ASC_PresentationContextID presID, QRResponse* r,
                                    OFBool& waitForNextResponse) override {
@@ -115,11 +124,13 @@ public:
     OFCondition handleCGETResponse(const T_ASC_PresentationContextID presID, RetrieveResponse* r,
                                    OFBool& continueSession) override {
         track(r);
+        cancelIfAsked(presID);
         return DcmSCU::handleCGETResponse(presID, r, continueSession);
     }
     OFCondition handleMOVEResponse(const T_ASC_PresentationContextID presID, RetrieveResponse* r,
                                    OFBool& waitForNextResponse) override {
         track(r);
+        cancelIfAsked(presID);
         return DcmSCU::handleMOVEResponse(presID, r, waitForNextResponse);
     }
     OFCondition handleSTORERequestFile(T_ASC_PresentationContextID* presID, const OFString&,
@@ -127,6 +138,10 @@ public:
         // DCMTK would name the file after the (untrusted) SOP Instance UID; we receive into a
         // temporary name and let the IncomingStore place it.
         if (!store) return EC_IllegalCall;
+        if (jobCancelled()) {  // the peer goes on sending: the association is aborted
+            storeError = "cancelled";
+            return EC_IllegalCall;
+        }
         std::string tmp;
         try {
             tmp = store->temporaryPath();
@@ -155,6 +170,7 @@ public:
 struct PacsClient::Impl {
     LocalNode local;
     PacsNode remote;
+    const core::JobContext* job = nullptr;
     std::unique_ptr<DcmTLSTransportLayer> tls;  // outlives the association it secures
 
     void secure(Scu& scu) {
@@ -252,6 +268,8 @@ PacsClient::PacsClient(LocalNode local, PacsNode remote) : impl_(std::make_uniqu
 }
 PacsClient::~PacsClient() = default;
 
+void PacsClient::cancelWith(const core::JobContext& job) { impl_->job = &job; }
+
 void PacsClient::echo() {
     Scu scu;
     impl_->connect(scu, {{UID_VerificationSOPClass, ASC_SC_ROLE_DEFAULT}}, PacsProtocol::basicSyntaxes());
@@ -284,9 +302,11 @@ std::size_t PacsClient::find(QueryLevel level, const QueryKeys& keys,
 RetrieveProgress PacsClient::get(const std::string& studyUid, const std::string& seriesUid,
                                  const std::string& storageDir,
                                  const std::function<void(const DicomInstance&)>& onStored,
-                                 const std::function<void(const RetrieveProgress&)>& onProgress) {
+                                 const std::function<void(const RetrieveProgress&)>& onProgress,
+                                 const std::vector<std::string>& sopUids) {
     IncomingStore store(storageDir, impl_->local.minFreeBytes);
     Scu scu;
+    scu.job = impl_->job;
     scu.store = &store;
     scu.onStored = onStored;
     scu.onProgress = onProgress;
@@ -297,37 +317,43 @@ RetrieveProgress PacsClient::get(const std::string& studyUid, const std::string&
     for (const char* sop : PacsProtocol::storageClasses()) contexts.push_back({sop, ASC_SC_ROLE_SCP});
     impl_->connect(scu, contexts, PacsProtocol::storageSyntaxes());
     DcmDataset keys;
-    PacsProtocol::fillRetrieve(keys, studyUid, seriesUid);
+    PacsProtocol::fillRetrieve(keys, studyUid, seriesUid, sopUids);
     const OFCondition c = scu.sendCGETRequest(
         impl_->context(scu, UID_GETStudyRootQueryRetrieveInformationModel, "retrieve by C-GET"), &keys, nullptr);
     if (c.bad()) {
         scu.abortAssociation();
+        if (scu.jobCancelled()) throw core::Cancelled();
         std::string why = PacsProtocol::describeDimseFailure(impl_->where(), "C-GET", c.text(), impl_->local.timeoutSeconds);
         if (!scu.storeError.empty()) why += "; " + scu.storeError;
         throw core::Error(why + " (" + std::to_string(scu.progress.received) + " instances were stored completely)");
     }
     scu.releaseAssociation();
+    if (scu.jobCancelled()) throw core::Cancelled();
     PacsProtocol::checkFinalStatus(impl_->where(), "C-GET", scu.finalStatus, impl_->local.aeTitle);
     return scu.progress;
 }
 
 RetrieveProgress PacsClient::move(const std::string& studyUid, const std::string& seriesUid,
                                   const std::string& destinationAe,
-                                  const std::function<void(const RetrieveProgress&)>& onProgress) {
+                                  const std::function<void(const RetrieveProgress&)>& onProgress,
+                                  const std::vector<std::string>& sopUids) {
     Scu scu;
+    scu.job = impl_->job;
     scu.onProgress = onProgress;
     impl_->connect(scu, {{UID_MOVEStudyRootQueryRetrieveInformationModel, ASC_SC_ROLE_DEFAULT}},
                    PacsProtocol::basicSyntaxes());
     DcmDataset keys;
-    PacsProtocol::fillRetrieve(keys, studyUid, seriesUid);
+    PacsProtocol::fillRetrieve(keys, studyUid, seriesUid, sopUids);
     const OFCondition c = scu.sendMOVERequest(
         impl_->context(scu, UID_MOVEStudyRootQueryRetrieveInformationModel, "retrieve by C-MOVE"),
         destinationAe.c_str(), &keys, nullptr);
     if (c.bad()) {
         scu.abortAssociation();
+        if (scu.jobCancelled()) throw core::Cancelled();
         throw core::Error(PacsProtocol::describeDimseFailure(impl_->where(), "C-MOVE", c.text(), impl_->local.timeoutSeconds));
     }
     scu.releaseAssociation();
+    if (scu.jobCancelled()) throw core::Cancelled();
     PacsProtocol::checkFinalStatus(impl_->where(), "C-MOVE to '" + destinationAe + "'", scu.finalStatus, destinationAe);
     return scu.progress;
 }

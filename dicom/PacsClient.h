@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/JobContext.h"
 #include "dicom/DicomInstance.h"
 #include "dicom/PacsNode.h"
 
@@ -48,17 +49,24 @@ public:
     PacsClient(const PacsClient&) = delete;
     PacsClient& operator=(const PacsClient&) = delete;
 
+    /// Retrieves stop when `job` is cancelled: a C-CANCEL is sent at the next response, and
+    /// the association is aborted at the next instance that arrives. `job` must outlive this.
+    void cancelWith(const core::JobContext& job);
+
     void echo();
     /// Returns the number of results delivered.
     std::size_t find(QueryLevel level, const QueryKeys& keys, const std::function<bool(const QueryResult&)>& onResult);
-    /// Retrieves a study (or one series of it) by C-GET into `storageDir` (IncomingStore
-    /// layout). onStored is called for each instance written; onProgress for each response.
+    /// Retrieves a study (or one series of it, or with `sopUids` only those instances of the
+    /// series) by C-GET into `storageDir` (IncomingStore layout). onStored is called for each
+    /// instance written; onProgress for each response.
     RetrieveProgress get(const std::string& studyUid, const std::string& seriesUid, const std::string& storageDir,
                          const std::function<void(const DicomInstance&)>& onStored,
-                         const std::function<void(const RetrieveProgress&)>& onProgress);
-    /// Asks the node to C-MOVE a study (or series) to `destinationAe`.
+                         const std::function<void(const RetrieveProgress&)>& onProgress,
+                         const std::vector<std::string>& sopUids = {});
+    /// Asks the node to C-MOVE a study (or series, or those instances of it) to `destinationAe`.
     RetrieveProgress move(const std::string& studyUid, const std::string& seriesUid, const std::string& destinationAe,
-                          const std::function<void(const RetrieveProgress&)>& onProgress);
+                          const std::function<void(const RetrieveProgress&)>& onProgress,
+                          const std::vector<std::string>& sopUids = {});
 
     /// Sends files to the node by C-STORE (one association); returns how many it accepted.
     /// Throws core::Error when the node refuses or the connection fails.

@@ -70,10 +70,14 @@ void PacsProtocol::fillQuery(DcmDataset& q, QueryLevel level, const QueryKeys& k
     q.putAndInsertString(DCM_InstanceNumber, "");
 }
 
-void PacsProtocol::fillRetrieve(DcmDataset& k, const std::string& studyUid, const std::string& seriesUid) {
-    k.putAndInsertString(DCM_QueryRetrieveLevel, seriesUid.empty() ? "STUDY" : "SERIES");
+void PacsProtocol::fillRetrieve(DcmDataset& k, const std::string& studyUid, const std::string& seriesUid,
+                                const std::vector<std::string>& sopUids) {
+    k.putAndInsertString(DCM_QueryRetrieveLevel, !sopUids.empty() ? "IMAGE" : seriesUid.empty() ? "STUDY" : "SERIES");
     k.putAndInsertString(DCM_StudyInstanceUID, studyUid.c_str());
     if (!seriesUid.empty()) k.putAndInsertString(DCM_SeriesInstanceUID, seriesUid.c_str());
+    std::string list;  // PS3.4 C.2.2.2.2: a list of UIDs, separated by backslashes
+    for (const auto& u : sopUids) list += (list.empty() ? "" : "\\") + u;
+    if (!list.empty()) k.putAndInsertString(DCM_SOPInstanceUID, list.c_str());
 }
 
 std::string PacsProtocol::describeAssociationFailure(const std::string& where, const std::string& reason,

@@ -22,7 +22,9 @@ public:
     /// capture and the other common cross-sectional and projection images).
     static std::vector<const char*> storageClasses();
     static void fillQuery(DcmDataset& query, QueryLevel level, const QueryKeys& keys);
-    static void fillRetrieve(DcmDataset& keys, const std::string& studyUid, const std::string& seriesUid);
+    /// Retrieve keys for a study, a series, or (with `sopUids`) some instances of a series.
+    static void fillRetrieve(DcmDataset& keys, const std::string& studyUid, const std::string& seriesUid,
+                             const std::vector<std::string>& sopUids = {});
     static std::string describeAssociationFailure(const std::string& where, const std::string& reason,
                                                   const std::string& localAe, const std::string& remoteAe,
                                                   int timeoutSeconds);

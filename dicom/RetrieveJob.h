@@ -19,6 +19,7 @@ struct SeriesRetrieveStatus {
     bool retrieved = false;
     std::string octreePath;  ///< set once its octree is built
     std::string error;       ///< a failed series says why; the others go on
+    int alreadyHere = 0;     ///< instances that were here (indexed, on disk) and were not fetched again
 };
 
 /// Retrieves a study (or one series) from a PACS series by series, by C-GET or by C-MOVE to
@@ -28,6 +29,8 @@ struct SeriesRetrieveStatus {
 /// the end of each series the instances that arrived are counted against the PACS's own count
 /// (an image-level C-FIND): a partial series is reported as such, indexed but not built, and a
 /// C-MOVE of which nothing arrived names the PACS's entry for our AE title as the likely cause.
+/// Retrieving a series again (after a partial retrieve) fetches only the instances that are not
+/// here already, by an image-level C-GET/C-MOVE of their SOP Instance UIDs, and builds from all.
 ///
 /// Threading: run() blocks the calling (job) thread; onUpdate runs on it or on the build thread.
 class RetrieveJob {
@@ -43,8 +46,11 @@ private:
     /// Throws core::Error when fewer instances of the series arrived than it has (counted by an
     /// image-level C-FIND, else by the sub-operations), naming the likely cause of a C-MOVE of
     /// which nothing arrived.
-    void checkComplete(PacsClient& client, const std::string& studyUid, const SeriesRetrieveStatus& s,
-                       std::size_t arrived) const;
+    void checkComplete(const SeriesRetrieveStatus& s, std::size_t expected, std::size_t arrived) const;
+    /// The SOP Instance UIDs of a series on the PACS (image-level C-FIND); empty when the PACS
+    /// cannot list them.
+    std::vector<std::string> instancesOnPacs(PacsClient& client, const std::string& studyUid,
+                                             const std::string& seriesUid) const;
 
     PacsSettings settings_;
     PacsNode node_;

@@ -279,10 +279,18 @@ StudyDatabase::PruneResult StudyDatabase::prune() {
     {
         Stmt all(db_, "SELECT id, path FROM instances;");
         std::error_code ec;
+        // A file is taken as deleted only when its folder is there and holds something: an
+        // unmounted disk leaves its mount point behind, empty, with every file "missing".
+        std::map<std::filesystem::path, bool> folderThere;
         while (all.step()) {
             const std::filesystem::path file = all.text(1);
             if (std::filesystem::exists(file, ec)) continue;
-            if (std::filesystem::is_directory(file.parent_path(), ec)) gone.push_back(all.integer(0));
+            const auto folder = file.parent_path();
+            auto it = folderThere.find(folder);
+            if (it == folderThere.end())
+                it = folderThere.emplace(folder, std::filesystem::is_directory(folder, ec) &&
+                                                     !std::filesystem::is_empty(folder, ec) && !ec).first;
+            if (it->second) gone.push_back(all.integer(0));
             else ++result.kept;
         }
     }
@@ -364,6 +372,15 @@ bool StudyDatabase::findSeries(const std::string& seriesUid, SeriesRow& out) con
     if (!s.step()) return false;
     out = seriesRow(s);
     return true;
+}
+
+std::map<std::string, std::string> StudyDatabase::onlineInstancesOfSeries(const std::string& seriesUid) const {
+    Stmt s(db_, "SELECT i.sop_uid, i.path FROM instances i JOIN series se ON se.id = i.series "
+                "WHERE se.uid = ?1 AND i.offline = 0;");
+    s.bind(1, seriesUid);
+    std::map<std::string, std::string> out;
+    while (s.step()) out[s.text(0)] = s.text(1);
+    return out;
 }
 
 std::vector<std::string> StudyDatabase::filesOfSeries(const std::string& seriesUid) const {

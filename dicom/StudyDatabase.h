@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <memory>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -78,8 +79,9 @@ public:
         std::size_t kept = 0;     ///< rows kept because the file's folder itself is missing
     };
     /// Deletes the instances whose files were deleted (the file is missing but its folder is
-    /// there), then empty series, studies and patients. A file whose folder is missing too is
-    /// taken as unreachable (an unmounted or renamed folder), kept and counted.
+    /// there and not empty), then empty series, studies and patients. A file whose folder is
+    /// missing or empty is taken as unreachable (an unmounted disk leaves an empty mount point;
+    /// a renamed folder), kept and counted.
     PruneResult prune();
     /// Instances marked offline by the last checkFiles().
     std::size_t offlineCount() const;
@@ -88,6 +90,8 @@ public:
     std::vector<SeriesRow> seriesOfStudy(const std::string& studyUid) const;
     /// The series, if known (octreePath empty when none was built).
     bool findSeries(const std::string& seriesUid, SeriesRow& out) const;
+    /// SOP Instance UID → file path of a series' instances that are not marked offline.
+    std::map<std::string, std::string> onlineInstancesOfSeries(const std::string& seriesUid) const;
     /// File paths of a series' instances, ordered by instance number.
     std::vector<std::string> filesOfSeries(const std::string& seriesUid) const;
     /// Records the octree built for a series.

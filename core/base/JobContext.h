@@ -23,10 +23,14 @@ class JobContext {
 public:
     using Observer = std::function<void(const JobProgress&)>;
     explicit JobContext(Observer observer = {}) : observer_(std::move(observer)), start_(Clock::now()) {}
+    /// A part of `parent` with progress of its own (a build inside a retrieve): cancelling the
+    /// parent cancels it. The parent must outlive it.
+    JobContext(const JobContext& parent, Observer observer)
+        : observer_(std::move(observer)), start_(Clock::now()), parent_(&parent) {}
 
     /// Asks the job to stop at its next check.
     void cancel() { cancelled_.store(true); }
-    bool cancelled() const { return cancelled_.load(); }
+    bool cancelled() const { return cancelled_.load() || (parent_ && parent_->cancelled()); }
     /// Throws core::Cancelled if cancel() was called.
     void throwIfCancelled() const;
     /// Publishes progress; calls the observer at most every 100 ms, and always at 0 and 1.
@@ -40,6 +44,7 @@ private:
     Clock::time_point start_;
     Clock::time_point lastNotify_{};
     std::atomic<bool> cancelled_{false};
+    const JobContext* parent_ = nullptr;
     mutable std::mutex mutex_;
     JobProgress last_;
 };

@@ -94,7 +94,7 @@ std::map<std::string, std::string> bySop(const std::vector<std::string>& files) 
 std::string errorOf(const std::function<void()>& f) {
     try {
         f();
-    } catch (const core::Error& e) {
+    } catch (const std::exception& e) {  // core::Error, and core::Cancelled ("cancelled")
         return e.what();
     }
     return "";
@@ -238,6 +238,38 @@ TEST_F(OrthancPeer, MoveToOurStorageScpThenIndexAndBuild) {
     EXPECT_EQ(identical, 20u);
 }
 
+// A series retrieved again after some of its files went missing: only those are fetched (an
+// image-level C-GET, then C-MOVE, of their SOP Instance UIDs), and it is built from all of them.
+TEST_F(OrthancPeer, RetrieveAgainFetchesOnlyTheMissingInstances) {
+    test::TempDir out;
+    auto s = peer_->settings();
+    s.local.storageDir = out.file("rx");
+    dicom::StudyDatabase db(out.file("db.sqlite"));
+    core::JobContext ctx;
+    auto first = dicom::RetrieveJob(s, s.nodes[0], db, out.file("octrees")).run(seeded_->studyA, seeded_->seriesA1, false,
+                                                                                   ctx, {});
+    ASSERT_EQ(first.size(), 1u);
+    ASSERT_TRUE(first[0].retrieved) << first[0].error;
+    EXPECT_EQ(first[0].alreadyHere, 0);
+    auto node = s.nodes[0];
+    for (const auto method : {dicom::RetrieveMethod::Get, dicom::RetrieveMethod::Move}) {
+        auto files = db.filesOfSeries(seeded_->seriesA1);
+        ASSERT_EQ(files.size(), 20u);
+        for (std::size_t i = 0; i < 5; ++i) std::filesystem::remove(files[i * 3]);
+        node.retrieve = method;
+        const auto again = dicom::RetrieveJob(s, node, db, out.file("octrees")).run(seeded_->studyA, seeded_->seriesA1,
+                                                                                    true, ctx, {});
+        ASSERT_EQ(again.size(), 1u);
+        EXPECT_TRUE(again[0].retrieved) << again[0].error;
+        EXPECT_EQ(again[0].alreadyHere, 15);
+        EXPECT_EQ(again[0].progress.completed, 5) << "only the five missing instances are fetched";
+        EXPECT_TRUE(std::filesystem::exists(again[0].octreePath)) << again[0].error;
+        std::size_t there = 0;
+        for (const auto& f : db.filesOfSeries(seeded_->seriesA1)) there += std::filesystem::exists(f);
+        EXPECT_EQ(there, 20u);
+    }
+}
+
 TEST_F(OrthancPeer, UnknownMoveDestinationIsExplained) {
     const auto e = errorOf([&] { client().move(seeded_->studyB, "", "NOBODY", {}); });
     // Orthanc answers 0xC000 rather than 0xA801 (dcmqrscp's answer is tested too); either way the
@@ -321,6 +353,46 @@ TEST(PacsFaults, PeerKilledMidRetrieveThenRetryCompletes) {
     std::size_t n = 0;
     for (const auto& f : std::filesystem::recursive_directory_iterator(out.file("rx"))) n += f.is_regular_file();
     EXPECT_EQ(n, 60u);
+}
+
+// Cancel while a retrieve runs: it ends as cancelled within a second, leaves no partial file,
+// and what was stored is whole.
+TEST(PacsFaults, CancelReachesARunningRetrieveWithinASecond) {
+    test::TempDir seedDir, out;
+    dicom::DicomWriteOptions o;
+    o.studyUid = "1.2.826.0.1.3680043.9.7777.40";
+    o.seriesUid = "1.2.826.0.1.3680043.9.7777.41";
+    const auto files = writeSeries(seedDir.file("s"), {256, 256, 80}, o);
+    test::PacsPeer peer(test::PacsPeer::Kind::Orthanc);
+    peer.start();
+    peer.seed(files);
+    auto s = peer.settings();
+    s.local.storageDir = out.file("rx");
+    dicom::StudyDatabase db(out.file("db.sqlite"));
+    core::JobContext ctx;
+    std::chrono::steady_clock::time_point cancelledAt{};
+    const auto e = errorOf([&] {
+        dicom::RetrieveJob(s, s.nodes[0], db, out.file("octrees"))
+            .run(o.studyUid, o.seriesUid, true, ctx, [&](const dicom::SeriesRetrieveStatus& st) {
+                if (st.progress.completed >= 5 && !ctx.cancelled()) {
+                    cancelledAt = std::chrono::steady_clock::now();
+                    ctx.cancel();
+                }
+            });
+    });
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - cancelledAt).count();
+    EXPECT_EQ(e, "cancelled");
+    EXPECT_LT(seconds, 1.0) << "cancel took " << seconds << " s to reach the transfer";
+    EXPECT_TRUE(std::filesystem::is_empty(out.file("rx/.incoming"))) << "half-written file left behind";
+    std::size_t stored = 0;
+    for (const auto& f : std::filesystem::recursive_directory_iterator(out.file("rx")))
+        if (f.is_regular_file()) {
+            dicom::DicomInstance in;
+            EXPECT_EQ(dicom::DicomHeaderReader::read(f.path().string(), in), dicom::DicomHeaderReader::Kind::Dicom);
+            ++stored;
+        }
+    EXPECT_LT(stored, files.size()) << "the retrieve ran to its end";
+    EXPECT_FALSE(std::filesystem::exists(out.file("octrees"))) << "a cancelled, partial series is not built";
 }
 
 // A C-MOVE the PACS reports done while nothing reaches our receiver (its entry for our AE title
