@@ -17,6 +17,11 @@ DicomSeriesSource::DicomSeriesSource(SeriesVolume volume) : volume_(std::move(vo
     const auto& g = volume_.geometry;
     const auto& s0 = volume_.slices.front();
     const DicomInstance& first = volume_.instances[s0.instance];
+    // Before anything is sized from Rows and Columns (the builder's slabs, the decoders).
+    if (std::uint64_t(first.rows) * first.columns > PixelDecoder::kMaxFramePixels)
+        throw core::Error(first.path + ": a frame of " + std::to_string(first.columns) + " × " +
+                          std::to_string(first.rows) + " pixels cannot be right (Holovox decodes frames of up to "
+                          "16384 × 16384)");
     if (g.modality == "CT") {
         paddingStored_ = (-1024.0 - s0.rescaleIntercept) / s0.rescaleSlope;
     } else {

@@ -94,6 +94,11 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
     if (!in.hasPixels()) throw core::Error(in.path + ": has no image pixel data");
     if (frame >= in.frames) throw core::Error(in.path + ": frame " + std::to_string(frame) + " does not exist");
     if (in.samplesPerPixel != 1) throw core::Error(in.path + ": colour images are not supported as volumes");
+    // Before any decoder sizes anything from the header: a frame must be one Holovox can hold
+    // (RLE and JPEG 2000 streams are small whatever Rows and Columns claim).
+    if (std::uint64_t(in.rows) * in.columns > kMaxFramePixels || in.rows == 0 || in.columns == 0)
+        throw core::Error(in.path + ": a frame of " + std::to_string(in.columns) + " × " + std::to_string(in.rows) +
+                          " pixels cannot be right (Holovox decodes frames of up to 16384 × 16384)");
     if (in.floatPixelBits) return decodeFloatFrame(in, frame, out);
     if (in.bitsAllocated != 8 && in.bitsAllocated != 16 && in.bitsAllocated != 32)
         throw core::Error(in.path + ": unsupported BitsAllocated " + std::to_string(in.bitsAllocated));

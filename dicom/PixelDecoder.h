@@ -23,6 +23,9 @@ public:
     /// Decodes `frame` of `instance` into out (rows × columns values, row by row). Throws
     /// core::Error naming the file and the reason (truncated, unsupported syntax, bad codestream).
     void decode(const DicomInstance& instance, std::uint32_t frame, std::vector<std::int32_t>& out);
+    /// The largest frame decoded (16384²): a header claiming more is refused before any
+    /// decoder sizes a buffer from it.
+    static constexpr std::uint64_t kMaxFramePixels = std::uint64_t(16384) * 16384;
 
 private:
     void decodeFrame(const DicomInstance& instance, std::uint32_t frame, std::vector<std::int32_t>& out);

@@ -132,6 +132,39 @@ TEST(StudyDatabase, UnreachableFolderLosesNothing) {
     EXPECT_EQ(db.offlineCount(), 0u);
 }
 
+// A real unmount (a bind mount taken away): the files sat at the mount point's top, whose
+// folder stays behind, empty. Nothing is deleted, even by prune; all is back when it returns.
+TEST(StudyDatabase, UnmountedDiskLeavesAnEmptyMountPointAndLosesNothing) {
+    test::TempDir dir;
+    const auto disk = dir.path() / "disk";
+    const auto mnt = dir.path() / "mnt";
+    std::filesystem::create_directories(disk);
+    std::filesystem::create_directories(mnt);
+    std::vector<dicom::DicomInstance> in;
+    for (int i = 0; i < 3; ++i) {
+        std::ofstream((disk / ("i" + std::to_string(i))).string()) << "x";
+        in.push_back(instance((mnt / ("i" + std::to_string(i))).string(), "DOE^JANE", "P1", "1.1", "20240105", "1.1.1",
+                              "CT", "1.1.1." + std::to_string(i)));
+    }
+    const std::string bind = "mount --bind " + disk.string() + " " + mnt.string() + " 2>&1";
+    if (std::system(bind.c_str()) != 0) GTEST_SKIP() << "cannot bind-mount here (needs root)";
+    struct Unmount {  // whatever fails below, the mount does not outlive the test
+        std::string at;
+        ~Unmount() { (void)std::system(("umount " + at + " 2>/dev/null").c_str()); }
+    } unmount{mnt.string()};
+    dicom::StudyDatabase db(dir.file("s.sqlite"));
+    db.addInstances(in);
+    EXPECT_EQ(db.checkFiles().offline, 0u);
+    ASSERT_EQ(std::system(("umount " + mnt.string()).c_str()), 0);
+    EXPECT_EQ(db.checkFiles().offline, 3u);
+    const auto pruned = db.prune();
+    EXPECT_EQ(pruned.removed, 0u) << "an empty mount point is an unmounted disk, not deleted files";
+    EXPECT_EQ(pruned.kept, 3u);
+    EXPECT_EQ(db.instanceCount(), 3u);
+    ASSERT_EQ(std::system(bind.c_str()), 0);
+    EXPECT_EQ(db.checkFiles().backOnline, 3u);
+}
+
 // A database written before the offline flag (schema 1) is migrated, and one from a newer
 // Holovox is refused with a sentence.
 TEST(StudyDatabase, SchemaIsMigratedAndNewerRefused) {
