@@ -15,11 +15,12 @@ done
 [ -x "$cli" ] || { echo "build first: cmake --workflow --preset ci (or pass --cli)" >&2; exit 2; }
 work=$(mktemp -d)
 pids=()
-trap 'for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; rm -rf "$work"' EXIT
+trap 'for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; [ -n "${KEEP:-}" ] || rm -rf "$work"' EXIT
 export HOME="$work/home" XDG_CONFIG_HOME="$work/home/.config" XDG_DATA_HOME="$work/home/.local/share"
 export HOLOVOX_PACS_CONFIG="$work/pacs.json" HOLOVOX_DB="$work/db.sqlite"
 mkdir -p "$HOME"
 port=$((20000 + RANDOM % 20000)); http=$((port + 1)); scp=$((port + 2)); base=$((port + 3))
+peak() { awk '/^VmHWM/ {print $2}' "/proc/$1/status"; }  # a process's peak RSS, KiB
 up() { for _ in $(seq 1 100); do (echo > "/dev/tcp/127.0.0.1/$1") 2>/dev/null && return 0; sleep 0.1; done; return 1; }
 
 per=$((count / 4))
@@ -45,18 +46,19 @@ done
 
 # Four senders at once; each association's wall time.
 push() {  # label port
-  local s
+  local s senders=()
   for s in 1 2 3 4; do
-    ( a=$(date +%s.%N); storescu -aet MODALITY$s -aec "$1" 127.0.0.1 "$2" "$work"/send$s/*.dcm \
-        >"$work/$1.$s.log" 2>&1; echo "$? $(echo "$(date +%s.%N) - $a" | bc -l)" >"$work/$1.$s.time" ) &
+    ( set +e; a=$(date +%s.%N); storescu -aet MODALITY$s -aec "$1" 127.0.0.1 "$2" "$work"/send$s/*.dcm \
+        >"$work/$1.$s.log" 2>&1; rc=$?; echo "$rc $(echo "$(date +%s.%N) - $a" | bc -l)" >"$work/$1.$s.time" ) &
+    senders+=($!)
   done
-  wait
+  wait "${senders[@]}"
 }
-report() {  # label stored rss_kib
+report() {  # label stored rss_kib push-label
   local slowest=0 failed=0 s rc t
   for s in 1 2 3 4; do
-    read -r rc t <"$work/$1.$s.time"
-    [ "$rc" = 0 ] || failed=$((failed + 1))
+    read -r rc t <"$work/$4.$s.time"
+    [ "$rc" = 0 ] || { failed=$((failed + 1)); tail -3 "$work/$4.$s.log" >&2; }
     slowest=$(echo "if ($t > $slowest) $t else $slowest" | bc -l)
   done
   printf '  %-28s stored %5d  lost %4d  senders failed %d  slowest association %6.2f s  peak RSS %6.1f MiB\n' \
@@ -64,17 +66,16 @@ report() {  # label stored rss_kib
 }
 echo "soak: 4 senders x $per instances (128x128) at once:"
 
-# Baseline: DCMTK's storescp, nothing else running.
+# Baseline: DCMTK's storescp (one association at a time, as it runs by default), nothing else running.
 mkdir -p "$work/storescp"
-/usr/bin/time -f %M -o "$work/storescp.rss" storescp -aet STORESCP -od "$work/storescp" "$base" & pids+=($!)
+storescp -aet STORESCP -od "$work/storescp" "$base" & pids+=($!)
 up "$base"
 push STORESCP "$base"
-kill -INT "${pids[-1]}"; wait "${pids[-1]}" 2>/dev/null || true
-report "storescp (baseline, alone)" "$(find "$work/storescp" -type f | wc -l)" "$(cat "$work/storescp.rss")"
+rss=$(peak "${pids[-1]}"); kill "${pids[-1]}"; wait "${pids[-1]}" 2>/dev/null || true
+report "storescp (baseline, alone)" "$(find "$work/storescp" -type f | wc -l)" "$rss" STORESCP
 
 # Holovox's receiver, with a retrieve and an orbiting render at the same time.
-/usr/bin/time -f %M -o "$work/listen.rss" "$cli" listen --port "$base" --storage "$work/pushed" \
-  >"$work/listen.log" 2>&1 & pids+=($!)
+"$cli" listen --port "$base" --storage "$work/pushed" >"$work/listen.log" 2>&1 & pids+=($!)
 listener=${pids[-1]}
 up "$base"
 ( "$cli" pacs get soak "$study" >"$work/retrieve.log" 2>&1; echo $? >"$work/retrieve.rc" ) &
@@ -83,8 +84,8 @@ retrieve=$!
 orbit=$!
 push HOLOVOX "$base"
 wait "$retrieve" "$orbit"
-kill -INT "$listener"; wait "$listener" 2>/dev/null || true
+rss=$(peak "$listener"); kill -INT "$listener"; wait "$listener" 2>/dev/null || true
 stored=$(grep -c '^received ' "$work/listen.log" || true)
-report "holovox-cli listen (loaded)" "$stored" "$(cat "$work/listen.rss")"
+report "holovox-cli listen (loaded)" "$stored" "$rss" HOLOVOX
 indexed=$(sqlite3 "$HOLOVOX_DB" "SELECT count(*) FROM instances;")
 echo "  database: $indexed instances indexed ($count pushed + 200 retrieved expected); retrieve exit $(cat "$work/retrieve.rc")"
