@@ -4,6 +4,7 @@
 #include <atomic>
 #include <exception>
 #include <memory>
+#include <utility>
 
 namespace hvx::core {
 
@@ -88,9 +89,16 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
     const std::size_t helpers = std::min<std::size_t>(size(), chunks - 1);
     for (std::size_t h = 0; h < helpers; ++h) submit(run);
     run();
-    std::unique_lock lock(state->mutex);
-    state->finished.wait(lock, [&] { return state->done == state->chunks; });
-    if (state->error) std::rethrow_exception(state->error);
+    std::exception_ptr error;
+    {
+        std::unique_lock lock(state->mutex);
+        state->finished.wait(lock, [&] { return state->done == state->chunks; });
+        // Taken out of the shared state, so the exception is released on this thread only: a
+        // helper dropping the state later must not free it while the caller reads its message
+        // (ThreadSanitizer saw exactly that; libstdc++'s own reference count is invisible to it).
+        error = std::exchange(state->error, nullptr);
+    }
+    if (error) std::rethrow_exception(error);
 }
 
 }  // namespace hvx::core
