@@ -103,6 +103,15 @@ TEST(CliImport, BrokenFilesAreCountedWithReasonsAndMissingPathsRefused) {
     EXPECT_TRUE(contains(r.output, dir.file("nowhere") + ": no such file or folder")) << r.output;
 }
 
+namespace {
+/// Runs a pydicom script (Debian's python3) that writes its files into dir/in (its argv[1]).
+test::ProcessResult writeWithPydicom(const test::TempDir& dir, const std::string& script) {
+    std::ofstream(dir.file("make.py")) << script;
+    std::filesystem::create_directory(dir.file("in"));
+    return test::runCommand("/usr/bin/python3 " + dir.file("make.py") + " " + dir.file("in"));
+}
+}  // namespace
+
 // A small file that claims 2^31 - 1 frames (with a per-frame sequence, as RT dose, and as
 // encapsulated RLE) must be refused at once, in little memory, never sized from the claim.
 TEST(CliImport, HostileFrameCountIsRefusedQuicklyInLittleMemory) {
@@ -125,9 +134,7 @@ ds = pydicom.dcmread(src + 'MR_small_RLE.dcm')
 ds.NumberOfFrames = 2147483647
 ds.save_as(out + '/rle.dcm')
 )";
-    std::ofstream(dir.file("make.py")) << script;
-    std::filesystem::create_directory(dir.file("in"));
-    auto r = test::runCommand("/usr/bin/python3 " + dir.file("make.py") + " " + dir.file("in"));
+    auto r = writeWithPydicom(dir, script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const auto start = std::chrono::steady_clock::now();
     r = test::runCommand(cli + " import " + dir.file("in") + " --db " + dir.file("db.sqlite"));
@@ -156,9 +163,7 @@ for name, out in (('MR_small_RLE.dcm', 'rle'), ('MR_small_jp2klossless.dcm', 'j2
     ds.SOPInstanceUID = ds.SOPInstanceUID + '.' + str(len(out))
     ds.save_as(sys.argv[1] + '/' + out + '.dcm')
 )";
-    std::ofstream(dir.file("make.py")) << script;
-    std::filesystem::create_directory(dir.file("in"));
-    auto r = test::runCommand("/usr/bin/python3 " + dir.file("make.py") + " " + dir.file("in"));
+    auto r = writeWithPydicom(dir, script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     const auto start = std::chrono::steady_clock::now();
     r = test::runCommand(cli + " import " + dir.file("in") + " --db " + dir.file("db.sqlite") + " --build 2>&1");

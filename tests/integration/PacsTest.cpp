@@ -91,6 +91,14 @@ std::map<std::string, std::string> bySop(const std::vector<std::string>& files) 
     return m;
 }
 
+/// A running Orthanc seeded with these files.
+std::unique_ptr<test::PacsPeer> orthancWith(const std::vector<std::string>& files) {
+    auto peer = std::make_unique<test::PacsPeer>(test::PacsPeer::Kind::Orthanc);
+    peer->start();
+    peer->seed(files);
+    return peer;
+}
+
 std::string errorOf(const std::function<void()>& f) {
     try {
         f();
@@ -363,10 +371,8 @@ TEST(PacsFaults, CancelReachesARunningRetrieveWithinASecond) {
     o.studyUid = "1.2.826.0.1.3680043.9.7777.40";
     o.seriesUid = "1.2.826.0.1.3680043.9.7777.41";
     const auto files = writeSeries(seedDir.file("s"), {256, 256, 80}, o);
-    test::PacsPeer peer(test::PacsPeer::Kind::Orthanc);
-    peer.start();
-    peer.seed(files);
-    auto s = peer.settings();
+    const auto peer = orthancWith(files);
+    auto s = peer->settings();
     s.local.storageDir = out.file("rx");
     dicom::StudyDatabase db(out.file("db.sqlite"));
     core::JobContext ctx;
@@ -403,10 +409,8 @@ TEST(PacsFaults, MoveThatDeliversNothingHereIsAnErrorNamingThePacsEntry) {
     o.studyUid = "1.2.826.0.1.3680043.9.7777.40";
     o.seriesUid = "1.2.826.0.1.3680043.9.7777.41";
     const auto files = writeSeries(seedDir.file("s"), {32, 32, 6}, o);
-    test::PacsPeer peer(test::PacsPeer::Kind::Orthanc);
-    peer.start();
-    peer.seed(files);
-    auto s = peer.settings();
+    const auto peer = orthancWith(files);
+    auto s = peer->settings();
     dicom::LocalNode decoyNode = s.local;  // where the PACS sends what it thinks is ours
     decoyNode.storageDir = out.file("decoy");
     dicom::StorageServer decoy(decoyNode, {s.nodes[0].aeTitle}, {});
