@@ -2,10 +2,12 @@
 
 #include <sqlite3.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <set>
+#include <thread>
 
 #include "core/base/Error.h"
 
@@ -15,7 +17,6 @@ namespace {
 /// 1: the first schema; 2: instances.offline; 3: volumes (the volumes of a 4D series).
 constexpr std::int64_t kSchemaVersion = 3;
 const char* kSchema = R"sql(
-PRAGMA foreign_keys = ON;
 CREATE TABLE IF NOT EXISTS patients (
   id INTEGER PRIMARY KEY, patient_id TEXT NOT NULL, name TEXT NOT NULL,
   birth_date TEXT, sex TEXT, UNIQUE(patient_id, name));
@@ -107,14 +108,29 @@ StudyDatabase::StudyDatabase(const std::string& path) : path_(path) {
         throw core::Error(path + ": cannot open the study database (" + why + ")");
     }
     sqlite3_busy_timeout(db_, 5000);
-    try {
-        exec("PRAGMA journal_mode = WAL;");
-        exec(kSchema);
-        migrate();
-    } catch (const core::Error& e) {
-        sqlite3_close(db_);
-        db_ = nullptr;
-        throw core::Error(path + ": not a usable study database (" + e.what() + ")");
+    // Several jobs may open (and create) the file at once. Switching to WAL and creating the
+    // schema take locks that SQLite refuses at once, without calling the busy handler, when two
+    // connections would deadlock (each reading, each wanting to write); so opening retries.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    for (int attempt = 0;; ++attempt) {
+        lastFailureBusy_ = false;
+        try {
+            exec("PRAGMA foreign_keys = ON;");
+            exec("PRAGMA journal_mode = WAL;");
+            transaction([&] { exec(kSchema); });
+            migrate();
+            return;
+        } catch (const core::Error& e) {
+            const int code = sqlite3_errcode(db_) & 0xff;
+            const bool busy = lastFailureBusy_ || code == SQLITE_BUSY || code == SQLITE_LOCKED;
+            if (busy && std::chrono::steady_clock::now() < deadline) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(2 + 3 * (attempt % 7)));
+                continue;
+            }
+            sqlite3_close(db_);
+            db_ = nullptr;
+            throw core::Error(path + ": not a usable study database (" + e.what() + ")");
+        }
     }
 }
 
@@ -164,7 +180,8 @@ void StudyDatabase::transaction(const std::function<void()>& body) {
 
 void StudyDatabase::exec(const char* sql) const {
     char* err = nullptr;
-    if (sqlite3_exec(db_, sql, nullptr, nullptr, &err) != SQLITE_OK) {
+    if (const int rc = sqlite3_exec(db_, sql, nullptr, nullptr, &err); rc != SQLITE_OK) {
+        lastFailureBusy_ = (rc & 0xff) == SQLITE_BUSY || (rc & 0xff) == SQLITE_LOCKED;
         const std::string why = err ? err : "unknown error";
         sqlite3_free(err);
         throw core::Error("study database: " + why);

@@ -112,6 +112,7 @@ private:
     void migrate();
     std::string path_;
     sqlite3* db_ = nullptr;
+    mutable bool lastFailureBusy_ = false;  ///< the last failed exec met a lock held by another connection
 };
 
 }  // namespace hvx::dicom

@@ -93,3 +93,34 @@ TEST(StudyDatabaseConcurrency, TwoImportsAndARetrieveAtOnceLoseNothingAndMixNoPa
     }
     for (const auto& s : studies) EXPECT_EQ(s.patientName, "PATIENT^" + s.patientId);
 }
+
+// Creating the file, switching it to WAL and creating the schema from several connections at
+// once made SQLite refuse one of them without waiting ("database is locked"), one run in five.
+TEST(StudyDatabaseConcurrency, EightJobsOpeningANewDatabaseAtOnceAllSucceed) {
+    for (int round = 0; round < 20; ++round) {
+        test::TempDir dir;
+        const std::string dbPath = dir.file("db/studies.sqlite");
+        std::atomic<bool> go{false};
+        std::atomic<int> opened{0};
+        std::mutex failuresLock;
+        std::vector<std::string> failures;
+        std::vector<std::thread> threads;
+        for (int t = 0; t < 8; ++t) {
+            threads.emplace_back([&] {
+                while (!go.load()) std::this_thread::yield();
+                try {
+                    dicom::StudyDatabase db(dbPath);
+                    (void)db.instanceCount();
+                    ++opened;
+                } catch (const std::exception& e) {
+                    std::lock_guard<std::mutex> lock(failuresLock);
+                    failures.push_back(e.what());
+                }
+            });
+        }
+        go = true;
+        for (auto& t : threads) t.join();
+        for (const auto& f : failures) ADD_FAILURE() << "round " << round << ": " << f;
+        ASSERT_EQ(opened.load(), 8) << "round " << round;
+    }
+}
