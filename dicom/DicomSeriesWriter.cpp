@@ -159,7 +159,7 @@ void putModalityModule(DcmItem* ds, const std::string& modality, const core::Vol
 }
 
 void putPlane(DcmItem* item, const core::VolumeGeometry& g, std::uint32_t k, bool position, bool orientation,
-              bool spacing, bool rescale) {
+              bool spacing, bool rescale, const std::string& modality) {
     if (position) {
         const glm::dvec3 p = g.origin + g.direction[2] * (g.spacing.z * k);
         item->putAndInsertString(DCM_ImagePositionPatient, decimals({p.x, p.y, p.z}).c_str());
@@ -177,7 +177,7 @@ void putPlane(DcmItem* item, const core::VolumeGeometry& g, std::uint32_t k, boo
     if (rescale) {
         item->putAndInsertString(DCM_RescaleIntercept, decimals({g.rescaleIntercept}).c_str());
         item->putAndInsertString(DCM_RescaleSlope, decimals({g.rescaleSlope}).c_str());
-        item->putAndInsertString(DCM_RescaleType, g.modality == "CT" ? "HU" : "US");
+        item->putAndInsertString(DCM_RescaleType, modality == "CT" ? "HU" : "US");
     }
 }
 
@@ -205,6 +205,91 @@ void putPixels(DcmItem* ds, const std::vector<std::uint8_t>& bytes, bool eightBi
         ds->putAndInsertUint16Array(DCM_PixelData, reinterpret_cast<const Uint16*>(bytes.data()),
                                     static_cast<unsigned long>(bytes.size() / 2));
 }
+
+struct SeriesUids {
+    std::string study, series, frameOfReference;
+};
+
+/// One multi-frame object of the Legacy Converted Enhanced CT or MR Image IOD (PS3.3 A.70,
+/// A.71): the enhanced IOD for images that did not come from an enhanced acquisition, so it
+/// claims no acquisition details Holovox does not know (the Enhanced CT/MR IODs require exposure,
+/// coil, echo and timing macros). Geometry and rescale are shared; each frame has its position
+/// and its place in the one stack (Frame Content, indexed by In-Stack Position).
+void writeLegacyConvertedEnhanced(core::VoxelSource& source, const std::string& path, const DicomWriteOptions& o,
+                                  const std::string& modality, const SeriesUids& uids, E_TransferSyntax xfer,
+                                  DcmRepresentationParameter* param, core::JobContext& job) {
+    const core::VolumeGeometry& g = source.geometry();
+    const bool ct = modality == "CT";
+    DcmFileFormat file;
+    DcmDataset* ds = file.getDataset();
+    const char* sop = ct ? UID_LegacyConvertedEnhancedCTImageStorage : UID_LegacyConvertedEnhancedMRImageStorage;
+    ds->putAndInsertString(DCM_SOPClassUID, sop);
+    ds->putAndInsertString(DCM_SOPInstanceUID, newUid().c_str());
+    const char* type = "DERIVED\\PRIMARY\\VOLUME\\NONE";  // value 2 is PRIMARY in the enhanced IODs
+    ds->putAndInsertString(DCM_ImageType, type);
+    putCommon(ds, o, g, modality, uids.study, uids.series, uids.frameOfReference);
+    ds->putAndInsertString(DCM_InstanceNumber, "1");
+    ds->putAndInsertString(DCM_ContentDate, (o.studyDate.empty() ? today() : o.studyDate).c_str());
+    ds->putAndInsertString(DCM_ContentTime, "120000");
+    // Enhanced General Equipment: Type 1.
+    ds->putAndInsertString(DCM_ManufacturerModelName, "Holovox");
+    ds->putAndInsertString(DCM_DeviceSerialNumber, "0");
+    ds->putAndInsertString(DCM_SoftwareVersions, "Holovox");
+    // Common CT/MR image description, image level; the same per frame below.
+    auto describe = [](DcmItem* item) {
+        item->putAndInsertString(DCM_PixelPresentation, "MONOCHROME");
+        item->putAndInsertString(DCM_VolumetricProperties, "VOLUME");
+        item->putAndInsertString(DCM_VolumeBasedCalculationTechnique, "NONE");
+    };
+    describe(ds);
+    ds->putAndInsertString(DCM_PresentationLUTShape, "IDENTITY");
+    ds->putAndInsertString(DCM_BurnedInAnnotation, "NO");
+    ds->putAndInsertString(DCM_LossyImageCompression, "00");
+    ds->putAndInsertString(DCM_ContentQualification, "RESEARCH");
+    ds->insertEmptyElement(DCM_AcquisitionContextSequence);
+    ds->putAndInsertString(DCM_NumberOfFrames, std::to_string(g.dims[2]).c_str());
+    // Multi-frame Dimension: one stack, frames indexed by their In-Stack Position Number.
+    const std::string dimensionUid = newUid();
+    DcmItem* it = nullptr;
+    ds->findOrCreateSequenceItem(DCM_DimensionOrganizationSequence, it, 0);
+    it->putAndInsertString(DCM_DimensionOrganizationUID, dimensionUid.c_str());
+    ds->putAndInsertString(DCM_DimensionOrganizationType, "3D");
+    ds->findOrCreateSequenceItem(DCM_DimensionIndexSequence, it, 0);
+    it->putAndInsertString(DCM_DimensionOrganizationUID, dimensionUid.c_str());
+    it->putAndInsertTagKey(DCM_DimensionIndexPointer, DCM_InStackPositionNumber);
+    it->putAndInsertTagKey(DCM_FunctionalGroupPointer, DCM_FrameContentSequence);
+
+    DcmItem* shared = nullptr;
+    ds->findOrCreateSequenceItem(DCM_SharedFunctionalGroupsSequence, shared, 0);
+    shared->findOrCreateSequenceItem(DCM_PixelMeasuresSequence, it, 0);
+    putPlane(it, g, 0, false, false, true, false, modality);
+    shared->findOrCreateSequenceItem(DCM_PlaneOrientationSequence, it, 0);
+    putPlane(it, g, 0, false, true, false, false, modality);
+    shared->findOrCreateSequenceItem(DCM_PixelValueTransformationSequence, it, 0);
+    putPlane(it, g, 0, false, false, false, true, modality);
+    shared->findOrCreateSequenceItem(ct ? DCM_CTImageFrameTypeSequence : DCM_MRImageFrameTypeSequence, it, 0);
+    it->putAndInsertString(DCM_FrameType, type);
+    describe(it);
+
+    const std::size_t sliceBytes = std::size_t(g.dims[0]) * g.dims[1] * core::scalarSize(g.scalarType);
+    std::vector<std::uint8_t> all(sliceBytes * g.dims[2]);
+    for (std::uint32_t k = 0; k < g.dims[2]; ++k) {
+        job.throwIfCancelled();
+        DcmItem* frame = nullptr;
+        ds->findOrCreateSequenceItem(DCM_PerFrameFunctionalGroupsSequence, frame, long(k));
+        frame->findOrCreateSequenceItem(DCM_PlanePositionSequence, it, 0);
+        putPlane(it, g, k, true, false, false, false, modality);
+        frame->findOrCreateSequenceItem(DCM_FrameContentSequence, it, 0);
+        it->putAndInsertUint32(DCM_DimensionIndexValues, k + 1);
+        it->putAndInsertString(DCM_StackID, "1");
+        it->putAndInsertUint32(DCM_InStackPositionNumber, k + 1);
+        frame->findOrCreateSequenceItem(DCM_UnassignedPerFrameConvertedAttributesSequence, it, 0);  // one empty item
+        source.readSlices(k, 1, all.data() + k * sliceBytes);
+        job.report(double(k + 1) / g.dims[2], "writing frames");
+    }
+    putPixels(ds, all, g.scalarType == core::ScalarType::UInt8);
+    save(file, path, xfer, param);
+}
 }  // namespace
 
 std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, const std::string& folder,
@@ -216,13 +301,17 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
         throw core::Error(source.describe() + ": float volumes are exported through FloatToInt16Source (holovox-cli "
                                               "export-dicom does it), not directly");
     if (g.dims[0] > 65535 || g.dims[1] > 65535) throw core::Error(source.describe() + ": slices too large for DICOM");
+    // An export would state an assumption as a fact that the next reader cannot question.
+    if (g.spacingAssumed || g.orientationAssumed)
+        throw core::Error(source.describe() + ": the source gave no " +
+                          (g.spacingAssumed ? std::string("pixel spacing") : std::string("orientation")) +
+                          " (Holovox assumed one to show it); an export would write the assumption as a fact");
     DcmRepresentationParameter* param = nullptr;
     const E_TransferSyntax xfer = syntaxOf(o.transferSyntax, param);
     std::error_code ec;
     std::filesystem::create_directories(folder, ec);
     if (ec) throw core::Error(folder + ": cannot create folder (" + ec.message() + ")");
     const std::string modality = o.modality.empty() ? (g.modality.empty() ? std::string("OT") : g.modality) : o.modality;
-    const bool ct = modality == "CT";
     const std::string studyUid = o.studyUid.empty() ? newUid() : o.studyUid;
     const std::string seriesUid = o.seriesUid.empty() ? newUid() : o.seriesUid;
     // Kept from a DICOM source, so the export registers with it; new otherwise.
@@ -232,41 +321,12 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
     std::vector<std::string> paths;
 
     if (o.enhancedMultiframe && modality != "CT" && modality != "MR")
-        throw core::Error("an enhanced multi-frame export is Enhanced CT or MR; " + modality +
+        throw core::Error("an enhanced multi-frame export is Legacy Converted Enhanced CT or MR; " + modality +
                           " is written as single-frame images (leave out --enhanced)");
     if (o.enhancedMultiframe) {
-        DcmFileFormat file;
-        DcmDataset* ds = file.getDataset();
-        const char* sop = ct ? UID_EnhancedCTImageStorage : UID_EnhancedMRImageStorage;
-        const std::string sopUid = newUid();
-        ds->putAndInsertString(DCM_SOPClassUID, sop);
-        ds->putAndInsertString(DCM_SOPInstanceUID, sopUid.c_str());
-        ds->putAndInsertString(DCM_ImageType, "ORIGINAL\\PRIMARY\\AXIAL\\NONE");
-        putCommon(ds, o, g, modality, studyUid, seriesUid, frameOfReference);
-        ds->putAndInsertString(DCM_InstanceNumber, "1");
-        ds->putAndInsertString(DCM_NumberOfFrames, std::to_string(g.dims[2]).c_str());
-        DcmItem* shared = nullptr;
-        ds->findOrCreateSequenceItem(DCM_SharedFunctionalGroupsSequence, shared, 0);
-        DcmItem* it = nullptr;
-        shared->findOrCreateSequenceItem(DCM_PixelMeasuresSequence, it, 0);
-        putPlane(it, g, 0, false, false, true, false);
-        shared->findOrCreateSequenceItem(DCM_PlaneOrientationSequence, it, 0);
-        putPlane(it, g, 0, false, true, false, false);
-        shared->findOrCreateSequenceItem(DCM_PixelValueTransformationSequence, it, 0);
-        putPlane(it, g, 0, false, false, false, true);
-        std::vector<std::uint8_t> all(sliceBytes * g.dims[2]);
-        for (std::uint32_t k = 0; k < g.dims[2]; ++k) {
-            job.throwIfCancelled();
-            DcmItem* frame = nullptr;
-            ds->findOrCreateSequenceItem(DCM_PerFrameFunctionalGroupsSequence, frame, long(k));
-            frame->findOrCreateSequenceItem(DCM_PlanePositionSequence, it, 0);
-            putPlane(it, g, k, true, false, false, false);
-            source.readSlices(k, 1, all.data() + k * sliceBytes);
-            job.report(double(k + 1) / g.dims[2], "writing frames");
-        }
-        putPixels(ds, all, eightBit);
         const std::string path = (std::filesystem::path(folder) / "ENHANCED.dcm").string();
-        save(file, path, xfer, param);
+        writeLegacyConvertedEnhanced(source, path, o, modality, {studyUid, seriesUid, frameOfReference}, xfer, param,
+                                     job);
         paths.push_back(path);
         return paths;
     }
@@ -282,7 +342,7 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
         ds->putAndInsertString(DCM_ImageType, "DERIVED\\SECONDARY\\AXIAL");
         putCommon(ds, o, g, modality, studyUid, seriesUid, frameOfReference);
         ds->putAndInsertString(DCM_InstanceNumber, std::to_string(k + 1).c_str());
-        putPlane(ds, g, k, true, true, true, true);
+        putPlane(ds, g, k, true, true, true, true, modality);
         putModalityModule(ds, modality, g);
         source.readSlices(k, 1, slice.data());
         putPixels(ds, slice, eightBit);

@@ -112,12 +112,15 @@ void finishGeometry(SeriesVolume& v) {
         g.dims[2] = outSlices;
     }
     g.direction = glm::dmat3(r, c, k);
-    if (!fg.hasSpacing) v.warnings.push_back("PixelSpacing is missing: spacing unknown, assumed 1 mm");
+    // What was assumed comes first: it changes how every other figure must be read.
     if (!fg.hasOrientation)
-        v.warnings.push_back("ImageOrientationPatient is missing: orientation unknown, assumed axial; left and right "
-                             "are not known");
+        v.warnings.insert(v.warnings.begin(), "orientation unknown, assumed axial; left and right are not known "
+                                              "(no ImageOrientationPatient)");
+    if (!fg.hasSpacing) v.warnings.insert(v.warnings.begin(), "spacing unknown, assumed 1 mm (no PixelSpacing)");
     g.modality = first.modality.empty() ? "OT" : first.modality;
     g.monochrome1 = first.photometric == "MONOCHROME1";
+    g.spacingAssumed = !fg.hasSpacing;
+    g.orientationAssumed = !fg.hasOrientation;
     g.windows = first.windows;
     // One rescale for every slice keeps stored values; otherwise convert to physical floats.
     bool sameRescale = true;

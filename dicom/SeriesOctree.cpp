@@ -79,10 +79,17 @@ std::string SeriesOctree::buildPreview(StudyDatabase& db, const std::string& ser
 }
 
 void SeriesOctree::recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes) {
-    std::map<std::string, std::vector<std::string>> bySeries;
-    for (const auto& v : volumes)
+    std::map<std::string, std::vector<std::string>> bySeries, warnings;
+    for (const auto& v : volumes) {
         bySeries[v.seriesUid].push_back(v.varying.empty() ? v.label : v.varying);
-    for (const auto& [uid, varying] : bySeries) db.setSeriesVolumes(uid, varying.size() > 1 ? varying : std::vector<std::string>{});
+        auto& w = warnings[v.seriesUid];
+        for (const auto& text : v.warnings)
+            if (std::find(w.begin(), w.end(), text) == w.end()) w.push_back(text);
+    }
+    for (const auto& [uid, varying] : bySeries) {
+        db.setSeriesVolumes(uid, varying.size() > 1 ? varying : std::vector<std::string>{});
+        db.setSeriesWarnings(uid, warnings[uid]);
+    }
 }
 
 SeriesVolume SeriesOctree::assemble(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,

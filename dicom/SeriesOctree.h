@@ -36,7 +36,8 @@ public:
     static SeriesVolume assemble(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
                                  std::vector<std::string>* warnings = nullptr, int volume = 0);
     /// Records in the database the volumes of every series in `volumes` that splits into several
-    /// (what varies between them), as import and retrieve find them.
+    /// (what varies between them), and each series' assembly warnings, as import and retrieve
+    /// find them.
     static void recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes);
 };
 

@@ -14,8 +14,9 @@
 namespace hvx::dicom {
 
 namespace {
-/// 1: the first schema; 2: instances.offline; 3: volumes (the volumes of a 4D series).
-constexpr std::int64_t kSchemaVersion = 3;
+/// 1: the first schema; 2: instances.offline; 3: volumes (the volumes of a 4D series);
+/// 4: series.warnings (what assembling the series found: assumed spacing, gaps...).
+constexpr std::int64_t kSchemaVersion = 4;
 const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS patients (
   id INTEGER PRIMARY KEY, patient_id TEXT NOT NULL, name TEXT NOT NULL,
@@ -28,7 +29,7 @@ CREATE TABLE IF NOT EXISTS series (
   id INTEGER PRIMARY KEY, uid TEXT NOT NULL UNIQUE,
   study INTEGER NOT NULL REFERENCES studies(id) ON DELETE CASCADE,
   number INTEGER, description TEXT, modality TEXT, body_part TEXT,
-  instance_count INTEGER NOT NULL DEFAULT 0, octree TEXT);
+  instance_count INTEGER NOT NULL DEFAULT 0, octree TEXT, warnings TEXT NOT NULL DEFAULT '');
 CREATE TABLE IF NOT EXISTS instances (
   id INTEGER PRIMARY KEY, sop_uid TEXT NOT NULL UNIQUE,
   series INTEGER NOT NULL REFERENCES series(id) ON DELETE CASCADE,
@@ -155,14 +156,17 @@ void StudyDatabase::migrate() {
         throw core::Error("it was written by a newer Holovox (schema version " + std::to_string(version) + ", this one reads " +
                           std::to_string(kSchemaVersion) + ")");
     if (version >= kSchemaVersion) return;
-    // Version 1 (no user_version): instances had no offline flag.
-    bool hasOffline = false;
-    {
-        Stmt cols(db_, "PRAGMA table_info(instances);");
-        while (cols.step()) hasOffline = hasOffline || cols.text(1) == "offline";
-    }
+    const auto hasColumn = [&](const char* table, const std::string& column) {
+        Stmt cols(db_, (std::string("PRAGMA table_info(") + table + ");").c_str());
+        while (cols.step())
+            if (cols.text(1) == column) return true;
+        return false;
+    };
+    // Version 1 (no user_version): instances had no offline flag; before 4, series no warnings.
+    const bool hasOffline = hasColumn("instances", "offline"), hasWarnings = hasColumn("series", "warnings");
     transaction([&] {
         if (!hasOffline) exec("ALTER TABLE instances ADD COLUMN offline INTEGER NOT NULL DEFAULT 0;");
+        if (!hasWarnings) exec("ALTER TABLE series ADD COLUMN warnings TEXT NOT NULL DEFAULT '';");
         exec(("PRAGMA user_version = " + std::to_string(kSchemaVersion) + ";").c_str());
     });
 }
@@ -359,7 +363,7 @@ std::vector<StudyRow> StudyDatabase::findStudies(const StudyQuery& q) const {
 namespace {
 const char* kSeriesColumns =
     "SELECT se.uid, st.uid, se.modality, se.description, se.body_part, coalesce(se.octree, ''), se.number, "
-    "se.instance_count FROM series se JOIN studies st ON st.id = se.study ";
+    "se.instance_count, se.warnings FROM series se JOIN studies st ON st.id = se.study ";
 
 SeriesRow seriesRow(const Stmt& s) {
     SeriesRow r;
@@ -370,6 +374,12 @@ SeriesRow seriesRow(const Stmt& s) {
     r.bodyPart = s.text(4);
     r.octreePath = s.text(5);
     r.number = int(s.integer(6));
+    const std::string warnings = s.text(8);
+    for (std::size_t at = 0; at < warnings.size();) {
+        const auto end = std::min(warnings.find('\n', at), warnings.size());
+        r.warnings.push_back(warnings.substr(at, end - at));
+        at = end + 1;
+    }
     r.instanceCount = int(s.integer(7));
     return r;
 }
@@ -413,6 +423,14 @@ void StudyDatabase::setSeriesOctree(const std::string& seriesUid, const std::str
     Stmt s(db_, "UPDATE series SET octree = ?2 WHERE uid = ?1;");
     s.bind(1, seriesUid).bind(2, octreePath);
     s.step();
+}
+
+void StudyDatabase::setSeriesWarnings(const std::string& seriesUid, const std::vector<std::string>& warnings) {
+    std::string all;
+    for (const auto& w : warnings) all += (all.empty() ? "" : "\n") + w;
+    Stmt up(db_, "UPDATE series SET warnings = ?2 WHERE uid = ?1;");
+    up.bind(1, seriesUid).bind(2, all);
+    up.step();
 }
 
 void StudyDatabase::setSeriesVolumes(const std::string& seriesUid, const std::vector<std::string>& varying) {

@@ -40,10 +40,11 @@ struct SeriesRow {
     std::string seriesUid, studyUid, modality, description, bodyPart, octreePath;
     int number = 0;
     int instanceCount = 0;
+    std::vector<std::string> warnings;  ///< what assembling the series found (assumed spacing, gaps...)
 };
 
 /// The local index of imported DICOM: patients → studies → series → instances, in one SQLite
-/// file (schema version 2, WAL journal). Importing the same files again changes nothing; files
+/// file (schema version 4, WAL journal). Importing the same files again changes nothing; files
 /// that cannot be reached are marked offline by checkFiles(), and rows are deleted only by an
 /// explicit prune().
 ///
@@ -99,6 +100,8 @@ public:
     /// Records the volumes a series splits into (what varies, in order); a series of one volume
     /// has none. Octrees of volumes that stay the same are kept.
     void setSeriesVolumes(const std::string& seriesUid, const std::vector<std::string>& varying);
+    /// Replaces the series' assembly warnings (shown in the browser row and by `studies`).
+    void setSeriesWarnings(const std::string& seriesUid, const std::vector<std::string>& warnings);
     std::vector<VolumeRow> volumesOfSeries(const std::string& seriesUid) const;
     void setVolumeOctree(const std::string& seriesUid, int number, const std::string& octreePath);
     std::size_t instanceCount() const;

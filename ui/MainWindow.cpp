@@ -22,7 +22,14 @@
 #include <QTreeWidget>
 #include <QTreeWidgetItemIterator>
 
+#include <QDateTime>
+
+#include <filesystem>
+
 #include "core/base/Error.h"
+#include "core/octree/OctreeBuilder.h"
+#include "core/volume/NiftiVoxelSource.h"
+#include "core/volume/VoxelSourceFactory.h"
 #include "core/streaming/OctreeSpace.h"
 #include "core/reference/VolumeHistogram.h"
 #include "dicom/PacsSettings.h"
@@ -158,7 +165,7 @@ void MainWindow::buildMenus() {
     QMenu* file = menuBar()->addMenu(tr("&File"));
     QAction* open = file->addAction(tr("&Open volume\u2026"), this, &MainWindow::chooseOpen);
     open->setShortcut(QKeySequence::Open);
-    open->setToolTip(tr("Open a Holovox .hvo octree or a DICOM file"));
+    open->setToolTip(tr("Open a Holovox .hvo octree, a NIfTI, NRRD, MetaImage or VTK volume, or a DICOM file"));
     QAction* import = file->addAction(tr("&Import folder / DICOMDIR\u2026"), this, &MainWindow::chooseImport);
     import->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_I));
     QAction* shot = file->addAction(tr("Save &screenshot\u2026"), this, &MainWindow::saveScreenshot);
@@ -193,6 +200,7 @@ bool MainWindow::openPath(const QString& path) {
         return false;
     }
     if (info.isFile() && path.endsWith(".hvo", Qt::CaseInsensitive)) return openOctree(path);
+    if (info.isFile() && isVolumeFile(path)) return openVolumeFile(path);
     // DICOM: import, then open the first series found there.
     const int id = browser_->importPaths({path});
     QPointer<MainWindow> self(this);
@@ -397,8 +405,65 @@ void MainWindow::chooseImport() {
     if (!dir.isEmpty()) browser_->importPaths({dir});
 }
 
+bool MainWindow::isVolumeFile(const QString& path) {
+    static const char* suffixes[] = {".nii", ".nii.gz", ".nrrd", ".nhdr", ".mha", ".mhd", ".vtk", ".vti"};
+    for (const char* s : suffixes)
+        if (path.endsWith(QLatin1String(s), Qt::CaseInsensitive)) return true;
+    return false;
+}
+
+bool MainWindow::openVolumeFile(const QString& path, int volume) {
+    const QFileInfo info(path);
+    const std::string file = info.absoluteFilePath().toStdString();
+    int volumes = 1;
+    try {
+        if (core::NiftiVoxelSource::handles(file)) volumes = int(core::NiftiVoxelSource(file).volumes());
+    } catch (const core::Error& e) {
+        showError(QString::fromStdString(e.what()));
+        return false;
+    }
+    if (volume == 0 && volumes > 1) {
+        bool ok = false;
+        volume = QInputDialog::getInt(this, tr("Open a 4D volume"),
+                                      tr("%1 holds %2 volumes. Open volume:").arg(info.fileName()).arg(volumes), 1, 1,
+                                      volumes, 1, &ok);
+        if (!ok) return false;
+    }
+    volume = std::max(volume, 1);
+    if (volume > volumes) {
+        showError(tr("%1 holds %2 volume(s); there is no volume %3").arg(info.fileName()).arg(volumes).arg(volume));
+        return false;
+    }
+    const QString label = volumes > 1 ? tr("%1 \u2014 volume %2 of %3").arg(info.fileName()).arg(volume).arg(volumes)
+                                      : info.fileName();
+    // One octree per file version and volume, beside the study database's own.
+    const QByteArray key = QCryptographicHash::hash(
+        (info.absoluteFilePath() + "|" + QString::number(info.size()) + "|" +
+         QString::number(info.lastModified().toMSecsSinceEpoch()) + "|" + QString::number(volume)).toUtf8(),
+        QCryptographicHash::Sha1);
+    const QString out = QFileInfo(browser_->databasePath()).absolutePath() + "/octrees/files/" +
+                        QString::fromLatin1(key.toHex().left(20)) + ".hvo";
+    if (QFileInfo::exists(out)) return openOctree(out, label);
+    QPointer<MainWindow> self(this);
+    jobs_->start(
+        tr("Build octree: %1").arg(label),
+        [file, volume, out](core::JobContext& job) {
+            auto source = core::VoxelSourceFactory::open(file, {}, std::uint32_t(volume - 1));
+            std::filesystem::create_directories(std::filesystem::path(out.toStdString()).parent_path());
+            core::OctreeBuilder(core::BuildOptions{}).build(*source, out.toStdString(), job);
+            return out;
+        },
+        [self, label](const QString& built) {
+            if (self) self->openOctree(built, label);
+        });
+    statusBar()->showMessage(tr("Building the octree of %1 in the background\u2026").arg(label), 5000);
+    return true;
+}
+
 void MainWindow::chooseOpen() {
-    const QString path = QFileDialog::getOpenFileName(this, tr("Open volume"), {}, tr("Holovox octrees (*.hvo);;DICOM files (*)"));
+    const QString path = QFileDialog::getOpenFileName(
+        this, tr("Open volume"), {},
+        tr("Volumes (*.hvo *.nii *.nii.gz *.nrrd *.nhdr *.mha *.mhd *.vtk *.vti);;DICOM files (*)"));
     if (!path.isEmpty()) openPath(path);
 }
 

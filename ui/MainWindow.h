@@ -36,9 +36,16 @@ public:
     explicit MainWindow(QString databasePath = {}, QString pacsSettingsPath = {}, QWidget* parent = nullptr);
     ~MainWindow() override;
 
-    /// Opens what a user names on the command line: an .hvo file, a DICOM folder or DICOMDIR, or
-    /// a DICOM file (imported, then its series opened). Returns false with the error shown.
+    /// Opens what a user names on the command line: an .hvo file, a volume file (NIfTI, NRRD,
+    /// MetaImage, VTK), a DICOM folder or DICOMDIR, or a DICOM file (imported, then its series
+    /// opened). Returns false with the error shown.
     bool openPath(const QString& path);
+    /// Opens a NIfTI, NRRD, MetaImage or VTK volume: its octree is built in the background (kept
+    /// beside the study database, reused while the file is unchanged), then opened. `volume` 0
+    /// asks which volume of a 4D file (the first when the file holds one); N opens volume N.
+    bool openVolumeFile(const QString& path, int volume = 0);
+    /// Whether openVolumeFile() reads `path` (by its name).
+    static bool isVolumeFile(const QString& path);
     /// Opens an .hvo octree in the 3D and slice views.
     bool openOctree(const QString& path, const QString& label = {}, bool keepCamera = false);
     /// Opens an imported series, building its octree in the background when missing.

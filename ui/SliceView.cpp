@@ -19,12 +19,17 @@ SliceView::SliceView(core::SlicePlane::Orientation orientation, QWidget* parent)
     setMinimumSize(120, 120);
     setFocusPolicy(Qt::StrongFocus);
     setToolTip(tr("Click or drag: move the cursor \u2022 Wheel: next slice \u2022 Right drag: window/level\n"
+                  "Shift-drag: distance \u2022 Ctrl-drag: circle statistics \u2022 Esc: clear them\n"
                   "1-9: window presets (the DICOM's, then for CT: brain, subdural, stroke, bone, lung, "
                   "mediastinum, abdomen, liver)"));
 }
 
 void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
     reader_ = std::move(reader);
+    ruler_.reset();  // measurements belong to the volume they were made on
+    roi_.reset();
+    roiStats_.reset();
+    roiError_.clear();
     sampler_.reset();
     cache_.reset();
     if (reader_) {
@@ -64,6 +69,14 @@ void SliceView::setAutomaticWindow(const core::DisplayWindow& w) {
 }
 
 void SliceView::keyPressEvent(QKeyEvent* e) {
+    if (e->key() == Qt::Key_Escape || e->key() == Qt::Key_Delete) {
+        ruler_.reset();
+        roi_.reset();
+        roiStats_.reset();
+        roiError_.clear();
+        update();
+        return;
+    }
     const int k = e->key() - Qt::Key_1;
     if (k >= 0 && k < 9 && std::size_t(k) < presets_.size()) {
         const auto& w = presets_[std::size_t(k)];
@@ -144,7 +157,12 @@ void SliceView::paintEvent(QPaintEvent*) {
     const auto labels = core::SlicePlane::edgeLabels(orientation_);
     const QRect r = rect().adjusted(5, 3, -5, -3);
     p.setFont(font());
-    drawEdgeLabels(p, r, {labels[0], labels[1], labels[2], labels[3]});
+    // Without a known orientation the letters would be a guess: "?" instead (left is never right).
+    const auto& geometry = reader_->geometry();
+    if (geometry.orientationAssumed) drawEdgeLabels(p, r, {"?", "?", "?", "?"});
+    else drawEdgeLabels(p, r, {labels[0], labels[1], labels[2], labels[3]});
+    drawAssumedGeometry(p, r.adjusted(0, 18, 0, 0), geometry);
+    paintMeasurements(p);
     static const char* names[] = {"Axial", "Coronal", "Sagittal"};
     p.setPen(QColor(200, 200, 200));
     QFont info = font();
@@ -159,6 +177,21 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
     pressPos_ = e->position();
     pressCentre_ = centre_;
     pressWidth_ = width_;
+    measuring_ = Measuring::None;
+    if (e->button() == Qt::LeftButton && reader_ && (e->modifiers() & (Qt::ShiftModifier | Qt::ControlModifier))) {
+        const glm::dvec3 at = patientAt(e->position());
+        if (e->modifiers() & Qt::ShiftModifier) {
+            measuring_ = Measuring::Ruler;
+            ruler_ = std::make_pair(at, at);
+        } else {
+            measuring_ = Measuring::Roi;
+            roi_ = core::MeasureRegion::disc(at, plane().normal(), 0.0, 1.0);
+            roiStats_.reset();
+            roiError_.clear();
+        }
+        update();
+        return;
+    }
     if (e->button() == Qt::LeftButton) {
         point_ = patientAt(e->position());
         emit pointChanged(point_);
@@ -167,6 +200,16 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
 }
 
 void SliceView::mouseMoveEvent(QMouseEvent* e) {
+    if (measuring_ == Measuring::Ruler && ruler_) {
+        ruler_->second = patientAt(e->position());
+        update();
+        return;
+    }
+    if (measuring_ == Measuring::Roi && roi_) {
+        roi_->radius = glm::length(patientAt(e->position()) - roi_->centre);
+        update();
+        return;
+    }
     if (e->buttons() & Qt::RightButton) {  // window/level: horizontal width, vertical level
         const QPointF d = e->position() - pressPos_;
         setWindow(pressCentre_ - d.y() * pressWidth_ / 200.0, pressWidth_ * std::pow(2.0, d.x() / 150.0));
@@ -187,6 +230,96 @@ void SliceView::wheelEvent(QWheelEvent* e) {
     point_ += normal * step * (e->angleDelta().y() > 0 ? 1.0 : -1.0);
     emit pointChanged(point_);
     resample();
+}
+
+void SliceView::mouseReleaseEvent(QMouseEvent* e) {
+    if (measuring_ == Measuring::Roi && roi_) {
+        roi_->radius = glm::length(patientAt(e->position()) - roi_->centre);
+        measureRoi();
+    }
+    measuring_ = Measuring::None;
+    update();
+}
+
+void SliceView::measureRoi() {
+    roiStats_.reset();
+    roiError_.clear();
+    if (!roi_ || !reader_) return;
+    // One slice thick: the voxel spacing along the plane's normal.
+    const auto& g = reader_->geometry();
+    const glm::dvec3 n = roi_->normal;
+    double thickness = 0;
+    for (int a = 0; a < 3; ++a) thickness += std::abs(glm::dot(n, g.direction[a])) * g.spacing[a];
+    roi_->thickness = thickness;
+    try {
+        roiStats_ = core::RegionStatistics::compute(*reader_, *roi_);
+    } catch (const std::exception& ex) {
+        roiError_ = QString::fromStdString(ex.what());
+    }
+}
+
+std::optional<double> SliceView::rulerMm() const {
+    if (!ruler_) return std::nullopt;
+    return glm::length(ruler_->second - ruler_->first);
+}
+
+QPointF SliceView::widgetAt(const glm::dvec3& patient) const {
+    const auto p = plane();
+    return {width() / 2.0 + glm::dot(patient - p.centre, p.right) / p.pixelMm,
+            height() / 2.0 + glm::dot(patient - p.centre, p.down) / p.pixelMm};
+}
+
+bool SliceView::onThisSlice(const glm::dvec3& patient) const {
+    const auto p = plane();
+    const auto& g = reader_->geometry();
+    return std::abs(glm::dot(patient - p.centre, p.normal())) <= 0.5 * std::min({g.spacing.x, g.spacing.y, g.spacing.z}) + 1e-6;
+}
+
+void SliceView::paintMeasurements(QPainter& p) {
+    if (!reader_) return;
+    const bool assumed = reader_->geometry().spacingAssumed;
+    const QString unit = assumed ? tr(" (spacing assumed)") : QString();
+    const QColor colour(120, 255, 140);
+    // Text on a dark box, so that it reads over bright tissue and never hides under other text.
+    const auto boxed = [&](const QRectF& area, int flags, const QString& text) {
+        const QRectF used = p.boundingRect(area, flags, text);
+        p.fillRect(used.adjusted(-3, -2, 3, 2), QColor(0, 0, 0, 170));
+        p.setPen(colour);
+        p.drawText(area, flags, text);
+    };
+    p.setRenderHint(QPainter::Antialiasing);
+    if (ruler_ && onThisSlice(ruler_->first)) {
+        const QPointF a = widgetAt(ruler_->first), b = widgetAt(ruler_->second);
+        p.setPen(QPen(colour, 1.5));
+        p.drawLine(a, b);
+        p.drawEllipse(a, 2.5, 2.5);
+        p.drawEllipse(b, 2.5, 2.5);
+        const QPointF mid = (a + b) / 2.0;
+        boxed(QRectF(mid.x() - 80, mid.y() - 22, 160, 18), Qt::AlignHCenter | Qt::AlignBottom,
+              tr("%1 mm%2").arg(*rulerMm(), 0, 'f', 1).arg(unit));
+    }
+    if (roi_ && onThisSlice(roi_->centre) && roi_->radius > 0) {
+        const QPointF c = widgetAt(roi_->centre);
+        const double r = roi_->radius / plane().pixelMm;
+        p.setPen(QPen(colour, 1.5));
+        p.setBrush(Qt::NoBrush);
+        p.drawEllipse(c, r, r);
+        QString text;
+        if (roiStats_) {
+            const auto& s = *roiStats_;
+            const QString u = s.units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(s.units);
+            text = tr("mean %1%2, SD %3\nmin %4, max %5\n%6 voxels, %7 mm\u00b2%8")
+                       .arg(s.mean, 0, 'f', 1).arg(u).arg(s.sd, 0, 'f', 1).arg(s.min, 0, 'g', 6).arg(s.max, 0, 'g', 6)
+                       .arg(s.voxels).arg(s.areaMm2, 0, 'f', 1).arg(unit);
+            if (!s.note.empty()) text += "\n" + QString::fromStdString(s.note);
+        } else if (!roiError_.isEmpty()) {
+            text = roiError_;
+        }
+        // The statistics at the top left, clear of the orientation letters and the window.
+        if (!text.isEmpty())
+            boxed(QRectF(6, 22, std::max(80, width() / 2), height() / 2), Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap,
+                  text);
+    }
 }
 
 }  // namespace hvx::ui

@@ -2,13 +2,17 @@
 #include <QImage>
 #include <QWidget>
 
+class QPainter;
+
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "core/streaming/BrickCache.h"
 #include "core/octree/OctreeReader.h"
+#include "core/reference/RegionStatistics.h"
 #include "core/reference/SliceSampler.h"
 #include "core/volume/DisplayWindow.h"
 
@@ -19,7 +23,9 @@ namespace hvx::ui {
 /// the other views (click or drag sets the point; the wheel steps through slices) and
 /// orientation labels. Each volume opens with its own window (core::DisplayWindow::initial:
 /// the DICOM's, else CT's W 400 / L 40, else its value range until the histogram's 1st-99th
-/// percentile arrives); the number keys pick its presets. For orientation, not a full MPR suite.
+/// percentile arrives); the number keys pick its presets. Shift-drag measures a distance (mm),
+/// Ctrl-drag a circle's statistics (a disc one slice thick, from the octree's level 0, in HU for
+/// CT); Esc clears them; both are drawn only on the slice they were made on.
 ///
 /// Threading: GUI thread only.
 class SliceView : public QWidget {
@@ -45,6 +51,11 @@ public:
     int level() const { return level_; }
     /// Patient position under a widget position.
     glm::dvec3 patientAt(const QPointF& pos) const;
+    /// The distance measured by Shift-drag (mm between its ends), if any.
+    std::optional<double> rulerMm() const;
+    /// The circle measured by Ctrl-drag and its statistics, if any.
+    const std::optional<core::MeasureRegion>& roi() const { return roi_; }
+    const std::optional<core::RegionStatistics>& roiStatistics() const { return roiStats_; }
 
 signals:
     void pointChanged(const glm::dvec3& patient);
@@ -56,12 +67,19 @@ protected:
     void resizeEvent(QResizeEvent*) override;
     void mousePressEvent(QMouseEvent* e) override;
     void mouseMoveEvent(QMouseEvent* e) override;
+    void mouseReleaseEvent(QMouseEvent* e) override;
     void wheelEvent(QWheelEvent* e) override;
     void keyPressEvent(QKeyEvent* e) override;
 
 private:
     core::SlicePlane plane() const;
     void resample();
+    /// Widget position of a patient point on the current plane.
+    QPointF widgetAt(const glm::dvec3& patient) const;
+    /// Whether a point made on some slice lies on the current one (within half a voxel).
+    bool onThisSlice(const glm::dvec3& patient) const;
+    void measureRoi();
+    void paintMeasurements(QPainter& p);
 
     core::SlicePlane::Orientation orientation_;
     std::shared_ptr<const core::OctreeReader> reader_;
@@ -78,6 +96,11 @@ private:
     int level_ = 0;
     QPointF pressPos_;
     double pressCentre_ = 0, pressWidth_ = 0;
+    enum class Measuring { None, Ruler, Roi } measuring_ = Measuring::None;
+    std::optional<std::pair<glm::dvec3, glm::dvec3>> ruler_;
+    std::optional<core::MeasureRegion> roi_;
+    std::optional<core::RegionStatistics> roiStats_;
+    QString roiError_;
 };
 
 }  // namespace hvx::ui

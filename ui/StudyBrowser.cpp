@@ -1,5 +1,6 @@
 #include "ui/StudyBrowser.h"
 
+#include <QColor>
 #include <QComboBox>
 #include <QFileInfo>
 #include <QFormLayout>
@@ -104,10 +105,10 @@ StudyBrowser::StudyBrowser(JobManager& jobs, QString databasePath, QWidget* pare
     to_->setValidator(date);
     modality_->addItems({tr("Any"), "CT", "MR", "PT", "NM", "US", "XA", "CR", "DX", "MG", "RTDOSE"});
     modality_->setToolTip(tr("Studies with at least one series of this modality"));
-    tree_->setHeaderLabels({tr("Patient / study / series"), tr("ID / date"), tr("Modality"), tr("Images")});
+    tree_->setHeaderLabels({tr("Patient / study / series"), tr("ID / date"), tr("Modality"), tr("Images"), tr("Notes")});
     tree_->header()->setStretchLastSection(false);
     tree_->header()->setSectionResizeMode(0, QHeaderView::Stretch);
-    for (int c = 1; c < 4; ++c) tree_->header()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
+    for (int c = 1; c < 5; ++c) tree_->header()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
     tree_->setIconSize(QSize(40, 40));
     tree_->setAlternatingRowColors(true);
     tree_->setToolTip(tr("Double-click a series to open it"));
@@ -171,8 +172,18 @@ void StudyBrowser::refresh() {
                     cached = thumbnails_.insert(thumbKey, octree ? thumbnail(se.octreePath)
                                                             : dicomThumbnail(db.filesOfSeries(se.seriesUid)));
                 item->setIcon(0, *cached);
-                item->setToolTip(0, se.octreePath.empty() ? tr("No octree yet: opening builds it in the background")
-                                                          : tr("Octree: %1").arg(QString::fromStdString(se.octreePath)));
+                QString tip = se.octreePath.empty() ? tr("No octree yet: opening builds it in the background")
+                                                    : tr("Octree: %1").arg(QString::fromStdString(se.octreePath));
+                if (!se.warnings.empty()) {  // assumed spacing or orientation, gaps...: said in the row itself
+                    QStringList lines;
+                    for (const auto& w : se.warnings) lines << QString::fromStdString(w);
+                    item->setText(4, tr("\u26A0 %1").arg(lines.first()) +
+                                         (lines.size() > 1 ? tr(" (+%1 more)").arg(lines.size() - 1) : QString()));
+                    item->setForeground(4, QColor(230, 170, 40));
+                    tip += "\n\n" + lines.join("\n");
+                }
+                item->setToolTip(0, tip);
+                item->setToolTip(4, tip);
                 // A 4D series: one row per volume, with what varies (echo, b-value, time).
                 for (const auto& v : db.volumesOfSeries(se.seriesUid)) {
                     const QString vlabel = QStringLiteral("#%1 %2").arg(v.number).arg(QString::fromStdString(v.varying));

@@ -131,6 +131,8 @@ void VolumeView::resetView() {
 }
 
 QStringList VolumeView::orientationLabels() const {
+    // Without a known orientation the letters would be a guess: "?" instead (left is never right).
+    if (scene_ && scene_->reader->geometry().orientationAssumed) return {"?", "?", "?", "?"};
     return {QString::fromStdString(core::OrbitCamera::patientLabel(-camera_.right())),
             QString::fromStdString(core::OrbitCamera::patientLabel(camera_.right())),
             QString::fromStdString(core::OrbitCamera::patientLabel(camera_.up())),
@@ -222,6 +224,7 @@ void VolumeView::paintOverlays(QPainter& p) {
     // Patient-orientation labels at the edges.
     p.setFont(font());
     drawEdgeLabels(p, rect().adjusted(8, 6, -8, -6), orientationLabels(), 1.4);
+    drawAssumedGeometry(p, rect().adjusted(8, 30, -8, -6), scene_->reader->geometry());
     // Orientation cube (bottom left): faces towards the viewer, lettered in patient terms.
     const double s = 26.0;
     const QPointF c(14 + s * 1.3, height() - 14 - s * 1.3);
@@ -253,7 +256,8 @@ void VolumeView::paintOverlays(QPainter& p) {
         p.setPen(QColor(220, 220, 220));
         p.drawPath(path);
         const QPointF centre = cubePoint(face.n);
-        p.drawText(QRectF(centre.x() - 10, centre.y() - 10, 20, 20), Qt::AlignCenter, face.letter);
+        p.drawText(QRectF(centre.x() - 10, centre.y() - 10, 20, 20), Qt::AlignCenter,
+                   scene_->reader->geometry().orientationAssumed ? "?" : face.letter);
     }
     // Probe handles: the centre and the outline of the focal and context probes.
     const auto& tools = settings_.tools;

@@ -19,4 +19,6 @@ int pacsCommand(int argc, char** argv);
 int listenCommand(int argc, char** argv);
 int renderCommand(int argc, char** argv);
 int lightFieldCommand(int argc, char** argv);
+int measureCommand(int argc, char** argv);
+int sliceCommand(int argc, char** argv);
 }  // namespace hvx::app

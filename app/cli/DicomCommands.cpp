@@ -139,6 +139,7 @@ int studiesCommand(int argc, char** argv) {
             std::printf("    series %3d %-4s %-28s %4d images  %s%s%s\n", se.number, se.modality.c_str(),
                         se.description.c_str(), se.instanceCount, se.seriesUid.c_str(),
                         se.octreePath.empty() ? "" : "  octree: ", se.octreePath.c_str());
+            for (const auto& w : se.warnings) std::printf("      warning: %s\n", w.c_str());
             for (const auto& v : db.volumesOfSeries(se.seriesUid))  // a 4D series' volumes
                 std::printf("      #%d %s%s%s\n", v.number, v.varying.c_str(), v.octreePath.empty() ? "" : "  octree: ",
                             v.octreePath.c_str());

@@ -41,6 +41,10 @@ void usage() {
         "  lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] [--eta 0..1]\n"
         "        [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json]\n"
         "        [--cpu] | --list\n"
+        "  measure FILE.hvo --roi sphere:X,Y,Z,R | box:X0,Y0,Z0,X1,Y1,Z1   voxels, mean, SD, min, max and\n"
+        "        volume of a region (LPS mm), from the full-resolution level, in HU for CT\n"
+        "  slice FILE.hvo --plane axial|coronal|sagittal|NX,NY,NZ [--at X,Y,Z] [--size WxH] [--pixel MM]\n"
+        "        [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--level N] -o OUT.png   a windowed slice\n"
         "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
         "  version                       versions of Holovox and its libraries");
 }
@@ -68,6 +72,8 @@ int main(int argc, char** argv) {
         if (cmd == "listen") return hvx::app::listenCommand(argc, argv);
         if (cmd == "render") return hvx::app::renderCommand(argc, argv);
         if (cmd == "lightfield") return hvx::app::lightFieldCommand(argc, argv);
+        if (cmd == "measure") return hvx::app::measureCommand(argc, argv);
+        if (cmd == "slice") return hvx::app::sliceCommand(argc, argv);
         if (cmd == "version" || cmd == "--version") return hvx::app::versionCommand(argc, argv);
         std::fprintf(stderr, "holovox-cli: unknown command '%s' (try --help)\n", cmd.c_str());
         return 2;

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
 #include "core/base/Error.h"
 
@@ -36,7 +37,10 @@ void ImageWriter::write(const RenderImage& image, const std::string& path) {
     else throw Error(path + ": output must end in .png or .exr");
 }
 
-void ImageWriter::writePng(const RenderImage& image, const std::string& path) {
+namespace {
+/// Writes rows of `channels` 8-bit samples (1: grey, 4: RGBA) as a PNG, under a temporary name.
+void writePngRows(int width, int height, int channels, const std::function<void(int, png_byte*)>& fillRow,
+                  const std::string& path) {
     const std::string tmp = temporaryName(path);
     FILE* f = std::fopen(tmp.c_str(), "wb");
     if (!f) throw Error(path + ": cannot write image");
@@ -49,24 +53,13 @@ void ImageWriter::writePng(const RenderImage& image, const std::string& path) {
         throw Error(path + ": PNG encoding failed (disk full?)");
     }
     png_init_io(png, f);
-    png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), 8, PNG_COLOR_TYPE_RGBA,
-                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8,
+                 channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
-    std::vector<png_byte> row(std::size_t(image.width) * 4);
-    auto encode = [](float v) {
-        v = std::clamp(v, 0.0f, 1.0f);
-        const float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-        return png_byte(std::lround(s * 255.0f));
-    };
-    for (int y = 0; y < image.height; ++y) {
-        for (int x = 0; x < image.width; ++x) {
-            // Premultiplied colour over the black background a reading room expects.
-            const glm::vec4 c = image.rgba[std::size_t(y) * image.width + x];
-            row[std::size_t(x) * 4 + 0] = encode(c.r);
-            row[std::size_t(x) * 4 + 1] = encode(c.g);
-            row[std::size_t(x) * 4 + 2] = encode(c.b);
-            row[std::size_t(x) * 4 + 3] = 255;
-        }
+    std::vector<png_byte> row(std::size_t(width) * std::size_t(channels));
+    for (int y = 0; y < height; ++y) {
+        fillRow(y, row.data());
         png_write_row(png, row.data());
     }
     png_write_end(png, nullptr);
@@ -76,6 +69,32 @@ void ImageWriter::writePng(const RenderImage& image, const std::string& path) {
         throw Error(path + ": cannot write image (disk full?)");
     }
     commit(tmp, path);
+}
+}  // namespace
+
+void ImageWriter::writePng(const RenderImage& image, const std::string& path) {
+    auto encode = [](float v) {
+        v = std::clamp(v, 0.0f, 1.0f);
+        const float s = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+        return png_byte(std::lround(s * 255.0f));
+    };
+    writePngRows(image.width, image.height, 4, [&](int y, png_byte* row) {
+        for (int x = 0; x < image.width; ++x) {
+            // Premultiplied colour over the black background a reading room expects.
+            const glm::vec4 c = image.rgba[std::size_t(y) * std::size_t(image.width) + std::size_t(x)];
+            row[std::size_t(x) * 4 + 0] = encode(c.r);
+            row[std::size_t(x) * 4 + 1] = encode(c.g);
+            row[std::size_t(x) * 4 + 2] = encode(c.b);
+            row[std::size_t(x) * 4 + 3] = 255;
+        }
+    }, path);
+}
+
+void ImageWriter::writeGreyPng(int width, int height, const std::vector<std::uint8_t>& grey, const std::string& path) {
+    if (grey.size() != std::size_t(width) * std::size_t(height)) throw Error(path + ": grey image of the wrong size");
+    writePngRows(width, height, 1, [&](int y, png_byte* row) {
+        std::copy_n(grey.data() + std::size_t(y) * std::size_t(width), std::size_t(width), row);
+    }, path);
 }
 
 namespace {

@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@ public:
     /// Picks the format from the extension (.png or .exr).
     static void write(const RenderImage& image, const std::string& path);
     static void writePng(const RenderImage& image, const std::string& path);
+    /// An 8-bit grey PNG of display values as they are (no sRGB encoding: a windowed slice).
+    static void writeGreyPng(int width, int height, const std::vector<std::uint8_t>& grey, const std::string& path);
     static void writeExr(const RenderImage& image, const std::string& path);
     /// One OpenEXR file with one part per image (light-field views), each part named.
     static void writeExrParts(const std::vector<RenderImage>& images, const std::vector<std::string>& names,

@@ -31,6 +31,8 @@ enum FileFlags : std::uint32_t {
     FileEmptyThreshold = 4u,
     FileShuffled = 8u,  ///< multi-byte payloads are byte-shuffled into planes before compression
     FileMonochrome1 = 16u,  ///< display inverted (DICOM MONOCHROME1)
+    FileSpacingAssumed = 32u,      ///< VolumeGeometry::spacingAssumed
+    FileOrientationAssumed = 64u,  ///< VolumeGeometry::orientationAssumed
 };
 /// NodeRecord::flags.
 enum NodeFlags : std::uint32_t { NodeEmpty = 1u, NodeLossy8 = 2u };

@@ -239,7 +239,8 @@ void fillHeader(hvo::FileHeader& h, const VolumeGeometry& g, const BuildOptions&
     h.codec = std::uint32_t(opt.codec);
     h.flags = (opt.labels || g.isLabel ? hvo::FileLabels : 0u) | (opt.lossy8 ? hvo::FileLossy8 : 0u) |
               (opt.emptyBelow ? hvo::FileEmptyThreshold : 0u) | hvo::FileShuffled |
-              (g.monochrome1 ? hvo::FileMonochrome1 : 0u);
+              (g.monochrome1 ? hvo::FileMonochrome1 : 0u) | (g.spacingAssumed ? hvo::FileSpacingAssumed : 0u) |
+              (g.orientationAssumed ? hvo::FileOrientationAssumed : 0u);
     h.rescaleSlope = g.rescaleSlope;
     h.rescaleIntercept = g.rescaleIntercept;
     h.emptyBelow = opt.emptyBelow ? *opt.emptyBelow : 0.0;

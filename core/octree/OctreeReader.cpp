@@ -79,6 +79,8 @@ void OctreeReader::load() {
     g.modality.assign(h.modality, strnlen(h.modality, sizeof h.modality));
     g.isLabel = (h.flags & hvo::FileLabels) != 0;
     g.monochrome1 = (h.flags & hvo::FileMonochrome1) != 0;
+    g.spacingAssumed = (h.flags & hvo::FileSpacingAssumed) != 0;
+    g.orientationAssumed = (h.flags & hvo::FileOrientationAssumed) != 0;
     for (const auto& w : h.windows)
         if (w.width > 0 && std::isfinite(w.width) && std::isfinite(w.centre))
             g.windows.push_back({std::string(w.name, strnlen(w.name, sizeof w.name)), w.centre, w.width});

@@ -4,6 +4,11 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/geometric.hpp>
+
+#include "core/base/Error.h"
+#include "core/camera/OrbitCamera.h"
+
 namespace hvx::core {
 
 SlicePlane SlicePlane::standard(Orientation o, const glm::dvec3& centre, double pixelMm, int width, int height) {
@@ -27,6 +32,41 @@ std::array<const char*, 4> SlicePlane::edgeLabels(Orientation o) {
     case Orientation::Sagittal: break;
     }
     return {"A", "P", "S", "I"};
+}
+
+SlicePlane SlicePlane::oblique(const glm::dvec3& normal, const glm::dvec3& centre, double pixelMm, int width,
+                               int height) {
+    const double len = glm::length(normal);
+    if (!(len > 0) || !std::isfinite(len)) throw Error("a slice plane needs a normal of non-zero length");
+    glm::dvec3 n = normal / len;
+    SlicePlane best;
+    double bestDot = -1;
+    for (const auto o : {Orientation::Axial, Orientation::Coronal, Orientation::Sagittal}) {
+        const SlicePlane p = standard(o, centre, pixelMm, width, height);
+        const double d = std::abs(glm::dot(p.normal(), n));
+        if (d > bestDot) bestDot = d, best = p;
+    }
+    if (glm::dot(best.normal(), n) < 0) n = -n;  // a plane has no side: keep the standard's view
+    // Rodrigues: the smallest rotation taking the standard's normal onto n.
+    const glm::dvec3 from = best.normal();
+    const glm::dvec3 axis = glm::cross(from, n);
+    const double s = glm::length(axis), c = glm::dot(from, n);
+    if (s > 1e-12) {
+        const glm::dvec3 k = axis / s;
+        const auto rotate = [&](const glm::dvec3& v) {
+            return v * c + glm::cross(k, v) * s + k * glm::dot(k, v) * (1 - c);
+        };
+        best.right = glm::normalize(rotate(best.right));
+        best.down = glm::normalize(rotate(best.down));
+    }
+    return best;
+}
+
+glm::dvec3 SlicePlane::normal() const { return glm::normalize(glm::cross(right, down)); }
+
+std::array<std::string, 4> SlicePlane::edgeLabels() const {
+    return {OrbitCamera::patientLabel(-right), OrbitCamera::patientLabel(right), OrbitCamera::patientLabel(-down),
+            OrbitCamera::patientLabel(down)};
 }
 
 SliceSampler::SliceSampler(const OctreeReader& reader, BrickCache& cache)
@@ -93,6 +133,46 @@ SliceImage SliceSampler::sample(const SlicePlane& plane, int level) const {
             }
             out.values[std::size_t(j) * std::size_t(plane.width) + std::size_t(i)] = float(v);
         }
+    return out;
+}
+
+SliceImage SliceSampler::sampleSlab(const SlicePlane& plane, double thicknessMm, SlabMode mode, int level) const {
+    if (!(thicknessMm > 0) || !std::isfinite(thicknessMm))
+        throw Error("a slab needs a thickness above 0 mm (" + std::to_string(thicknessMm) + " given)");
+    const int lvl = level >= 0 ? std::min(level, reader_.levelCount() - 1) : levelFor(plane.pixelMm);
+    const auto& g = reader_.geometry();
+    const glm::dvec3 extent = glm::dvec3(g.dims[0], g.dims[1], g.dims[2]) * g.spacing;
+    thicknessMm = std::min(thicknessMm, glm::length(extent));  // thicker than the volume: all of it
+    const double step = space_.minSpacing * std::pow(2.0, lvl);
+    const int n = std::max(1, int(std::floor(thicknessMm / step + 1e-9)) + 1);
+    const glm::dvec3 normal = plane.normal();
+    SliceImage out;
+    std::vector<double> acc;  // max, min or sum of the samples in the volume
+    std::vector<int> count;
+    for (int s = 0; s < n; ++s) {
+        SlicePlane p = plane;
+        p.centre += normal * ((s - (n - 1) / 2.0) * step);
+        SliceImage one = sample(p, lvl);
+        if (s == 0) {
+            acc.assign(one.values.size(), 0.0);
+            count.assign(one.values.size(), 0);
+        }
+        for (std::size_t i = 0; i < one.values.size(); ++i) {
+            const double v = one.values[i];
+            if (std::isnan(v)) continue;
+            double& a = acc[i];
+            if (count[i]++ == 0) a = v;
+            else if (mode == SlabMode::Mip) a = std::max(a, v);
+            else if (mode == SlabMode::MinIp) a = std::min(a, v);
+            else a += v;
+        }
+        if (s == 0) out = std::move(one);
+    }
+    for (std::size_t i = 0; i < out.values.size(); ++i)
+        out.values[i] = count[i] == 0 ? std::numeric_limits<float>::quiet_NaN()
+                                      : float(mode == SlabMode::Mean ? acc[i] / count[i] : acc[i]);
+    out.slabMm = thicknessMm;
+    out.slabSamples = n;
     return out;
 }
 

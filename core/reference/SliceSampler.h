@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -25,14 +26,29 @@ struct SlicePlane {
     /// left on the image right, anterior up), coronal seen from the front (left on the right,
     /// superior up), sagittal seen from the patient's left (anterior on the left, superior up).
     static SlicePlane standard(Orientation o, const glm::dvec3& centre, double pixelMm, int width, int height);
+    /// A plane perpendicular to `normal` (any direction, not zero): the standard plane whose
+    /// normal is nearest, tilted by the smallest rotation onto `normal`, so that it is seen as a
+    /// reader expects that plane (a tilted axial stays an axial seen from the feet).
+    static SlicePlane oblique(const glm::dvec3& normal, const glm::dvec3& centre, double pixelMm, int width,
+                              int height);
     /// Orientation letters at the image's left, right, top and bottom edges ("R", "L", "A", ...).
     static std::array<const char*, 4> edgeLabels(Orientation o);
+    /// The letters of this plane's edges for any tilt ("RA" where the edge lies between right
+    /// and anterior), left, right, top, bottom.
+    std::array<std::string, 4> edgeLabels() const;
+    /// right x down: the unit normal, pointing away from the viewer.
+    glm::dvec3 normal() const;
 };
+
+/// How a thick slab combines the samples across its thickness.
+enum class SlabMode { Mip, MinIp, Mean };
 
 /// A sampled slice: stored values (NaN outside the volume) and the octree level read.
 struct SliceImage {
     int width = 0, height = 0, level = 0;
     std::vector<float> values;
+    double slabMm = 0;  ///< the thickness sampled (0: a thin slice)
+    int slabSamples = 1;
 };
 
 /// Samples planes through an octree at the level whose voxels match the plane's pixels, reading
@@ -47,6 +63,10 @@ public:
     int levelFor(double pixelMm) const;
     /// Samples `plane` at levelFor(plane.pixelMm), or at `level` when given (>= 0).
     SliceImage sample(const SlicePlane& plane, int level = -1) const;
+    /// A thick slab centred on `plane`: samples one level voxel apart along the normal across
+    /// `thicknessMm`, combined by `mode` (NaN where no sample lies in the volume). A slab
+    /// thicker than the volume's diagonal is clamped to it; a thickness <= 0 throws core::Error.
+    SliceImage sampleSlab(const SlicePlane& plane, double thicknessMm, SlabMode mode, int level = -1) const;
     const OctreeSpace& space() const { return space_; }
 
 private:

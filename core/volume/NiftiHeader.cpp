@@ -204,6 +204,7 @@ NiftiHeader NiftiHeader::parse(const unsigned char* bytes, std::size_t size, con
         }
         h.warnings.push_back("it has no orientation (qform_code and sform_code are 0): it is placed by its voxel "
                              "sizes alone, and left and right are not known");
+        h.geometry.orientationAssumed = true;  // the views draw "?" for the orientation letters
     }
 
     // RAS+ millimetres (in the file's unit) to LPS millimetres.

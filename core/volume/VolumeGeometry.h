@@ -29,6 +29,8 @@ struct VolumeGeometry {
     std::string modality = "OT";  ///< DICOM modality code (CT, MR, ...), "OT" when unknown
     bool isLabel = false;         ///< label map: values are classes, filtered by mode not mean
     bool monochrome1 = false;     ///< DICOM MONOCHROME1: display with inverted grey scale
+    bool spacingAssumed = false;      ///< the source gave no pixel spacing: 1 mm assumed, lengths are not mm
+    bool orientationAssumed = false;  ///< the source gave no orientation: axial assumed, left/right unknown
     /// The source's own windows (DICOM WindowCenter/WindowWidth and their explanations), first
     /// the default; at most 4 are kept in an .hvo.
     std::vector<DisplayWindow> windows;

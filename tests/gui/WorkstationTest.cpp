@@ -13,6 +13,7 @@
 #include <QPushButton>
 #include <QSettings>
 #include <QSlider>
+#include <QSpinBox>
 #include <QSignalSpy>
 #include <QSurfaceFormat>
 #include <QTest>
@@ -24,6 +25,8 @@
 #include <filesystem>
 
 #include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/reference/RegionStatistics.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "dicom/DicomSeriesWriter.h"
 #include "tests/support/MemoryVoxelSource.h"
@@ -35,12 +38,14 @@
 #include "ui/LightFieldPanel.h"
 #include "ui/LightFieldWindow.h"
 #include "ui/MainWindow.h"
+#include "ui/PacsNodeDialog.h"
 #include "ui/PacsPanel.h"
 #include "ui/RenderControls.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
 #include "ui/ToolsPanel.h"
 #include "core/base/Error.h"
+#include "ui/TransferFunctionCanvas.h"
 #include "ui/TransferFunctionEditor.h"
 #include "ui/VolumeView.h"
 
@@ -182,6 +187,67 @@ private slots:
         const QImage after = settledFrame();
         QVERIFY2(difference(before, after) > 1.0, "the image changes with the transfer function");
         saveArtifact("soft-tissue.png");
+    }
+
+    // The transfer-function canvas by mouse and keys: a click on the curve adds a point where it
+    // was clicked, a drag raises it (and the image changes), Delete removes it, a right click
+    // removes an interior point, and a middle drag shifts every point (window/level).
+    void transferFunctionCanvasEditsByMouseAndKeys() {
+        auto* canvas = window_->tfEditor()->canvas();
+        canvas->show();
+        QVERIFY(QTest::qWaitForWindowExposed(canvas->window()));
+        const auto original = canvas->spec();
+        const QImage before = settledFrame();
+        const double lo = original.opacity.front().value, hi = original.opacity.back().value;
+        // A value between two existing points, well away from their handles.
+        double v = 0;
+        for (std::size_t i = 0; i + 1 < original.opacity.size() && v == 0; ++i) {
+            const QPointF a = canvas->opacityPoint(original.opacity[i].value, 0);
+            const QPointF b = canvas->opacityPoint(original.opacity[i + 1].value, 0);
+            if (b.x() - a.x() > 40) v = canvas->valueAt((a.x() + b.x()) / 2);
+        }
+        QVERIFY2(v != 0, "no gap of 40 px between two opacity points");
+        const QPoint at = canvas->opacityPoint(v, 0.1).toPoint();
+        QTest::mousePress(canvas, Qt::LeftButton, {}, at);
+        QCOMPARE(canvas->spec().opacity.size(), original.opacity.size() + 1);
+        const QPoint up = canvas->opacityPoint(v, 0.9).toPoint();
+        QMouseEvent move(QEvent::MouseMove, QPointF(up), canvas->mapToGlobal(QPointF(up)), Qt::NoButton, Qt::LeftButton,
+                         Qt::NoModifier);
+        QApplication::sendEvent(canvas, &move);
+        QTest::mouseRelease(canvas, Qt::LeftButton, {}, up);
+        bool raised = false;
+        for (const auto& p : canvas->spec().opacity)
+            raised |= std::abs(p.value - v) < (hi - lo) * 0.02 && std::abs(p.alpha - 0.9) < 0.03;
+        QVERIFY2(raised, "the new point sits where the pointer let go (value, opacity 0.9)");
+        const QImage edited = settledFrame();
+        QVERIFY2(difference(before, edited) > 0.5, "the image follows the edited curve");
+        canvas->setFocus();
+        QTest::keyClick(canvas, Qt::Key_Delete);  // the point just dragged
+        QCOMPARE(canvas->spec().opacity.size(), original.opacity.size());
+        // A middle drag (or Ctrl-drag) to the right: every point of the curve moves to higher values.
+        const QPoint from = canvas->curveRect().center().toPoint();
+        QTest::mousePress(canvas, Qt::MiddleButton, {}, from);
+        const QPoint to = from + QPoint(30, 0);
+        QMouseEvent shift(QEvent::MouseMove, QPointF(to), canvas->mapToGlobal(QPointF(to)), Qt::NoButton,
+                          Qt::MiddleButton, Qt::NoModifier);
+        QApplication::sendEvent(canvas, &shift);
+        QTest::mouseRelease(canvas, Qt::MiddleButton, {}, to);
+        // The ends stay pinned to the value range (a new end point where the curve left it), so
+        // compare where the opacity lies: its centroid over the range moved to higher values.
+        const auto centroid = [&](const core::TransferFunctionSpec& spec) {
+            double sum = 0, weighted = 0;
+            for (int i = 0; i <= 1000; ++i) {
+                const double x = lo + (hi - lo) * i / 1000.0, a = spec.opacityAt(x);
+                sum += a;
+                weighted += a * x;
+            }
+            return weighted / sum;
+        };
+        const double was = centroid(original), now = centroid(canvas->spec());
+        QVERIFY2(now > was + 0.01 * (hi - lo), qPrintable(QString("opacity centroid %1 -> %2").arg(was).arg(now)));
+        // Back to the preset for the tests that follow.
+        window_->tfEditor()->setSpec(original);
+        QCOMPARE(canvas->spec().opacity.size(), original.opacity.size());
     }
 
     void switchesRenderModes() {
@@ -348,6 +414,28 @@ private slots:
         QTRY_VERIFY_WITH_TIMEOUT(!pacs->errorText().isEmpty() && !pacs->errorText().startsWith("Searching"), 60000);
         QVERIFY2(pacs->errorText().contains("port", Qt::CaseInsensitive), qPrintable(pacs->errorText()));
         saveArtifact("pacs.png");
+
+        // The node dialog: typed values, Echo with them (the wrong port, then the right one),
+        // and an AE title that cannot be longer than DICOM's 16 characters.
+        ui::PacsNodeDialog dialog(peer.settings(), s.nodes[0]);
+        dialog.show();
+        QVERIFY(QTest::qWaitForWindowExposed(&dialog));
+        QVERIFY2(dialog.echo().contains("port", Qt::CaseInsensitive), "the echo uses the typed (wrong) port");
+        auto* port = dialog.findChild<QSpinBox*>();
+        QVERIFY(port);
+        port->selectAll();
+        QTest::keyClicks(port, QString::number(peer.dicomPort()));
+        QCOMPARE(port->value(), int(peer.dicomPort()));
+        QVERIFY2(dialog.echo().contains("Echo succeeded"), qPrintable(dialog.echo()));
+        QLineEdit* ae = nullptr;
+        for (auto* e : dialog.findChildren<QLineEdit*>())
+            if (e->text() == QString::fromStdString(peer.aeTitle())) ae = e;
+        QVERIFY(ae);
+        ae->selectAll();
+        QTest::keyClicks(ae, "A_TITLE_LONGER_THAN_SIXTEEN");
+        QCOMPARE(dialog.node().aeTitle, std::string("A_TITLE_LONGER_T"));
+        QVERIFY2(dialog.echo().contains("A_TITLE_LONGER_T"), "a wrong called AE title is named in the answer");
+        dialog.close();
     }
 
     // A CT opened after an MR gets its own window (not the MR's), the number keys pick the CT
@@ -399,6 +487,48 @@ private slots:
         QCOMPARE(axial->windowWidth(), mrWidth);  // the percentile window does not override a choice
     }
 
+    // Shift-drag measures a distance in mm (the pixel size being the volume's extent over the
+    // view's shorter side), Ctrl-drag a circle's statistics, computed from level 0 for the
+    // disc one slice thick that was drawn; Esc clears both.
+    void sliceViewMeasuresADistanceAndACircle() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        QVERIFY(QTest::qWaitForWindowExposed(axial));
+        const QPoint a(axial->width() / 2 - 40, axial->height() / 2), b(axial->width() / 2 + 20, axial->height() / 2);
+        QTest::mousePress(axial, Qt::LeftButton, Qt::ShiftModifier, a);
+        QMouseEvent drag(QEvent::MouseMove, QPointF(b), axial->mapToGlobal(QPointF(b)), Qt::NoButton, Qt::LeftButton,
+                         Qt::ShiftModifier);
+        QApplication::sendEvent(axial, &drag);
+        QTest::mouseRelease(axial, Qt::LeftButton, Qt::ShiftModifier, b);
+        QVERIFY(axial->rulerMm().has_value());
+        const double pixelMm = 300.0 / std::min(axial->width(), axial->height());  // the phantom spans 300 mm
+        QVERIFY2(std::abs(*axial->rulerMm() - 60 * pixelMm) < 1e-6 * 60 * pixelMm,
+                 qPrintable(QString("%1 mm for 60 px of %2 mm").arg(*axial->rulerMm()).arg(pixelMm)));
+        // A circle of 25 px around the view's centre.
+        const QPoint c(axial->width() / 2, axial->height() / 2), rim = c + QPoint(25, 0);
+        QTest::mousePress(axial, Qt::LeftButton, Qt::ControlModifier, c);
+        QMouseEvent grow(QEvent::MouseMove, QPointF(rim), axial->mapToGlobal(QPointF(rim)), Qt::NoButton, Qt::LeftButton,
+                         Qt::ControlModifier);
+        QApplication::sendEvent(axial, &grow);
+        QTest::mouseRelease(axial, Qt::LeftButton, Qt::ControlModifier, rim);
+        QVERIFY(axial->roiStatistics().has_value());
+        const auto& roi = *axial->roi();
+        QVERIFY2(std::abs(roi.radius - 25 * pixelMm) < 1e-6 * 25 * pixelMm, qPrintable(QString::number(roi.radius)));
+        QCOMPARE(roi.normal, glm::dvec3(0, 0, 1));
+        const auto reader = core::OctreeReader::open(dir_.file("w-ct.hvo"));
+        const auto direct = core::RegionStatistics::compute(*reader, roi);
+        QCOMPARE(axial->roiStatistics()->voxels, direct.voxels);
+        QCOMPARE(axial->roiStatistics()->mean, direct.mean);
+        QVERIFY(direct.voxels > 10);
+        QCOMPARE(axial->roiStatistics()->units, std::string("HU"));
+        settledFrame();
+        saveArtifact("slice-measurements.png");
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_Escape);
+        QVERIFY(!axial->rulerMm().has_value());
+        QVERIFY(!axial->roi().has_value());
+    }
+
     // A 4D series (dual echo, written by pydicom) lists one row per volume with what varies;
     // double-clicking a volume's row opens that volume.
     void fourDimensionalSeriesListsItsVolumesAndOpensOne() {
@@ -428,6 +558,105 @@ private slots:
         // Echo 2's pixels are 1000 above echo 1's (tests/support/dicom_cases.py): the view shows them.
         QVERIFY2(window_->slice(0)->windowCentre() > 900.0, qPrintable(QString::number(window_->slice(0)->windowCentre())));
         saveArtifact("browser-4d-series.png");
+    }
+
+    // The browser's filters, typed and picked as a user does: a name pattern (Enter), a modality,
+    // a date range; each shows exactly the studies that match, and clearing them shows all again.
+    void browserFiltersByNameModalityAndDate() {
+        auto* browser = window_->browser();
+        auto* tree = browser->tree();
+        browser->refresh();
+        const int all = tree->topLevelItemCount();
+        QVERIFY2(all >= 3, qPrintable(QString::number(all)));  // GUI^IMPORT, PACS^ROUNDTRIP, the pydicom cases
+        const auto patients = [&] {
+            QStringList names;
+            for (int i = 0; i < tree->topLevelItemCount(); ++i) names << tree->topLevelItem(i)->text(0);
+            return names;
+        };
+        QLineEdit *text = nullptr, *from = nullptr, *to = nullptr;
+        for (auto* e : browser->findChildren<QLineEdit*>()) {
+            if (e->placeholderText().startsWith("Patient")) text = e;
+            if (e->placeholderText().startsWith("from")) from = e;
+            if (e->placeholderText().startsWith("to")) to = e;
+        }
+        QVERIFY(text && from && to);
+        QTest::keyClicks(text, "PACS*");
+        QTest::keyClick(text, Qt::Key_Return);
+        QCOMPARE(patients().size(), 1);
+        QVERIFY2(patients().first().contains("PACS ROUNDTRIP"), qPrintable(patients().join(", ")));
+        text->clear();
+        auto* modality = browser->findChild<QComboBox*>();
+        QVERIFY(modality);
+        modality->setFocus();
+        modality->setCurrentText("MR");
+        emit modality->activated(modality->currentIndex());
+        QVERIFY(tree->topLevelItemCount() >= 1);
+        for (QTreeWidgetItemIterator it(tree); *it; ++it)
+            if ((*it)->parent() && !(*it)->parent()->parent())  // a study row: its modalities
+                QVERIFY2((*it)->text(2).contains("MR"), qPrintable((*it)->text(0) + " " + (*it)->text(2)));
+        modality->setCurrentText("Any");
+        QTest::keyClicks(from, "99990101");  // the future: nothing
+        QTest::keyClick(text, Qt::Key_Return);
+        QCOMPARE(tree->topLevelItemCount(), 0);
+        QTest::keyClicks(from, "x");  // the date field takes digits only
+        QCOMPARE(from->text(), QString("99990101"));
+        from->clear();
+        QTest::keyClick(text, Qt::Key_Return);
+        QCOMPARE(tree->topLevelItemCount(), all);
+    }
+
+    // A series without PixelSpacing and ImageOrientationPatient (pydicom): the browser row says
+    // so, the views say it in amber, and no orientation letter is drawn as if it were known.
+    void seriesWithoutGeometrySaysSoInItsRowAndViews() {
+        QSignalSpy imported(window_->browser(), &ui::StudyBrowser::imported);
+        window_->browser()->importPaths({QString::fromStdString(dir_.file("cases/nogeometry"))});
+        QTRY_COMPARE_WITH_TIMEOUT(imported.count(), 1, 60000);
+        auto* tree = window_->browser()->tree();
+        QTreeWidgetItem* row = nullptr;
+        for (QTreeWidgetItemIterator it(tree); *it; ++it)
+            if ((*it)->text(4).contains("spacing unknown, assumed 1 mm")) row = *it;
+        QVERIFY2(row, "the series row names the assumed spacing");
+        QVERIFY(row->toolTip(0).contains("orientation unknown"));
+        emit tree->itemActivated(row, 0);  // as a double-click or Enter on the row does
+        const QString label = row->data(0, Qt::UserRole + 3).toString();  // the browser's LabelRole
+        QVERIFY(!label.isEmpty());
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        QTRY_COMPARE_WITH_TIMEOUT(window_->openLabel(), label, 10000);
+        QCOMPARE(view()->orientationLabels(), (QStringList{"?", "?", "?", "?"}));
+        // The amber note at the top right of the slice view.
+        auto* axial = window_->slice(0);
+        const QImage shot = axial->grab().toImage();
+        int amber = 0;
+        for (int y = 0; y < 60 && y < shot.height(); ++y)
+            for (int x = shot.width() / 2; x < shot.width(); ++x) {
+                const QColor c = shot.pixelColor(x, y);
+                amber += c.red() > 200 && c.green() > 120 && c.green() < 200 && c.blue() < 90;
+            }
+        QVERIFY2(amber > 20, qPrintable(QString("amber pixels of the note: %1").arg(amber)));
+        saveArtifact("series-without-geometry.png");
+    }
+
+    // A 4D NIfTI (three volumes, written by nibabel) opens volume by volume: File > Open's path,
+    // asked for volume 2, builds that volume's octree in the background and shows it.
+    void fourDimensionalNiftiOpensTheVolumeAsked() {
+        const std::string nii = dir_.file("fourd.nii.gz");
+        const auto r = test::runCommand(
+            "/usr/bin/python3 -c \"import nibabel as nib, numpy as np; "
+            "d = np.stack([np.fromfunction(lambda i, j, k: 1000 * v + (i + j + k) % 50, (24, 24, 24)) for v in range(3)], "
+            "axis=-1).astype(np.int16); a = np.diag([-1.0, -1.0, 1.0, 1.0]); "
+            "img = nib.Nifti1Image(d, a); img.set_qform(a, 1); img.set_sform(a, 1); nib.save(img, '" + nii + "')\"");
+        QVERIFY2(r.exitCode == 0, r.output.c_str());
+        QVERIFY(ui::MainWindow::isVolumeFile(QString::fromStdString(nii)));
+        QVERIFY(!window_->openVolumeFile(QString::fromStdString(nii), 4));  // there are three
+        QVERIFY2(window_->lastError().contains("holds 3 volume(s)"), qPrintable(window_->lastError()));
+        QVERIFY(window_->openVolumeFile(QString::fromStdString(nii), 2));
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        QTRY_VERIFY_WITH_TIMEOUT(window_->openLabel() == "fourd.nii.gz \u2014 volume 2 of 3", 10000);
+        QVERIFY(window_->jobs()->waitIdle(60000));  // the percentile window of what is open
+        // Volume 2 holds 1000..1049 (volume 1: 0..49, volume 3: 2000..2049).
+        const double centre = window_->slice(0)->windowCentre();
+        QVERIFY2(centre > 1000 && centre < 1050, qPrintable(QString::number(centre)));
+        QCOMPARE(view()->orientationLabels(), (QStringList{"R", "L", "S", "I"}));
     }
 
     // A damaged or wrongly typed saved session is reset with a message, never a crash.

@@ -1,5 +1,6 @@
 // export-dicom checked by an independent validator, dicom3tools' dciodvfy (no "Error" line for
-// CT, MR and Secondary Capture exports), and float volumes exported as 16-bit with a rescale:
+// CT, MR and Secondary Capture exports, and the Legacy Converted Enhanced CT and MR objects of
+// --enhanced), and float volumes exported as 16-bit with a rescale:
 // read back, every value within the largest error the command reports, itself within half a
 // step of the 16-bit scale.
 #include <gtest/gtest.h>
@@ -43,6 +44,31 @@ TEST(CliExport, EveryModalityPassesDciodvfy) {
         const auto iod = test::runCommand("dciodvfy " + first + " 2>&1").output;
         const char* expected = m == "CT" ? "CTImage" : m == "MR" ? "MRImage" : "SCImage";
         EXPECT_NE(iod.find(expected), std::string::npos) << m << " written as " << iod.substr(0, 40);
+    }
+    // --enhanced: one Legacy Converted Enhanced CT or MR object, also free of dciodvfy errors.
+    for (const std::string m : {"CT", "MR"}) {
+        const auto r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " --enhanced --modality " + m +
+                                        " -o " + dir.file("enh-" + m));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        const std::string file = dir.file("enh-" + m + "/ENHANCED.dcm");
+        const auto report = test::runCommand("dciodvfy " + file + " 2>&1").output;
+        EXPECT_EQ(errorLines(file), 0u) << m << " enhanced:\n" << report;
+        EXPECT_NE(report.find("LegacyConvertedEnhanced" + m + "Image"), std::string::npos) << report.substr(0, 60);
+        // pydicom, independently: frame k is single-frame image k, in pixels and position.
+        const std::string script =
+            "import pydicom,glob,sys,numpy as np\n"
+            "e=pydicom.dcmread(sys.argv[1]); a=e.pixel_array\n"
+            "s=[pydicom.dcmread(f) for f in sorted(glob.glob(sys.argv[2]+'/IMG*.dcm'))]\n"
+            "assert len(s)==e.NumberOfFrames==a.shape[0], (len(s), e.NumberOfFrames)\n"
+            "for k,f in enumerate(s):\n"
+            "  p=e.PerFrameFunctionalGroupsSequence[k].PlanePositionSequence[0].ImagePositionPatient\n"
+            "  assert np.array_equal(a[k], f.pixel_array), k\n"
+            "  assert np.allclose([float(x) for x in p], [float(x) for x in f.ImagePositionPatient]), k\n"
+            "print('frames match', len(s))\n";
+        std::ofstream(dir.file("frames.py")) << script;
+        const auto py = test::runCommand("/usr/bin/python3 " + dir.file("frames.py") + " " + file + " " +
+                                         dir.file("out-" + m) + " 2>&1");
+        EXPECT_EQ(py.exitCode, 0) << py.output;
     }
     const auto r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " --modality PT --enhanced -o " +
                                     dir.file("out-enh"));

@@ -278,6 +278,66 @@ TEST_F(OrthancPeer, RetrieveAgainFetchesOnlyTheMissingInstances) {
     }
 }
 
+// Two retrieves of different patients at once, as two GUI jobs run them: a C-GET of one
+// patient's study and a C-MOVE of another's, into one storage folder and one study database
+// (each job with its own connection). Every stored file is its source byte for byte, and every
+// series lists only its own patient's instances.
+TEST_F(OrthancPeer, TwoRetrievesOfDifferentPatientsAtOnceMixNothing) {
+    test::TempDir out;
+    auto s = peer_->settings();
+    s.local.storageDir = out.file("rx");
+    const std::string dbPath = out.file("db.sqlite");
+    struct Run {
+        std::string study;
+        dicom::RetrieveMethod method;
+        std::vector<dicom::SeriesRetrieveStatus> result;
+        std::string error;
+    };
+    std::vector<Run> runs = {{seeded_->studyA, dicom::RetrieveMethod::Get, {}, ""},
+                             {seeded_->studyB, dicom::RetrieveMethod::Move, {}, ""}};
+    std::atomic<bool> go{false};
+    std::vector<std::thread> threads;
+    for (auto& r : runs) {
+        threads.emplace_back([&, run = &r] {
+            while (!go.load()) std::this_thread::yield();
+            auto node = s.nodes[0];
+            node.retrieve = run->method;
+            run->error = errorOf([&] {
+                dicom::StudyDatabase db(dbPath);
+                core::JobContext ctx;
+                run->result = dicom::RetrieveJob(s, node, db, out.file("octrees")).run(run->study, "", true, ctx, {});
+            });
+        });
+    }
+    go = true;
+    for (auto& t : threads) t.join();
+    for (const auto& r : runs) {
+        ASSERT_TRUE(r.error.empty()) << r.study << ": " << r.error;
+        for (const auto& st : r.result) EXPECT_TRUE(st.retrieved && st.error.empty()) << st.seriesUid << ": " << st.error;
+    }
+    EXPECT_EQ(runs[0].result.size(), 2u);
+    EXPECT_EQ(runs[1].result.size(), 1u);
+
+    dicom::StudyDatabase db(dbPath);
+    EXPECT_EQ(db.instanceCount(), seeded_->files.size());
+    const auto originals = bySop(seeded_->files);
+    const std::map<std::string, std::pair<std::string, std::size_t>> expected = {
+        {seeded_->seriesA1, {"P1", 20}}, {seeded_->seriesA2, {"P1", 10}}, {seeded_->seriesB1, {"P2", 8}}};
+    for (const auto& [series, want] : expected) {
+        const auto files = db.filesOfSeries(series);
+        EXPECT_EQ(files.size(), want.second) << series;
+        for (const auto& f : files) {
+            dicom::DicomInstance in;
+            dicom::DicomHeaderReader::read(f, in);
+            EXPECT_EQ(in.patientId, want.first) << f;
+            EXPECT_EQ(in.seriesInstanceUid, series) << f;
+            ASSERT_TRUE(originals.count(in.sopInstanceUid)) << f;
+            EXPECT_EQ(datasetBytes(f), datasetBytes(originals.at(in.sopInstanceUid))) << f;
+        }
+    }
+    EXPECT_TRUE(std::filesystem::is_empty(out.file("rx/.incoming")));
+}
+
 TEST_F(OrthancPeer, UnknownMoveDestinationIsExplained) {
     const auto e = errorOf([&] { client().move(seeded_->studyB, "", "NOBODY", {}); });
     // Orthanc answers 0xC000 rather than 0xA801 (dcmqrscp's answer is tested too); either way the

@@ -156,6 +156,8 @@ TEST_F(NiftiVsNibabel, NoOrientationIsAWarningNotASilentGuess) {
     const auto& c = find("no_orientation");
     core::NiftiVoxelSource src(c["path"]);
     EXPECT_TRUE(mentions(src.warnings(), "left and right are not known"));
+    EXPECT_TRUE(src.geometry().orientationAssumed) << "the views must draw no orientation letters for it";
+    EXPECT_FALSE(src.geometry().spacingAssumed);
     EXPECT_EQ(readPhysical(src), readExpected(c["values"]));
 }
 

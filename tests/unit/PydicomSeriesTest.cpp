@@ -16,6 +16,7 @@
 
 #include <glm/matrix.hpp>
 
+#include "core/octree/OctreeReader.h"
 #include "core/volume/NiftiVoxelSource.h"
 #include "dicom/DicomScanner.h"
 #include "dicom/DicomSeriesSource.h"
@@ -206,6 +207,34 @@ TEST_F(PydicomSeries, MissingSpacingAndOrientationAreNamed) {
     ASSERT_EQ(volumes.size(), 1u);
     EXPECT_TRUE(anyContains(volumes[0].warnings, "spacing unknown, assumed 1 mm")) << ::testing::PrintToString(volumes[0].warnings);
     EXPECT_TRUE(anyContains(volumes[0].warnings, "orientation unknown")) << ::testing::PrintToString(volumes[0].warnings);
+    // The assumption travels with the volume: into its octree (the views say it and draw "?"
+    // for the orientation letters), into the study database (the browser row and `studies`),
+    // and an export refuses to write it down as a fact.
+    EXPECT_TRUE(volumes[0].geometry.spacingAssumed);
+    EXPECT_TRUE(volumes[0].geometry.orientationAssumed);
+    const std::string db = " --db " + dir_->file("nogeometry.sqlite");
+    auto r = test::runCommand(std::string(HVX_CLI) + " import " + dir_->file("dcm/nogeometry") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(std::string(HVX_CLI) + " studies" + db);
+    EXPECT_NE(r.output.find("warning: spacing unknown, assumed 1 mm (no PixelSpacing)"), std::string::npos)
+        << r.output;
+    dicom::StudyDatabase database(dir_->file("nogeometry.sqlite"));
+    dicom::SeriesRow row;
+    ASSERT_TRUE(database.findSeries(volumes[0].seriesUid, row));
+    EXPECT_TRUE(anyContains(row.warnings, "orientation unknown")) << ::testing::PrintToString(row.warnings);
+    core::JobContext job;
+    const auto path = dicom::SeriesOctree::build(database, volumes[0].seriesUid, job);
+    const auto reader = core::OctreeReader::open(path);
+    EXPECT_TRUE(reader->geometry().spacingAssumed);
+    EXPECT_TRUE(reader->geometry().orientationAssumed);
+    r = test::runCommand(std::string(HVX_CLI) + " export-dicom --series-uid " + volumes[0].seriesUid + db + " -o " +
+                         dir_->file("nogeometry-export"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("an export would write the assumption as a fact"), std::string::npos) << r.output;
+    // A series with its geometry has no warning in its row.
+    ASSERT_EQ(test::runCommand(std::string(HVX_CLI) + " import " + dir_->file("dcm/echo") + db).exitCode, 0);
+    ASSERT_TRUE(database.findSeries(import("echo")[0].seriesUid, row));
+    EXPECT_TRUE(row.warnings.empty()) << ::testing::PrintToString(row.warnings);
 }
 
 // Nine frames of one object, interleaved axial, coronal and sagittal: three stacks, each along

@@ -173,13 +173,19 @@ TEST(StudyDatabase, SchemaIsMigratedAndNewerRefused) {
     ASSERT_EQ(std::system(("sqlite3 " + path +
                            " \"CREATE TABLE instances (id INTEGER PRIMARY KEY, sop_uid TEXT NOT NULL UNIQUE, series INTEGER "
                            "NOT NULL, path TEXT NOT NULL, transfer_syntax TEXT, sop_class TEXT, instance_number INTEGER, "
-                           "file_size INTEGER);\"").c_str()),
+                           "file_size INTEGER); CREATE TABLE series (id INTEGER PRIMARY KEY, uid TEXT NOT NULL UNIQUE, "
+                           "study INTEGER NOT NULL, number INTEGER, description TEXT, modality TEXT, body_part TEXT, "
+                           "instance_count INTEGER NOT NULL DEFAULT 0, octree TEXT);\"").c_str()),
               0);
     {
         dicom::StudyDatabase db(path);
         EXPECT_EQ(db.checkFiles().offline, 0u);
         db.addInstances(sample(dir));
         EXPECT_EQ(db.instanceCount(), 5u);
+        db.setSeriesWarnings("1.1.1", {"PixelSpacing is missing", "1 missing slice(s)"});  // a column version 4 added
+        dicom::SeriesRow row;
+        ASSERT_TRUE(db.findSeries("1.1.1", row));
+        EXPECT_EQ(row.warnings, (std::vector<std::string>{"PixelSpacing is missing", "1 missing slice(s)"}));
     }
     ASSERT_EQ(std::system(("sqlite3 " + path + " 'PRAGMA user_version = 9;'").c_str()), 0);
     try {

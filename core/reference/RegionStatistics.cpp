@@ -1,0 +1,211 @@
+#include "core/reference/RegionStatistics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include "core/base/Error.h"
+
+namespace hvx::core {
+
+MeasureRegion MeasureRegion::sphere(const glm::dvec3& centre, double radiusMm) {
+    MeasureRegion r;
+    r.kind = Kind::Sphere;
+    r.centre = centre;
+    r.radius = radiusMm;
+    return r;
+}
+
+MeasureRegion MeasureRegion::box(const glm::dvec3& a, const glm::dvec3& b) {
+    MeasureRegion r;
+    r.kind = Kind::Box;
+    r.low = glm::min(a, b);
+    r.high = glm::max(a, b);
+    return r;
+}
+
+MeasureRegion MeasureRegion::disc(const glm::dvec3& centre, const glm::dvec3& normal, double radiusMm,
+                                  double thicknessMm) {
+    MeasureRegion r;
+    r.kind = Kind::Disc;
+    r.centre = centre;
+    const double len = glm::length(normal);
+    r.normal = len > 0 ? normal / len : glm::dvec3(0.0);
+    r.radius = radiusMm;
+    r.thickness = thicknessMm;
+    return r;
+}
+
+MeasureRegion MeasureRegion::parse(const std::string& text) {
+    const auto colon = text.find(':');
+    const std::string kind = text.substr(0, colon);
+    std::vector<double> v;
+    if (colon != std::string::npos) {
+        std::stringstream in(text.substr(colon + 1));
+        for (std::string part; std::getline(in, part, ',');) {
+            char* end = nullptr;
+            const double x = std::strtod(part.c_str(), &end);
+            if (part.empty() || *end != '\0' || !std::isfinite(x)) {
+                v.clear();
+                break;
+            }
+            v.push_back(x);
+        }
+    }
+    if (kind == "sphere" && v.size() == 4) return sphere({v[0], v[1], v[2]}, v[3]);
+    if (kind == "box" && v.size() == 6) return box({v[0], v[1], v[2]}, {v[3], v[4], v[5]});
+    if (kind == "disc" && v.size() == 8) return disc({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]);
+    throw Error("'" + text + "' is not a region: sphere:X,Y,Z,R, box:X0,Y0,Z0,X1,Y1,Z1 or disc:X,Y,Z,NX,NY,NZ,R,T "
+                "(LPS mm)");
+}
+
+bool MeasureRegion::contains(const glm::dvec3& p) const {
+    if (kind == Kind::Sphere) {
+        const glm::dvec3 d = p - centre;
+        return glm::dot(d, d) <= radius * radius;
+    }
+    if (kind == Kind::Disc) {
+        const glm::dvec3 d = p - centre;
+        const double along = glm::dot(d, normal);
+        const glm::dvec3 across = d - along * normal;
+        return std::abs(along) <= thickness / 2 && glm::dot(across, across) <= radius * radius;
+    }
+    return p.x >= low.x && p.x <= high.x && p.y >= low.y && p.y <= high.y && p.z >= low.z && p.z <= high.z;
+}
+
+std::string MeasureRegion::describe() const {
+    char buf[160];
+    if (kind == Kind::Sphere)
+        std::snprintf(buf, sizeof buf, "sphere of radius %.4g mm at (%.4g, %.4g, %.4g)", radius, centre.x, centre.y,
+                      centre.z);
+    else if (kind == Kind::Disc)
+        std::snprintf(buf, sizeof buf, "disc of radius %.4g mm, %.4g mm thick, at (%.4g, %.4g, %.4g)", radius, thickness,
+                      centre.x, centre.y, centre.z);
+    else
+        std::snprintf(buf, sizeof buf, "box (%.4g, %.4g, %.4g) to (%.4g, %.4g, %.4g)", low.x, low.y, low.z, high.x,
+                      high.y, high.z);
+    return buf;
+}
+
+RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const MeasureRegion& region) {
+    const auto& g = reader.geometry();
+    if (region.kind != MeasureRegion::Kind::Box && !(region.radius > 0))
+        throw Error("the " + std::string(region.kind == MeasureRegion::Kind::Disc ? "disc" : "sphere") +
+                    " has no volume (radius " + std::to_string(region.radius) + " mm)");
+    if (region.kind == MeasureRegion::Kind::Disc && (!(region.thickness > 0) || !(glm::length(region.normal) > 0.5)))
+        throw Error("the disc needs a thickness above 0 mm and a normal");
+    if (region.kind == MeasureRegion::Kind::Box &&
+        !(region.high.x > region.low.x && region.high.y > region.low.y && region.high.z > region.low.z))
+        throw Error("the box has no volume: every side must be longer than 0 mm");
+    // The region's patient-space bounding box, in voxel indices.
+    // (A disc lies within the sphere through its rim.)
+    const double reach = region.kind == MeasureRegion::Kind::Disc
+                             ? std::sqrt(region.radius * region.radius + region.thickness * region.thickness / 4)
+                             : region.radius;
+    const bool round = region.kind != MeasureRegion::Kind::Box;
+    const glm::dvec3 lo = round ? region.centre - reach : region.low;
+    const glm::dvec3 hi = round ? region.centre + reach : region.high;
+    const glm::dmat4 toIndex = glm::inverse(g.indexToPatient());
+    glm::dvec3 first(std::numeric_limits<double>::max()), last(std::numeric_limits<double>::lowest());
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+        const glm::dvec3 i(toIndex * glm::dvec4(corner, 1.0));
+        first = glm::min(first, i);
+        last = glm::max(last, i);
+    }
+    std::int64_t from[3], to[3];  // inclusive voxel ranges
+    bool between = false;         // inside the volume, but around no voxel centre
+    for (int a = 0; a < 3; ++a) {
+        const double size = double(g.dims[std::size_t(a)]);
+        if (last[a] < -0.5 || first[a] > size - 0.5) throw Error("the " + region.describe() + " lies outside the volume");
+        from[a] = std::max<std::int64_t>(0, std::int64_t(std::ceil(first[a] - 1e-9)));
+        to[a] = std::min<std::int64_t>(std::int64_t(size) - 1, std::int64_t(std::floor(last[a] + 1e-9)));
+        between = between || from[a] > to[a];
+    }
+    const glm::dmat4 toPatient = g.indexToPatient();
+    const std::int64_t bs = reader.brickSize();
+    const std::int64_t border = reader.border();
+    // Level-0 nodes by grid coordinate.
+    std::int64_t grid[3];
+    for (int a = 0; a < 3; ++a) grid[a] = (std::int64_t(g.dims[std::size_t(a)]) + bs - 1) / bs;
+    std::vector<std::uint32_t> leaf(std::size_t(grid[0] * grid[1] * grid[2]), UINT32_MAX);
+    const auto& nodes = reader.nodes();
+    for (std::uint32_t n = 0; n < nodes.size(); ++n)
+        if (nodes[n].level == 0)
+            leaf[std::size_t((std::int64_t(nodes[n].z) * grid[1] + nodes[n].y) * grid[0] + nodes[n].x)] = n;
+
+    RegionStatistics s;
+    s.units = g.modality == "CT" ? "HU" : "";
+    if (between) {
+        s.exact = false;
+        s.note = "no voxel centre lies in the " + region.describe() + " (it is smaller than a voxel)";
+        return s;
+    }
+    double mean = 0, m2 = 0;  // Welford's running mean and sum of squared deviations
+    double minV = std::numeric_limits<double>::max(), maxV = std::numeric_limits<double>::lowest();
+    bool lossy = false, empty = false;
+    for (std::int64_t bz = from[2] / bs; bz <= to[2] / bs; ++bz)
+        for (std::int64_t by = from[1] / bs; by <= to[1] / bs; ++by)
+            for (std::int64_t bx = from[0] / bs; bx <= to[0] / bs; ++bx) {
+                const std::uint32_t node = leaf[std::size_t((bz * grid[1] + by) * grid[0] + bx)];
+                if (node == UINT32_MAX) throw Error(reader.path() + ": the octree has no brick at level 0 for " +
+                                                    std::to_string(bx) + "," + std::to_string(by) + "," + std::to_string(bz));
+                const Brick b = reader.readBrick(node);
+                std::uint64_t inBrick = 0;
+                for (std::int64_t k = std::max(from[2], bz * bs); k <= std::min(to[2], bz * bs + bs - 1); ++k)
+                    for (std::int64_t j = std::max(from[1], by * bs); j <= std::min(to[1], by * bs + bs - 1); ++j)
+                        for (std::int64_t i = std::max(from[0], bx * bs); i <= std::min(to[0], bx * bs + bs - 1); ++i) {
+                            const glm::dvec3 p(toPatient * glm::dvec4(double(i), double(j), double(k), 1.0));
+                            if (!region.contains(p)) continue;
+                            const double stored = b.value(std::uint32_t(i - bx * bs + border),
+                                                          std::uint32_t(j - by * bs + border),
+                                                          std::uint32_t(k - bz * bs + border));
+                            const double v = stored * g.rescaleSlope + g.rescaleIntercept;
+                            const double delta = v - mean;
+                            mean += delta / double(s.voxels + inBrick + 1);
+                            m2 += delta * (v - mean);
+                            minV = std::min(minV, v);
+                            maxV = std::max(maxV, v);
+                            ++inBrick;
+                        }
+                s.voxels += inBrick;
+                if (inBrick && (b.empty || b.lossy8)) {
+                    s.approximateVoxels += inBrick;
+                    lossy = lossy || b.lossy8;
+                    empty = empty || b.empty;
+                }
+            }
+    if (s.voxels == 0) {
+        s.note = "no voxel centre lies in the " + region.describe() + " (it is smaller than a voxel)";
+        s.exact = false;
+        return s;
+    }
+    const double n = double(s.voxels);
+    s.mean = mean;
+    s.sd = std::sqrt(std::max(0.0, m2 / n));
+    s.min = minV;
+    s.max = maxV;
+    const glm::dmat3 step(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y, g.direction[2] * g.spacing.z);
+    s.volumeMm3 = n * std::abs(glm::determinant(step));
+    if (region.kind == MeasureRegion::Kind::Disc) s.areaMm2 = s.volumeMm3 / region.thickness;
+    if (s.approximateVoxels) {
+        s.exact = false;
+        s.note = std::to_string(s.approximateVoxels) + " of the voxels lie in bricks stored " +
+                 (empty ? std::string("without their values (below the build's --empty-below)") : std::string()) +
+                 (empty && lossy ? " or " : "") + (lossy ? std::string("as lossy 8-bit") : std::string()) +
+                 ": the figures are approximate";
+    }
+    if (g.spacingAssumed) {
+        s.exact = false;
+        s.note += std::string(s.note.empty() ? "" : "; ") + "the pixel spacing is unknown (1 mm assumed): volume and "
+                  "region are not in real mm";
+    }
+    return s;
+}
+
+}  // namespace hvx::core

@@ -1,0 +1,52 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/octree/OctreeReader.h"
+
+namespace hvx::core {
+
+/// A measurement region in patient space (LPS mm): a sphere, a box whose faces are
+/// perpendicular to the patient axes, or a disc (a circle drawn on a slice: a cylinder of radius
+/// `radius` about `normal`, `thickness` mm thick, so one slice's voxels when it is the spacing).
+struct MeasureRegion {
+    enum class Kind { Sphere, Box, Disc } kind = Kind::Sphere;
+    glm::dvec3 centre{0.0};  ///< sphere, disc
+    double radius = 0.0;     ///< sphere, disc, mm
+    glm::dvec3 low{0.0}, high{0.0};  ///< box corners (low < high on every axis)
+    glm::dvec3 normal{0, 0, 1};      ///< disc, unit
+    double thickness = 0.0;          ///< disc, mm
+
+    static MeasureRegion sphere(const glm::dvec3& centre, double radiusMm);
+    static MeasureRegion box(const glm::dvec3& a, const glm::dvec3& b);
+    static MeasureRegion disc(const glm::dvec3& centre, const glm::dvec3& normal, double radiusMm, double thicknessMm);
+    /// "sphere:X,Y,Z,R", "box:X0,Y0,Z0,X1,Y1,Z1" or "disc:X,Y,Z,NX,NY,NZ,R,T" (LPS mm); throws
+    /// core::Error otherwise.
+    static MeasureRegion parse(const std::string& text);
+    bool contains(const glm::dvec3& p) const;
+    std::string describe() const;
+};
+
+/// Statistics of the voxels whose centres lie in a region, in the volume's physical units (HU
+/// for CT), read from the finest level of the octree (level 0), never from a coarser level or
+/// what a view shows. Voxels of bricks stored without their values (empty below a threshold,
+/// or lossy 8-bit) are counted apart: then `exact` is false and `note` says why.
+struct RegionStatistics {
+    std::uint64_t voxels = 0;
+    double mean = 0, sd = 0, min = 0, max = 0;  ///< physical units; sd is the population SD
+    double volumeMm3 = 0;                       ///< voxels times one voxel's volume
+    double areaMm2 = 0;                         ///< a disc's: volumeMm3 over its thickness
+    std::uint64_t approximateVoxels = 0;        ///< in empty or lossy bricks
+    bool exact = true;
+    std::string units;  ///< "HU" for CT, else empty
+    std::string note;   ///< why the figures are not exact, or why there are none
+
+    /// Throws core::Error when the region is degenerate (radius or a box side <= 0) or lies
+    /// wholly outside the volume, and CorruptBrickError for a brick that cannot be read.
+    static RegionStatistics compute(const OctreeReader& reader, const MeasureRegion& region);
+};
+
+}  // namespace hvx::core

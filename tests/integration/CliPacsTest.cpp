@@ -1,0 +1,123 @@
+// The command line's PACS commands against a real Orthanc: `pacs add` writes the node table
+// that `pacs nodes` lists; `pacs echo`, `pacs find` at each level (checked against what was
+// seeded), `pacs send` and `pacs get` (files byte-identical to their sources, indexed, listed by
+// `studies`), and a node that does not answer is an error with a sentence and a non-zero exit.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <set>
+
+#include "core/base/JobContext.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "dicom/DicomSeriesWriter.h"
+#include "dicom/StudyDatabase.h"
+#include "tests/support/PacsPeer.h"
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+const std::string cli = HVX_CLI;
+
+std::string bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), {});
+}
+
+std::vector<std::string> phantomSeries(const std::string& dir, const std::string& patient, const std::string& study,
+                                       const std::string& series, std::uint32_t slices) {
+    core::PhantomVoxelSource p({24, 24, slices}, 7);
+    dicom::DicomWriteOptions o;
+    o.patientName = patient;
+    o.patientId = patient.substr(0, 4);
+    o.studyUid = study;
+    o.seriesUid = series;
+    o.studyDescription = "CLI PACS";
+    o.modality = "CT";
+    core::JobContext job;
+    return dicom::DicomSeriesWriter::write(p, dir, o, job);
+}
+}  // namespace
+
+TEST(CliPacs, AddListEchoFindSendAndGetAgainstOrthanc) {
+    test::TempDir dir;
+    test::PacsPeer peer(test::PacsPeer::Kind::Orthanc);
+    ASSERT_NO_THROW(peer.start());
+    const std::string study = "1.2.826.0.1.3680043.9.7777.500", series = "1.2.826.0.1.3680043.9.7777.501";
+    const auto seeded = phantomSeries(dir.file("seed"), "CLI^SEEDED", study, series, 6);
+    peer.seed(seeded);
+    const std::string config = " --config " + dir.file("pacs.json");
+    // The local node: our AE title as Orthanc knows it, receiving under the test folder.
+    const auto settings = peer.settings();
+    auto r = test::runCommand(cli + " pacs add orthanc --ae " + peer.aeTitle() + " --host 127.0.0.1 --port " +
+                              std::to_string(peer.dicomPort()) + " --local-ae " + settings.local.aeTitle +
+                              " --local-port " + std::to_string(settings.local.port) + " --storage " + dir.file("rx") +
+                              config);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " pacs nodes" + config);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("* orthanc"), std::string::npos) << "the first node becomes the default:\n" << r.output;
+    EXPECT_NE(r.output.find("127.0.0.1:" + std::to_string(peer.dicomPort())), std::string::npos) << r.output;
+
+    r = test::runCommand(cli + " pacs echo orthanc" + config);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("C-ECHO to orthanc"), std::string::npos) << r.output;
+
+    r = test::runCommand(cli + " pacs find orthanc --patient 'CLI*'" + config);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("CLI^SEEDED"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(study), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("1 results"), std::string::npos) << r.output;
+    r = test::runCommand(cli + " pacs find orthanc --level image --study " + study + " --series " + series + config);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("6 results"), std::string::npos) << r.output;
+    r = test::runCommand(cli + " pacs find orthanc --patient 'NOBODY*'" + config);
+    EXPECT_NE(r.output.find("0 results"), std::string::npos) << r.output;
+
+    // send: a second patient's series goes to the PACS, then is found there.
+    const auto sent = phantomSeries(dir.file("send"), "CLI^SENT", study + "1", series + "1", 4);
+    std::string files;
+    for (const auto& f : sent) files += " " + f;
+    r = test::runCommand(cli + " pacs send orthanc" + files + config);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("sent 4 files, 4 accepted"), std::string::npos) << r.output;
+    r = test::runCommand(cli + " pacs find orthanc --patient 'CLI^SENT'" + config);
+    EXPECT_NE(r.output.find(study + "1"), std::string::npos) << r.output;
+
+    // get: the seeded series arrives byte-identical, indexed in the database `studies` reads.
+    const std::string db = " --db " + dir.file("db/studies.sqlite");
+    r = test::runCommand(cli + " pacs get orthanc " + study + " --no-build" + db + config);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("6 completed, 0 failed"), std::string::npos) << r.output;
+    dicom::StudyDatabase database(dir.file("db/studies.sqlite"));
+    const auto got = database.filesOfSeries(series);
+    ASSERT_EQ(got.size(), seeded.size());
+    for (std::size_t i = 0; i < got.size(); ++i) {
+        ASSERT_TRUE(std::filesystem::exists(got[i])) << got[i];
+        EXPECT_EQ(got[i].rfind(dir.file("rx") + "/", 0), 0u) << "stored under --storage: " << got[i];
+    }
+    // Pixel Data ends each file: every seeded image's pixels arrived, once each.
+    const auto pixels = [](const std::string& path) {
+        const std::string all = bytes(path);
+        return all.substr(all.size() - std::min<std::size_t>(all.size(), 24 * 24 * 2));
+    };
+    std::multiset<std::string> want, have;
+    for (const auto& s : seeded) want.insert(pixels(s));
+    for (const auto& g : got) have.insert(pixels(g));
+    EXPECT_TRUE(want == have) << "the received files carry the seeded pixels";
+    r = test::runCommand(cli + " studies" + db);
+    EXPECT_NE(r.output.find("CLI^SEEDED"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("6 images"), std::string::npos) << r.output;
+
+    // A node nobody answers on: a sentence and a non-zero exit.
+    ASSERT_EQ(test::runCommand(cli + " pacs add nobody --ae NOBODY --host 127.0.0.1 --port " +
+                               std::to_string(test::freePort()) + config)
+                  .exitCode,
+              0);
+    r = test::runCommand(cli + " pacs echo nobody" + config);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("connection refused"), std::string::npos) << r.output;
+}
