@@ -66,13 +66,21 @@ report() {  # label stored rss_kib push-label
 }
 echo "soak: 4 senders x $per instances (128x128) at once:"
 
-# Baseline: DCMTK's storescp (one association at a time, as it runs by default), nothing else running.
-mkdir -p "$work/storescp"
-storescp -aet STORESCP -od "$work/storescp" "$base" & pids+=($!)
-up "$base"
-push STORESCP "$base"
-rss=$(peak "${pids[-1]}"); kill "${pids[-1]}"; wait "${pids[-1]}" 2>/dev/null || true
-report "storescp (baseline, alone)" "$(find "$work/storescp" -type f | wc -l)" "$rss" STORESCP
+# Baselines: DCMTK's storescp as it runs by default (one association at a time: the other
+# senders wait, and time out), and with --fork (a process per association: the fair peer for
+# concurrent senders; its peak RSS is the listening parent's only), nothing else running.
+baseline() {  # label push-label [storescp options]
+  local label=$1 tag=$2; shift 2
+  mkdir -p "$work/$tag"
+  storescp "$@" -aet "$tag" -od "$work/$tag" "$base" & pids+=($!)
+  up "$base"
+  push "$tag" "$base"
+  sleep 1  # forked children finish writing
+  rss=$(peak "${pids[-1]}"); kill "${pids[-1]}"; wait "${pids[-1]}" 2>/dev/null || true
+  report "$label" "$(find "$work/$tag" -type f | wc -l)" "$rss" "$tag"
+}
+baseline "storescp (default, alone)" STORESCP
+baseline "storescp --fork (alone)" FORKSCP --fork
 
 # Holovox's receiver, with a retrieve and an orbiting render at the same time.
 "$cli" listen --port "$base" --storage "$work/pushed" >"$work/listen.log" 2>&1 & pids+=($!)
