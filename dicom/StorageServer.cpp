@@ -16,6 +16,7 @@
 #include <sys/socket.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <chrono>
 #include <cstdio>
 #include <future>
@@ -73,7 +74,17 @@ public:
             if (c.bad()) return c;
             return sendSTOREResponse(info.presentationContextID, req, STATUS_STORE_Refused_OutOfResources);
         }
+        overCap_ = false;
         const OFCondition c = receiveSTORERequest(req, info.presentationContextID, tmp.c_str());
+        // Over the cap: the socket was cut, but what was already in its buffers may have let the
+        // data set end; the size of what was written decides too.
+        std::error_code ec;
+        const auto written = std::filesystem::file_size(tmp, ec);
+        if (shared_->maxInstanceBytes > 0 && (overCap_ || (!ec && written > shared_->maxInstanceBytes))) {
+            std::remove(tmp.c_str());
+            if (socket_ >= 0) ::shutdown(socket_, SHUT_RDWR);
+            return c.bad() ? c : DIMSE_RECEIVEFAILED;  // the association ends; the sender learns it failed
+        }
         if (c.bad()) {
             std::remove(tmp.c_str());  // interrupted or cut off: nothing half-written stays
             return c;
@@ -95,7 +106,9 @@ public:
     }
     /// An instance growing past the cap cuts its association: DCMTK would write it to the end.
     void notifyRECEIVEProgress(const unsigned long byteCount) override {
-        if (socket_ >= 0 && byteCount > shared_->maxInstanceBytes) ::shutdown(socket_, SHUT_RDWR);
+        if (shared_->maxInstanceBytes == 0 || byteCount <= shared_->maxInstanceBytes) return;
+        overCap_ = true;
+        if (socket_ >= 0) ::shutdown(socket_, SHUT_RDWR);
     }
     OFBool checkCalledAETitleAccepted(const OFString& calledAE) override {
         return std::string(calledAE.c_str()) == shared_->aeTitle;
@@ -131,7 +144,8 @@ public:
 
 private:
     Shared* shared_;
-    int socket_ = -1;  // of the association being served
+    int socket_ = -1;       // of the association being served
+    bool overCap_ = false;  // the instance being received grew past maxInstanceBytes
 };
 
 /// The listener and its association workers. DCMTK's DcmBaseSCPPool deletes a finished worker

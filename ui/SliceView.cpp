@@ -11,6 +11,8 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
 
 namespace hvx::ui {
 
@@ -18,7 +20,8 @@ SliceView::SliceView(core::SlicePlane::Orientation orientation, QWidget* parent)
     : QWidget(parent), orientation_(orientation) {
     setMinimumSize(120, 120);
     setFocusPolicy(Qt::StrongFocus);
-    setToolTip(tr("Click or drag: move the cursor \u2022 Wheel: next slice \u2022 Right drag: window/level\n"
+    setToolTip(tr("Click or drag: move the cursor \u2022 Wheel, Up/Down: next slice (Page Up/Down: ten) \u2022 "
+                  "Right drag: window/level\n] / [: thicker / thinner slab \u2022 M: MIP, MinIP, mean\n"
                   "Shift-drag: distance \u2022 Ctrl-drag: circle statistics \u2022 Esc: clear them\n"
                   "1-9: window presets (the DICOM's, then for CT: brain, subdural, stroke, bone, lung, "
                   "mediastinum, abdomen, liver)"));
@@ -77,6 +80,33 @@ void SliceView::keyPressEvent(QKeyEvent* e) {
         update();
         return;
     }
+    if (e->modifiers() & Qt::ControlModifier) {
+        switch (e->key()) {
+        case Qt::Key_Up: tilt(5, 0); return;
+        case Qt::Key_Down: tilt(-5, 0); return;
+        case Qt::Key_Left: tilt(0, -5); return;
+        case Qt::Key_Right: tilt(0, 5); return;
+        default: break;
+        }
+    }
+    switch (e->key()) {
+    case Qt::Key_O: resetTilt(); return;
+    case Qt::Key_Up: step(1); return;
+    case Qt::Key_Down: step(-1); return;
+    case Qt::Key_PageUp: step(10); return;
+    case Qt::Key_PageDown: step(-10); return;
+    case Qt::Key_BracketRight: {  // a thicker slab: 5, 10, 20, 40 mm
+        setSlab(slabMm_ <= 0 ? 5.0 : std::min(slabMm_ * 2, 320.0), slabMode_);
+        return;
+    }
+    case Qt::Key_BracketLeft: setSlab(slabMm_ <= 5.0 ? 0.0 : slabMm_ / 2, slabMode_); return;
+    case Qt::Key_M:
+        setSlab(slabMm_, slabMode_ == core::SlabMode::Mip     ? core::SlabMode::MinIp
+                         : slabMode_ == core::SlabMode::MinIp ? core::SlabMode::Mean
+                                                              : core::SlabMode::Mip);
+        return;
+    default: break;
+    }
     const int k = e->key() - Qt::Key_1;
     if (k >= 0 && k < 9 && std::size_t(k) < presets_.size()) {
         const auto& w = presets_[std::size_t(k)];
@@ -94,8 +124,11 @@ void SliceView::setPoint(const glm::dvec3& patient) {
 
 core::SlicePlane SliceView::plane() const {
     // The view stays centred on the volume; only the slice follows the point along the normal.
-    auto p = core::SlicePlane::standard(orientation_, volumeCentre_, pixelMm_, std::max(1, width()), std::max(1, height()));
-    const glm::dvec3 normal = glm::cross(p.right, p.down);
+    auto p = glm::length(normal_) > 0
+                 ? core::SlicePlane::oblique(normal_, volumeCentre_, pixelMm_, std::max(1, width()), std::max(1, height()))
+                 : core::SlicePlane::standard(orientation_, volumeCentre_, pixelMm_, std::max(1, width()),
+                                              std::max(1, height()));
+    const glm::dvec3 normal = p.normal();
     p.centre = volumeCentre_ + glm::dot(point_ - volumeCentre_, normal) * normal;
     return p;
 }
@@ -119,7 +152,7 @@ void SliceView::resample() {
     const double extent = std::max({size.x, size.y, size.z});
     pixelMm_ = extent / double(std::min(width(), height()));
     const auto plane = this->plane();
-    const auto img = sampler_->sample(plane);
+    const auto img = slabMm_ > 0 ? sampler_->sampleSlab(plane, slabMm_, slabMode_) : sampler_->sample(plane);
     level_ = img.level;
     image_ = QImage(img.width, img.height, QImage::Format_Grayscale8);
     const double lo = centre_ - width_ / 2;
@@ -154,13 +187,12 @@ void SliceView::paintEvent(QPaintEvent*) {
     p.drawLine(QPointF(c.x() + 6, c.y()), QPointF(width(), c.y()));
     p.drawLine(QPointF(c.x(), 0), QPointF(c.x(), c.y() - 6));
     p.drawLine(QPointF(c.x(), c.y() + 6), QPointF(c.x(), height()));
-    const auto labels = core::SlicePlane::edgeLabels(orientation_);
+    const QStringList labels = edgeLabels();
     const QRect r = rect().adjusted(5, 3, -5, -3);
     p.setFont(font());
     // Without a known orientation the letters would be a guess: "?" instead (left is never right).
     const auto& geometry = reader_->geometry();
-    if (geometry.orientationAssumed) drawEdgeLabels(p, r, {"?", "?", "?", "?"});
-    else drawEdgeLabels(p, r, {labels[0], labels[1], labels[2], labels[3]});
+    drawEdgeLabels(p, r, labels);
     drawAssumedGeometry(p, r.adjusted(0, 18, 0, 0), geometry);
     paintMeasurements(p);
     static const char* names[] = {"Axial", "Coronal", "Sagittal"};
@@ -168,8 +200,14 @@ void SliceView::paintEvent(QPaintEvent*) {
     QFont info = font();
     info.setPointSizeF(info.pointSizeF() * 0.85);
     p.setFont(info);
+    static const char* modes[] = {"MIP", "MinIP", "mean"};
+    QString slab = slabMm_ > 0 ? tr("\nslab %1 mm %2").arg(slabMm_, 0, 'g', 4).arg(modes[int(slabMode_)]) : QString();
+    if (const double t = tiltDegrees(); t > 0.05) slab += tr("\ntilted %1\u00b0").arg(t, 0, 'f', 1);
     p.drawText(r, Qt::AlignBottom | Qt::AlignLeft,
-               QStringLiteral("%1\nW %2\nL %3%4").arg(names[int(orientation_)]).arg(width_, 0, 'f', 0).arg(centre_, 0, 'f', 0)
+               QStringLiteral("%1\n%2 \u2022 %3%4\nW %5\nL %6%7")
+                   .arg(QString::fromLatin1(names[int(orientation_)]), slicePosition(), levelReadout(), slab)
+                   .arg(width_, 0, 'f', 0)
+                   .arg(centre_, 0, 'f', 0)
                    .arg(windowName_.isEmpty() ? QString() : QStringLiteral(" (%1)").arg(windowName_)));
 }
 
@@ -221,15 +259,79 @@ void SliceView::mouseMoveEvent(QMouseEvent* e) {
     }
 }
 
-void SliceView::wheelEvent(QWheelEvent* e) {
-    const auto p = plane();
-    const glm::dvec3 normal = glm::cross(p.right, p.down);
-    const double step = reader_ ? std::min({reader_->geometry().spacing.x, reader_->geometry().spacing.y,
-                                            reader_->geometry().spacing.z})
-                                : 1.0;
-    point_ += normal * step * (e->angleDelta().y() > 0 ? 1.0 : -1.0);
+void SliceView::wheelEvent(QWheelEvent* e) { step(e->angleDelta().y() > 0 ? 1 : -1); }
+
+double SliceView::sliceStepMm() const {
+    if (!reader_) return 1.0;
+    const auto& g = reader_->geometry();
+    const glm::dvec3 n = plane().normal();
+    double mm = 0;
+    for (int a = 0; a < 3; ++a) mm += std::abs(glm::dot(n, g.direction[a])) * g.spacing[a];
+    return mm;
+}
+
+void SliceView::step(int slices) {
+    if (!reader_) return;
+    point_ += plane().normal() * sliceStepMm() * double(slices);
     emit pointChanged(point_);
     resample();
+}
+
+void SliceView::tilt(double aboutHorizontal, double aboutVertical) {
+    const auto p = plane();
+    glm::dvec3 n = p.normal();
+    const auto rotate = [](const glm::dvec3& v, const glm::dvec3& axis, double degrees) {
+        const double a = glm::radians(degrees), c = std::cos(a), s = std::sin(a);
+        return v * c + glm::cross(axis, v) * s + axis * glm::dot(axis, v) * (1 - c);
+    };
+    n = rotate(n, p.right, aboutHorizontal);
+    n = rotate(n, p.down, aboutVertical);
+    normal_ = glm::normalize(n);
+    resample();
+}
+
+void SliceView::resetTilt() {
+    normal_ = glm::dvec3(0.0);
+    resample();
+}
+
+double SliceView::tiltDegrees() const {
+    const auto standard = core::SlicePlane::standard(orientation_, volumeCentre_, 1, 2, 2);
+    return glm::degrees(std::acos(std::clamp(std::abs(glm::dot(standard.normal(), plane().normal())), 0.0, 1.0)));
+}
+
+QStringList SliceView::edgeLabels() const {
+    if (reader_ && reader_->geometry().orientationAssumed) return {"?", "?", "?", "?"};
+    const auto l = plane().edgeLabels();
+    return {QString::fromStdString(l[0]), QString::fromStdString(l[1]), QString::fromStdString(l[2]),
+            QString::fromStdString(l[3])};
+}
+
+void SliceView::setSlab(double mm, core::SlabMode mode) {
+    slabMm_ = std::max(0.0, mm);
+    slabMode_ = mode;
+    resample();
+}
+
+QString SliceView::slicePosition() const {
+    if (!reader_) return {};
+    const auto& g = reader_->geometry();
+    const glm::dvec3 n = plane().normal();
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (std::abs(glm::dot(n, g.direction[a])) > std::abs(glm::dot(n, g.direction[axis]))) axis = a;
+    const glm::dvec3 index(glm::inverse(g.indexToPatient()) * glm::dvec4(point_, 1.0));
+    const long slice = std::lround(index[axis]) + 1;
+    // The patient axis the normal runs along, and the point's coordinate on it.
+    int patientAxis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (std::abs(n[a]) > std::abs(n[patientAxis])) patientAxis = a;
+    return tr("slice %1/%2 \u2022 %3 mm").arg(slice).arg(g.dims[std::size_t(axis)]).arg(point_[patientAxis], 0, 'f', 1);
+}
+
+QString SliceView::levelReadout() const {
+    if (!reader_) return {};
+    return level_ == 0 ? tr("full resolution") : tr("level %1 of %2").arg(level_).arg(reader_->levelCount() - 1);
 }
 
 void SliceView::mouseReleaseEvent(QMouseEvent* e) {

@@ -25,7 +25,9 @@ namespace hvx::ui {
 /// the DICOM's, else CT's W 400 / L 40, else its value range until the histogram's 1st-99th
 /// percentile arrives); the number keys pick its presets. Shift-drag measures a distance (mm),
 /// Ctrl-drag a circle's statistics (a disc one slice thick, from the octree's level 0, in HU for
-/// CT); Esc clears them; both are drawn only on the slice they were made on.
+/// CT); Esc clears them; both are drawn only on the slice they were made on. Up/Down and the
+/// wheel step a slice, Page keys ten; ] and [ make a thick slab, M changes its mode; Ctrl+arrows
+/// tilt the plane, O resets it.
 ///
 /// Threading: GUI thread only.
 class SliceView : public QWidget {
@@ -51,6 +53,29 @@ public:
     int level() const { return level_; }
     /// Patient position under a widget position.
     glm::dvec3 patientAt(const QPointF& pos) const;
+    /// Tilts the plane: `aboutHorizontal` degrees about its horizontal axis, `aboutVertical` about
+    /// its vertical one (Ctrl+Up/Down, Ctrl+Left/Right by 5 degrees; O resets). The plane stays
+    /// the standard one nearest its normal, seen as a reader expects, with letters for any tilt.
+    void tilt(double aboutHorizontal, double aboutVertical);
+    /// Back to the standard plane.
+    void resetTilt();
+    /// Degrees between the plane's normal and the standard plane's.
+    double tiltDegrees() const;
+    /// The orientation letters at the left, right, top and bottom edges ("?" when unknown).
+    QStringList edgeLabels() const;
+    /// A thick slab (MIP, MinIP or mean over `mm` along the normal); 0 mm: a thin slice. Keys:
+    /// ] thicker, [ thinner, M the next mode.
+    void setSlab(double mm, core::SlabMode mode);
+    double slabMm() const { return slabMm_; }
+    core::SlabMode slabMode() const { return slabMode_; }
+    /// One slice: the volume's voxel spacing along the view's normal (the wheel, Up/Down; Page
+    /// Up/Down step ten).
+    double sliceStepMm() const;
+    /// "slice 12/48 \u2022 42.0 mm": the slice nearest the plane along the volume axis closest to
+    /// its normal, and the plane's position along its normal (patient mm).
+    QString slicePosition() const;
+    /// "full resolution" or "level 2 of 5": the octree level the last image was read from.
+    QString levelReadout() const;
     /// The distance measured by Shift-drag (mm between its ends), if any.
     std::optional<double> rulerMm() const;
     /// The circle measured by Ctrl-drag and its statistics, if any.
@@ -79,6 +104,8 @@ private:
     /// Whether a point made on some slice lies on the current one (within half a voxel).
     bool onThisSlice(const glm::dvec3& patient) const;
     void measureRoi();
+    /// Moves the slice `slices` steps along the normal.
+    void step(int slices);
     void paintMeasurements(QPainter& p);
 
     core::SlicePlane::Orientation orientation_;
@@ -96,6 +123,9 @@ private:
     int level_ = 0;
     QPointF pressPos_;
     double pressCentre_ = 0, pressWidth_ = 0;
+    glm::dvec3 normal_{0.0};  ///< the plane's normal; zero: the standard plane's
+    double slabMm_ = 0;
+    core::SlabMode slabMode_ = core::SlabMode::Mip;
     enum class Measuring { None, Ruler, Roi } measuring_ = Measuring::None;
     std::optional<std::pair<glm::dvec3, glm::dvec3>> ruler_;
     std::optional<core::MeasureRegion> roi_;

@@ -130,6 +130,18 @@ void VolumeView::resetView() {
     update();
 }
 
+QString VolumeView::levelReadout() const {
+    if (!scene_) return {};
+    const auto& r = readouts_;
+    const QString range = r.finestLevel == r.coarsestLevel ? tr("level %1").arg(r.finestLevel)
+                                                           : tr("levels %1\u2013%2").arg(r.finestLevel).arg(r.coarsestLevel);
+    const QString of = tr("%1 of %2").arg(range).arg(r.levels - 1);
+    if (!r.settled) return tr("%1, refining\u2026").arg(of);
+    if (!r.complete) return tr("%1: the brick budget is reached").arg(of);
+    if (r.coarsestLevel == 0) return tr("full resolution");
+    return tr("%1, as fine as the pixels show").arg(of);
+}
+
 QStringList VolumeView::orientationLabels() const {
     // Without a known orientation the letters would be a guess: "?" instead (left is never right).
     if (scene_ && scene_->reader->geometry().orientationAssumed) return {"?", "?", "?", "?"};
@@ -193,6 +205,10 @@ void VolumeView::paintGL() {
             readouts_.cacheBudget = scene_->cache.budget();
             readouts_.resolution = level.resolution;
             readouts_.complete = st.complete;
+            readouts_.settled = st.settled();
+            readouts_.finestLevel = st.finestLevel;
+            readouts_.coarsestLevel = st.coarsestLevel;
+            readouts_.levels = scene_->reader->levelCount();
             // Keep drawing while bricks arrive or the frame is not yet full quality, but never
             // forever: a cut that cannot settle (pool too small for the view) stops after a while.
             unsettledFrames_ = st.settled() ? 0 : unsettledFrames_ + 1;
@@ -225,6 +241,12 @@ void VolumeView::paintOverlays(QPainter& p) {
     p.setFont(font());
     drawEdgeLabels(p, rect().adjusted(8, 6, -8, -6), orientationLabels(), 1.4);
     drawAssumedGeometry(p, rect().adjusted(8, 30, -8, -6), scene_->reader->geometry());
+    // Which octree levels the frame shows (level 0 is full resolution), bottom right.
+    QFont readoutFont = font();
+    readoutFont.setPointSizeF(readoutFont.pointSizeF() * 0.85);
+    p.setFont(readoutFont);
+    p.setPen(QColor(200, 200, 200));
+    p.drawText(rect().adjusted(8, 6, -8, -6), Qt::AlignBottom | Qt::AlignRight, levelReadout());
     // Orientation cube (bottom left): faces towards the viewer, lettered in patient terms.
     const double s = 26.0;
     const QPointF c(14 + s * 1.3, height() - 14 - s * 1.3);

@@ -36,6 +36,8 @@ public:
         std::size_t residentBricks = 0, poolSlots = 0, cacheBytes = 0, cacheBudget = 0;
         double resolution = 1.0;
         bool complete = false;
+        bool settled = false;                      ///< nothing loading: the cut stays while the view does
+        int finestLevel = 0, coarsestLevel = 0, levels = 1;  ///< octree levels drawn (0: full resolution)
     };
 
     explicit VolumeView(QWidget* parent = nullptr);
@@ -74,6 +76,9 @@ public:
     const Readouts& readouts() const { return readouts_; }
     /// The labels drawn at the left, right, top and bottom edges (e.g. "R", "L", "S", "I").
     QStringList orientationLabels() const;
+    /// What the last frame drew: "full resolution", "levels 1-3 of 5, as fine as the pixels
+    /// show", "… refining…" while bricks load, or "… the brick budget is reached".
+    QString levelReadout() const;
 
 signals:
     void frameRendered();

@@ -144,7 +144,9 @@ SliceImage SliceSampler::sampleSlab(const SlicePlane& plane, double thicknessMm,
     const glm::dvec3 extent = glm::dvec3(g.dims[0], g.dims[1], g.dims[2]) * g.spacing;
     thicknessMm = std::min(thicknessMm, glm::length(extent));  // thicker than the volume: all of it
     const double step = space_.minSpacing * std::pow(2.0, lvl);
-    const int n = std::max(1, int(std::floor(thicknessMm / step + 1e-9)) + 1);
+    // An odd count, so the plane itself is one of the samples: a slab's MIP is never below its
+    // thin slice, nor its MinIP above it.
+    const int n = 2 * int(std::floor(thicknessMm / (2 * step) + 1e-9)) + 1;
     const glm::dvec3 normal = plane.normal();
     SliceImage out;
     std::vector<double> acc;  // max, min or sum of the samples in the volume

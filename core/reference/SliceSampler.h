@@ -63,8 +63,9 @@ public:
     int levelFor(double pixelMm) const;
     /// Samples `plane` at levelFor(plane.pixelMm), or at `level` when given (>= 0).
     SliceImage sample(const SlicePlane& plane, int level = -1) const;
-    /// A thick slab centred on `plane`: samples one level voxel apart along the normal across
-    /// `thicknessMm`, combined by `mode` (NaN where no sample lies in the volume). A slab
+    /// A thick slab centred on `plane`: an odd number of samples, the plane itself among them,
+    /// one level voxel apart along the normal within `thicknessMm`, combined by `mode` (NaN
+    /// where no sample lies in the volume). A slab
     /// thicker than the volume's diagonal is clamped to it; a thickness <= 0 throws core::Error.
     SliceImage sampleSlab(const SlicePlane& plane, double thicknessMm, SlabMode mode, int level = -1) const;
     const OctreeSpace& space() const { return space_; }

@@ -201,6 +201,12 @@ const SpatialIndex& WorkingSet::update(const std::vector<View>& views, const Tra
     for (auto id : cut_) slots.push_back(nodeSlot_.count(id) ? nodeSlot_[id] : SpatialIndex::kNone);
     index_ = SpatialIndex::build(reader_, cut_, slots);
     stats_.cutNodes = cut_.size();
+    stats_.finestLevel = reader_.levelCount() - 1;
+    stats_.coarsestLevel = 0;
+    for (auto id : cut_) {
+        stats_.finestLevel = std::min(stats_.finestLevel, int(nodes[id].level));
+        stats_.coarsestLevel = std::max(stats_.coarsestLevel, int(nodes[id].level));
+    }
     stats_.emptyLeaves = index_.leafCount() - cut_.size();
     stats_.slotsUsed = slotNode_.size();
     stats_.complete = complete;

@@ -52,6 +52,7 @@ public:
         double refineMs = 0;
         std::size_t cutNodes = 0, emptyLeaves = 0, requested = 0, uploads = 0, uploadBytes = 0, slotsUsed = 0;
         bool complete = false;  ///< every cut node met the target (nothing waited for data)
+        int finestLevel = 0, coarsestLevel = 0;  ///< octree levels of the cut (0: full resolution)
         /// Nothing requested and nothing uploaded: the cut will not change while the view stays.
         bool settled() const { return requested == 0 && uploads == 0; }
     };

@@ -529,6 +529,73 @@ private slots:
         QVERIFY(!axial->roi().has_value());
     }
 
+    // Up/Down and Page keys step one and ten slices (the voxel spacing along the normal); ] makes
+    // a thick slab whose MIP is nowhere darker than the thin slice and M its MinIP nowhere
+    // brighter; the views say which slice and which octree level they show.
+    void sliceViewStepsSlabsAndSaysItsLevel() {
+        auto* axial = window_->slice(0);  // w-ct.hvo: 48 slices, 6.25 mm apart
+        axial->setFocus();
+        const double z = axial->point().z;
+        QCOMPARE(axial->sliceStepMm(), 6.25);
+        QTest::keyClick(axial, Qt::Key_Up);
+        QCOMPARE(axial->point().z, z + 6.25);
+        QCOMPARE(window_->slice(1)->point(), axial->point());  // the three views share the point
+        QCOMPARE(window_->slice(2)->point(), axial->point());
+        QWheelEvent wheel(QPointF(20, 20), axial->mapToGlobal(QPointF(20, 20)), QPoint(), QPoint(0, -120), Qt::NoButton,
+                          Qt::NoModifier, Qt::NoScrollPhase, false);
+        QApplication::sendEvent(axial, &wheel);
+        QCOMPARE(axial->point().z, z);  // the wheel steps one slice back
+        QTest::keyClick(axial, Qt::Key_Up);
+        QTest::keyClick(axial, Qt::Key_PageDown);
+        QVERIFY(std::abs(axial->point().z - (z + 6.25 - 62.5)) < 1e-9);
+        QVERIFY2(axial->slicePosition().contains("/48"), qPrintable(axial->slicePosition()));
+        QCOMPARE(axial->levelReadout(), QString("full resolution"));
+        QTest::keyClick(axial, Qt::Key_PageUp);
+        const QImage thin = axial->image();
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_BracketRight);  // 5, 10, 20 mm
+        QCOMPARE(axial->slabMm(), 20.0);
+        const auto compare = [&](const QImage& slab, int sign) {  // sign 1: slab >= thin everywhere
+            int wrong = 0, differ = 0;
+            for (int y = 0; y < thin.height(); ++y)
+                for (int x = 0; x < thin.width(); ++x) {
+                    const int d = qGray(slab.pixel(x, y)) - qGray(thin.pixel(x, y));
+                    wrong += d * sign < 0;
+                    differ += d != 0;
+                }
+            return std::make_pair(wrong, differ);
+        };
+        const auto mip = compare(axial->image(), 1);
+        QCOMPARE(mip.first, 0);
+        QVERIFY2(mip.second > 100, "a 20 mm MIP shows more than the thin slice");
+        QTest::keyClick(axial, Qt::Key_M);
+        QCOMPARE(axial->slabMode(), core::SlabMode::MinIp);
+        const auto minip = compare(axial->image(), -1);
+        QCOMPARE(minip.first, 0);
+        QVERIFY(minip.second > 100);
+        saveArtifact("slab-minip.png");
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_BracketLeft);
+        QCOMPARE(axial->slabMm(), 0.0);
+        QCOMPARE(compare(axial->image(), 1).second, 0);
+        // Ctrl+Up tilts the axial plane about its horizontal axis, 5 degrees a press; the letters
+        // follow (top anterior and, past about 17 degrees, superior or inferior too); O resets.
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_Up, Qt::ControlModifier);
+        QVERIFY2(std::abs(axial->tiltDegrees() - 15.0) < 1e-6, qPrintable(QString::number(axial->tiltDegrees())));
+        QCOMPARE(axial->edgeLabels(), (QStringList{"R", "L", "A", "P"}));
+        for (int i = 0; i < 5; ++i) QTest::keyClick(axial, Qt::Key_Up, Qt::ControlModifier);
+        QVERIFY(std::abs(axial->tiltDegrees() - 40.0) < 1e-6);
+        const QStringList tilted = axial->edgeLabels();
+        QCOMPARE(tilted.mid(0, 2), (QStringList{"R", "L"}));
+        QVERIFY2((tilted[2] == "AI" && tilted[3] == "PS") || (tilted[2] == "AS" && tilted[3] == "PI"),
+                 qPrintable(tilted.join(",")));
+        saveArtifact("slice-tilted.png");
+        QTest::keyClick(axial, Qt::Key_O);
+        QCOMPARE(axial->tiltDegrees(), 0.0);
+        QCOMPARE(axial->edgeLabels(), (QStringList{"R", "L", "A", "P"}));
+        settledFrame();
+        QVERIFY2(!view()->levelReadout().isEmpty(), "the 3D view says which levels it shows");
+        QVERIFY2(!view()->levelReadout().contains("refining"), qPrintable(view()->levelReadout()));
+    }
+
     // A 4D series (dual echo, written by pydicom) lists one row per volume with what varies;
     // double-clicking a volume's row opens that volume.
     void fourDimensionalSeriesListsItsVolumesAndOpensOne() {

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Starts the `holovox` binary under Xvfb on an octree given on the command line, waits for the
-# first frame, grabs the window to PNG and checks that it is not blank (kept as a test artefact).
+# first frame, grabs the window to PNG (kept as a test artefact) and checks, reading it back with
+# VTK, its size and that the volume is drawn in it.
 set -euo pipefail
 gui=${1:?holovox}; cli=${2:?holovox-cli}
 work=$(mktemp -d)
@@ -10,6 +11,21 @@ art="$(dirname "$gui")/../test-artifacts"
 mkdir -p "$art"
 export HOLOVOX_DB="$work/db.sqlite" HOLOVOX_PACS_CONFIG="$work/pacs.json" XDG_CONFIG_HOME="$work/config"
 xvfb-run -a -s "-screen 0 1400x1000x24" "$gui" --screenshot "$art/main_window.png" "$work/p.hvo"
-size=$(stat -c %s "$art/main_window.png")
-[ "$size" -gt 20000 ] || { echo "screenshot too small ($size bytes): blank window?"; exit 1; }
-echo "holovox opened the octree and drew it; screenshot $art/main_window.png ($size bytes)"
+# Read back by VTK's PNG reader (python3-vtk9): the whole window, and the volume drawn in it
+# (the CT transfer function's warm colours: red above blue, where the UI's chrome is grey).
+read -r width height warm < <(/usr/bin/python3 - "$art/main_window.png" <<'PY'
+import sys
+from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.util.numpy_support import vtk_to_numpy
+r = vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update()
+d = r.GetOutput().GetDimensions()
+a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(int).reshape(d[1], d[0], -1)[::-1]
+mid = a[: int(d[1] * 0.7), int(d[0] * 0.33): int(d[0] * 0.66)]  # the 3D view, in the default layout
+warm = ((mid[..., 0] - mid[..., 2] > 20) & (mid[..., 0] > 80)).mean()
+print(d[0], d[1], f"{warm:.4f}")
+PY
+)
+echo "screenshot $art/main_window.png: ${width}x${height}; ${warm} of the 3D view's pixels in the volume's colours"
+[ "$width" -ge 1000 ] && [ "$height" -ge 700 ] || { echo "the window is smaller than it was shown"; exit 1; }
+awk -v w="$warm" 'BEGIN { exit !(w > 0.03) }' || { echo "no volume drawn in the window (blank 3D view?)"; exit 1; }
+echo "holovox opened the octree and drew it"

@@ -1,9 +1,7 @@
 // The command line's smaller commands, each checked by what it writes, read by an independent
-// reader: `gl-info` names a GL 4.5 core context; `dicom-info` agrees with pydicom; `lightfield`
-// writes each output format at the size the display needs (PNGs read by VTK's reader from
-// python3-vtk9, the multi-part EXR by OpenEXR's exrheader), neighbouring views differ (the
-// parallax), and the projector simulator writes the observer's view; `measure` and `slice`
-// against numpy over VTK's reading of the same NRRD.
+// reader: `dicom-info` agrees with pydicom; `measure` and `slice` against numpy over VTK's
+// reading of the same NRRD. (The commands that draw with OpenGL are in
+// tests/render/CliGlCommandsTest.cpp, with the render label.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,28 +17,7 @@ using namespace hvx;
 namespace {
 const std::string cli = HVX_CLI;
 
-/// "W H C MEAN" of a PNG as VTK reads it.
-std::string pngStats(const std::string& path) {
-    const auto r = test::runCommand(
-        "/usr/bin/python3 -c \"import vtk, sys; from vtk.util.numpy_support import vtk_to_numpy; "
-        "r = vtk.vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update(); i = r.GetOutput(); d = i.GetDimensions(); "
-        "a = vtk_to_numpy(i.GetPointData().GetScalars()); "
-        "print(d[0], d[1], i.GetNumberOfScalarComponents(), round(float(a[:, :3].mean()), 3))\" " +
-        path + " 2>&1");
-    return r.exitCode == 0 ? r.output.substr(0, r.output.find('\n')) : "unreadable: " + r.output;
-}
-
-std::string size(const std::string& stats) { return stats.substr(0, stats.find(' ', stats.find(' ') + 1)); }
-double mean(const std::string& stats) { return std::stod(stats.substr(stats.rfind(' ') + 1)); }
 }  // namespace
-
-TEST(CliCommands, GlInfoNamesAnOpenGl45CoreContext) {
-    const auto r = test::runCommand(cli + " gl-info");
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("OpenGL 4.5 core"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("renderer "), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("(Core Profile)"), std::string::npos) << r.output;
-}
 
 TEST(CliCommands, DicomInfoAgreesWithPydicom) {
     test::TempDir dir;
@@ -63,61 +40,6 @@ TEST(CliCommands, DicomInfoAgreesWithPydicom) {
     r = test::runCommand(cli + " dicom-info " + dir.file("not-there.dcm"));
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.output.find("not-there.dcm"), std::string::npos) << r.output;
-}
-
-TEST(CliCommands, LightFieldWritesEveryFormatAtTheDisplaysSize) {
-    test::TempDir dir;
-    ASSERT_EQ(test::runCommand(cli + " phantom --size 32x32x32 -o " + dir.file("p.hvo")).exitCode, 0);
-    const std::string lf = cli + " lightfield " + dir.file("p.hvo") + " --zoom 3";
-    // Quilt: 11 x 6 views of 64x96 for the Looking Glass Go, named as its software expects.
-    auto r = test::runCommand(lf + " --display looking-glass-go --format quilt --size 64x96 -o " + dir.file("q"));
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const std::string quilt = dir.file("q_qs11x6a0.5625.png");
-    const auto qs = pngStats(quilt);
-    EXPECT_EQ(size(qs), "704 576") << qs;
-    EXPECT_GT(mean(qs), 1.0) << "the quilt shows the volume: " << qs;
-    // Projectors: one PNG per view; neighbouring views differ (they look from other angles).
-    r = test::runCommand(lf + " --display looking-glass-go --format projectors --size 64x96 -o " + dir.file("views"));
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    std::size_t views = 0;
-    for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.file("views"))) ++views;
-    EXPECT_EQ(views, 66u);
-    EXPECT_EQ(size(pngStats(dir.file("views/view_000.png"))), "64 96");
-    EXPECT_NE(test::runCommand("cmp -s " + dir.file("views/view_000.png") + " " + dir.file("views/view_065.png")).exitCode,
-              0)
-        << "the first and last views are the same image: no parallax";
-    // EXR: one multi-part file, a part per view, as OpenEXR's own tool lists it.
-    r = test::runCommand(lf + " --display looking-glass-go --format exr --size 64x96 -o " + dir.file("views.exr"));
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const auto header = test::runCommand("exrheader " + dir.file("views.exr") + " 2>&1");
-    ASSERT_EQ(header.exitCode, 0) << "exrheader (Debian's openexr, installer/install-deps.sh): " << header.output;
-    std::size_t parts = 0;
-    for (std::size_t at = 0; (at = header.output.find("dataWindow", at)) != std::string::npos; ++at) ++parts;
-    EXPECT_EQ(parts, 66u) << header.output.substr(0, 600);
-    EXPECT_NE(header.output.find("(0 0) - (63 95)"), std::string::npos) << header.output.substr(0, 600);
-    // Stereo: a side-by-side pair, twice the width of one view.
-    r = test::runCommand(lf + " --display stereo-side-by-side --format stereo --size 64x96 -o " + dir.file("pair.png"));
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_EQ(size(pngStats(dir.file("pair.png"))), "128 96");
-    // DVI frames of the 96-projector HoloVizio: its 320x240 projector images, packed 16 per frame.
-    r = test::runCommand(lf + " --display holovizio-96 --format dvi --size 64x48 -o " + dir.file("dvi"));
-    EXPECT_NE(r.exitCode, 0);
-    EXPECT_NE(r.output.find("needs 320x240"), std::string::npos) << r.output;
-    r = test::runCommand(lf + " --display holovizio-96 --format dvi --size 320x240 -o " + dir.file("dvi"));
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    for (int f = 0; f < 6; ++f)
-        EXPECT_EQ(size(pngStats(dir.file("dvi/dvi_frame_0" + std::to_string(f) + ".png"))), "1280 1024") << f;
-    // The simulator: what an observer in front of the projector array sees.
-    r = test::runCommand(lf + " --display holovizio-96 --format projectors --size 80x60 -o " + dir.file("holo") +
-                         " --observer 0,0,1000 --simulate " + dir.file("seen.png"));
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const auto seen = pngStats(dir.file("seen.png"));
-    EXPECT_EQ(size(seen), "80 60") << seen;
-    EXPECT_GT(mean(seen), 1.0) << seen;
-    r = test::runCommand(lf + " --display looking-glass-go --format quilt --size 64x96 -o " + dir.file("q2") +
-                         " --observer 0,0,1000 --simulate " + dir.file("no.png"));
-    EXPECT_NE(r.exitCode, 0);
-    EXPECT_NE(r.output.find("needs a projector-array display"), std::string::npos) << r.output;
 }
 
 namespace {

@@ -20,19 +20,28 @@ export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$here/
 targets="core_unit_tests dicom_unit_tests ui_unit_tests cli_tests render_context_tests pacs_tests holovox-cli holovox-lightfield-mpi"
 receiver='^(StorageServer|StorageLimits)\.'
 
+# Each step's status is checked by hand: `set -e` does not apply inside a function called from
+# an && list, which is how a failing sanitizer stage once printed "passed".
 suite() {  # preset labels
-    local preset=$1 labels=$2 start=$SECONDS
-    cmake --preset "$preset" >/dev/null
+    local preset=$1 labels=$2 start=$SECONDS failed=0
+    cmake --preset "$preset" >/dev/null || return 1
     # shellcheck disable=SC2086
-    cmake --build --preset "$preset" --target $targets
-    ctest --test-dir "build/$preset" -L "$labels" -LE fuzz -E package_deb -j2 --timeout 900 --output-on-failure
-    ctest --test-dir "build/$preset" -R "$receiver" --timeout 900 --output-on-failure
+    cmake --build --preset "$preset" --target $targets || return 1
+    ctest --test-dir "build/$preset" -L "$labels" -LE fuzz -E package_deb -j2 --timeout 900 --output-on-failure || failed=1
+    ctest --test-dir "build/$preset" -R "$receiver" --timeout 900 --output-on-failure || failed=1
+    if [ "$failed" != 0 ]; then
+        echo "sanitizers: $preset ($labels and the receiver) FAILED after $((SECONDS - start)) s"
+        return 1
+    fi
     echo "sanitizers: $preset ($labels and the receiver) passed in $((SECONDS - start)) s"
 }
 
+status=0
 case "${1:-both}" in
-    asan) suite asan 'unit|integration' ;;
-    tsan) suite tsan 'unit|integration|render' ;;
-    both) suite asan 'unit|integration' && suite tsan 'unit|integration|render' ;;
+    asan) suite asan 'unit|integration' || status=1 ;;
+    tsan) suite tsan 'unit|integration|render' || status=1 ;;
+    both) suite asan 'unit|integration' || status=1
+          suite tsan 'unit|integration|render' || status=1 ;;
     *) echo "usage: $0 [asan|tsan]" >&2; exit 2 ;;
 esac
+exit "$status"
