@@ -29,6 +29,7 @@ SliceView::SliceView(core::SlicePlane::Orientation orientation, QWidget* parent)
 
 void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
     reader_ = std::move(reader);
+    normal_ = glm::dvec3(0.0);  // a tilt belongs to the anatomy it followed: the standard plane again
     ruler_.reset();  // measurements belong to the volume they were made on
     roi_.reset();
     roiStats_.reset();
@@ -187,14 +188,7 @@ void SliceView::paintEvent(QPaintEvent*) {
     p.drawLine(QPointF(c.x() + 6, c.y()), QPointF(width(), c.y()));
     p.drawLine(QPointF(c.x(), 0), QPointF(c.x(), c.y() - 6));
     p.drawLine(QPointF(c.x(), c.y() + 6), QPointF(c.x(), height()));
-    const QStringList labels = edgeLabels();
     const QRect r = rect().adjusted(5, 3, -5, -3);
-    p.setFont(font());
-    // Without a known orientation the letters would be a guess: "?" instead (left is never right).
-    const auto& geometry = reader_->geometry();
-    drawEdgeLabels(p, r, labels);
-    drawAssumedGeometry(p, r.adjusted(0, 18, 0, 0), geometry);
-    paintMeasurements(p);
     static const char* names[] = {"Axial", "Coronal", "Sagittal"};
     p.setPen(QColor(200, 200, 200));
     QFont info = font();
@@ -203,12 +197,22 @@ void SliceView::paintEvent(QPaintEvent*) {
     static const char* modes[] = {"MIP", "MinIP", "mean"};
     QString slab = slabMm_ > 0 ? tr("\nslab %1 mm %2").arg(slabMm_, 0, 'g', 4).arg(modes[int(slabMode_)]) : QString();
     if (const double t = tiltDegrees(); t > 0.05) slab += tr("\ntilted %1\u00b0").arg(t, 0, 'f', 1);
-    p.drawText(r, Qt::AlignBottom | Qt::AlignLeft,
-               QStringLiteral("%1\n%2 \u2022 %3%4\nW %5\nL %6%7")
-                   .arg(QString::fromLatin1(names[int(orientation_)]), slicePosition(), levelReadout(), slab)
-                   .arg(width_, 0, 'f', 0)
-                   .arg(centre_, 0, 'f', 0)
-                   .arg(windowName_.isEmpty() ? QString() : QStringLiteral(" (%1)").arg(windowName_)));
+    const QString text = QStringLiteral("%1\n%2 \u2022 %3%4\nW %5\nL %6%7")
+                             .arg(QString::fromLatin1(names[int(orientation_)]), slicePosition(), levelReadout(), slab)
+                             .arg(width_, 0, 'f', 0)
+                             .arg(centre_, 0, 'f', 0)
+                             .arg(windowName_.isEmpty() ? QString() : QStringLiteral(" (%1)").arg(windowName_));
+    // On a dark box: the text stays readable over bright tissue.
+    const int flags = Qt::AlignBottom | Qt::AlignLeft;
+    p.fillRect(p.boundingRect(r, flags, text).adjusted(-3, -2, 3, 2), QColor(0, 0, 0, 150));
+    p.setPen(QColor(200, 200, 200));
+    p.drawText(r, flags, text);
+    // The orientation letters over everything else ("?" when the orientation is not known: a
+    // guess would be worse than none, left is never right), then the notes and measurements.
+    p.setFont(font());
+    drawEdgeLabels(p, r, edgeLabels());
+    drawAssumedGeometry(p, r.adjusted(0, 18, 0, 0), reader_->geometry());
+    paintMeasurements(p);
 }
 
 void SliceView::mousePressEvent(QMouseEvent* e) {

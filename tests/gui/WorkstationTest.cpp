@@ -588,6 +588,13 @@ private slots:
         QVERIFY2((tilted[2] == "AI" && tilted[3] == "PS") || (tilted[2] == "AS" && tilted[3] == "PI"),
                  qPrintable(tilted.join(",")));
         saveArtifact("slice-tilted.png");
+        // Another volume opens on the standard plane, not on the last one's tilt.
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_Up, Qt::ControlModifier);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-mr.hvo"))));
+        QCOMPARE(axial->tiltDegrees(), 0.0);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        axial->setFocus();
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_Up, Qt::ControlModifier);
         QTest::keyClick(axial, Qt::Key_O);
         QCOMPARE(axial->tiltDegrees(), 0.0);
         QCOMPARE(axial->edgeLabels(), (QStringList{"R", "L", "A", "P"}));
