@@ -84,7 +84,11 @@ void finishGeometry(SeriesVolume& v) {
         const glm::dvec3 travel = v.slices.back().position - v.slices.front().position;
         k = glm::normalize(travel);
         v.tiltDegrees = std::acos(std::clamp(glm::dot(k, n), -1.0, 1.0)) * 180.0 / M_PI;
-        if (v.tiltDegrees > 0.05)
+        if (v.tiltDegrees > 0.05 && !fg.hasOrientation)  // a tilt measured against axes that were assumed
+            v.warnings.push_back(fmt("the slice positions run %.2f degrees off the assumed slice normal: the stack is "
+                                     "kept sheared along them (no orientation to say whether that is a gantry tilt)",
+                                     v.tiltDegrees));
+        else if (v.tiltDegrees > 0.05)
             v.warnings.push_back(fmt("gantry tilt of %.2f degrees: the stack is kept sheared with its exact patient "
                                      "transform", v.tiltDegrees));
         const double tolerance = std::max(0.01 * median, 1e-3);

@@ -207,6 +207,10 @@ TEST_F(PydicomSeries, MissingSpacingAndOrientationAreNamed) {
     ASSERT_EQ(volumes.size(), 1u);
     EXPECT_TRUE(anyContains(volumes[0].warnings, "spacing unknown, assumed 1 mm")) << ::testing::PrintToString(volumes[0].warnings);
     EXPECT_TRUE(anyContains(volumes[0].warnings, "orientation unknown")) << ::testing::PrintToString(volumes[0].warnings);
+    // Its positions run off the assumed normal: said as such, not as a gantry tilt.
+    EXPECT_FALSE(anyContains(volumes[0].warnings, "gantry tilt of")) << ::testing::PrintToString(volumes[0].warnings);
+    EXPECT_TRUE(anyContains(volumes[0].warnings, "off the assumed slice normal"))
+        << ::testing::PrintToString(volumes[0].warnings);
     // The assumption travels with the volume: into its octree (the views say it and draw "?"
     // for the orientation letters), into the study database (the browser row and `studies`),
     // and an export refuses to write it down as a fact.
