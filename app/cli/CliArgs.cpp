@@ -75,4 +75,26 @@ std::optional<double> CliArgs::number(const std::string& name) const {
     return x;
 }
 
+std::vector<double> CliArgs::numbers(const std::string& text, std::size_t count, const std::string& what) {
+    std::vector<double> v;
+    std::size_t at = 0;
+    while (at <= text.size()) {
+        const auto end = std::min(text.find(',', at), text.size());
+        const std::string part = text.substr(at, end - at);
+        std::size_t used = 0;
+        double x = 0;
+        try {
+            x = std::stod(part, &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (part.empty() || used != part.size() || !std::isfinite(x)) break;
+        v.push_back(x);
+        at = end + 1;
+    }
+    if (v.size() != count || at <= text.size())
+        throw core::Error(what + " '" + text + "' needs " + std::to_string(count) + " comma-separated numbers");
+    return v;
+}
+
 }  // namespace hvx::app

@@ -21,6 +21,8 @@ public:
     long integer(const std::string& name, long fallback, long lo, long hi) const;
     /// Floating-point option; throws core::Error when not a number.
     std::optional<double> number(const std::string& name) const;
+    /// `count` comma-separated finite numbers ("X,Y,Z"); throws core::Error naming `what` otherwise.
+    static std::vector<double> numbers(const std::string& text, std::size_t count, const std::string& what);
 
 private:
     std::vector<std::string> positional_;

@@ -31,12 +31,8 @@ namespace hvx::app {
 
 namespace {
 glm::dvec3 parseTriple(const std::string& text, const char* what) {
-    glm::dvec3 v;
-    char c1 = 0, c2 = 0;
-    std::istringstream in(text);
-    if (!(in >> v.x >> c1 >> v.y >> c2 >> v.z) || c1 != ',' || c2 != ',')
-        throw core::Error(std::string(what) + " must be three numbers X,Y,Z");
-    return v;
+    const auto v = CliArgs::numbers(text, 3, what);
+    return {v[0], v[1], v[2]};
 }
 
 }  // namespace

@@ -2,7 +2,6 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
@@ -14,21 +13,6 @@
 #include "core/volume/DisplayWindow.h"
 
 namespace hvx::app {
-
-namespace {
-std::vector<double> numbers(const std::string& text, std::size_t count, const char* what) {
-    std::vector<double> v;
-    std::stringstream in(text);
-    for (std::string part; std::getline(in, part, ',');) {
-        char* end = nullptr;
-        const double x = std::strtod(part.c_str(), &end);
-        if (part.empty() || *end || !std::isfinite(x)) break;
-        v.push_back(x);
-    }
-    if (v.size() != count) throw core::Error(std::string(what) + " '" + text + "' needs " + std::to_string(count) + " numbers");
-    return v;
-}
-}  // namespace
 
 int sliceCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2, {"plane", "at", "size", "pixel", "slab", "slab-mode", "window", "level", "o", "output"}, {});
@@ -46,12 +30,12 @@ int sliceCommand(int argc, char** argv) {
         throw core::Error("--size must be WxH");
     if (width < 1 || height < 1 || width > 8192 || height > 8192) throw core::Error("--size must be 1x1 to 8192x8192");
     const glm::dvec3 extent = glm::dvec3(g.dims[0], g.dims[1], g.dims[2]) * g.spacing;
-    const double pixel = args.value("pixel") ? numbers(*args.value("pixel"), 1, "--pixel")[0]
+    const double pixel = args.value("pixel") ? *args.number("pixel")
                                              : std::max({extent.x, extent.y, extent.z}) / std::min(width, height);
     if (!(pixel > 0)) throw core::Error("--pixel must be above 0 mm");
     glm::dvec3 at = sampler.space().centre();
     if (const auto a = args.value("at")) {
-        const auto v = numbers(*a, 3, "--at");
+        const auto v = CliArgs::numbers(*a, 3, "--at");
         at = {v[0], v[1], v[2]};
     }
     core::SlicePlane plane;
@@ -61,7 +45,7 @@ int sliceCommand(int argc, char** argv) {
     else if (planeName == "sagittal")
         plane = core::SlicePlane::standard(core::SlicePlane::Orientation::Sagittal, at, pixel, width, height);
     else {
-        const auto n = numbers(planeName, 3, "--plane");
+        const auto n = CliArgs::numbers(planeName, 3, "--plane");
         plane = core::SlicePlane::oblique({n[0], n[1], n[2]}, at, pixel, width, height);
     }
     const int level = args.value("level") ? int(args.integer("level", 0, 0, reader->levelCount() - 1)) : -1;
@@ -71,13 +55,13 @@ int sliceCommand(int argc, char** argv) {
         const auto mode = m == "mip" ? core::SlabMode::Mip : m == "minip" ? core::SlabMode::MinIp
                           : m == "mean" ? core::SlabMode::Mean
                                         : throw core::Error("--slab-mode must be mip, minip or mean");
-        img = sampler.sampleSlab(plane, numbers(*args.value("slab"), 1, "--slab")[0], mode, level);
+        img = sampler.sampleSlab(plane, *args.number("slab"), mode, level);
     } else {
         img = sampler.sample(plane, level);
     }
     core::DisplayWindow w = core::DisplayWindow::initial(g);
     if (const auto wl = args.value("window")) {
-        const auto v = numbers(*wl, 2, "--window");
+        const auto v = CliArgs::numbers(*wl, 2, "--window");
         if (!(v[0] > 0)) throw core::Error("--window W,L needs a width above 0");
         w = {"", v[1], v[0]};
     }
