@@ -32,10 +32,42 @@ void fsyncPath(const std::string& path, int flags) {
     ::close(fd);
 }
 
-bool sameBytes(const std::string& a, const std::string& b) {
+/// Where the dataset begins: after the preamble and the File Meta Information (group 0002,
+/// explicit VR little endian by the standard), or 0 when the file has no preamble.
+std::uint64_t datasetOffset(std::ifstream& in) {
+    char head[132];
+    in.seekg(0);
+    if (!in.read(head, sizeof head) || std::memcmp(head + 128, "DICM", 4) != 0) return 0;
+    std::uint64_t at = 132;
+    for (;;) {
+        unsigned char e[12];
+        in.seekg(std::streamoff(at));
+        if (!in.read(reinterpret_cast<char*>(e), 8)) break;
+        if ((e[0] | e[1] << 8) != 0x0002) break;
+        const std::string vr(reinterpret_cast<char*>(e + 4), 2);
+        if (vr == "OB" || vr == "OW" || vr == "UN" || vr == "SQ" || vr == "UT" || vr == "OF") {
+            if (!in.read(reinterpret_cast<char*>(e + 8), 4)) break;
+            at += 12 + (std::uint64_t(e[8]) | std::uint64_t(e[9]) << 8 | std::uint64_t(e[10]) << 16 |
+                        std::uint64_t(e[11]) << 24);
+        } else {
+            at += 8 + (std::uint64_t(e[6]) | std::uint64_t(e[7]) << 8);
+        }
+    }
+    in.clear();
+    return at;
+}
+
+/// The same instance content: the same dataset bytes. The File Meta Information is not
+/// compared: it names the application and AE that wrote the file, which differ between a C-GET,
+/// a C-MOVE and a WADO-RS of the same instance.
+bool sameDataset(const std::string& a, const std::string& b) {
     std::error_code ec;
-    if (fs::file_size(a, ec) != fs::file_size(b, ec) || ec) return false;
     std::ifstream fa(a, std::ios::binary), fb(b, std::ios::binary);
+    const std::uint64_t oa = datasetOffset(fa), ob = datasetOffset(fb);
+    const auto sa = fs::file_size(a, ec), sb = ec ? 0 : fs::file_size(b, ec);
+    if (ec || sa < oa || sb < ob || sa - oa != sb - ob) return false;
+    fa.seekg(std::streamoff(oa));
+    fb.seekg(std::streamoff(ob));
     char x[65536], y[65536];
     while (fa && fb) {
         fa.read(x, sizeof x);
@@ -110,7 +142,7 @@ DicomInstance IncomingStore::finalize(const std::string& temporary) {
         return in;
     }
     if (!ec && errno == EEXIST) {
-        if (sameBytes(temporary, target.string())) {  // the same instance again: nothing to do
+        if (sameDataset(temporary, target.string())) {  // the same instance again: nothing to do
             std::remove(temporary.c_str());
             in.path = target.string();
             return in;

@@ -11,9 +11,9 @@ namespace hvx::dicom {
 /// (under storageDir/.incoming; the name is unique in the process and created exclusively),
 /// then finalize() reads its header, flushes it and renames it into place without replacing
 /// anything, then flushes the folder: no half-written file ever appears in the tree and no UID
-/// can escape the folder. The same instance arriving again with the same bytes changes
-/// nothing; with other bytes it is set aside under storageDir/.conflicts and reported, and the
-/// stored one is kept.
+/// can escape the folder. The same instance arriving again with the same dataset bytes (the File
+/// Meta Information, which names the sender, may differ) changes nothing; with other bytes it
+/// is set aside under storageDir/.conflicts and reported, and the stored one is kept.
 ///
 /// Threading: temporaryPath() and finalize() may be called from several threads.
 class IncomingStore {

@@ -12,13 +12,18 @@
 
 #include <arpa/inet.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstring>
+#include <mutex>
+#include <thread>
 #include <set>
 #include <tuple>
 
 #include "core/base/Error.h"
 #include "dicom/DcmtkSetup.h"
 #include "dicom/DicomHeaderReader.h"
+#include "dicom/DicomWebClient.h"
 #include "dicom/IncomingStore.h"
 #include "dicom/PacsProtocol.h"
 
@@ -171,6 +176,7 @@ struct PacsClient::Impl {
     LocalNode local;
     PacsNode remote;
     const core::JobContext* job = nullptr;
+    std::unique_ptr<DicomWebClient> web;  // a DICOMweb node: every operation goes to it
     std::unique_ptr<DcmTLSTransportLayer> tls;  // outlives the association it secures
 
     void secure(Scu& scu) {
@@ -230,7 +236,7 @@ struct PacsClient::Impl {
         scu.setDIMSETimeout(t);
         scu.setDIMSEBlockingMode(DIMSE_NONBLOCKING);
         scu.setConnectionTimeout(Sint32(t));
-        scu.setMaxReceivePDULength(ASC_MAXIMUMPDUSIZE);
+        scu.setMaxReceivePDULength(remote.maxPdu);
         for (const auto& [sop, role, syntaxList] : contexts) {
             OFList<OFString> syntaxes;
             for (const auto& ts : syntaxList) syntaxes.push_back(ts.c_str());
@@ -248,9 +254,15 @@ struct PacsClient::Impl {
         if (c.bad() && remote.tls && lastVerifyError != X509_V_OK)
             throw core::Error(where() + ": its TLS certificate was refused (" +
                               X509_verify_cert_error_string(lastVerifyError) + ")");
+        if (c == DUL_ASSOCIATIONREJECTED)
+            throw AssociationRejected(PacsProtocol::describeAssociationFailure(where(), c.text(), local.aeTitle,
+                                                                               remote.aeTitle, local.timeoutSeconds));
         if (c.bad()) throw core::Error(PacsProtocol::describeAssociationFailure(where(), c.text(), local.aeTitle,
                                                                                remote.aeTitle, local.timeoutSeconds));
     }
+
+    /// Sends instances over one association; onEach after each.
+    std::size_t storeOn(const std::vector<DicomInstance>& headers, const std::function<void()>& onEach);
 
     T_ASC_PresentationContextID context(Scu& scu, const char* sop, const char* what) {
         const T_ASC_PresentationContextID id = scu.findPresentationContextID(sop, "");
@@ -265,12 +277,18 @@ struct PacsClient::Impl {
 PacsClient::PacsClient(LocalNode local, PacsNode remote) : impl_(std::make_unique<Impl>()) {
     impl_->local = std::move(local);
     impl_->remote = std::move(remote);
+    if (impl_->remote.kind == NodeKind::DicomWeb)
+        impl_->web = std::make_unique<DicomWebClient>(impl_->local, impl_->remote);
 }
 PacsClient::~PacsClient() = default;
 
-void PacsClient::cancelWith(const core::JobContext& job) { impl_->job = &job; }
+void PacsClient::cancelWith(const core::JobContext& job) {
+    impl_->job = &job;
+    if (impl_->web) impl_->web->cancelWith(job);
+}
 
 void PacsClient::echo() {
+    if (impl_->web) return impl_->web->echo();
     Scu scu;
     impl_->connect(scu, {{UID_VerificationSOPClass, ASC_SC_ROLE_DEFAULT}}, PacsProtocol::basicSyntaxes());
     const OFCondition c = scu.sendECHORequest(impl_->context(scu, UID_VerificationSOPClass, "verification (C-ECHO)"));
@@ -280,6 +298,7 @@ void PacsClient::echo() {
 
 std::size_t PacsClient::find(QueryLevel level, const QueryKeys& keys,
                              const std::function<bool(const QueryResult&)>& onResult) {
+    if (impl_->web) return impl_->web->find(level, keys, onResult);
     Scu scu;
     scu.level = level;
     scu.onFind = onResult;
@@ -304,6 +323,7 @@ RetrieveProgress PacsClient::get(const std::string& studyUid, const std::string&
                                  const std::function<void(const DicomInstance&)>& onStored,
                                  const std::function<void(const RetrieveProgress&)>& onProgress,
                                  const std::vector<std::string>& sopUids) {
+    if (impl_->web) return impl_->web->get(studyUid, seriesUid, storageDir, onStored, onProgress, sopUids);
     IncomingStore store(storageDir, impl_->local.minFreeBytes);
     Scu scu;
     scu.job = impl_->job;
@@ -337,6 +357,8 @@ RetrieveProgress PacsClient::move(const std::string& studyUid, const std::string
                                   const std::string& destinationAe,
                                   const std::function<void(const RetrieveProgress&)>& onProgress,
                                   const std::vector<std::string>& sopUids) {
+    if (impl_->web)
+        throw core::Error("DICOMweb node '" + impl_->remote.name + "' retrieves by WADO-RS, not C-MOVE; use get");
     Scu scu;
     scu.job = impl_->job;
     scu.onProgress = onProgress;
@@ -358,17 +380,11 @@ RetrieveProgress PacsClient::move(const std::string& studyUid, const std::string
     return scu.progress;
 }
 
-std::size_t PacsClient::store(const std::vector<std::string>& files, const std::function<void(std::size_t)>& onProgress) {
+std::size_t PacsClient::Impl::storeOn(const std::vector<DicomInstance>& headers, const std::function<void()>& onEach) {
     // One presentation context per SOP class present, offering the file's own transfer syntax
     // (so nothing is re-encoded) and explicit little endian.
-    std::vector<DicomInstance> headers;
     std::set<std::pair<std::string, std::string>> contexts;
-    for (const auto& f : files) {
-        DicomInstance in;
-        if (DicomHeaderReader::read(f, in) != DicomHeaderReader::Kind::Dicom) throw core::Error(f + ": not a DICOM file");
-        contexts.insert({in.sopClassUid, in.transferSyntaxUid});
-        headers.push_back(std::move(in));
-    }
+    for (const auto& in : headers) contexts.insert({in.sopClassUid, in.transferSyntaxUid});
     Scu scu;
     std::vector<Impl::Context> negotiated;
     for (const auto& [sop, ts] : contexts) {
@@ -376,23 +392,81 @@ std::size_t PacsClient::store(const std::vector<std::string>& files, const std::
         if (ts != UID_LittleEndianExplicitTransferSyntax) syntaxes.push_back(UID_LittleEndianExplicitTransferSyntax);
         negotiated.emplace_back(sop, ASC_SC_ROLE_DEFAULT, syntaxes);
     }
-    impl_->connectWith(scu, negotiated);
-    OFCondition c;
+    connectWith(scu, negotiated);
     std::size_t accepted = 0;
-    for (std::size_t i = 0; i < headers.size(); ++i) {
+    for (const auto& in : headers) {
+        if (job && job->cancelled()) {
+            scu.abortAssociation();
+            throw core::Cancelled();
+        }
         const T_ASC_PresentationContextID id =
-            scu.findPresentationContextID(headers[i].sopClassUid.c_str(), headers[i].transferSyntaxUid.c_str());
+            scu.findPresentationContextID(in.sopClassUid.c_str(), in.transferSyntaxUid.c_str());
         Uint16 status = 0;
-        c = scu.sendSTORERequest(id, headers[i].path.c_str(), nullptr, status);
+        const OFCondition c = scu.sendSTORERequest(id, in.path.c_str(), nullptr, status);
         if (c.bad()) {
             scu.abortAssociation();
-            throw core::Error(PacsProtocol::describeDimseFailure(impl_->where(), "C-STORE of " + headers[i].path,
-                                                                 c.text(), impl_->local.timeoutSeconds));
+            throw core::Error(
+                PacsProtocol::describeDimseFailure(where(), "C-STORE of " + in.path, c.text(), local.timeoutSeconds));
         }
         if (status == 0x0000 || (status & 0xF000) == 0xB000) ++accepted;
-        if (onProgress) onProgress(i + 1);
+        if (onEach) onEach();
     }
     scu.releaseAssociation();
+    return accepted;
+}
+
+std::size_t PacsClient::store(const std::vector<std::string>& files, const std::function<void(std::size_t)>& onProgress) {
+    if (impl_->web) return impl_->web->store(files, onProgress);
+    std::vector<DicomInstance> headers;
+    for (const auto& f : files) {
+        DicomInstance in;
+        if (DicomHeaderReader::read(f, in) != DicomHeaderReader::Kind::Dicom) throw core::Error(f + ": not a DICOM file");
+        headers.push_back(std::move(in));
+    }
+    std::vector<std::vector<DicomInstance>> chunks;
+    for (std::size_t at = 0; at < headers.size(); at += kFilesPerAssociation)
+        chunks.emplace_back(headers.begin() + long(at),
+                            headers.begin() + long(std::min(headers.size(), at + kFilesPerAssociation)));
+    std::mutex mutex;
+    std::size_t sent = 0;
+    auto onEach = [&] {
+        std::lock_guard lock(mutex);
+        ++sent;
+        if (onProgress) onProgress(sent);
+    };
+    const int workers = std::min<int>(std::max(1, impl_->local.parallelAssociations), int(chunks.size()));
+    if (workers <= 1) return chunks.empty() ? 0 : impl_->storeOn(headers, onEach);
+    // Several associations at once, each taking the next chunk; a PACS that rejects an extra
+    // association is given time, then left to the associations it did accept.
+    std::atomic<std::size_t> next{0}, accepted{0};
+    std::atomic<int> working{0};
+    std::exception_ptr failure;
+    auto work = [&] {
+        PacsClient own(impl_->local, impl_->remote);
+        if (impl_->job) own.cancelWith(*impl_->job);
+        try {
+            for (std::size_t i = next++; i < chunks.size(); i = next++) {
+                for (int attempt = 0;; ++attempt) {
+                    try {
+                        accepted += own.impl_->storeOn(chunks[i], onEach);
+                        ++working;
+                        break;
+                    } catch (const AssociationRejected&) {
+                        if (attempt >= 3 || (working == 0 && attempt >= 2)) throw;
+                        std::this_thread::sleep_for(std::chrono::milliseconds(250 << attempt));
+                    }
+                }
+            }
+        } catch (...) {
+            std::lock_guard lock(mutex);
+            if (!failure) failure = std::current_exception();
+            next = chunks.size();  // the others stop after their chunk
+        }
+    };
+    std::vector<std::thread> threads;
+    for (int w = 0; w < workers; ++w) threads.emplace_back(work);
+    for (auto& t : threads) t.join();
+    if (failure) std::rethrow_exception(failure);
     return accepted;
 }
 

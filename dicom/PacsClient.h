@@ -4,39 +4,23 @@
 #include <string>
 #include <vector>
 
+#include "core/base/Error.h"
 #include "core/base/JobContext.h"
 #include "dicom/DicomInstance.h"
 #include "dicom/PacsNode.h"
+#include "dicom/PacsQuery.h"
 
 namespace hvx::dicom {
 
-/// Query/retrieve level of a Study Root C-FIND.
-enum class QueryLevel { Study, Series, Image };
-
-/// Matching keys of a query. Empty keys match everything. patientName takes DICOM wildcards
-/// (* and ?); studyDate is YYYYMMDD or a range "YYYYMMDD-YYYYMMDD" (either end may be open).
-struct QueryKeys {
-    std::string patientName, patientId, studyDate, modality, accessionNumber, studyDescription;
-    std::string studyUid, seriesUid;  ///< restrict SERIES and IMAGE queries
+/// The node rejected the association (it may limit how many it serves at once): the caller
+/// may wait and try again.
+class AssociationRejected : public core::Error {
+public:
+    using core::Error::Error;
 };
 
-/// One C-FIND answer.
-struct QueryResult {
-    QueryLevel level = QueryLevel::Study;
-    std::string patientName, patientId, patientBirthDate;
-    std::string studyUid, studyDate, studyTime, studyDescription, accessionNumber, modalitiesInStudy;
-    std::string seriesUid, seriesDescription, modality;
-    int seriesNumber = 0, instanceNumber = 0, numberOfInstances = 0;
-    std::string sopInstanceUid;
-};
-
-/// Sub-operation counts of a running C-GET or C-MOVE, from the PACS's pending responses.
-struct RetrieveProgress {
-    int remaining = 0, completed = 0, failed = 0, warning = 0;
-    int received = 0;  ///< instances this client stored itself (C-GET)
-};
-
-/// A DICOM client for one remote node: C-ECHO, Study Root C-FIND at study, series and image
+/// A DICOM client for one remote node — a DICOMweb node is served by DicomWebClient behind the
+/// same calls (C-MOVE excepted): C-ECHO, Study Root C-FIND at study, series and image
 /// level (results stream to a callback; returning false sends C-CANCEL), C-GET with storage
 /// role negotiation, and C-MOVE to a destination AE. Every failure is a core::Error in plain
 /// words that says what to check (host and port, AE titles, move destination).
@@ -68,8 +52,13 @@ public:
                           const std::function<void(const RetrieveProgress&)>& onProgress,
                           const std::vector<std::string>& sopUids = {});
 
-    /// Sends files to the node by C-STORE (one association); returns how many it accepted.
-    /// Throws core::Error when the node refuses or the connection fails.
+    /// Files per association of a C-STORE of many files.
+    static constexpr std::size_t kFilesPerAssociation = 200;
+
+    /// Sends files to the node (C-STORE, or STOW-RS for a DICOMweb node); returns how many it
+    /// accepted. Many files go over several associations at once (one per
+    /// kFilesPerAssociation files, at most LocalNode::parallelAssociations); onProgress gets
+    /// the count sent so far. Throws core::Error when the node refuses or the connection fails.
     std::size_t store(const std::vector<std::string>& files, const std::function<void(std::size_t)>& onProgress);
 
 private:

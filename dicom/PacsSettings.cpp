@@ -8,6 +8,7 @@
 
 #include "core/base/AtomicFileWriter.h"
 #include "core/base/Error.h"
+#include "dicom/DicomWebUrl.h"
 
 namespace hvx::dicom {
 
@@ -15,6 +16,58 @@ namespace {
 void checkAe(const std::string& ae, const std::string& what) {
     if (ae.empty() || ae.size() > 16 || ae.find('\\') != std::string::npos)
         throw core::Error(what + ": AE title '" + ae + "' must be 1 to 16 characters without backslash");
+}
+
+std::uint32_t checkPdu(std::int64_t pdu, const std::string& what) {
+    if (pdu < 4096 || pdu > 131072)
+        throw core::Error(what + ": maxPdu " + std::to_string(pdu) + " must be 4096 to 131072 bytes");
+    return std::uint32_t(pdu);
+}
+
+PacsNode readNode(const nlohmann::json& n, const std::string& path) {
+    PacsNode node;
+    node.name = n.at("name").get<std::string>();
+    const std::string where = path + ": node '" + node.name + "'";
+    node.kind = n.value("kind", std::string("dimse")) == "dicomweb" ? NodeKind::DicomWeb : NodeKind::Dimse;
+    if (node.kind == NodeKind::DicomWeb) {
+        node.baseUrl = n.at("url").get<std::string>();
+        DicomWebUrl::check(node.baseUrl, where);
+        node.bearerToken = n.value("bearerToken", std::string());
+        node.username = n.value("username", std::string());
+        node.password = n.value("password", std::string());
+        node.tlsVerify = n.value("tlsVerify", true);
+        return node;
+    }
+    node.aeTitle = n.at("aeTitle").get<std::string>();
+    node.host = n.at("host").get<std::string>();
+    const int p = n.at("port").get<int>();
+    if (p <= 0 || p > 65535) throw core::Error(where + " has an invalid port");
+    node.port = std::uint16_t(p);
+    node.retrieve = n.value("retrieve", std::string("get")) == "move" ? RetrieveMethod::Move : RetrieveMethod::Get;
+    node.tls = n.value("tls", false);
+    node.tlsTrustedCertificate = n.value("tlsTrustedCertificate", std::string());
+    node.tlsCertificate = n.value("tlsCertificate", std::string());
+    node.tlsPrivateKey = n.value("tlsPrivateKey", std::string());
+    node.maxPdu = checkPdu(n.value("maxPdu", std::int64_t(node.maxPdu)), where);
+    checkAe(node.aeTitle, where);
+    return node;
+}
+
+nlohmann::json writeNode(const PacsNode& n) {
+    if (n.kind == NodeKind::DicomWeb)
+        return {{"name", n.name},         {"kind", "dicomweb"},        {"url", n.baseUrl},
+                {"bearerToken", n.bearerToken}, {"username", n.username}, {"password", n.password},
+                {"tlsVerify", n.tlsVerify}};
+    return {{"name", n.name},
+            {"aeTitle", n.aeTitle},
+            {"host", n.host},
+            {"port", n.port},
+            {"retrieve", n.retrieve == RetrieveMethod::Move ? "move" : "get"},
+            {"tls", n.tls},
+            {"tlsTrustedCertificate", n.tlsTrustedCertificate},
+            {"tlsCertificate", n.tlsCertificate},
+            {"tlsPrivateKey", n.tlsPrivateKey},
+            {"maxPdu", n.maxPdu}};
 }
 
 std::string dataHome() {
@@ -54,22 +107,11 @@ PacsSettings PacsSettings::load(const std::string& path) {
         s.local.tlsPrivateKey = l.value("tlsPrivateKey", std::string());
         s.local.tlsTrustedCertificate = l.value("tlsTrustedCertificate", std::string());
         checkAe(s.local.aeTitle, path);
-        for (const auto& n : j.value("nodes", nlohmann::json::array())) {
-            PacsNode node;
-            node.name = n.at("name").get<std::string>();
-            node.aeTitle = n.at("aeTitle").get<std::string>();
-            node.host = n.at("host").get<std::string>();
-            const int p = n.at("port").get<int>();
-            if (p <= 0 || p > 65535) throw core::Error(path + ": node '" + node.name + "' has an invalid port");
-            node.port = std::uint16_t(p);
-            node.retrieve = n.value("retrieve", std::string("get")) == "move" ? RetrieveMethod::Move : RetrieveMethod::Get;
-            node.tls = n.value("tls", false);
-            node.tlsTrustedCertificate = n.value("tlsTrustedCertificate", std::string());
-            node.tlsCertificate = n.value("tlsCertificate", std::string());
-            node.tlsPrivateKey = n.value("tlsPrivateKey", std::string());
-            checkAe(node.aeTitle, path + ": node '" + node.name + "'");
-            s.nodes.push_back(node);
-        }
+        s.local.maxPdu = checkPdu(l.value("maxPdu", s.local.maxPdu), path + ": local");
+        s.local.parallelAssociations = l.value("parallelAssociations", s.local.parallelAssociations);
+        if (s.local.parallelAssociations < 1 || s.local.parallelAssociations > 16)
+            throw core::Error(path + ": local parallelAssociations must be 1 to 16");
+        for (const auto& n : j.value("nodes", nlohmann::json::array())) s.nodes.push_back(readNode(n, path));
         s.defaultNode = j.value("default", std::string());
     } catch (const nlohmann::json::exception& e) {
         throw core::Error(path + ": malformed PACS settings (" + e.what() + ")");
@@ -83,13 +125,10 @@ void PacsSettings::save(const std::string& path) const {
                   {"allowedCallers", local.allowedCallers}, {"timeoutSeconds", local.timeoutSeconds},
                   {"minFreeMiB", local.minFreeBytes >> 20}, {"maxInstanceMiB", local.maxInstanceBytes >> 20},
                   {"tlsCertificate", local.tlsCertificate}, {"tlsPrivateKey", local.tlsPrivateKey},
-                  {"tlsTrustedCertificate", local.tlsTrustedCertificate}};
+                  {"tlsTrustedCertificate", local.tlsTrustedCertificate}, {"maxPdu", local.maxPdu},
+                  {"parallelAssociations", local.parallelAssociations}};
     j["nodes"] = nlohmann::json::array();
-    for (const auto& n : nodes)
-        j["nodes"].push_back({{"name", n.name}, {"aeTitle", n.aeTitle}, {"host", n.host}, {"port", n.port},
-                              {"retrieve", n.retrieve == RetrieveMethod::Move ? "move" : "get"}, {"tls", n.tls},
-                              {"tlsTrustedCertificate", n.tlsTrustedCertificate},
-                              {"tlsCertificate", n.tlsCertificate}, {"tlsPrivateKey", n.tlsPrivateKey}});
+    for (const auto& n : nodes) j["nodes"].push_back(writeNode(n));
     j["default"] = defaultNode;
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ec);

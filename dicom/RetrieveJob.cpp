@@ -3,7 +3,11 @@
 #include <algorithm>
 
 #include <filesystem>
-#include <future>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <thread>
 #include <map>
 #include <mutex>
 
@@ -70,7 +74,11 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
         server->start();
     }
 
-    std::future<void> building = std::async(std::launch::deferred, [] {});
+    std::mutex updateMutex;  // onUpdate is called from the workers and the builder, one at a time
+    auto update = [&](const SeriesRetrieveStatus& s) {
+        std::lock_guard lock(updateMutex);
+        if (onUpdate) onUpdate(s);
+    };
     auto buildSeries = [&, buildOctrees](std::size_t index) {
         // Runs on its own thread: every failure is kept in the series' status, none is lost.
         try {
@@ -104,78 +112,138 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
             std::lock_guard lock(mutex);
             series[index].error = e.what();
         }
-        if (onUpdate) onUpdate(series[index]);
+        update(series[index]);
     };
 
-    std::size_t failures = 0;
-    for (std::size_t i = 0; i < series.size(); ++i) {
-        job.throwIfCancelled();
-        auto& s = series[i];
-        auto progress = [&, i](const RetrieveProgress& p) {
-            series[i].progress = p;
-            const int total = p.remaining + p.completed + p.failed + p.warning;
-            job.report((double(i) + (total ? double(p.completed + p.failed + p.warning) / total : 0.0)) /
-                           double(series.size()),
-                       "retrieving series " + std::to_string(i + 1) + " of " + std::to_string(series.size()));
-            if (onUpdate) onUpdate(series[i]);
-        };
-        try {
-            // What the PACS has, and which of it is here already (indexed, and its file there).
-            const std::vector<std::string> onPacs = instancesOnPacs(client, studyUid, s.seriesUid);
-            std::vector<std::string> missing;
-            std::vector<DicomInstance> here;
-            const auto indexed = db_.onlineInstancesOfSeries(s.seriesUid);
-            for (const auto& sop : onPacs) {
-                const auto it = indexed.find(sop);
-                DicomInstance in;
-                if (it != indexed.end() && readable(it->second, in) && in.sopInstanceUid == sop)
-                    here.push_back(in);
-                else
-                    missing.push_back(sop);
-            }
-            s.alreadyHere = int(here.size());
-            {
-                std::lock_guard lock(mutex);
-                received[s.seriesUid] = here;
-            }
-            // Only what is missing when part is here; the whole series otherwise.
-            const std::vector<std::string> only = here.empty() ? std::vector<std::string>{} : missing;
-            if (here.empty() || !missing.empty()) {
-                if (node_.retrieve == RetrieveMethod::Get)
-                    client.get(studyUid, s.seriesUid, settings_.local.storageDir, onStored, progress, only);
-                else
-                    client.move(studyUid, s.seriesUid, settings_.local.aeTitle, progress, only);
-            }
-            const std::size_t expected =
-                !onPacs.empty() ? onPacs.size()
-                                : std::size_t(std::max(0, s.progress.completed + s.progress.failed + s.progress.warning));
-            checkComplete(s, expected, [&] {
-                std::lock_guard lock(mutex);
-                return received[s.seriesUid].size();
-            }());
-            s.retrieved = true;
-        } catch (const core::Cancelled&) {
-            building.wait();  // its build sees the same cancellation
-            throw;
-        } catch (const std::exception& e) {
-            s.error = e.what();
-            ++failures;
-            if (onUpdate) onUpdate(s);
-            // What did arrive is indexed (never lost), but a partial series is not built.
-            building.wait();
-            building = std::async(std::launch::async, buildSeries, i);
-            continue;
+    // Several series at once, each worker over its own associations; one builder thread builds
+    // each finished series' octree while the transfers go on.
+    std::mutex queueMutex;
+    std::condition_variable queued;
+    std::deque<std::size_t> toBuild;
+    bool fetching = true;
+    std::thread builder([&] {
+        for (;;) {
+            std::unique_lock lock(queueMutex);
+            queued.wait(lock, [&] { return !toBuild.empty() || !fetching; });
+            if (toBuild.empty()) return;
+            const std::size_t i = toBuild.front();
+            toBuild.pop_front();
+            lock.unlock();
+            buildSeries(i);
         }
-        if (onUpdate) onUpdate(s);
-        // Build this series while the next one arrives.
-        building.wait();
-        building = std::async(std::launch::async, buildSeries, i);
+    });
+    std::vector<double> done(series.size(), 0.0);
+    std::atomic<std::size_t> next{0}, failures{0};
+    std::atomic<bool> cancelled{false};
+    auto work = [&] {
+        PacsClient own(settings_.local, node_);
+        own.cancelWith(job);
+        for (std::size_t i = next++; i < series.size() && !cancelled; i = next++) {
+            try {
+                if (fetch(own, studyUid, series[i], mutex, received, onStored, [&, i](const RetrieveProgress& p) {
+                        series[i].progress = p;
+                        const int total = p.remaining + p.completed + p.failed + p.warning;
+                        double sum = 0;
+                        {
+                            std::lock_guard lock(mutex);
+                            done[i] = total ? double(p.completed + p.failed + p.warning) / total : 0.0;
+                            for (double d : done) sum += d;
+                        }
+                        job.report(sum / double(series.size()),
+                                   "retrieving " + std::to_string(series.size()) + " series");
+                        update(series[i]);
+                    }))
+                    update(series[i]);
+                else
+                    ++failures;
+            } catch (const core::Cancelled&) {
+                cancelled = true;
+                break;
+            }
+            {
+                std::lock_guard lock(queueMutex);
+                toBuild.push_back(i);  // a failed series is built too: what arrived is indexed, never lost
+            }
+            queued.notify_one();
+        }
+    };
+    const int workers = std::min<int>(std::max(1, settings_.local.parallelAssociations), int(series.size()));
+    std::vector<std::thread> threads;
+    for (int w = 0; w < workers; ++w) threads.emplace_back(work);
+    for (auto& t : threads) t.join();
+    {
+        std::lock_guard lock(queueMutex);
+        fetching = false;
     }
-    building.wait();
+    queued.notify_one();
+    builder.join();  // a cancelled retrieve's builds see the same cancellation
     if (server) server->stop();
+    if (cancelled || job.cancelled()) throw core::Cancelled();
     job.report(1.0, "done");
     if (failures == series.size()) throw core::Error(series.front().error);
     return series;
+}
+
+bool RetrieveJob::fetch(PacsClient& client, const std::string& studyUid, SeriesRetrieveStatus& s, std::mutex& mutex,
+                        std::map<std::string, std::vector<DicomInstance>>& received,
+                        const std::function<void(const DicomInstance&)>& onStored,
+                        const std::function<void(const RetrieveProgress&)>& progress) {
+    try {
+        // What the PACS has, and which of it is here already (indexed, and its file there).
+        const std::vector<std::string> onPacs = instancesOnPacs(client, studyUid, s.seriesUid);
+        std::vector<std::string> missing;
+        std::vector<DicomInstance> here;
+        std::map<std::string, std::string> indexed;
+        {
+            std::lock_guard lock(mutex);
+            indexed = db_.onlineInstancesOfSeries(s.seriesUid);
+        }
+        for (const auto& sop : onPacs) {
+            const auto it = indexed.find(sop);
+            DicomInstance in;
+            if (it != indexed.end() && readable(it->second, in) && in.sopInstanceUid == sop)
+                here.push_back(in);
+            else
+                missing.push_back(sop);
+        }
+        s.alreadyHere = int(here.size());
+        {
+            std::lock_guard lock(mutex);
+            received[s.seriesUid] = here;
+        }
+        // Only what is missing when part is here; the whole series otherwise.
+        const std::vector<std::string> only = here.empty() ? std::vector<std::string>{} : missing;
+        if (here.empty() || !missing.empty()) {
+            // A PACS that limits how many associations it serves is given time (the other
+            // workers' associations end), then the series fails with its reason.
+            for (int attempt = 0;; ++attempt) {
+                try {
+                    if (node_.retrieve == RetrieveMethod::Get)
+                        client.get(studyUid, s.seriesUid, settings_.local.storageDir, onStored, progress, only);
+                    else
+                        client.move(studyUid, s.seriesUid, settings_.local.aeTitle, progress, only);
+                    break;
+                } catch (const AssociationRejected&) {
+                    if (attempt >= 4) throw;
+                    std::this_thread::sleep_for(std::chrono::milliseconds(250 << attempt));
+                }
+            }
+        }
+        const std::size_t expected =
+            !onPacs.empty() ? onPacs.size()
+                            : std::size_t(std::max(0, s.progress.completed + s.progress.failed + s.progress.warning));
+        checkComplete(s, expected, [&] {
+            std::lock_guard lock(mutex);
+            return received[s.seriesUid].size();
+        }());
+        s.retrieved = true;
+        return true;
+    } catch (const core::Cancelled&) {
+        throw;
+    } catch (const std::exception& e) {
+        s.error = e.what();
+        return false;
+    }
 }
 
 std::vector<std::string> RetrieveJob::instancesOnPacs(PacsClient& client, const std::string& studyUid,

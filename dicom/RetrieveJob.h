@@ -1,5 +1,7 @@
 #pragma once
 #include <functional>
+#include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -22,10 +24,11 @@ struct SeriesRetrieveStatus {
     int alreadyHere = 0;     ///< instances that were here (indexed, on disk) and were not fetched again
 };
 
-/// Retrieves a study (or one series) from a PACS series by series, by C-GET or by C-MOVE to
-/// Holovox's own storage SCP (started for the duration), indexes every received instance into
-/// the study database, and builds each finished series' octree in the background while the
-/// next series is still arriving. Progress per series comes from the sub-operation counts. At
+/// Retrieves a study (or one series) from a PACS, several series at once over their own
+/// associations (LocalNode::parallelAssociations; a PACS that rejects the extra associations is
+/// waited for), by C-GET, by C-MOVE to Holovox's own storage SCP (started for the duration) or
+/// by WADO-RS from a DICOMweb node, indexes every received instance into the study database,
+/// and builds each finished series' octree on one builder thread while the transfers go on. Progress per series comes from the sub-operation counts. At
 /// the end of each series the instances that arrived are counted against the PACS's own count
 /// (an image-level C-FIND): a partial series is reported as such, indexed but not built, and a
 /// C-MOVE of which nothing arrived names the PACS's entry for our AE title as the likely cause.
@@ -43,6 +46,12 @@ public:
                                           const std::function<void(const SeriesRetrieveStatus&)>& onUpdate);
 
 private:
+    /// Retrieves one series (only what is not here already) and checks it is complete. Returns
+    /// false with the reason in s.error when it failed; throws core::Cancelled.
+    bool fetch(PacsClient& client, const std::string& studyUid, SeriesRetrieveStatus& s, std::mutex& mutex,
+               std::map<std::string, std::vector<DicomInstance>>& received,
+               const std::function<void(const DicomInstance&)>& onStored,
+               const std::function<void(const RetrieveProgress&)>& progress);
     /// Throws core::Error when fewer instances of the series arrived than it has (counted by an
     /// image-level C-FIND, else by the sub-operations), naming the likely cause of a C-MOVE of
     /// which nothing arrived.

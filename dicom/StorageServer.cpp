@@ -327,7 +327,7 @@ void StorageServer::start() {
     const Uint32 t = Uint32(std::max(1, impl_->local.timeoutSeconds));
     cfg.setDIMSETimeout(t);
     cfg.setACSETimeout(t);
-    cfg.setMaxReceivePDULength(ASC_DEFAULTMAXPDU);
+    cfg.setMaxReceivePDULength(impl_->local.maxPdu);
     cfg.setHostLookupEnabled(OFFalse);
     cfg.setProgressNotificationMode(OFTrue);  // for the instance size cap
     OFList<OFString> basic, storage;

@@ -6,12 +6,12 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config git clang clang-format clang-tidy
-  libclang-rt-14-dev time file dpkg-dev openssl bc
+  libclang-rt-14-dev time file dpkg-dev openssl bc strace
   # core
   libglm-dev libzstd-dev liblz4-dev libxxhash-dev libopenexr-dev libpng-dev zlib1g-dev
   libvtk9-dev
   # dicom
-  libdcmtk-dev dcmtk libssl-dev libopenjp2-7-dev libsqlite3-dev sqlite3 nlohmann-json3-dev
+  libdcmtk-dev dcmtk libssl-dev libopenjp2-7-dev libsqlite3-dev sqlite3 nlohmann-json3-dev libcurl4-openssl-dev
   # render
   libepoxy-dev libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri mesa-utils
   # ui
@@ -20,7 +20,7 @@ PACKAGES=(
   # distributed light-field views
   libopenmpi-dev openmpi-bin
   # tests, peers and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev openexr orthanc dcm2niix python3-pydicom python3-nibabel python3-vtk9 dicom3tools mricron-data
+  libgtest-dev libgmock-dev libbenchmark-dev openexr orthanc orthanc-dicomweb dcm2niix python3-pydicom python3-nibabel python3-vtk9 dicom3tools mricron-data
 )
 
 SUDO=""

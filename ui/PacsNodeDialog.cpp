@@ -11,12 +11,16 @@
 #include <QSpinBox>
 
 #include "core/base/Error.h"
+#include "dicom/DicomWebUrl.h"
 #include "dicom/PacsClient.h"
 
 namespace hvx::ui {
 
 PacsNodeDialog::PacsNodeDialog(const dicom::PacsSettings& settings, const dicom::PacsNode& node, QWidget* parent)
-    : QDialog(parent), settings_(settings), name_(new QLineEdit(QString::fromStdString(node.name))),
+    : QDialog(parent), settings_(settings), original_(node), kind_(new QComboBox),
+      url_(new QLineEdit(QString::fromStdString(node.baseUrl))), token_(new QLineEdit(QString::fromStdString(node.bearerToken))),
+      user_(new QLineEdit(QString::fromStdString(node.username))), password_(new QLineEdit(QString::fromStdString(node.password))),
+      form_(nullptr), name_(new QLineEdit(QString::fromStdString(node.name))),
       ae_(new QLineEdit(QString::fromStdString(node.aeTitle))), host_(new QLineEdit(QString::fromStdString(node.host))),
       port_(new QSpinBox), method_(new QComboBox), tls_(new QCheckBox(tr("DICOM over TLS"))),
       ca_(new QLineEdit(QString::fromStdString(node.tlsTrustedCertificate))), result_(new QLabel) {
@@ -30,8 +34,22 @@ PacsNodeDialog::PacsNodeDialog(const dicom::PacsSettings& settings, const dicom:
     tls_->setChecked(node.tls);
     ca_->setPlaceholderText(tr("PEM file of the CA that signs the node's certificate"));
     result_->setWordWrap(true);
+    kind_->setObjectName("nodeKind");
+    kind_->addItems({tr("DICOM (C-FIND, C-GET, C-MOVE)"), tr("DICOMweb (QIDO-RS, WADO-RS, STOW-RS)")});
+    kind_->setCurrentIndex(node.kind == dicom::NodeKind::DicomWeb ? 1 : 0);
+    url_->setObjectName("nodeUrl");
+    url_->setPlaceholderText(tr("http://host:8042/dicom-web"));
+    token_->setPlaceholderText(tr("optional: sent as 'Authorization: Bearer \u2026'"));
+    user_->setPlaceholderText(tr("optional: HTTP basic authentication"));
+    password_->setEchoMode(QLineEdit::Password);
     auto* form = new QFormLayout(this);
+    form_ = form;
     form->addRow(tr("Name"), name_);
+    form->addRow(tr("Protocol"), kind_);
+    form->addRow(tr("Base URL"), url_);
+    form->addRow(tr("Bearer token"), token_);
+    form->addRow(tr("User name"), user_);
+    form->addRow(tr("Password"), password_);
     form->addRow(tr("AE title"), ae_);
     form->addRow(tr("Host"), host_);
     form->addRow(tr("Port"), port_);
@@ -45,6 +63,8 @@ PacsNodeDialog::PacsNodeDialog(const dicom::PacsSettings& settings, const dicom:
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel);
     form->addRow(buttons);
     connect(echoButton, &QPushButton::clicked, this, &PacsNodeDialog::echo);
+    connect(kind_, &QComboBox::currentIndexChanged, this, &PacsNodeDialog::showKind);
+    showKind();
     connect(buttons, &QDialogButtonBox::accepted, this, [this] {
         try {
             this->node();  // validates
@@ -56,16 +76,33 @@ PacsNodeDialog::PacsNodeDialog(const dicom::PacsSettings& settings, const dicom:
     connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
 }
 
+void PacsNodeDialog::showKind() {
+    const bool web = kind_->currentIndex() == 1;
+    for (QWidget* w : std::initializer_list<QWidget*>{url_, token_, user_, password_}) form_->setRowVisible(w, web);
+    for (QWidget* w : std::initializer_list<QWidget*>{ae_, host_, port_, method_, tls_, ca_}) form_->setRowVisible(w, !web);
+}
+
 dicom::PacsNode PacsNodeDialog::node() const {
-    dicom::PacsNode n;
+    dicom::PacsNode n = original_;  // what the dialog does not show (PDU size, our TLS key) is kept
     n.name = name_->text().trimmed().toStdString();
+    if (n.name.empty()) throw core::Error("the node needs a name");
+    if (kind_->currentIndex() == 1) {
+        n.kind = dicom::NodeKind::DicomWeb;
+        n.baseUrl = url_->text().trimmed().toStdString();
+        dicom::DicomWebUrl::check(n.baseUrl, "the base URL");
+        n.bearerToken = token_->text().trimmed().toStdString();
+        n.username = user_->text().trimmed().toStdString();
+        n.password = password_->text().toStdString();
+        if (!n.bearerToken.empty() && !n.username.empty()) throw core::Error("give a bearer token or a user name, not both");
+        return n;
+    }
+    n.kind = dicom::NodeKind::Dimse;
     n.aeTitle = ae_->text().trimmed().toStdString();
     n.host = host_->text().trimmed().toStdString();
     n.port = std::uint16_t(port_->value());
     n.retrieve = method_->currentIndex() == 1 ? dicom::RetrieveMethod::Move : dicom::RetrieveMethod::Get;
     n.tls = tls_->isChecked();
     n.tlsTrustedCertificate = ca_->text().trimmed().toStdString();
-    if (n.name.empty()) throw core::Error("the node needs a name");
     if (n.aeTitle.empty() || n.aeTitle.size() > 16) throw core::Error("the AE title must have 1 to 16 characters");
     if (n.host.empty()) throw core::Error("the node needs a host name or address");
     return n;

@@ -253,8 +253,10 @@ QList<int> PacsPanel::retrieveSelected() {
                 const auto statuses = retrieve.run(study, series, true, job, [&](const dicom::SeriesRetrieveStatus& s) {
                     const auto& p = s.progress;
                     const int total = p.completed + p.remaining + p.failed + p.warning;
-                    job.report(total > 0 ? double(p.completed + p.failed + p.warning) / double(total) : 0.0,
-                               s.description + ": " + std::to_string(p.completed) + "/" + std::to_string(total));
+                    // The fraction is the whole retrieve's (several series run at once).
+                    job.report(job.progress().fraction,
+                               s.description + ": " + std::to_string(p.completed) +
+                                   (total > 0 ? "/" + std::to_string(total) : std::string()));
                 });
                 QStringList errors;
                 for (const auto& s : statuses)

@@ -9,6 +9,7 @@
 #include "app/cli/ProgressBar.h"
 #include "app/cli/SignalCancel.h"
 #include "core/base/Error.h"
+#include "dicom/DicomWebUrl.h"
 #include "dicom/PacsClient.h"
 #include "dicom/PacsSettings.h"
 #include "dicom/RetrieveJob.h"
@@ -37,20 +38,48 @@ int nodesCmd(const CliArgs& args) {
     const auto s = loadSettings(args);
     std::printf("local: AE %s, storage SCP port %u, storage %s\n", s.local.aeTitle.c_str(), s.local.port,
                 s.local.storageDir.c_str());
-    for (const auto& n : s.nodes)
-        std::printf("%s %-16s AE %-16s %s:%u  retrieve %s%s\n", n.name == s.defaultNode ? "*" : " ", n.name.c_str(),
-                    n.aeTitle.c_str(), n.host.c_str(), n.port, n.retrieve == dicom::RetrieveMethod::Move ? "C-MOVE" : "C-GET",
-                    n.tls ? "  TLS" : "");
+    for (const auto& n : s.nodes) {
+        const char* mark = n.name == s.defaultNode ? "*" : " ";
+        if (n.kind == dicom::NodeKind::DicomWeb)
+            std::printf("%s %-16s DICOMweb %s%s%s\n", mark, n.name.c_str(), n.baseUrl.c_str(),
+                        !n.bearerToken.empty() ? "  bearer token" : !n.username.empty() ? "  basic auth" : "",
+                        n.tlsVerify ? "" : "  TLS NOT VERIFIED");
+        else
+            std::printf("%s %-16s AE %-16s %s:%u  retrieve %s%s\n", mark, n.name.c_str(), n.aeTitle.c_str(),
+                        n.host.c_str(), n.port, n.retrieve == dicom::RetrieveMethod::Move ? "C-MOVE" : "C-GET",
+                        n.tls ? "  TLS" : "");
+    }
     if (s.nodes.empty()) std::printf("no remote nodes: add one with 'holovox-cli pacs add NAME --ae AE --host H --port P'\n");
     return 0;
 }
 
 int addCmd(const CliArgs& args) {
-    if (args.positional().size() != 2) throw core::Error("usage: holovox-cli pacs add NAME --ae AE --host HOST --port PORT [--move] [--default] [--tls --tls-ca CA.pem [--tls-cert C.pem --tls-key K.pem]]");
+    if (args.positional().size() != 2)
+        throw core::Error("usage: holovox-cli pacs add NAME --ae AE --host HOST --port PORT [--move] [--default] "
+                          "[--max-pdu BYTES] [--tls --tls-ca CA.pem [--tls-cert C.pem --tls-key K.pem]]\n"
+                          "       holovox-cli pacs add NAME --dicomweb URL [--token T | --user U --password P] "
+                          "[--insecure] [--default]");
     const std::string path = args.value("config").value_or(dicom::PacsSettings::defaultPath());
     auto s = dicom::PacsSettings::load(path);
     dicom::PacsNode n;
     n.name = args.positional()[1];
+    if (args.value("parallel")) s.local.parallelAssociations = int(args.integer("parallel", 3, 1, 16));
+    if (auto url = args.value("dicomweb")) {
+        n.kind = dicom::NodeKind::DicomWeb;
+        n.baseUrl = *url;
+        dicom::DicomWebUrl::check(n.baseUrl, "--dicomweb");
+        n.bearerToken = args.value("token").value_or("");
+        n.username = args.value("user").value_or("");
+        n.password = args.value("password").value_or("");
+        n.tlsVerify = !args.flag("insecure");
+        if (!n.bearerToken.empty() && !n.username.empty()) throw core::Error("give --token or --user, not both");
+        s.upsert(n);
+        if (args.flag("default") || s.defaultNode.empty()) s.defaultNode = n.name;
+        s.save(path);
+        std::printf("saved DICOMweb node '%s' to %s\n", n.name.c_str(), path.c_str());
+        return 0;
+    }
+    n.maxPdu = std::uint32_t(args.integer("max-pdu", dicom::kDefaultMaxPdu, 4096, 131072));
     n.aeTitle = args.value("ae").value_or("");
     n.host = args.value("host").value_or("127.0.0.1");
     n.port = std::uint16_t(args.integer("port", 104, 1, 65535));
@@ -75,6 +104,10 @@ int echoCmd(const CliArgs& args) {
     const auto s = loadSettings(args);
     const auto& node = s.node(args.positional().size() > 1 ? args.positional()[1] : "");
     dicom::PacsClient(s.local, node).echo();
+    if (node.kind == dicom::NodeKind::DicomWeb) {
+        std::printf("QIDO-RS search on %s (%s) answered\n", node.name.c_str(), node.baseUrl.c_str());
+        return 0;
+    }
     std::printf("C-ECHO to %s (AE %s at %s:%u) succeeded\n", node.name.c_str(), node.aeTitle.c_str(), node.host.c_str(),
                 node.port);
     return 0;
@@ -117,10 +150,13 @@ int retrieveCmd(const CliArgs& args, dicom::RetrieveMethod method) {
     if (args.positional().size() < 3)
         throw core::Error("usage: holovox-cli pacs get|move NODE STUDY_UID [SERIES_UID] [--db FILE] [--no-build]");
     dicom::PacsNode node = s.node(args.positional()[1]);
+    if (node.kind == dicom::NodeKind::DicomWeb && method == dicom::RetrieveMethod::Move)
+        throw core::Error("'" + node.name + "' is a DICOMweb node: it retrieves by WADO-RS ('pacs get'), not C-MOVE");
     node.retrieve = method;
+    if (args.value("parallel")) s.local.parallelAssociations = int(args.integer("parallel", 3, 1, 16));
     const std::string dbPath = args.value("db").value_or(dicom::StudyDatabase::defaultPath());
     dicom::StudyDatabase db(dbPath);
-    ProgressBar bar(method == dicom::RetrieveMethod::Get ? "C-GET " : "C-MOVE");
+    ProgressBar bar(node.kind == dicom::NodeKind::DicomWeb ? "WADO-RS" : method == dicom::RetrieveMethod::Get ? "C-GET " : "C-MOVE");
     core::JobContext job(bar.observer());
     SignalCancel cancel(job);
     dicom::RetrieveJob retrieve(s, node, db, octreeDir(dbPath));
@@ -143,8 +179,8 @@ int pacsCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"config", "patient", "id", "date", "modality", "accession", "description", "level", "study",
                         "series", "limit", "db", "ae", "host", "port", "local-ae", "local-port", "storage", "tls-ca",
-                        "tls-cert", "tls-key"},
-                       {"move", "default", "no-build", "tls"});
+                        "tls-cert", "tls-key", "dicomweb", "token", "user", "password", "max-pdu", "parallel"},
+                       {"move", "default", "no-build", "tls", "insecure"});
     const std::string sub = args.positional().empty() ? "" : args.positional()[0];
     if (sub == "nodes") return nodesCmd(args);
     if (sub == "add") return addCmd(args);
@@ -156,7 +192,9 @@ int pacsCommand(int argc, char** argv) {
         if (args.positional().size() < 3) throw core::Error("usage: holovox-cli pacs send NODE FILE...");
         const auto s = loadSettings(args);
         const std::vector<std::string> files(args.positional().begin() + 2, args.positional().end());
-        const auto n = dicom::PacsClient(s.local, s.node(args.positional()[1])).store(files, {});
+        auto local = s.local;
+        if (args.value("parallel")) local.parallelAssociations = int(args.integer("parallel", 3, 1, 16));
+        const auto n = dicom::PacsClient(local, s.node(args.positional()[1])).store(files, {});
         std::printf("sent %zu files, %zu accepted\n", files.size(), n);
         return n == files.size() ? 0 : 1;
     }
@@ -175,7 +213,8 @@ int listenCommand(int argc, char** argv) {
     if (auto ae = args.value("ae")) s.local.aeTitle = *ae;
     if (auto dir = args.value("storage")) s.local.storageDir = *dir;
     std::vector<std::string> allowed = s.local.allowedCallers;
-    for (const auto& n : s.nodes) allowed.push_back(n.aeTitle);
+    for (const auto& n : s.nodes)
+        if (n.kind == dicom::NodeKind::Dimse) allowed.push_back(n.aeTitle);
     if (auto a = args.value("allow")) allowed.push_back(*a);
     dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
     std::mutex mutex;
@@ -185,7 +224,8 @@ int listenCommand(int argc, char** argv) {
         std::printf("received %s %s -> %s\n", in.modality.c_str(), in.sopInstanceUid.c_str(), in.path.c_str());
         std::fflush(stdout);
     });
-    for (const auto& n : s.nodes) server.requireHost(n.aeTitle, n.host);
+    for (const auto& n : s.nodes)
+        if (n.kind == dicom::NodeKind::Dimse) server.requireHost(n.aeTitle, n.host);
     server.start();
     std::string who;
     for (const auto& a : allowed) who += (who.empty() ? "" : ", ") + a;

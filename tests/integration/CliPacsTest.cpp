@@ -121,3 +121,49 @@ TEST(CliPacs, AddListEchoFindSendAndGetAgainstOrthanc) {
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.output.find("connection refused"), std::string::npos) << r.output;
 }
+
+// Every association Holovox opens sets TCP_NODELAY (DCMTK 3.6.7 leaves Nagle's algorithm on,
+// and each small DIMSE message then waits out a delayed ACK), as strace sees the socket calls;
+// and a DICOMweb node is added, listed and searched like a DIMSE one.
+TEST(CliPacs, EveryAssociationSetsTcpNoDelayAndDicomWebNodesWorkAlike) {
+    test::TempDir dir;
+    test::PacsPeer peer(test::PacsPeer::Kind::OrthancDicomWeb);
+    ASSERT_NO_THROW(peer.start());
+    const std::string study = "1.2.826.0.1.3680043.9.7777.600", series = "1.2.826.0.1.3680043.9.7777.601";
+    const auto seeded = phantomSeries(dir.file("seed"), "CLI^NODELAY", study, series, 3);
+    const std::string config = " --config " + dir.file("pacs.json");
+    const auto settings = peer.settings();
+    auto r = test::runCommand(cli + " pacs add dimse --ae " + peer.aeTitle() + " --host 127.0.0.1 --port " +
+                              std::to_string(peer.dicomPort()) + " --local-port " + std::to_string(settings.local.port) +
+                              " --storage " + dir.file("rx") + config);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::string files;
+    for (const auto& f : seeded) files += " " + f;
+    const std::string strace = "strace -f -e trace=setsockopt ";
+    for (const std::string& op : {std::string(" pacs echo dimse"), " pacs send dimse" + files,
+                                  " pacs get dimse " + study + " --no-build --db " + dir.file("db.sqlite")}) {
+        r = test::runCommand(strace + cli + op + config);
+        ASSERT_EQ(r.exitCode, 0) << op << "\n" << r.output;
+        EXPECT_NE(r.output.find("TCP_NODELAY, [1]"), std::string::npos) << op << ": no TCP_NODELAY\n" << r.output;
+    }
+    // The same archive as a DICOMweb node.
+    r = test::runCommand(cli + " pacs add web --dicomweb " + peer.dicomWebUrl() + config);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " pacs nodes" + config);
+    EXPECT_NE(r.output.find("web              DICOMweb " + peer.dicomWebUrl()), std::string::npos) << r.output;
+    r = test::runCommand(cli + " pacs echo web" + config);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " pacs find web --patient 'CLI^NO*'" + config);
+    EXPECT_NE(r.output.find(study), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("1 results"), std::string::npos) << r.output;
+    r = test::runCommand(cli + " pacs move web " + study + config);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("retrieves by WADO-RS"), std::string::npos) << r.output;
+    r = test::runCommand(cli + " pacs get web " + study + " --db " + dir.file("db2.sqlite") + config);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("3 completed, 0 failed"), std::string::npos) << r.output;
+    for (const char* bad : {" --dicomweb pacs:8042", " --dicomweb http://h/x --token t --user u"}) {
+        r = test::runCommand(cli + " pacs add bad" + bad + config);
+        EXPECT_NE(r.exitCode, 0) << bad;
+    }
+}

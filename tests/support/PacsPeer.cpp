@@ -49,7 +49,7 @@ bool waitForPort(std::uint16_t port, double seconds) {
 }
 
 PacsPeer::PacsPeer(Kind kind, bool tls, const std::string& certificateNames)
-    : kind_(kind), tls_(tls), ae_(kind == Kind::Orthanc ? "ORTHANC" : "DCMQR"), dicomPort_(freePort()), httpPort_(freePort()),
+    : kind_(kind), tls_(tls), ae_(kind == Kind::Dcmqrscp ? "DCMQR" : "ORTHANC"), dicomPort_(freePort()), httpPort_(freePort()),
       localPort_(freePort()) {
     std::filesystem::create_directories(dir_.file("storage"));
     std::filesystem::create_directories(dir_.file("index"));
@@ -61,15 +61,19 @@ PacsPeer::PacsPeer(Kind kind, bool tls, const std::string& certificateNames)
                     "\"DicomTlsPrivateKey\": \"" + d + "/server.key\", \"DicomTlsTrustedCertificates\": \"" + d +
                     "/ca.crt\", \"DicomTlsRemoteCertificateRequired\": false";
     }
-    if (kind_ == Kind::Orthanc) {
+    if (kind_ != Kind::Dcmqrscp) {
+        const std::string plugins = kind_ == Kind::OrthancDicomWeb
+                                        ? "[\"/usr/share/orthanc/plugins/libOrthancDicomWeb.so\"], \"DicomWeb\": "
+                                          "{ \"Enable\": true, \"Root\": \"/dicom-web/\", \"EnableWado\": false }"
+                                        : "[]";
         std::ofstream(dir_.file("orthanc.json"))
             << "{ \"Name\": \"HolovoxTest\", \"StorageDirectory\": \"" << dir_.file("storage")
             << "\", \"IndexDirectory\": \"" << dir_.file("index") << "\", \"HttpPort\": " << httpPort_
             << ", \"DicomPort\": " << dicomPort_ << ", \"DicomAet\": \"" << ae_
             << "\", \"RemoteAccessAllowed\": false, \"AuthenticationEnabled\": false,"
                " \"DicomCheckCalledAet\": true, \"DicomAlwaysAllowEcho\": true, \"DicomAlwaysAllowStore\": true,"
-               " \"DicomCheckModalityHost\": false, \"StorageCompression\": false, \"Plugins\": [],"
-               " \"DicomScpTimeout\": 30, \"DicomModalities\": { \"holovox\": [\"HOLOVOX\", \"127.0.0.1\", "
+               " \"DicomCheckModalityHost\": false, \"StorageCompression\": false, \"Plugins\": "
+            << plugins << ", \"DicomScpTimeout\": 30, \"DicomModalities\": { \"holovox\": [\"HOLOVOX\", \"127.0.0.1\", "
             << localPort_ << "], \"seeder\": [\"SEEDER\", \"127.0.0.1\", 1] }" << tlsConfig << " }\n";
     } else {
         std::ofstream(dir_.file("dcmqrscp.cfg"))
@@ -98,7 +102,7 @@ void PacsPeer::start() {
         const int log = ::open(dir_.file("peer.log").c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
         ::dup2(log, 1);
         ::dup2(log, 2);
-        if (kind_ == Kind::Orthanc)
+        if (kind_ != Kind::Dcmqrscp)
             ::execlp("Orthanc", "Orthanc", dir_.file("orthanc.json").c_str(), static_cast<char*>(nullptr));
         else
             ::execlp("dcmqrscp", "dcmqrscp", "-c", dir_.file("dcmqrscp.cfg").c_str(), "--disable-host-lookup",
@@ -106,6 +110,8 @@ void PacsPeer::start() {
         ::_exit(127);
     }
     if (!waitForPort(dicomPort_, 30)) throw std::runtime_error("PACS peer did not start; see " + dir_.file("peer.log"));
+    if (kind_ == Kind::OrthancDicomWeb && !waitForPort(httpPort_, 30))
+        throw std::runtime_error("Orthanc's HTTP server did not start; see " + dir_.file("peer.log"));
 }
 
 void PacsPeer::kill() {
@@ -137,6 +143,16 @@ dicom::PacsSettings PacsPeer::settings() const {
     n.port = dicomPort_;
     s.nodes.push_back(n);
     s.defaultNode = "peer";
+    return s;
+}
+
+dicom::PacsSettings PacsPeer::webSettings() const {
+    dicom::PacsSettings s = settings();
+    dicom::PacsNode n;
+    n.name = "web";
+    n.kind = dicom::NodeKind::DicomWeb;
+    n.baseUrl = dicomWebUrl();
+    s.nodes.push_back(n);
     return s;
 }
 

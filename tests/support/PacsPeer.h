@@ -20,7 +20,9 @@ bool waitForPort(std::uint16_t port, double seconds);
 /// on the peer as a C-MOVE destination. Stopped and deleted on destruction.
 class PacsPeer {
 public:
-    enum class Kind { Orthanc, Dcmqrscp };
+    /// OrthancDicomWeb: Orthanc with its DICOMweb plugin (Debian's orthanc-dicomweb) serving
+    /// QIDO-RS, WADO-RS and STOW-RS at dicomWebUrl().
+    enum class Kind { Orthanc, OrthancDicomWeb, Dcmqrscp };
     /// With `tls`, Orthanc speaks DICOM over TLS only, with a CA and certificate made here by
     /// openssl (tlsCa() signs the server certificate).
     /// With `tls`, the peer's certificate names `certificateNames` (subjectAltName entries).
@@ -42,6 +44,10 @@ public:
     std::string receiveDir() const { return dir_.file("received"); }
     std::string file(const std::string& name) const { return dir_.file(name); }
     std::string tlsCa() const { return dir_.file("ca.crt"); }
+    std::uint16_t httpPort() const { return httpPort_; }
+    std::string dicomWebUrl() const { return "http://127.0.0.1:" + std::to_string(httpPort_) + "/dicom-web"; }
+    /// Settings as settings(), with the node "web": this peer's DICOMweb service.
+    dicom::PacsSettings webSettings() const;
 
 private:
     Kind kind_;

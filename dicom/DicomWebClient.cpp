@@ -1,0 +1,299 @@
+#include "dicom/DicomWebClient.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <random>
+#include <set>
+
+#include "core/base/Error.h"
+#include "dicom/DicomHeaderReader.h"
+#include "dicom/DicomJson.h"
+#include "dicom/DicomWebUrl.h"
+#include "dicom/HttpRequest.h"
+#include "dicom/IncomingStore.h"
+#include "dicom/MultipartReader.h"
+
+namespace hvx::dicom {
+
+namespace {
+const char* kAcceptDicom = "Accept: multipart/related; type=\"application/dicom\"; transfer-syntax=*";
+
+/// Writes each part of a WADO-RS answer to a temporary file of the store and files it when the
+/// part is complete; a part left incomplete is removed.
+class WadoSink : public MultipartReader::Sink {
+public:
+    WadoSink(IncomingStore& store, std::function<void(const DicomInstance&)> onStored)
+        : store_(store), onStored_(std::move(onStored)) {}
+    ~WadoSink() override { discard(); }
+    WadoSink(const WadoSink&) = delete;
+    WadoSink& operator=(const WadoSink&) = delete;
+
+    void beginPart(const std::map<std::string, std::string>& headers) override {
+        if (const auto it = headers.find("content-type"); it != headers.end() &&
+                                                          it->second.rfind("application/dicom", 0) != 0)
+            throw core::Error("a part of the answer is '" + it->second + "', not a DICOM instance");
+        path_ = store_.temporaryPath();
+        file_ = std::fopen(path_.c_str(), "wb");
+        if (!file_) throw core::Error("cannot write " + path_);
+    }
+    void partData(const char* data, std::size_t size) override {
+        if (std::fwrite(data, 1, size, file_) != size) throw core::Error("cannot write " + path_ + " (disk full?)");
+    }
+    void endPart() override {
+        const bool ok = std::fclose(file_) == 0;
+        file_ = nullptr;
+        if (!ok) throw core::Error("cannot write " + path_ + " (disk full?)");
+        const std::string tmp = std::exchange(path_, std::string());
+        onStored_(store_.finalize(tmp));  // finalize removes a file that is not DICOM, and says so
+    }
+
+private:
+    void discard() {
+        if (file_) std::fclose(file_);
+        file_ = nullptr;
+        if (!path_.empty()) std::remove(path_.c_str());
+        path_.clear();
+    }
+    IncomingStore& store_;
+    std::function<void(const DicomInstance&)> onStored_;
+    std::string path_;
+    std::FILE* file_ = nullptr;
+};
+
+std::string randomBoundary() {
+    std::random_device rd;
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "holovox-%08x%08x%08x", rd(), rd(), rd());
+    return buf;
+}
+
+void param(std::string& url, const char* name, const std::string& value) {
+    if (value.empty() || value == "*") return;
+    url += (url.find('?') == std::string::npos ? '?' : '&');
+    url += name;
+    url += '=';
+    url += DicomWebUrl::encode(value);
+}
+}  // namespace
+
+DicomWebClient::DicomWebClient(LocalNode local, PacsNode remote) : local_(std::move(local)), remote_(std::move(remote)) {}
+
+std::string DicomWebClient::what() const { return "DICOMweb node '" + remote_.name + "' (" + remote_.baseUrl + ")"; }
+
+namespace {
+HttpEndpoint endpointOf(const PacsNode& n, const LocalNode& l, const std::string& what) {
+    HttpEndpoint e;
+    e.what = what;
+    e.bearerToken = n.bearerToken;
+    e.username = n.username;
+    e.password = n.password;
+    e.tlsVerify = n.tlsVerify;
+    e.timeoutSeconds = l.timeoutSeconds;
+    return e;
+}
+}  // namespace
+
+void DicomWebClient::echo() {
+    HttpRequest r(endpointOf(remote_, local_, what()), DicomWebUrl::root(remote_.baseUrl) + "/studies?limit=1");
+    r.header("Accept: application/dicom+json");
+    const HttpAnswer a = r.send();
+    if (a.status < 200 || a.status >= 300) throw core::Error(HttpRequest::describeStatus(what(), a.status, a.body));
+    (void)DicomJson::queryResults(a.body, QueryLevel::Study, what());
+}
+
+std::string DicomWebClient::queryUrl(QueryLevel level, const QueryKeys& k, int offset) const {
+    std::string url = DicomWebUrl::root(remote_.baseUrl);
+    const std::string study = DicomWebUrl::encode(k.studyUid), series = DicomWebUrl::encode(k.seriesUid);
+    bool studyInPath = false, seriesInPath = false;
+    if (level == QueryLevel::Study) {
+        url += "/studies";
+    } else if (level == QueryLevel::Series) {
+        studyInPath = !k.studyUid.empty();
+        url += studyInPath ? "/studies/" + study + "/series" : "/series";
+    } else {
+        studyInPath = !k.studyUid.empty();
+        seriesInPath = studyInPath && !k.seriesUid.empty();
+        url += seriesInPath ? "/studies/" + study + "/series/" + series + "/instances"
+                            : studyInPath ? "/studies/" + study + "/instances" : "/instances";
+    }
+    param(url, "PatientName", k.patientName);
+    param(url, "PatientID", k.patientId);
+    param(url, "StudyDate", k.studyDate);
+    param(url, "AccessionNumber", k.accessionNumber);
+    param(url, "StudyDescription", k.studyDescription);
+    if (!studyInPath) param(url, "StudyInstanceUID", k.studyUid);
+    if (level != QueryLevel::Study && !seriesInPath) param(url, "SeriesInstanceUID", k.seriesUid);
+    param(url, level == QueryLevel::Study ? "ModalitiesInStudy" : "Modality", k.modality);
+    // The attributes C-FIND asks for that are not among QIDO-RS's defaults.
+    param(url, "includefield",
+          level == QueryLevel::Study    ? "00100030,00081030,00080061,00201208"
+          : level == QueryLevel::Series ? "0008103E,00200011,00201209,00100010,00100020"
+                                        : "00200013,00200011,0008103E");
+    param(url, "limit", std::to_string(kPageSize));
+    if (offset > 0) param(url, "offset", std::to_string(offset));
+    return url;
+}
+
+std::size_t DicomWebClient::find(QueryLevel level, const QueryKeys& keys,
+                                 const std::function<bool(const QueryResult&)>& onResult) {
+    std::set<std::string> seen;  // a server that ignores offset must not loop forever
+    std::size_t delivered = 0;
+    for (int offset = 0;; offset += kPageSize) {
+        HttpRequest r(endpointOf(remote_, local_, what()), queryUrl(level, keys, offset));
+        r.header("Accept: application/dicom+json");
+        if (job_) r.cancelWith(job_);
+        const HttpAnswer a = r.send();
+        if (a.status == 204) break;  // no (more) matches
+        if (a.status < 200 || a.status >= 300)
+            throw core::Error(HttpRequest::describeStatus(what() + " (QIDO-RS search)", a.status, a.body));
+        const auto results = DicomJson::queryResults(a.body, level, what());
+        std::size_t fresh = 0;
+        for (const auto& res : results) {
+            const std::string id = res.studyUid + "/" + res.seriesUid + "/" + res.sopInstanceUid;
+            if (!seen.insert(id).second) continue;
+            ++fresh;
+            ++delivered;
+            if (onResult && !onResult(res)) return delivered;
+        }
+        // A short page ends the search, as does one larger than asked (the server ignores
+        // paging) or one with nothing new (it ignores offset).
+        if (results.size() != std::size_t(kPageSize) || fresh == 0) break;
+    }
+    return delivered;
+}
+
+void DicomWebClient::retrieve(const std::string& url, IncomingStore& store, RetrieveProgress& progress,
+                              const std::function<void(const DicomInstance&)>& onStored,
+                              const std::function<void(const RetrieveProgress&)>& onProgress) {
+    WadoSink sink(store, [&](const DicomInstance& in) {
+        ++progress.received;
+        ++progress.completed;
+        if (onStored) onStored(in);
+        if (onProgress) onProgress(progress);
+    });
+    std::unique_ptr<MultipartReader> reader;
+    HttpRequest r(endpointOf(remote_, local_, what()), url);
+    r.header(kAcceptDicom);
+    if (job_) r.cancelWith(job_);
+    r.onBody([&](const std::string& type) { reader = std::make_unique<MultipartReader>(MultipartReader::boundaryOf(type), sink, local_.maxInstanceBytes); },
+             [&](const char* data, std::size_t n) { reader->feed(data, n); });
+    HttpAnswer a;
+    try {
+        a = r.send();
+        if (a.status >= 200 && a.status < 300) {
+            if (!reader) {  // no body at all: say what is wrong with its type, else that it is empty
+                (void)MultipartReader::boundaryOf(a.contentType);
+                throw core::Error("the answer is empty: no instance was sent");
+            }
+            reader->finish();
+        }
+    } catch (const core::Cancelled&) {
+        throw;
+    } catch (const core::Error& e) {
+        throw core::Error(what() + " (WADO-RS retrieve): " + e.what() + " (" + std::to_string(progress.received) +
+                          " instances were stored completely)");
+    }
+    if (a.status < 200 || a.status >= 300)
+        throw core::Error(HttpRequest::describeStatus(what() + " (WADO-RS retrieve)", a.status, a.body));
+}
+
+RetrieveProgress DicomWebClient::get(const std::string& studyUid, const std::string& seriesUid,
+                                     const std::string& storageDir,
+                                     const std::function<void(const DicomInstance&)>& onStored,
+                                     const std::function<void(const RetrieveProgress&)>& onProgress,
+                                     const std::vector<std::string>& sopUids) {
+    IncomingStore store(storageDir, local_.minFreeBytes);
+    RetrieveProgress progress;
+    std::string url = DicomWebUrl::root(remote_.baseUrl) + "/studies/" + DicomWebUrl::encode(studyUid);
+    if (!seriesUid.empty()) url += "/series/" + DicomWebUrl::encode(seriesUid);
+    if (sopUids.empty()) {
+        retrieve(url, store, progress, onStored, onProgress);
+        return progress;
+    }
+    if (seriesUid.empty()) throw core::Error(what() + ": instances are retrieved by series; no series was given");
+    progress.remaining = int(sopUids.size());
+    for (const auto& sop : sopUids) {
+        retrieve(url + "/instances/" + DicomWebUrl::encode(sop), store, progress, onStored, onProgress);
+        --progress.remaining;
+    }
+    return progress;
+}
+
+std::size_t DicomWebClient::store(const std::vector<std::string>& files, const std::function<void(std::size_t)>& onProgress) {
+    for (const auto& f : files) {
+        DicomInstance in;
+        if (DicomHeaderReader::read(f, in) != DicomHeaderReader::Kind::Dicom) throw core::Error(f + ": not a DICOM file");
+    }
+    std::size_t accepted = 0;
+    for (std::size_t at = 0; at < files.size(); at += kStowBatch) {
+        if (job_) job_->throwIfCancelled();
+        const std::vector<std::string> batch(files.begin() + long(at),
+                                             files.begin() + long(std::min(files.size(), at + kStowBatch)));
+        accepted += storeBatch(batch);
+        if (onProgress) onProgress(at + batch.size());
+    }
+    return accepted;
+}
+
+std::size_t DicomWebClient::storeBatch(const std::vector<std::string>& files) {
+    // The body is streamed: boundary lines from memory, each file read from disk as curl asks.
+    const std::string boundary = randomBoundary();
+    struct Segment {
+        std::string text;  // when path is empty
+        std::string path;
+        std::uint64_t size = 0;
+    };
+    std::vector<Segment> segments;
+    std::uint64_t total = 0;
+    for (const auto& f : files) {
+        const std::uint64_t size = std::filesystem::file_size(f);
+        segments.push_back({"--" + boundary + "\r\nContent-Type: application/dicom\r\nContent-Length: " +
+                                std::to_string(size) + "\r\n\r\n", {}, 0});
+        segments.push_back({{}, f, size});
+        segments.push_back({"\r\n", {}, 0});
+    }
+    segments.push_back({"--" + boundary + "--\r\n", {}, 0});
+    for (const auto& s : segments) total += s.path.empty() ? s.text.size() : s.size;
+
+    std::size_t index = 0;
+    std::uint64_t offset = 0;
+    std::ifstream file;
+    auto source = [&](char* buffer, std::size_t room) -> std::size_t {
+        std::size_t written = 0;
+        while (written < room && index < segments.size()) {
+            const Segment& s = segments[index];
+            if (s.path.empty()) {
+                const std::size_t n = std::min<std::size_t>(room - written, s.text.size() - offset);
+                std::copy_n(s.text.data() + offset, n, buffer + written);
+                written += n;
+                offset += n;
+                if (offset == s.text.size()) ++index, offset = 0;
+                continue;
+            }
+            if (offset == 0) {
+                file = std::ifstream(s.path, std::ios::binary);
+                if (!file) throw core::Error("cannot read " + s.path);
+            }
+            const std::size_t n = std::min<std::size_t>(room - written, s.size - offset);
+            file.read(buffer + written, std::streamsize(n));
+            if (std::size_t(file.gcount()) != n) throw core::Error(s.path + " changed while it was being sent");
+            written += n;
+            offset += n;
+            if (offset == s.size) ++index, offset = 0, file.close();
+        }
+        return written;
+    };
+    HttpRequest r(endpointOf(remote_, local_, what()), DicomWebUrl::root(remote_.baseUrl) + "/studies");
+    r.header("Content-Type: multipart/related; type=\"application/dicom\"; boundary=" + boundary);
+    r.header("Accept: application/dicom+json");
+    if (job_) r.cancelWith(job_);
+    r.postBody(total, source);
+    const HttpAnswer a = r.send();
+    if (a.status == 409 || a.status < 200 || a.status >= 300)
+        throw core::Error(HttpRequest::describeStatus(what() + " (STOW-RS upload)", a.status, a.body));
+    return DicomJson::stowOutcome(a.body, what()).stored.size();
+}
+
+}  // namespace hvx::dicom

@@ -1,0 +1,125 @@
+// The pieces of the DICOMweb client that read what a server sends: the multipart reader (fed
+// in pieces split at every byte, so that a boundary across two reads is found), base URLs, and
+// the DICOM JSON model of QIDO-RS and STOW-RS answers.
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <map>
+#include <string>
+
+using namespace std::string_literals;
+
+#include "core/base/Error.h"
+#include "dicom/DicomJson.h"
+#include "dicom/DicomWebUrl.h"
+#include "dicom/MultipartReader.h"
+
+using namespace hvx;
+
+namespace {
+struct Collect : dicom::MultipartReader::Sink {
+    std::vector<std::string> parts;
+    std::vector<std::map<std::string, std::string>> headers;
+    bool open = false;
+    void beginPart(const std::map<std::string, std::string>& h) override {
+        parts.emplace_back();
+        headers.push_back(h);
+        open = true;
+    }
+    void partData(const char* d, std::size_t n) override { parts.back().append(d, n); }
+    void endPart() override { open = false; }
+};
+
+std::string errorOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const core::Error& e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST(MultipartReader, PartsAreExactWhereverTheBodyIsSplit) {
+    // Bodies that hold CR, LF, dashes and a near-boundary, a preamble, transport padding and an
+    // epilogue, as RFC 2046 allows.
+    const std::string one = "\r\n--Xz a--Xy\r\n\r\n-\r\n--X binary\0\1\2 end\r"s, two = "--", three;
+    const std::string body = "preamble to ignore\r\n--Xy  \r\nContent-Type: application/dicom\r\nX-Other: 1\r\n\r\n" + one +
+                             "\r\n--Xy\r\ncontent-type: application/dicom\r\n\r\n" + two + "\r\n--Xy\r\n\r\n" + three +
+                             "\r\n--Xy--\r\nepilogue";
+    for (std::size_t cut = 0; cut <= body.size(); ++cut) {
+        Collect c;
+        dicom::MultipartReader r("Xy", c, 1 << 20);
+        r.feed(body.data(), cut);
+        r.feed(body.data() + cut, body.size() - cut);
+        ASSERT_NO_THROW(r.finish()) << cut;
+        ASSERT_EQ(c.parts.size(), 3u) << cut;
+        EXPECT_EQ(c.parts[0], one) << cut;
+        EXPECT_EQ(c.parts[1], two) << cut;
+        EXPECT_EQ(c.parts[2], three) << cut;
+        EXPECT_EQ(c.headers[0].at("content-type"), "application/dicom");
+        EXPECT_FALSE(c.open);
+    }
+    // Byte by byte.
+    Collect c;
+    dicom::MultipartReader r("Xy", c, 1 << 20);
+    for (char ch : body) r.feed(&ch, 1);
+    EXPECT_NO_THROW(r.finish());
+    EXPECT_EQ(c.parts.size(), 3u);
+}
+
+TEST(MultipartReader, MalformedBodiesAreSentences) {
+    Collect c;
+    const auto run = [&](const std::string& body, std::uint64_t cap = 1 << 20) {
+        return errorOf([&] {
+            dicom::MultipartReader r("B", c, cap);
+            r.feed(body.data(), body.size());
+            r.finish();
+        });
+    };
+    EXPECT_NE(run("").find("holds no boundary"), std::string::npos);
+    EXPECT_NE(run("--B\r\nA: b\r\n\r\nxx").find("ended before its closing boundary"), std::string::npos);
+    EXPECT_NE(run("--B\r\n" + std::string(20000, 'h')).find("headers without an end"), std::string::npos);
+    EXPECT_NE(run("--B\r\nContent-Length: 2\r\n\r\nabc\r\n--B--").find("longer than the 2 bytes"), std::string::npos);
+    EXPECT_NE(run("--B\r\nContent-Length: 5\r\n\r\nabc\r\n--B--").find("not the 5"), std::string::npos);
+    EXPECT_NE(run("--B\r\nContent-Length: x\r\n\r\nabc\r\n--B--").find("unreadable Content-Length"), std::string::npos);
+    EXPECT_NE(run("--B\r\n\r\n" + std::string(3000, 'a') + "\r\n--B--", 1000).find("larger than"), std::string::npos);
+    EXPECT_NE(run("--Bjunk\r\n\r\n\r\n--B--").find("malformed boundary line"), std::string::npos);
+}
+
+TEST(MultipartReader, BoundaryOfContentTypes) {
+    EXPECT_EQ(dicom::MultipartReader::boundaryOf("multipart/related; type=\"application/dicom\"; boundary=abc"), "abc");
+    EXPECT_EQ(dicom::MultipartReader::boundaryOf("Multipart/Related;Boundary=\"a b;c\"; type=x"), "a b;c");
+    EXPECT_NE(errorOf([] { dicom::MultipartReader::boundaryOf("application/json"); }).find("not a multipart"), std::string::npos);
+    EXPECT_NE(errorOf([] { dicom::MultipartReader::boundaryOf("multipart/related"); }).find("names no boundary"), std::string::npos);
+    EXPECT_NE(errorOf([] { dicom::MultipartReader::boundaryOf("multipart/related; boundary=\"abc"); }).find("not closed"),
+              std::string::npos);
+}
+
+TEST(DicomWebUrl, ParsesAndRefuses) {
+    const auto u = dicom::DicomWebUrl::parse("HTTPS://pacs.example.org:8443/dicom-web/", "x");
+    EXPECT_EQ(u.scheme, "https");
+    EXPECT_EQ(u.host, "pacs.example.org");
+    EXPECT_EQ(u.port, 8443);
+    EXPECT_EQ(u.path, "/dicom-web");
+    EXPECT_EQ(dicom::DicomWebUrl::parse("http://[::1]/wado", "x").host, "::1");
+    EXPECT_EQ(dicom::DicomWebUrl::parse("http://h", "x").port, 80);
+    EXPECT_EQ(dicom::DicomWebUrl::root("http://h/dicom-web//"), "http://h/dicom-web");
+    for (const char* bad : {"pacs:8042", "ftp://h/x", "http:///x", "http://h:0/", "http://h:99999/", "http://h:12a/",
+                            "http://user:pw@h/x", "http://h/x?limit=1"})
+        EXPECT_THROW(dicom::DicomWebUrl::check(bad, "node"), core::Error) << bad;
+    EXPECT_EQ(dicom::DicomWebUrl::encode("DOE^J* ?&=%/é"), "DOE^J*%20?%26%3D%25%2F%C3%A9");
+}
+
+TEST(DicomJson, StowOutcomeCountsStoredAndFailed) {
+    const std::string body =
+        "{\"00081199\": {\"vr\": \"SQ\", \"Value\": [{\"00081155\": {\"vr\": \"UI\", \"Value\": [\"1.1\"]}}, "
+        "{\"00081155\": {\"vr\": \"UI\", \"Value\": [\"1.2\"]}}]}, \"00081198\": {\"vr\": \"SQ\", \"Value\": "
+        "[{\"00081155\": {\"vr\": \"UI\", \"Value\": [\"1.3\"]}, \"00081197\": {\"vr\": \"US\", \"Value\": [42752]}}]}}";
+    const auto o = dicom::DicomJson::stowOutcome(body, "x");
+    EXPECT_EQ(o.stored, (std::vector<std::string>{"1.1", "1.2"}));
+    ASSERT_EQ(o.failed.size(), 1u);
+    EXPECT_EQ(o.failed[0], "1.3 (reason 0xA700)");
+    EXPECT_THROW(dicom::DicomJson::stowOutcome("[1]", "x"), core::Error);
+    EXPECT_TRUE(dicom::DicomJson::queryResults(" \n", dicom::QueryLevel::Study, "x").empty());
+}
