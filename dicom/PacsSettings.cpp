@@ -136,6 +136,12 @@ void PacsSettings::save(const std::string& path) const {
     core::AtomicFileWriter out(path);
     out.append(text.data(), text.size());
     out.commit();
+    // Credentials of DICOMweb nodes: the file is for its owner's eyes only.
+    bool secrets = false;
+    for (const auto& n : nodes) secrets = secrets || !n.password.empty() || !n.bearerToken.empty();
+    if (secrets)
+        std::filesystem::permissions(path, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write,
+                                     std::filesystem::perm_options::replace, ec);
 }
 
 const PacsNode& PacsSettings::node(const std::string& name) const {

@@ -32,8 +32,15 @@ bool answers(const dicom::LocalNode& local, const dicom::PacsNode& node) {
     }
 }
 
+/// Debian's orthanc-dicomweb: the demo archive then serves DICOMweb too.
+const char* kDicomWebPlugin = "/usr/share/orthanc/plugins/libOrthancDicomWeb.so";
+
 void startOrthanc(const DemoArchive::Config& c) {
     fs::create_directories(fs::path(c.folder) / "storage");
+    const std::string plugins = fs::exists(kDicomWebPlugin)
+                                    ? std::string("[\"") + kDicomWebPlugin +
+                                          "\"],\n  \"DicomWeb\": { \"Enable\": true, \"Root\": \"/dicom-web/\" }"
+                                    : std::string("[]");
     const std::string config = (fs::path(c.folder) / "orthanc.json").string();
     std::ofstream(config) << "{\n  \"Name\": \"Holovox demo archive\",\n  \"StorageDirectory\": \"" << c.folder
                           << "/storage\",\n  \"IndexDirectory\": \"" << c.folder << "/storage\",\n  \"HttpPort\": "
@@ -41,7 +48,8 @@ void startOrthanc(const DemoArchive::Config& c) {
                           << ",\n  \"DicomAet\": \"ORTHANC\",\n  \"RemoteAccessAllowed\": false,\n"
                              "  \"AuthenticationEnabled\": false,\n  \"DicomAlwaysAllowEcho\": true,\n"
                              "  \"DicomAlwaysAllowStore\": true,\n  \"DicomCheckModalityHost\": false,\n"
-                             "  \"Plugins\": [],\n  \"DicomModalities\": { \"holovox\": [\"HOLOVOX\", \"127.0.0.1\", "
+                             "  \"Plugins\": "
+                          << plugins << ",\n  \"DicomModalities\": { \"holovox\": [\"HOLOVOX\", \"127.0.0.1\", "
                           << c.localPort << "] }\n}\n";
     const std::string log = (fs::path(c.folder) / "orthanc.log").string();
     const pid_t pid = ::fork();
@@ -114,12 +122,20 @@ std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath
         seed(c, settings.local, node);
         studies = dicom::PacsClient(settings.local, node).find(dicom::QueryLevel::Study, {}, {});
     }
+    // The same archive over DICOMweb, when its plugin answers.
+    dicom::PacsNode web;
+    web.name = "demo-web";
+    web.kind = dicom::NodeKind::DicomWeb;
+    web.baseUrl = "http://127.0.0.1:" + std::to_string(c.httpPort) + "/dicom-web";
+    const bool hasWeb = answers(settings.local, web);
     settings.local.timeoutSeconds = 30;
     settings.upsert(node);
+    if (hasWeb) settings.upsert(web);
     settings.defaultNode = "demo";
     settings.save(settingsPath);
     return "Orthanc (AE ORTHANC) on 127.0.0.1:" + std::to_string(c.dicomPort) + " with " + std::to_string(studies) +
-           " demo studies, saved as default node 'demo' in " + settingsPath;
+           " demo studies, saved as default node 'demo'" +
+           (hasWeb ? " and DICOMweb node 'demo-web' (" + web.baseUrl + ")" : std::string()) + " in " + settingsPath;
 }
 
 std::string DemoArchive::dataFolder() {

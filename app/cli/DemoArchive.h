@@ -9,7 +9,8 @@ namespace hvx::app {
 /// The embedded demo archive: a local Orthanc (Debian package) on loopback with a throwaway
 /// configuration under the user's data folder, seeded with demo studies (the CT phantom and
 /// the MRI template written as DICOM series with plausible patient and study attributes) and
-/// registered as the default PACS node, so query/retrieve can be tried at once. Orthanc keeps
+/// registered as the default PACS node, so query/retrieve can be tried at once; with Debian's
+/// orthanc-dicomweb plugin the same archive is also the DICOMweb node "demo-web". Orthanc keeps
 /// running after the command; a second run reuses it.
 class DemoArchive {
 public:

@@ -1,8 +1,12 @@
 #!/usr/bin/env bash
-# Retrieve benchmark against a real Orthanc on loopback (started here with a throwaway
-# configuration), side by side with DCMTK's getscu and movescu in the same run:
-#   - a 500-instance 256x256 CT series by C-GET and by C-MOVE: instances/s and MB/s;
-#   - time from the start of the retrieve to a built octree, against retrieve-then-build.
+# PACS benchmark against real peers on loopback, each tool measured in the same run as its
+# peer-tool baseline (a benchmark, not a test):
+#   - Orthanc 1.10 with its DICOMweb plugin: a 500-instance 256x256 CT series by C-GET
+#     (getscu vs holovox), C-MOVE (movescu vs holovox), C-STORE (storescu vs holovox) and
+#     WADO-RS (curl of the same multipart URL vs holovox); a 5-series study (5 x 100) by C-GET
+#     with one association and with three at once;
+#   - dcmqrscp: the same series by C-GET (getscu vs holovox).
+# Prints instances/s and MB/s per row and the ratios.
 #
 #   bash tests/bench/bench_pacs.sh [--cli PATH] [--instances 500]
 set -euo pipefail
@@ -12,43 +16,99 @@ while [ $# -gt 0 ]; do
   case $1 in --cli) cli=$2; shift 2 ;; --instances) count=$2; shift 2 ;; *) echo "unknown option $1" >&2; exit 2 ;; esac
 done
 [ -x "$cli" ] || { echo "build first: cmake --workflow --preset release (or pass --cli)" >&2; exit 2; }
+cli=$(realpath "$cli")
 work=$(mktemp -d)
-trap 'kill $(cat "$work/orthanc.pid" 2>/dev/null) 2>/dev/null || true; rm -rf "$work"' EXIT
-port=$((20000 + RANDOM % 20000)); http=$((port + 1)); scp=$((port + 2))
+cleanup() {
+  for f in "$work"/*.pid; do [ -f "$f" ] && kill "$(cat "$f")" 2>/dev/null || true; done
+  rm -rf "$work"
+}
+trap cleanup EXIT
+port=$((20000 + RANDOM % 20000)); http=$((port + 1)); scp=$((port + 2)); qr=$((port + 3))
+mkdir -p "$work/storage" "$work/qr"
 cat > "$work/orthanc.json" <<JSON
 { "Name": "bench", "StorageDirectory": "$work/storage", "IndexDirectory": "$work/storage", "HttpPort": $http,
   "DicomPort": $port, "DicomAet": "ORTHANC", "RemoteAccessAllowed": false, "AuthenticationEnabled": false,
-  "DicomAlwaysAllowEcho": true, "DicomAlwaysAllowStore": true, "DicomCheckModalityHost": false, "Plugins": [],
+  "DicomAlwaysAllowEcho": true, "DicomAlwaysAllowStore": true, "DicomCheckModalityHost": false,
+  "StorageCompression": false, "Plugins": ["/usr/share/orthanc/plugins/libOrthancDicomWeb.so"],
+  "DicomWeb": { "Enable": true, "Root": "/dicom-web/" },
   "DicomModalities": { "holovox": ["HOLOVOX", "127.0.0.1", $scp], "movescu": ["MOVESCU", "127.0.0.1", $scp] } }
 JSON
 Orthanc "$work/orthanc.json" >"$work/orthanc.log" 2>&1 & echo $! > "$work/orthanc.pid"
-for i in $(seq 1 100); do (echo > /dev/tcp/127.0.0.1/$port) 2>/dev/null && break; sleep 0.1; done
+cat > "$work/dcmqrscp.cfg" <<CFG
+NetworkTCPPort = $qr
+MaxPDUSize = 116794
+MaxAssociations = 16
+HostTable BEGIN
+holovox = (HOLOVOX, 127.0.0.1, $scp)
+HostTable END
+VendorTable BEGIN
+VendorTable END
+AETable BEGIN
+DCMQR $work/qr RW (2000, 4096mb) ANY
+AETable END
+CFG
+dcmqrscp -c "$work/dcmqrscp.cfg" --disable-host-lookup >"$work/dcmqrscp.log" 2>&1 & echo $! > "$work/dcmqrscp.pid"
+for p in $port $http $qr; do
+  for i in $(seq 1 150); do (echo > /dev/tcp/127.0.0.1/$p) 2>/dev/null && break; sleep 0.1; done
+done
 "$cli" export-dicom "phantom:256x256x$count" -o "$work/series" --patient "BENCH^PACS" >/dev/null
-storescu -aet SEEDER -aec ORTHANC 127.0.0.1 $port "$work"/series/*.dcm
 study=$(dcmdump "$work/series/IMG00001.dcm" | sed -n 's/.*(0020,000d) UI \[\(.*\)\].*/\1/p')
+series=$(dcmdump "$work/series/IMG00001.dcm" | sed -n 's/.*(0020,000e) UI \[\(.*\)\].*/\1/p')
 bytes=$(du -sb "$work/series" | cut -f1)
+# A study of five 100-instance series (one study UID).
+study5="1.2.826.0.1.3680043.9.7777.$RANDOM$RANDOM"
+for s in 1 2 3 4 5; do
+  "$cli" export-dicom "phantom:256x256x100" -o "$work/study5/s$s" --patient "BENCH^FIVE" --series "series $s" >/dev/null
+  dcmodify -nb -q -m "(0020,000d)=$study5" "$work"/study5/s$s/*.dcm
+done
+bytes5=$(du -sb "$work/study5" | cut -f1)
+
 export HOLOVOX_PACS_CONFIG="$work/pacs.json" HOLOVOX_DB="$work/db.sqlite"
 "$cli" pacs add bench --ae ORTHANC --host 127.0.0.1 --port $port --local-port $scp --storage "$work/rx" >/dev/null
-t() { local s e; s=$(date +%s.%N); "$@" >"$work/last.log" 2>&1; e=$(date +%s.%N); echo "$e - $s" | bc -l; }
-row() { printf '  %-34s %7.2f s  %7.1f inst/s  %6.1f MB/s\n' "$1" "$2" "$(echo "$count / $2" | bc -l)" "$(echo "$bytes / 1000000 / $2" | bc -l)"; }
-echo "retrieve of $count instances ($(echo "$bytes/1000000" | bc) MB) from Orthanc on loopback:"
-rm -rf "$work/g"; mkdir -p "$work/g"
-g1=$(t getscu -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=STUDY -k StudyInstanceUID=$study -od "$work/g" 127.0.0.1 $port)
-row "getscu (C-GET)" "$g1"
-rm -rf "$work/rx" "$work/db.sqlite"*
-h1=$(t "$cli" pacs get bench $study --no-build)
-row "holovox pacs get (C-GET)" "$h1"
-printf '  ratio holovox/getscu throughput    %.2f (target >= 0.9)\n' "$(echo "$g1 / $h1" | bc -l)"
-rm -rf "$work/m"; mkdir -p "$work/m"
-m1=$(t movescu -aet MOVESCU -aec ORTHANC -aem MOVESCU --port $scp -k QueryRetrieveLevel=STUDY -k StudyInstanceUID=$study -od "$work/m" 127.0.0.1 $port)
-row "movescu (C-MOVE, own SCP)" "$m1"
-rm -rf "$work/rx" "$work/db.sqlite"*
-h2=$(t "$cli" pacs move bench $study --no-build)
-row "holovox pacs move (C-MOVE)" "$h2"
-printf '  ratio holovox/movescu throughput   %.2f\n' "$(echo "$m1 / $h2" | bc -l)"
-rm -rf "$work/rx" "$work/db.sqlite"* "$work/octrees"
-b1=$(t "$cli" pacs get bench $study)
-series=$(ls "$work/rx"/*/ | head -1)
-echo "time to a built octree:"
-printf '  %-34s %7.2f s\n' "holovox pacs get + build" "$b1"
-printf '  %-34s %7.2f s (get %.2f s, then build)\n' "retrieve, then import --build" "$(echo "$h1 + $(t "$cli" import "$work/rx" --db "$work/db2.sqlite" --build)" | bc -l)" "$h1"
+"$cli" pacs add web --dicomweb "http://127.0.0.1:$http/dicom-web" >/dev/null
+"$cli" pacs add qr --ae DCMQR --host 127.0.0.1 --port $qr >/dev/null
+t() { local s e; s=$(date +%s.%N); "$@" >"$work/last.log" 2>&1 || { cat "$work/last.log" >&2; exit 1; }; e=$(date +%s.%N); echo "$e - $s" | bc -l; }
+row() { printf '  %-40s %7.2f s  %7.1f inst/s  %6.1f MB/s\n' "$1" "$2" "$(echo "$3 / $2" | bc -l)" "$(echo "$4 / 1000000 / $2" | bc -l)"; }
+ratio() { printf '  %-40s %.2fx\n' "$1" "$(echo "$2 / $3" | bc -l)"; }
+fresh() { rm -rf "$work/rx" "$work/db.sqlite"* "$work/g"; mkdir -p "$work/g"; }
+
+echo "C-STORE of $count instances ($(echo "$bytes/1000000" | bc) MB) to Orthanc on loopback:"
+s1=$(t storescu -aet SEEDER -aec ORTHANC 127.0.0.1 $port "$work"/series/*.dcm)
+row "storescu" "$s1" $count $bytes
+for id in $(curl -s "http://127.0.0.1:$http/studies" | tr -d '[]", ' | tr '\n' ' '); do curl -s -X DELETE "http://127.0.0.1:$http/studies/$id" >/dev/null; done
+s2=$(t "$cli" pacs send bench "$work"/series/*.dcm)
+row "holovox pacs send (3 associations)" "$s2" $count $bytes
+ratio "holovox / storescu throughput" "$s1" "$s2"
+storescu -aet SEEDER -aec ORTHANC 127.0.0.1 $port "$work"/study5/s*/*.dcm >/dev/null
+storescu -aet SEEDER -aec DCMQR 127.0.0.1 $qr "$work"/series/*.dcm >/dev/null
+
+echo "retrieve of the same series from Orthanc:"
+fresh; g1=$(t getscu -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+row "getscu (C-GET)" "$g1" $count $bytes
+fresh; h1=$(t "$cli" pacs get bench $study --no-build)
+row "holovox pacs get (C-GET)" "$h1" $count $bytes
+ratio "holovox / getscu throughput" "$g1" "$h1"
+fresh; m1=$(t movescu -aet MOVESCU -aec ORTHANC -aem MOVESCU --port $scp -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+row "movescu (C-MOVE, own SCP)" "$m1" $count $bytes
+fresh; h2=$(t "$cli" pacs move bench $study --no-build)
+row "holovox pacs move (C-MOVE)" "$h2" $count $bytes
+ratio "holovox / movescu throughput" "$m1" "$h2"
+fresh; c1=$(t curl -s -o "$work/g/all.multipart" -H 'Accept: multipart/related; type="application/dicom"; transfer-syntax=*' "http://127.0.0.1:$http/dicom-web/studies/$study/series/$series")
+row "curl of the WADO-RS multipart URL" "$c1" $count "$(stat -c %s "$work/g/all.multipart")"
+fresh; w1=$(t "$cli" pacs get web $study --no-build)
+row "holovox pacs get (WADO-RS)" "$w1" $count $bytes
+ratio "holovox / curl time (target <= 1.2)" "$w1" "$c1"
+
+echo "a study of 5 series x 100 instances ($(echo "$bytes5/1000000" | bc) MB) from Orthanc by C-GET:"
+fresh; p1=$(t "$cli" pacs get bench $study5 --no-build --parallel 1)
+row "holovox, one association at a time" "$p1" 500 $bytes5
+fresh; p3=$(t "$cli" pacs get bench $study5 --no-build --parallel 3)
+row "holovox, three associations at once" "$p3" 500 $bytes5
+ratio "speed-up of three associations" "$p1" "$p3"
+
+echo "retrieve of the same series from dcmqrscp:"
+fresh; q1=$(t getscu -aet HOLOVOX -aec DCMQR -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $qr)
+row "getscu (C-GET)" "$q1" $count $bytes
+fresh; q2=$(t "$cli" pacs get qr $study --no-build)
+row "holovox pacs get (C-GET)" "$q2" $count $bytes
+ratio "holovox / getscu throughput" "$q1" "$q2"

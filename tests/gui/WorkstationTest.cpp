@@ -435,6 +435,20 @@ private slots:
         QTest::keyClicks(ae, "A_TITLE_LONGER_THAN_SIXTEEN");
         QCOMPARE(dialog.node().aeTitle, std::string("A_TITLE_LONGER_T"));
         QVERIFY2(dialog.echo().contains("A_TITLE_LONGER_T"), "a wrong called AE title is named in the answer");
+        // The same dialog makes a DICOMweb node: its own fields, and an echo that is a QIDO-RS
+        // search (here at a port nobody listens on: words, not a hang).
+        auto* kind = dialog.findChild<QComboBox*>("nodeKind");
+        auto* url = dialog.findChild<QLineEdit*>("nodeUrl");
+        QVERIFY(kind && url);
+        QVERIFY(!url->isVisible());
+        kind->setCurrentIndex(1);
+        QVERIFY(url->isVisible());
+        QVERIFY(!port->isVisible());
+        QTest::keyClicks(url, "http://127.0.0.1:" + QString::number(test::freePort()) + "/dicom-web");
+        QCOMPARE(dialog.node().kind, dicom::NodeKind::DicomWeb);
+        QVERIFY2(dialog.echo().contains("cannot connect"), qPrintable(dialog.echo()));
+        url->setText("pacs:8042");
+        QVERIFY_THROWS_EXCEPTION(core::Error, dialog.node());
         dialog.close();
     }
 

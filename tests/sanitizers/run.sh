@@ -5,6 +5,9 @@
 #   ThreadSanitizer (preset tsan): the unit, integration and render labels, and the storage
 #     receiver's tests (its association threads, several senders, stop while peers stall).
 # Any sanitizer report ends the test's process with a failing status, so the test fails.
+# The receiver's tests include the DICOMweb client's fault tests (its hostile HTTP server), the
+# multipart reader, and a study of three series retrieved over three associations at once from
+# one Orthanc (the retrieve's worker and builder threads).
 # Left to the ci preset, with the reason: the fuzz label (its own clang ASan/UBSan build and
 # corpus), the .deb package test (it packages the ci tree), the gui label and the Orthanc PACS
 # tests (minutes of peer set-up each; the receiver's own tests above cover Holovox's threads).
@@ -18,7 +21,7 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 export LSAN_OPTIONS="suppressions=$here/lsan.supp:print_suppressions=0"
 export TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$here/tsan.supp:print_suppressions=0"
 targets="core_unit_tests dicom_unit_tests ui_unit_tests cli_tests render_context_tests pacs_tests holovox-cli holovox-lightfield-mpi"
-receiver='^(StorageServer|StorageLimits)\.'
+receiver='^(StorageServer|StorageLimits|DicomWebFaults)\.|^DicomWebPeer\.Parallel|^MultipartReader\.'
 
 # Each step's status is checked by hand: `set -e` does not apply inside a function called from
 # an && list, which is how a failing sanitizer stage once printed "passed".

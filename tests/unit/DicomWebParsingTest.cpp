@@ -3,6 +3,8 @@
 // the DICOM JSON model of QIDO-RS and STOW-RS answers.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <string>
@@ -13,6 +15,8 @@ using namespace std::string_literals;
 #include "dicom/DicomJson.h"
 #include "dicom/DicomWebUrl.h"
 #include "dicom/MultipartReader.h"
+#include "dicom/PacsSettings.h"
+#include "tests/support/TempDir.h"
 
 using namespace hvx;
 
@@ -122,4 +126,51 @@ TEST(DicomJson, StowOutcomeCountsStoredAndFailed) {
     EXPECT_EQ(o.failed[0], "1.3 (reason 0xA700)");
     EXPECT_THROW(dicom::DicomJson::stowOutcome("[1]", "x"), core::Error);
     EXPECT_TRUE(dicom::DicomJson::queryResults(" \n", dicom::QueryLevel::Study, "x").empty());
+}
+
+// A DICOMweb node, the PDU size and the parallel associations survive a save and a load; the
+// file with credentials is readable by its owner only; bad values are refused naming the field.
+TEST(PacsSettings, DicomWebNodesAndNetworkSettingsRoundTrip) {
+    test::TempDir dir;
+    const std::string path = dir.file("cfg/pacs.json");
+    dicom::PacsSettings s;
+    s.local.maxPdu = 65536;
+    s.local.parallelAssociations = 5;
+    dicom::PacsNode d;
+    d.name = "dimse";
+    d.aeTitle = "PACS";
+    d.host = "10.0.0.1";
+    d.port = 104;
+    d.maxPdu = 32768;
+    s.nodes.push_back(d);
+    dicom::PacsNode w;
+    w.name = "web";
+    w.kind = dicom::NodeKind::DicomWeb;
+    w.baseUrl = "https://pacs.example.org/dicom-web";
+    w.username = "reader";
+    w.password = "secret";
+    w.tlsVerify = false;
+    s.nodes.push_back(w);
+    s.save(path);
+    EXPECT_EQ(std::filesystem::status(path).permissions() & std::filesystem::perms::all,
+              std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+    const auto back = dicom::PacsSettings::load(path);
+    EXPECT_EQ(back.local.maxPdu, 65536u);
+    EXPECT_EQ(back.local.parallelAssociations, 5);
+    EXPECT_EQ(back.node("dimse").maxPdu, 32768u);
+    const auto& b = back.node("web");
+    EXPECT_EQ(b.kind, dicom::NodeKind::DicomWeb);
+    EXPECT_EQ(b.baseUrl, w.baseUrl);
+    EXPECT_EQ(b.username, "reader");
+    EXPECT_EQ(b.password, "secret");
+    EXPECT_FALSE(b.tlsVerify);
+    const auto refused = [&](const std::string& json) {
+        std::ofstream(path) << json;
+        return errorOf([&] { dicom::PacsSettings::load(path); });
+    };
+    EXPECT_NE(refused(R"({"local": {"maxPdu": 100}})").find("maxPdu 100 must be 4096 to 131072"), std::string::npos);
+    EXPECT_NE(refused(R"({"local": {"parallelAssociations": 0}})").find("parallelAssociations"), std::string::npos);
+    EXPECT_NE(refused(R"({"local": {}, "nodes": [{"name": "w", "kind": "dicomweb", "url": "ftp://x"}]})").find("node 'w'"),
+              std::string::npos);
+    EXPECT_NE(refused(R"({"local": {}, "nodes": [{"name": "w", "kind": "dicomweb"}]})").find("malformed"), std::string::npos);
 }
