@@ -26,6 +26,7 @@
 #include "dicom/DicomWebClient.h"
 #include "dicom/IncomingStore.h"
 #include "dicom/PacsProtocol.h"
+#include "dicom/QuickAckTransport.h"
 
 namespace hvx::dicom {
 
@@ -177,6 +178,7 @@ struct PacsClient::Impl {
     PacsNode remote;
     const core::JobContext* job = nullptr;
     std::unique_ptr<DicomWebClient> web;  // a DICOMweb node: every operation goes to it
+    QuickAckTransport quickAck;           // plain TCP associations; outlives them
     std::unique_ptr<DcmTLSTransportLayer> tls;  // outlives the association it secures
 
     void secure(Scu& scu) {
@@ -244,7 +246,10 @@ struct PacsClient::Impl {
         }
         OFCondition c = scu.initNetwork();
         if (c.bad()) throw core::Error(where() + ": cannot start networking (" + std::string(c.text()) + ")");
-        if (remote.tls) secure(scu);
+        if (remote.tls)
+            secure(scu);
+        else if (OFCondition q = scu.secureWith(&quickAck); q.bad())  // DcmSCU's one way to set a transport layer
+            throw core::Error(where() + ": cannot set up the connection (" + std::string(q.text()) + ")");
         c = scu.negotiateAssociation();
         if (c.bad() && remote.tls &&
             (lastVerifyError == X509_V_ERR_HOSTNAME_MISMATCH || lastVerifyError == X509_V_ERR_IP_ADDRESS_MISMATCH))

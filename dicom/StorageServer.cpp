@@ -28,6 +28,7 @@
 #include "dicom/DcmtkSetup.h"
 #include "dicom/IncomingStore.h"
 #include "dicom/PacsProtocol.h"
+#include "dicom/QuickAckTransport.h"
 
 namespace hvx::dicom {
 
@@ -159,6 +160,7 @@ struct Listening {
     std::shared_ptr<IncomingStore> store;
     DcmSCPConfig config;
     std::unique_ptr<DcmTLSTransportLayer> tls;  // when the node speaks TLS; outlives the network
+    QuickAckTransport quickAck;                 // otherwise; outlives the network too
     std::atomic<bool> stopping{false};
     OFCondition result = EC_Normal;
     std::mutex workersMutex;
@@ -171,12 +173,10 @@ struct Listening {
         T_ASC_Network* network = nullptr;
         result = ASC_initializeNetwork(NET_ACCEPTOR, int(port), int(config.getACSETimeout()), &network);
         if (result.bad()) return;
-        if (tls) {
-            result = ASC_setTransportLayer(network, tls.get(), 0);
-            if (result.bad()) {
-                ASC_dropNetwork(&network);
-                return;
-            }
+        result = tls ? ASC_setTransportLayer(network, tls.get(), 0) : ASC_setTransportLayer(network, &quickAck, 0);
+        if (result.bad()) {
+            ASC_dropNetwork(&network);
+            return;
         }
         const DcmSharedSCPConfig sharedConfig(config);
         for (long number = 0; !stopping.load(); ++number) {

@@ -83,12 +83,14 @@ storescu -aet SEEDER -aec ORTHANC 127.0.0.1 $port "$work"/study5/s*/*.dcm >/dev/
 storescu -aet SEEDER -aec DCMQR 127.0.0.1 $qr "$work"/series/*.dcm >/dev/null
 
 echo "retrieve of the same series from Orthanc:"
-fresh; g1=$(t getscu -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+fresh; g1=$(t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
 row "getscu (C-GET)" "$g1" $count $bytes
+fresh; g2=$(TCP_NODELAY=1 t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+row "getscu with TCP_NODELAY=1 in its env" "$g2" $count $bytes
 fresh; h1=$(t "$cli" pacs get bench $study --no-build)
 row "holovox pacs get (C-GET)" "$h1" $count $bytes
 ratio "holovox / getscu throughput" "$g1" "$h1"
-fresh; m1=$(t movescu -aet MOVESCU -aec ORTHANC -aem MOVESCU --port $scp -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+fresh; m1=$(t movescu -S -aet MOVESCU -aec ORTHANC -aem MOVESCU --port $scp -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
 row "movescu (C-MOVE, own SCP)" "$m1" $count $bytes
 fresh; h2=$(t "$cli" pacs move bench $study --no-build)
 row "holovox pacs move (C-MOVE)" "$h2" $count $bytes
@@ -107,7 +109,7 @@ row "holovox, three associations at once" "$p3" 500 $bytes5
 ratio "speed-up of three associations" "$p1" "$p3"
 
 echo "retrieve of the same series from dcmqrscp:"
-fresh; q1=$(t getscu -aet HOLOVOX -aec DCMQR -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $qr)
+fresh; q1=$(t getscu -S -aet HOLOVOX -aec DCMQR -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $qr)
 row "getscu (C-GET)" "$q1" $count $bytes
 fresh; q2=$(t "$cli" pacs get qr $study --no-build)
 row "holovox pacs get (C-GET)" "$q2" $count $bytes
