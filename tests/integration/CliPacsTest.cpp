@@ -123,7 +123,8 @@ TEST(CliPacs, AddListEchoFindSendAndGetAgainstOrthanc) {
 }
 
 // Every association Holovox opens sets TCP_NODELAY (DCMTK 3.6.7 leaves Nagle's algorithm on,
-// and each small DIMSE message then waits out a delayed ACK), as strace sees the socket calls;
+// and each small DIMSE message then waits out a delayed ACK) and TCP_QUICKACK after its reads,
+// as strace sees the socket calls;
 // and a DICOMweb node is added, listed and searched like a DIMSE one.
 TEST(CliPacs, EveryAssociationSetsTcpNoDelayAndDicomWebNodesWorkAlike) {
     test::TempDir dir;
@@ -145,6 +146,8 @@ TEST(CliPacs, EveryAssociationSetsTcpNoDelayAndDicomWebNodesWorkAlike) {
         r = test::runCommand(strace + cli + op + config);
         ASSERT_EQ(r.exitCode, 0) << op << "\n" << r.output;
         EXPECT_NE(r.output.find("TCP_NODELAY, [1]"), std::string::npos) << op << ": no TCP_NODELAY\n" << r.output;
+        // Orthanc keeps Nagle on: our ACKs go at once, after every read.
+        EXPECT_NE(r.output.find("TCP_QUICKACK, [1]"), std::string::npos) << op << ": no TCP_QUICKACK\n" << r.output;
     }
     // The same archive as a DICOMweb node.
     r = test::runCommand(cli + " pacs add web --dicomweb " + peer.dicomWebUrl() + config);
