@@ -46,18 +46,29 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
     PacsClient client(settings_.local, node_);
     client.cancelWith(job);
     std::vector<SeriesRetrieveStatus> series;
-    if (!seriesUid.empty()) {
-        series.push_back({seriesUid, "", {}, false, "", ""});
-    } else {
-        QueryKeys keys;
-        keys.studyUid = studyUid;
+    // The series, with the description and instance count the PACS gives at series level.
+    QueryKeys keys;
+    keys.studyUid = studyUid;
+    keys.seriesUid = seriesUid;
+    try {
         client.find(QueryLevel::Series, keys, [&](const QueryResult& r) {
-            series.push_back({r.seriesUid, r.modality + " #" + std::to_string(r.seriesNumber) + " " + r.seriesDescription,
-                              {}, false, "", ""});
+            if (!seriesUid.empty() && r.seriesUid != seriesUid) return true;  // a PACS that ignored the key
+            SeriesRetrieveStatus st;
+            st.seriesUid = r.seriesUid;
+            st.description = r.modality + " #" + std::to_string(r.seriesNumber) + " " + r.seriesDescription;
+            st.countOnPacs = r.numberOfInstances;
+            series.push_back(st);
             return true;
         });
-        if (series.empty()) throw core::Error("study " + studyUid + " has no series on PACS '" + node_.name + "'");
+    } catch (const core::Error&) {
+        if (seriesUid.empty()) throw;  // without the series list there is nothing to retrieve
     }
+    if (!seriesUid.empty() && series.empty()) {
+        SeriesRetrieveStatus st;
+        st.seriesUid = seriesUid;
+        series.push_back(st);
+    }
+    if (series.empty()) throw core::Error("study " + studyUid + " has no series on PACS '" + node_.name + "'");
 
     std::mutex mutex;  // guards db_, received, series[] updates from the server and build threads
     std::map<std::string, std::vector<DicomInstance>> received;
@@ -190,14 +201,17 @@ bool RetrieveJob::fetch(PacsClient& client, const std::string& studyUid, SeriesR
                         const std::function<void(const RetrieveProgress&)>& progress) {
     try {
         // What the PACS has, and which of it is here already (indexed, and its file there).
-        const std::vector<std::string> onPacs = instancesOnPacs(client, studyUid, s.seriesUid);
-        std::vector<std::string> missing;
-        std::vector<DicomInstance> here;
         std::map<std::string, std::string> indexed;
         {
             std::lock_guard lock(mutex);
             indexed = db_.onlineInstancesOfSeries(s.seriesUid);
         }
+        // Nothing of it here and the PACS gave its count with the series: the count is the
+        // completeness check, and the instance list (slow on some archives) is not needed.
+        const std::vector<std::string> onPacs =
+            indexed.empty() && s.countOnPacs > 0 ? std::vector<std::string>{} : instancesOnPacs(client, studyUid, s.seriesUid);
+        std::vector<std::string> missing;
+        std::vector<DicomInstance> here;
         for (const auto& sop : onPacs) {
             const auto it = indexed.find(sop);
             DicomInstance in;
@@ -230,8 +244,9 @@ bool RetrieveJob::fetch(PacsClient& client, const std::string& studyUid, SeriesR
             }
         }
         const std::size_t expected =
-            !onPacs.empty() ? onPacs.size()
-                            : std::size_t(std::max(0, s.progress.completed + s.progress.failed + s.progress.warning));
+            !onPacs.empty()     ? onPacs.size()
+            : s.countOnPacs > 0 ? std::size_t(s.countOnPacs)
+                                : std::size_t(std::max(0, s.progress.completed + s.progress.failed + s.progress.warning));
         checkComplete(s, expected, [&] {
             std::lock_guard lock(mutex);
             return received[s.seriesUid].size();

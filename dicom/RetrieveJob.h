@@ -22,6 +22,7 @@ struct SeriesRetrieveStatus {
     std::string octreePath;  ///< set once its octree is built
     std::string error;       ///< a failed series says why; the others go on
     int alreadyHere = 0;     ///< instances that were here (indexed, on disk) and were not fetched again
+    int countOnPacs = 0;     ///< the series' instance count as the PACS gave it (0: not given)
 };
 
 /// Retrieves a study (or one series) from a PACS, several series at once over their own
