@@ -31,7 +31,7 @@ struct SeriesRetrieveStatus {
 /// by WADO-RS from a DICOMweb node, indexes every received instance into the study database,
 /// and builds each finished series' octree on one builder thread while the transfers go on. Progress per series comes from the sub-operation counts. At
 /// the end of each series the instances that arrived are counted against the PACS's own count
-/// (an image-level C-FIND): a partial series is reported as such, indexed but not built, and a
+/// (the series-level count when nothing is here yet, else an image-level C-FIND): a partial series is reported as such, indexed but not built, and a
 /// C-MOVE of which nothing arrived names the PACS's entry for our AE title as the likely cause.
 /// Retrieving a series again (after a partial retrieve) fetches only the instances that are not
 /// here already, by an image-level C-GET/C-MOVE of their SOP Instance UIDs, and builds from all.

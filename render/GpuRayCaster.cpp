@@ -19,8 +19,9 @@ struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
     glm::mat4 patientToOctree;
     glm::vec4 extent, tfRange, shading, extra, enhance;
     glm::uvec4 brick, image;
+    glm::vec4 cropLo, cropHi;
 };
-static_assert(sizeof(FrameBlock) == 64 + 5 * 16 + 2 * 16, "std140 layout of Frame");
+static_assert(sizeof(FrameBlock) == 64 + 5 * 16 + 2 * 16 + 2 * 16, "std140 layout of Frame");
 struct ViewBlock {  // std430 mirror of raycast_inputs.glsl's ViewCamera
     glm::vec4 eye, forward, right, up, screenCentre, screenRight, screenUp, screenViewer, screenProjector;
 };
@@ -245,6 +246,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                            float(space.minSpacing / (tf.valueMax() - tf.valueMin()) / core::kBoundaryGradientFraction), 0.0f);
     fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), poolRow_);
     fb.image = glm::uvec4(std::uint32_t(width), std::uint32_t(height), poolLayer_, std::uint32_t(views.size()));
+    fb.cropLo = glm::vec4(glm::vec3(settings.crop.min * space.extent), 0.0f);
+    fb.cropHi = glm::vec4(glm::vec3(settings.crop.max * space.extent), 0.0f);
     glNamedBufferData(buffers_[7], sizeof fb, &fb, GL_STREAM_DRAW);
 
     program->use();

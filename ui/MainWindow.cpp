@@ -40,6 +40,7 @@
 #include "ui/LightFieldPanel.h"
 #include "ui/PacsPanel.h"
 #include "ui/RenderControls.h"
+#include "ui/CropControls.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
 #include "ui/TransferFunctionEditor.h"
@@ -65,6 +66,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     jobsPanel_ = new JobsPanel(*jobs_);
     tfEditor_ = new TransferFunctionEditor;
     controls_ = new RenderControls;
+    crop_ = new CropControls;
     auto* slicesWidget = new QWidget;
     auto* slicesLayout = new QHBoxLayout(slicesWidget);
     slicesLayout->setContentsMargins(2, 2, 2, 2);
@@ -85,11 +87,13 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     auto* probes = addDock(tr("Probes"), "probesDock", toolPanels_[0], Qt::RightDockWidgetArea, true);
     auto* clip = addDock(tr("Clip plane"), "clipDock", toolPanels_[1], Qt::RightDockWidgetArea, true);
     auto* band = addDock(tr("Band picker"), "bandDock", toolPanels_[2], Qt::RightDockWidgetArea, true);
+    auto* cropDock = addDock(tr("Crop"), "cropDock", crop_, Qt::RightDockWidgetArea, true);
     lightField_ = new LightFieldPanel(*view_);
     auto* lf = addDock(tr("Light field"), "lightFieldDock", lightField_, Qt::RightDockWidgetArea, true);
     tabifyDockWidget(renderDock, probes);
     tabifyDockWidget(probes, clip);
-    tabifyDockWidget(clip, band);
+    tabifyDockWidget(clip, cropDock);
+    tabifyDockWidget(cropDock, band);
     tabifyDockWidget(band, lf);
     renderDock->raise();
     (void)tfDock;
@@ -106,8 +110,17 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     connect(pacs_, &PacsPanel::retrieved, browser_, &StudyBrowser::refresh);
     connect(tfEditor_, &TransferFunctionEditor::changed, this, &MainWindow::applyTransferFunction);
     connect(tfEditor_, &TransferFunctionEditor::failed, this, &MainWindow::showError);
+    connect(crop_, &CropControls::changed, this, [this] {
+        view_->setRenderSettings(renderSettings());
+        if (!openPath_.isEmpty()) {  // the crop box is kept per volume
+            const auto b = crop_->box();
+            QSettings().setValue("crop/" + openPath_, QStringList{QString::number(b.min.x, 'g', 17), QString::number(b.min.y, 'g', 17),
+                                                                  QString::number(b.min.z, 'g', 17), QString::number(b.max.x, 'g', 17),
+                                                                  QString::number(b.max.y, 'g', 17), QString::number(b.max.z, 'g', 17)});
+        }
+    });
     connect(controls_, &RenderControls::changed, this, [this] {
-        view_->setRenderSettings(controls_->settings());
+        view_->setRenderSettings(renderSettings());
         view_->setAccuracy(controls_->accuracy());
     });
     connect(view_, &VolumeView::frameRendered, this, &MainWindow::updateReadouts);
@@ -229,7 +242,9 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
         controls_->setVolume(g.rescaleSlope, g.rescaleIntercept, std::min(pMin, pMax), std::max(pMin, pMax), g.modality == "CT");
         tfEditor_->setVolume(g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept, g.modality, {});
         view_->setVolume(reader, keepCamera);
-        view_->setRenderSettings(controls_->settings());
+        openPath_.clear();  // the new volume's crop box is not saved under the old one's key
+        crop_->setVolume(g.dims, g.spacing, g.direction);
+        view_->setRenderSettings(renderSettings());
         applyTransferFunction();
         for (auto* s : slices_) s->setVolume(reader);
         openPath_ = QString::fromLatin1(
@@ -237,6 +252,18 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
         const QStringList saved = QSettings().value("windows/" + openPath_).toStringList();
         if (saved.size() == 3 && saved[1].toDouble() > 0)  // the window chosen last time for this volume
             for (auto* s : slices_) s->setWindow(saved[0].toDouble(), saved[1].toDouble(), saved[2]);
+        const QStringList crop = QSettings().value("crop/" + openPath_).toStringList();
+        if (crop.size() == 6) {  // the crop box of last time, when it is a box of this volume
+            core::CropBox b;
+            bool ok = true;
+            for (int a = 0; a < 3; ++a) {
+                bool okLo = false, okHi = false;
+                b.min[a] = crop[a].toDouble(&okLo);
+                b.max[a] = crop[3 + a].toDouble(&okHi);
+                ok = ok && okLo && okHi && b.min[a] >= 0.0 && b.max[a] <= 1.0 && b.max[a] > b.min[a];
+            }
+            if (ok) crop_->setBox(b);
+        }
         // The histogram reads a few hundred bricks: in the background.
         QPointer<MainWindow> self(this);
         auto histogram = std::make_shared<core::VolumeHistogram>();
@@ -265,6 +292,12 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
         showError(QString::fromStdString(e.what()));
         return false;
     }
+}
+
+core::RenderSettings MainWindow::renderSettings() const {
+    auto rs = controls_->settings();
+    rs.crop = crop_->box();
+    return rs;
 }
 
 void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume) {

@@ -5,6 +5,7 @@
 
 #include "core/octree/OctreeReader.h"
 #include "core/appearance/ToolSet.h"
+#include "core/reference/RenderSettings.h"
 #include "core/reference/VolumeHistogram.h"
 
 class QLabel;
@@ -17,6 +18,7 @@ class JobsPanel;
 class LightFieldPanel;
 class PacsPanel;
 class RenderControls;
+class CropControls;
 class SliceView;
 class StudyBrowser;
 class ToolsPanel;
@@ -59,6 +61,7 @@ public:
     JobsPanel* jobsPanel() const { return jobsPanel_; }
     TransferFunctionEditor* tfEditor() const { return tfEditor_; }
     RenderControls* renderControls() const { return controls_; }
+    CropControls* cropControls() const { return crop_; }
     LightFieldPanel* lightField() const { return lightField_; }
     SliceView* slice(int i) const { return slices_[i]; }
     const QString& openLabel() const { return openLabel_; }
@@ -74,6 +77,8 @@ protected:
     void closeEvent(QCloseEvent* e) override;
 
 private:
+    /// The rendering dock's settings with the crop box.
+    core::RenderSettings renderSettings() const;
     QDockWidget* addDock(const QString& title, const QString& name, QWidget* widget, Qt::DockWidgetArea area,
                          bool scrolled = false);
     void buildMenus();
@@ -93,6 +98,7 @@ private:
     JobsPanel* jobsPanel_;
     TransferFunctionEditor* tfEditor_;
     RenderControls* controls_;
+    CropControls* crop_;
     LightFieldPanel* lightField_;
     SliceView* slices_[3];
     QLabel* readouts_;

@@ -185,6 +185,7 @@ void VolumeView::paintGL() {
             // A clip plane seen face-on hides its far side: those bricks are not even loaded.
             scene_->ws.options().clip = settings_.mode == core::RenderSettings::Mode::Dvr && settings_.tools.clipHides(view);
             scene_->ws.options().clipPlane = settings_.tools.keptHalfSpace();
+            scene_->ws.options().crop = settings_.crop;  // what the crop box removes is not loaded
             QElapsedTimer t;
             t.start();
             lastView_ = view.scaled(level.resolution);

@@ -35,12 +35,12 @@ core::RenderSettings::Mode parseMode(const std::string& m) {
 int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
-                        "view-transparency", "tools"},
+                        "view-transparency", "tools", "crop"},
                        {"cpu"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
-                          "[--tf PRESET] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json] -o OUT.png|OUT.exr");
+                          "[--tf PRESET] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
@@ -98,6 +98,12 @@ int renderCommand(int argc, char** argv) {
     // A clip plane seen face-on hides its far side from every ray: those bricks are not loaded.
     opt.clip = settings.tools.clipHides(view);
     opt.clipPlane = settings.tools.keptHalfSpace();
+    // --crop I0,J0,K0,I1,J1,K1: millimetres from the volume's first corner along its axes.
+    if (const auto crop = args.value("crop")) {
+        const auto v = CliArgs::numbers(*crop, 6, "--crop");
+        settings.crop = core::CropBox::fromMillimetres({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, g.dims, g.spacing);
+    }
+    opt.crop = settings.crop;
     const auto t0 = std::chrono::steady_clock::now();
     core::BrickCache cache(std::size_t(args.integer("cache-mb", 2048, 16, 1 << 20)) << 20);
     core::BrickLoader loader(*reader, cache);

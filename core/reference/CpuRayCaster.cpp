@@ -54,14 +54,15 @@ template <class Visitor>
 void CpuRayCaster::walk(const glm::dvec3& ow, const glm::dvec3& dw, Visitor&& visit) const {
     const glm::dvec3 od = glm::dvec3(space_.patientToOctree * glm::dvec4(ow, 1.0));
     const glm::dvec3 dd = glm::dmat3(space_.patientToOctree) * dw;
-    // Clip to the volume's box in octree space (t stays in world mm).
+    // Clip to the volume's box in octree space, or to the crop box in it (t stays in world mm).
+    const glm::dvec3 boxLo = settings_.crop.min * space_.extent, boxHi = settings_.crop.max * space_.extent;
     double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
     for (int a = 0; a < 3; ++a) {
         if (std::abs(dd[a]) < 1e-15) {
-            if (od[a] < 0.0 || od[a] > space_.extent[a]) return;
+            if (od[a] < boxLo[a] || od[a] > boxHi[a]) return;
             continue;
         }
-        double ta = (0.0 - od[a]) / dd[a], tb = (space_.extent[a] - od[a]) / dd[a];
+        double ta = (boxLo[a] - od[a]) / dd[a], tb = (boxHi[a] - od[a]) / dd[a];
         if (ta > tb) std::swap(ta, tb);
         t0 = std::max(t0, ta);
         t1 = std::min(t1, tb);
@@ -343,6 +344,7 @@ RenderImage CpuRayCaster::render(const View& view) const {
     img.height = view.height;
     img.rgba.assign(std::size_t(view.width) * view.height, glm::vec4(0.0f));
     img.depth.assign(img.rgba.size(), std::numeric_limits<float>::infinity());
+    if (index_.nodes.empty()) return img;  // no cut yet (nothing converged): nothing to draw
     std::vector<std::vector<std::uint32_t>> counts;
     const bool count = settings_.countRays;
     ThreadPool::shared().parallelFor(std::size_t(view.height), [&](std::size_t y0, std::size_t y1) {

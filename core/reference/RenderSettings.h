@@ -1,5 +1,6 @@
 #pragma once
 #include "core/appearance/ToolSet.h"
+#include "core/volume/CropBox.h"
 
 namespace hvx::core {
 
@@ -24,6 +25,7 @@ struct RenderSettings {
     /// way; off only for the tests that show it.
     bool skipEmptyCells = true;
     ToolSet tools;                   ///< illustrative tools (DVR only)
+    CropBox crop;                    ///< rays start and end at its faces (every mode)
 };
 
 /// Emission added to ambient light where a tool emphasises tissue (the clip plane's slab).

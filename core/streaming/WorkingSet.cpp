@@ -35,6 +35,14 @@ bool WorkingSet::skip(std::uint32_t node, const std::vector<glm::dmat4>& clips, 
     } else if (options_.cullByTransferFunction && tf.isEmpty(n.minValue, n.maxValue)) {
         return true;
     }
+    if (!options_.crop.whole()) {  // the node's box in octree space against the crop box
+        const int depth = reader_.levelCount() - 1 - n.level;
+        const double size = std::ldexp(1.0, -depth);
+        const glm::dvec3 lo = glm::dvec3(n.x, n.y, n.z) * size, hi = lo + size;
+        const glm::dvec3 cropLo = options_.crop.min * space_.extent, cropHi = options_.crop.max * space_.extent;
+        for (int a = 0; a < 3; ++a)
+            if (hi[a] <= cropLo[a] || lo[a] >= cropHi[a]) return true;
+    }
     glm::dvec3 c[8];
     corners(node, c);
     if (options_.clip) {

@@ -17,6 +17,7 @@
 #include "core/appearance/TransferFunction.h"
 #include "core/camera/AccuracyFunction.h"
 #include "core/camera/View.h"
+#include "core/volume/CropBox.h"
 
 namespace hvx::core {
 
@@ -24,6 +25,7 @@ struct WorkingSetOptions {
     std::size_t maxBricks = 2048;                  ///< GPU pool slots
     std::size_t uploadBytesPerFrame = 64u << 20;   ///< new slot contents per frame
     double voxelsPerPixel = 1.0;                   ///< accuracy target (larger is coarser)
+    CropBox crop;  ///< nodes outside it are neither refined nor loaded
     bool clip = false;
     glm::dvec4 clipPlane{0, 0, 1, 0};  ///< world plane; keeps points with dot(n, p) + d >= 0
     bool cullByTransferFunction = true;  ///< off for MIP/MinIP/average, where every value counts

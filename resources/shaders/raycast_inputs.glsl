@@ -8,6 +8,8 @@ layout(std140, binding = 0) uniform Frame {
     vec4 enhance;    // boundary enhancement, view-dependent transparency, strength per gradient, unused
     uvec4 brick;     // brick size, border, edge, slots per row
     uvec4 image;     // width, height, slots per layer, views in the batch
+    vec4 cropLo;     // xyz: the crop box in octree space (the whole volume: 0 and extent)
+    vec4 cropHi;
 };
 // One camera per view of the batch (dispatch layer z = view index).
 struct ViewCamera {

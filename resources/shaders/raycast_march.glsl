@@ -1,4 +1,4 @@
-// The ray march: clip to the volume, walk the index leaf by leaf (shared traversal step),
+// The ray march: clip to the volume (or its crop box), walk the index leaf by leaf (shared traversal step),
 // sample each non-empty leaf at its voxel size and composite. The samples and their order of
 // operations are those of core/reference/CpuRayCaster.cpp; two accelerations leave the image as it is:
 // the costly work runs once per significant sample (see the loops below), and the cells of a
@@ -32,10 +32,10 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     float t0 = 0.0, t1 = 1e30;
     for (int a = 0; a < 3; ++a) {
         if (abs(d[a]) < 1e-15) {
-            if (o[a] < 0.0 || o[a] > extent[a]) return vec4(0.0);
+            if (o[a] < cropLo[a] || o[a] > cropHi[a]) return vec4(0.0);
             continue;
         }
-        float ta = (0.0 - o[a]) / d[a], tb = (extent[a] - o[a]) / d[a];
+        float ta = (cropLo[a] - o[a]) / d[a], tb = (cropHi[a] - o[a]) / d[a];
         t0 = max(t0, min(ta, tb));
         t1 = min(t1, max(ta, tb));
     }

@@ -4,7 +4,9 @@
 // cancelling a running build from the jobs panel. Assertions look at pixels. Screenshots are
 // kept under <build>/test-artifacts/gui/.
 #include <QApplication>
+#include <QCheckBox>
 #include <QComboBox>
+#include <QDoubleSpinBox>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QLineEdit>
@@ -38,6 +40,7 @@
 #include "ui/LightFieldPanel.h"
 #include "ui/LightFieldWindow.h"
 #include "ui/MainWindow.h"
+#include "ui/CropControls.h"
 #include "ui/PacsNodeDialog.h"
 #include "ui/PacsPanel.h"
 #include "ui/RenderControls.h"
@@ -248,6 +251,38 @@ private slots:
         // Back to the preset for the tests that follow.
         window_->tfEditor()->setSpec(original);
         QCOMPARE(canvas->spec().opacity.size(), original.opacity.size());
+    }
+
+    // The crop box from its dock: the upper half along k cut away (the frame changes, less is
+    // drawn), a box turned inside out is refused in words and the last good one stays, and the
+    // reset brings the whole volume back.
+    void cropsTheVolumeFromTheDock() {
+        const QImage whole = settledFrame();
+        auto* crop = window_->cropControls();
+        auto* kHigh = crop->findChild<QDoubleSpinBox*>("cropkHigh");
+        auto* iLow = crop->findChild<QDoubleSpinBox*>("cropiLow");
+        auto* enabled = crop->findChild<QCheckBox*>("cropEnabled");
+        QVERIFY(kHigh && iLow && enabled);
+        QVERIFY(!enabled->isChecked());
+        QVERIFY(crop->box().whole());
+        kHigh->setValue(kHigh->maximum() / 2);
+        enabled->setChecked(true);
+        QVERIFY(!crop->box().whole());
+        QVERIFY(std::abs(crop->box().max.z - 0.5) < 0.01);  // the field holds tenths of a mm
+        const QImage cropped = settledFrame();
+        saveArtifact("crop.png");
+        QVERIFY2(difference(whole, cropped) > 1.0, "the crop box changes the frame");
+        QVERIFY2(coverage(cropped) < coverage(whole), "less of the volume is drawn");
+        auto* iHigh = crop->findChild<QDoubleSpinBox*>("cropiHigh");
+        iHigh->setValue(iHigh->maximum() / 4);
+        iLow->setValue(iHigh->maximum() / 2);  // beyond the high face: inside out
+        QVERIFY2(crop->problem().contains("inside out along i"), qPrintable(crop->problem()));
+        QCOMPARE(crop->box().min.x, 0.0);  // the last good box stays
+        iLow->setValue(0.0);
+        QVERIFY(crop->problem().isEmpty());
+        QTest::mouseClick(crop->findChild<QPushButton*>("cropReset"), Qt::LeftButton);
+        QVERIFY(crop->box().whole());
+        QVERIFY2(difference(whole, settledFrame()) < 1.0, "the reset shows the whole volume again");
     }
 
     void switchesRenderModes() {
