@@ -3,6 +3,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "core/octree/OctreeReader.h"
@@ -178,4 +179,17 @@ TEST(CliRender, CpuRendersPngAndExrOfTheDemoAndRefusesBadViews) {
     r = test::runCommand(cli + " render " + dir.file("p.hvo") + " --cpu --tf nosuch -o " + dir.file("b.png") + " 2>&1");
     EXPECT_TRUE(contains(r.output, "unknown transfer function preset")) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("b.png")));
+    // The crop box: a cropped render differs from the whole; bad boxes are sentences.
+    r = test::runCommand(cli + " render " + dir.file("p.hvo") + " --cpu --size 96x80 --view 20,10,1.2 --crop 0,0,0,64,64,32 -o " +
+                         dir.file("c.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream fa(dir.file("a.png"), std::ios::binary), fc(dir.file("c.png"), std::ios::binary);
+    EXPECT_NE(std::string(std::istreambuf_iterator<char>(fa), {}), std::string(std::istreambuf_iterator<char>(fc), {}));
+    for (const auto& [crop, why] : std::vector<std::pair<std::string, std::string>>{
+             {"0,0,0,64,64", "--crop"}, {"40,0,0,10,64,64", "inside out along i"}, {"0,0,9000,64,64,9999", "outside the volume along k"}}) {
+        r = test::runCommand(cli + " render " + dir.file("p.hvo") + " --cpu --crop " + crop + " -o " + dir.file("d.png") + " 2>&1");
+        EXPECT_EQ(r.exitCode, 1) << crop;
+        EXPECT_TRUE(contains(r.output, why)) << crop << ": " << r.output;
+        EXPECT_FALSE(std::filesystem::exists(dir.file("d.png")));
+    }
 }
