@@ -178,7 +178,7 @@ struct PacsClient::Impl {
     PacsNode remote;
     const core::JobContext* job = nullptr;
     std::unique_ptr<DicomWebClient> web;  // a DICOMweb node: every operation goes to it
-    QuickAckTransport quickAck;           // plain TCP associations; outlives them
+    std::unique_ptr<DcmTransportLayer> quickAck = makeQuickAckTransport();  // plain TCP; outlives them
     std::unique_ptr<DcmTLSTransportLayer> tls;  // outlives the association it secures
 
     void secure(Scu& scu) {
@@ -248,7 +248,7 @@ struct PacsClient::Impl {
         if (c.bad()) throw core::Error(where() + ": cannot start networking (" + std::string(c.text()) + ")");
         if (remote.tls)
             secure(scu);
-        else if (OFCondition q = scu.secureWith(&quickAck); q.bad())  // DcmSCU's one way to set a transport layer
+        else if (OFCondition q = scu.secureWith(quickAck.get()); q.bad())  // DcmSCU's one way to set a transport layer
             throw core::Error(where() + ": cannot set up the connection (" + std::string(q.text()) + ")");
         c = scu.negotiateAssociation();
         if (c.bad() && remote.tls &&

@@ -1,5 +1,7 @@
 #include "dicom/QuickAckTransport.h"
 
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmnet/dcmlayer.h>
 #include <dcmtk/dcmnet/dcmtrans.h>
 
 #include <netinet/in.h>
@@ -28,10 +30,15 @@ private:
         ::setsockopt(int(getSocket()), IPPROTO_TCP, TCP_QUICKACK, &one, sizeof one);
     }
 };
+
+class QuickAckLayer : public DcmTransportLayer {
+public:
+    DcmTransportConnection* createConnection(DcmNativeSocketType openSocket, OFBool) override {
+        return new QuickAckConnection(openSocket);
+    }
+};
 }  // namespace
 
-DcmTransportConnection* QuickAckTransport::createConnection(DcmNativeSocketType openSocket, OFBool) {
-    return new QuickAckConnection(openSocket);
-}
+std::unique_ptr<DcmTransportLayer> makeQuickAckTransport() { return std::make_unique<QuickAckLayer>(); }
 
 }  // namespace hvx::dicom

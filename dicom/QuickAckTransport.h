@@ -1,7 +1,7 @@
 #pragma once
-// Internal to dicom/: DCMTK types (not part of the module's public API).
-#include <dcmtk/config/osconfig.h>
-#include <dcmtk/dcmnet/dcmlayer.h>
+#include <memory>
+
+class DcmTransportLayer;  // private to dicom/: only .cpp files of this module use this
 
 namespace hvx::dicom {
 
@@ -11,10 +11,7 @@ namespace hvx::dicom {
 /// unmodified Orthanc or dcmqrscp on Debian 12): its next small DIMSE message waits for our ACK
 /// of the previous one. Linux does not keep quick-ack mode, so it is asked for after every read.
 /// Used for every association without TLS, as requestor (PacsClient) and acceptor
-/// (StorageServer).
-class QuickAckTransport : public DcmTransportLayer {
-public:
-    DcmTransportConnection* createConnection(DcmNativeSocketType openSocket, OFBool useSecureLayer) override;
-};
+/// (StorageServer). The layer must outlive the network that uses it.
+std::unique_ptr<DcmTransportLayer> makeQuickAckTransport();
 
 }  // namespace hvx::dicom

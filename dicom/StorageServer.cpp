@@ -160,7 +160,7 @@ struct Listening {
     std::shared_ptr<IncomingStore> store;
     DcmSCPConfig config;
     std::unique_ptr<DcmTLSTransportLayer> tls;  // when the node speaks TLS; outlives the network
-    QuickAckTransport quickAck;                 // otherwise; outlives the network too
+    std::unique_ptr<DcmTransportLayer> quickAck = makeQuickAckTransport();  // otherwise; outlives the network
     std::atomic<bool> stopping{false};
     OFCondition result = EC_Normal;
     std::mutex workersMutex;
@@ -173,7 +173,7 @@ struct Listening {
         T_ASC_Network* network = nullptr;
         result = ASC_initializeNetwork(NET_ACCEPTOR, int(port), int(config.getACSETimeout()), &network);
         if (result.bad()) return;
-        result = tls ? ASC_setTransportLayer(network, tls.get(), 0) : ASC_setTransportLayer(network, &quickAck, 0);
+        result = tls ? ASC_setTransportLayer(network, tls.get(), 0) : ASC_setTransportLayer(network, quickAck.get(), 0);
         if (result.bad()) {
             ASC_dropNetwork(&network);
             return;
