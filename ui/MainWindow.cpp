@@ -41,6 +41,7 @@
 #include "ui/PacsPanel.h"
 #include "ui/RenderControls.h"
 #include "ui/CropControls.h"
+#include "ui/MeasurementsPanel.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
 #include "ui/TransferFunctionEditor.h"
@@ -67,6 +68,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     tfEditor_ = new TransferFunctionEditor;
     controls_ = new RenderControls;
     crop_ = new CropControls;
+    measurements_ = new MeasurementsPanel;
     auto* slicesWidget = new QWidget;
     auto* slicesLayout = new QHBoxLayout(slicesWidget);
     slicesLayout->setContentsMargins(2, 2, 2, 2);
@@ -99,7 +101,9 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     (void)tfDock;
     addDock(tr("Slices"), "slicesDock", slicesWidget, Qt::BottomDockWidgetArea);
     auto* jobsDock = addDock(tr("Jobs"), "jobsDock", jobsPanel_, Qt::BottomDockWidgetArea);
-    (void)jobsDock;
+    auto* measurementsDock = addDock(tr("Measurements"), "measurementsDock", measurements_, Qt::BottomDockWidgetArea);
+    tabifyDockWidget(jobsDock, measurementsDock);
+    jobsDock->raise();
     statusBar()->addPermanentWidget(jobsPanel_->statusWidget());
     statusBar()->addPermanentWidget(readouts_);
     buildMenus();
@@ -110,6 +114,13 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     connect(pacs_, &PacsPanel::retrieved, browser_, &StudyBrowser::refresh);
     connect(tfEditor_, &TransferFunctionEditor::changed, this, &MainWindow::applyTransferFunction);
     connect(tfEditor_, &TransferFunctionEditor::failed, this, &MainWindow::showError);
+    for (auto* s : slices_)
+        connect(s, &SliceView::measured, this, [this](const core::Measurement& m) { measurements_->add(m); });
+    connect(measurements_, &MeasurementsPanel::changed, this, [this] {
+        if (!measurementsKey_.isEmpty())  // kept per volume with the session
+            QSettings().setValue("measurements/" + measurementsKey_,
+                                 QString::fromStdString(measurements_->list().toJson(core::MeasurementSource{})));
+    });
     connect(crop_, &CropControls::changed, this, [this] {
         view_->setRenderSettings(renderSettings());
         if (!openPath_.isEmpty()) {  // the crop box is kept per volume
@@ -249,9 +260,11 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
         for (auto* s : slices_) s->setVolume(reader);
         openPath_ = QString::fromLatin1(
             QCryptographicHash::hash(QFileInfo(path).absoluteFilePath().toUtf8(), QCryptographicHash::Sha1).toHex());
+        seriesUid_ = seriesOfOctree_.value(QFileInfo(path).absoluteFilePath());  // empty: a file of its own
         const QStringList saved = QSettings().value("windows/" + openPath_).toStringList();
         if (saved.size() == 3 && saved[1].toDouble() > 0)  // the window chosen last time for this volume
             for (auto* s : slices_) s->setWindow(saved[0].toDouble(), saved[1].toDouble(), saved[2]);
+        restoreMeasurements(path);
         const QStringList crop = QSettings().value("crop/" + openPath_).toStringList();
         if (crop.size() == 6) {  // the crop box of last time, when it is a box of this volume
             core::CropBox b;
@@ -294,6 +307,45 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
     }
 }
 
+void MainWindow::restoreMeasurements(const QString& path) {
+    core::MeasurementSource source;
+    source.volume = QFileInfo(path).absoluteFilePath().toStdString();
+    if (!seriesUid_.isEmpty()) {  // the patient, study and series UIDs from the study database
+        try {
+            dicom::StudyDatabase db(browser_->databasePath().toStdString());
+            dicom::SeriesRow series;
+            if (db.findSeries(seriesUid_.toStdString(), series)) {
+                source.seriesUid = series.seriesUid;
+                source.studyUid = series.studyUid;
+                for (const auto& study : db.findStudies({}))
+                    if (study.studyUid == series.studyUid) {
+                        source.patientName = study.patientName;
+                        source.patientId = study.patientId;
+                    }
+            }
+        } catch (const std::exception&) {
+            // without the database the exports carry the volume file only
+        }
+    }
+    // Per series when the volume is one (its preview and its full octree share the list), else
+    // per file.
+    measurementsKey_ = seriesUid_.isEmpty()
+                           ? openPath_
+                           : QString::fromLatin1(QCryptographicHash::hash("series:" + seriesUid_.toUtf8(),
+                                                                          QCryptographicHash::Sha1).toHex());
+    core::MeasurementList list;
+    const QString saved = QSettings().value("measurements/" + measurementsKey_).toString();
+    if (!saved.isEmpty()) {
+        try {
+            list = core::MeasurementList::fromJson(saved.toStdString());
+        } catch (const core::Error& e) {
+            QSettings().remove("measurements/" + measurementsKey_);
+            statusBar()->showMessage(tr("Saved measurements reset: %1").arg(QString::fromStdString(e.what())), 8000);
+        }
+    }
+    measurements_->setVolume(source, list);
+}
+
 core::RenderSettings MainWindow::renderSettings() const {
     auto rs = controls_->settings();
     rs.crop = crop_->box();
@@ -302,6 +354,7 @@ core::RenderSettings MainWindow::renderSettings() const {
 
 void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume) {
     if (!octreePath.isEmpty()) {
+        seriesOfOctree_[QFileInfo(octreePath).absoluteFilePath()] = seriesUid;
         openOctree(octreePath, label);
         return;
     }
@@ -319,9 +372,10 @@ void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath,
                 std::vector<std::string> warnings;
                 return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, &warnings, {}, volume));
             },
-            [self, label, preview](const QString& path) {
+            [self, label, preview, uid](const QString& path) {
                 if (!self) return;
                 self->browser_->refresh();
+                self->seriesOfOctree_[QFileInfo(path).absoluteFilePath()] = QString::fromStdString(uid);
                 self->openOctree(path, label, !preview.isEmpty());
                 if (!preview.isEmpty()) QFile::remove(preview);
             });
@@ -332,8 +386,9 @@ void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath,
             dicom::StudyDatabase database(db);
             return QString::fromStdString(dicom::SeriesOctree::buildPreview(database, uid, job, 4, volume));
         },
-        [self, label, buildFull](const QString& path) {
+        [self, label, buildFull, uid](const QString& path) {
             if (!self) return;
+            self->seriesOfOctree_[QFileInfo(path).absoluteFilePath()] = QString::fromStdString(uid);
             buildFull(self->openOctree(path, label + tr(" (preview)")) ? path : QString());
         });
     // A preview that fails (or is cancelled) still leads to the full octree.

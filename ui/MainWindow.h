@@ -1,4 +1,5 @@
 #pragma once
+#include <QHash>
 #include <QMainWindow>
 
 #include <memory>
@@ -19,6 +20,7 @@ class LightFieldPanel;
 class PacsPanel;
 class RenderControls;
 class CropControls;
+class MeasurementsPanel;
 class SliceView;
 class StudyBrowser;
 class ToolsPanel;
@@ -62,6 +64,7 @@ public:
     TransferFunctionEditor* tfEditor() const { return tfEditor_; }
     RenderControls* renderControls() const { return controls_; }
     CropControls* cropControls() const { return crop_; }
+    MeasurementsPanel* measurements() const { return measurements_; }
     LightFieldPanel* lightField() const { return lightField_; }
     SliceView* slice(int i) const { return slices_[i]; }
     const QString& openLabel() const { return openLabel_; }
@@ -79,6 +82,8 @@ protected:
 private:
     /// The rendering dock's settings with the crop box.
     core::RenderSettings renderSettings() const;
+    /// The measurement list saved for the volume at `path`, and its patient, study and series.
+    void restoreMeasurements(const QString& path);
     QDockWidget* addDock(const QString& title, const QString& name, QWidget* widget, Qt::DockWidgetArea area,
                          bool scrolled = false);
     void buildMenus();
@@ -99,6 +104,10 @@ private:
     TransferFunctionEditor* tfEditor_;
     RenderControls* controls_;
     CropControls* crop_;
+    MeasurementsPanel* measurements_;
+    QString seriesUid_;  // the series the open volume came from (for the measurements' UIDs)
+    QString measurementsKey_;  // the session key of the open volume's measurements
+    QHash<QString, QString> seriesOfOctree_;  // octree path -> the series it was built from
     LightFieldPanel* lightField_;
     SliceView* slices_[3];
     QLabel* readouts_;

@@ -339,9 +339,26 @@ QString SliceView::levelReadout() const {
 }
 
 void SliceView::mouseReleaseEvent(QMouseEvent* e) {
+    static const char* names[3] = {"axial", "coronal", "sagittal"};
+    const std::string view = std::string(names[int(orientation_)]) + (tiltDegrees() > 0.01 ? " (tilted)" : "");
     if (measuring_ == Measuring::Roi && roi_) {
         roi_->radius = glm::length(patientAt(e->position()) - roi_->centre);
         measureRoi();
+        if (roiStats_) {  // a circle with its statistics goes to the measurement list
+            core::Measurement m;
+            m.kind = core::Measurement::Kind::Region;
+            m.view = view;
+            m.region = *roi_;
+            m.stats = *roiStats_;
+            emit measured(m);
+        }
+    } else if (measuring_ == Measuring::Ruler && ruler_ && glm::length(ruler_->second - ruler_->first) > 0.0) {
+        core::Measurement m;
+        m.kind = core::Measurement::Kind::Distance;
+        m.view = view;
+        m.a = ruler_->first;
+        m.b = ruler_->second;
+        emit measured(m);
     }
     measuring_ = Measuring::None;
     update();

@@ -12,6 +12,7 @@ class QPainter;
 
 #include "core/streaming/BrickCache.h"
 #include "core/octree/OctreeReader.h"
+#include "core/reference/MeasurementList.h"
 #include "core/reference/RegionStatistics.h"
 #include "core/reference/SliceSampler.h"
 #include "core/volume/DisplayWindow.h"
@@ -86,6 +87,8 @@ signals:
     void pointChanged(const glm::dvec3& patient);
     /// The user chose a window (a drag or a preset key), in physical units.
     void windowChosen(double centre, double width, const QString& name);
+    /// A distance or a circle was completed (mouse released), for the measurement list.
+    void measured(const hvx::core::Measurement& m);
 
 protected:
     void paintEvent(QPaintEvent*) override;

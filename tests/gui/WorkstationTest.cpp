@@ -5,6 +5,7 @@
 // kept under <build>/test-artifacts/gui/.
 #include <QApplication>
 #include <QCheckBox>
+#include <QTableWidget>
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QDir>
@@ -41,6 +42,7 @@
 #include "ui/LightFieldWindow.h"
 #include "ui/MainWindow.h"
 #include "ui/CropControls.h"
+#include "ui/MeasurementsPanel.h"
 #include "ui/PacsNodeDialog.h"
 #include "ui/PacsPanel.h"
 #include "ui/RenderControls.h"
@@ -572,6 +574,34 @@ private slots:
         QCOMPARE(axial->roiStatistics()->units, std::string("HU"));
         settledFrame();
         saveArtifact("slice-measurements.png");
+        // Both went to the measurement list: its table, CSV and JSON exports (read back by
+        // Python's csv and json modules), Del removes one, and the list comes back with the volume.
+        auto* panel = window_->measurements();
+        QCOMPARE(panel->list().items().size(), std::size_t(2));
+        QCOMPARE(panel->table()->rowCount(), 2);
+        QCOMPARE(panel->table()->item(0, 1)->text(), QString("distance"));
+        QVERIFY2(panel->table()->item(0, 3)->text().contains(QString::number(*axial->rulerMm(), 'f', 1)),
+                 qPrintable(panel->table()->item(0, 3)->text()));
+        QVERIFY2(panel->table()->item(1, 3)->text().contains("HU"), qPrintable(panel->table()->item(1, 3)->text()));
+        const QString csv = QString::fromStdString(dir_.file("m.csv")), json = QString::fromStdString(dir_.file("m.json"));
+        QVERIFY(panel->exportTo(csv).isEmpty());
+        QVERIFY(panel->exportTo(json).isEmpty());
+        const auto py = test::runCommand("/usr/bin/python3 -c \"import csv,json; r=list(csv.DictReader(open('" +
+                                         csv.toStdString() + "'))); j=json.load(open('" + json.toStdString() +
+                                         "')); print(len(r), r[1]['voxels'], r[1]['units'], len(j['measurements']), "
+                                         "j['measurements'][0]['kind'])\"");
+        QCOMPARE(QString::fromStdString(py.output).trimmed(),
+                 QString("2 %1 HU 2 distance").arg(qulonglong(axial->roiStatistics()->voxels)));
+        QVERIFY2(panel->exportTo("/nonexistent-dir/m.csv").contains("nonexistent"), "a folder that is not there is named");
+        panel->table()->clearSelection();
+        panel->table()->selectRow(0);
+        panel->table()->setFocus();
+        QTest::keyClick(panel->table(), Qt::Key_Delete);
+        QCOMPARE(panel->list().items().size(), std::size_t(1));
+        QCOMPARE(panel->list().items()[0].label, std::string("M2"));
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));  // again: the list is kept
+        QCOMPARE(panel->list().items().size(), std::size_t(1));
+        QCOMPARE(panel->list().items()[0].label, std::string("M2"));
         axial->setFocus();
         QTest::keyClick(axial, Qt::Key_Escape);
         QVERIFY(!axial->rulerMm().has_value());

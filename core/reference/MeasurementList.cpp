@@ -1,0 +1,184 @@
+#include "core/reference/MeasurementList.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstdio>
+
+#include <glm/geometric.hpp>
+
+#include "core/base/Error.h"
+
+namespace hvx::core {
+
+namespace {
+using nlohmann::json;
+
+/// A CSV field, quoted when it holds a comma, a quote or a line break (RFC 4180).
+std::string field(const std::string& s) {
+    if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+    std::string q = "\"";
+    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return q + "\"";
+}
+
+std::string number(double v) {
+    if (!std::isfinite(v)) return {};
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
+const char* kindName(MeasureRegion::Kind k) {
+    return k == MeasureRegion::Kind::Sphere ? "sphere" : k == MeasureRegion::Kind::Box ? "box" : "disc";
+}
+
+json vec(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
+
+glm::dvec3 vecOf(const json& j, const char* what) {
+    if (!j.is_array() || j.size() != 3) throw Error(std::string("measurements: ") + what + " is not three numbers");
+    return {j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+}  // namespace
+
+double Measurement::lengthMm() const { return kind == Kind::Distance ? glm::length(b - a) : 0.0; }
+
+const Measurement& MeasurementList::add(Measurement m) {
+    m.label = "M" + std::to_string(next_++);
+    items_.push_back(std::move(m));
+    return items_.back();
+}
+
+bool MeasurementList::remove(const std::string& label) {
+    for (auto it = items_.begin(); it != items_.end(); ++it)
+        if (it->label == label) {
+            items_.erase(it);
+            return true;
+        }
+    return false;
+}
+
+void MeasurementList::clear() { items_.clear(); }
+
+std::string MeasurementList::toCsv(const MeasurementSource& s) const {
+    std::string out =
+        "label,kind,view,length_mm,region,centre_x_lps,centre_y_lps,centre_z_lps,radius_mm,voxels,mean,sd,min,max,"
+        "units,area_mm2,volume_mm3,exact,note,a_x_lps,a_y_lps,a_z_lps,b_x_lps,b_y_lps,b_z_lps,patient_name,patient_id,"
+        "study_uid,series_uid,volume\n";
+    for (const auto& m : items_) {
+        std::vector<std::string> f{m.label, m.kind == Measurement::Kind::Distance ? "distance" : "region", m.view};
+        f.push_back(m.kind == Measurement::Kind::Distance ? number(m.lengthMm()) : "");
+        if (m.region) {
+            f.insert(f.end(), {kindName(m.region->kind), number(m.region->centre.x), number(m.region->centre.y),
+                               number(m.region->centre.z), number(m.region->radius)});
+        } else {
+            f.insert(f.end(), 5, "");
+        }
+        if (m.stats) {
+            const auto& t = *m.stats;
+            f.insert(f.end(), {std::to_string(t.voxels), number(t.mean), number(t.sd), number(t.min), number(t.max), t.units,
+                               number(t.areaMm2), number(t.volumeMm3), t.exact ? "yes" : "no", t.note});
+        } else {
+            f.insert(f.end(), 10, "");
+        }
+        const bool d = m.kind == Measurement::Kind::Distance;
+        for (const auto& p : {m.a, m.b})
+            for (int c = 0; c < 3; ++c) f.push_back(d ? number(p[c]) : "");
+        f.insert(f.end(), {s.patientName, s.patientId, s.studyUid, s.seriesUid, s.volume});
+        for (std::size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + field(f[i]);
+        out += "\n";
+    }
+    return out;
+}
+
+std::string MeasurementList::toJson(const MeasurementSource& s) const {
+    json j;
+    j["source"] = {{"patientName", s.patientName}, {"patientId", s.patientId}, {"studyInstanceUid", s.studyUid},
+                   {"seriesInstanceUid", s.seriesUid}, {"volume", s.volume}};
+    j["coordinates"] = "LPS mm (DICOM patient coordinates)";
+    j["measurements"] = json::array();
+    for (const auto& m : items_) {
+        json e = {{"label", m.label}, {"view", m.view}};
+        if (m.kind == Measurement::Kind::Distance) {
+            e["kind"] = "distance";
+            e["a"] = vec(m.a);
+            e["b"] = vec(m.b);
+            e["lengthMm"] = m.lengthMm();
+        } else {
+            e["kind"] = "region";
+        }
+        if (m.region) {
+            const auto& r = *m.region;
+            e["region"] = {{"shape", kindName(r.kind)}, {"centre", vec(r.centre)}, {"radiusMm", r.radius},
+                           {"low", vec(r.low)}, {"high", vec(r.high)}, {"normal", vec(r.normal)},
+                           {"thicknessMm", r.thickness}};
+        }
+        if (m.stats) {
+            const auto& t = *m.stats;
+            e["statistics"] = {{"voxels", t.voxels}, {"mean", t.mean}, {"sd", t.sd}, {"min", t.min}, {"max", t.max},
+                               {"units", t.units}, {"areaMm2", t.areaMm2}, {"volumeMm3", t.volumeMm3},
+                               {"exact", t.exact}, {"approximateVoxels", t.approximateVoxels}, {"note", t.note}};
+        }
+        j["measurements"].push_back(e);
+    }
+    return j.dump(2) + "\n";
+}
+
+MeasurementList MeasurementList::fromJson(const std::string& text) {
+    MeasurementList list;
+    try {
+        const json j = json::parse(text);
+        for (const auto& e : j.at("measurements")) {
+            Measurement m;
+            m.view = e.value("view", std::string());
+            m.kind = e.at("kind").get<std::string>() == "distance" ? Measurement::Kind::Distance : Measurement::Kind::Region;
+            if (m.kind == Measurement::Kind::Distance) {
+                m.a = vecOf(e.at("a"), "a distance's end");
+                m.b = vecOf(e.at("b"), "a distance's end");
+            }
+            if (e.contains("region")) {
+                const auto& r = e["region"];
+                MeasureRegion g;
+                const std::string shape = r.at("shape").get<std::string>();
+                g.kind = shape == "sphere" ? MeasureRegion::Kind::Sphere
+                         : shape == "box"  ? MeasureRegion::Kind::Box
+                         : shape == "disc" ? MeasureRegion::Kind::Disc
+                                           : throw Error("measurements: unknown region shape '" + shape + "'");
+                g.centre = vecOf(r.at("centre"), "a region's centre");
+                g.radius = r.at("radiusMm").get<double>();
+                g.low = vecOf(r.at("low"), "a box corner");
+                g.high = vecOf(r.at("high"), "a box corner");
+                g.normal = vecOf(r.at("normal"), "a disc's normal");
+                g.thickness = r.at("thicknessMm").get<double>();
+                m.region = g;
+            }
+            if (e.contains("statistics")) {
+                const auto& t = e["statistics"];
+                RegionStatistics st;
+                st.voxels = t.at("voxels").get<std::uint64_t>();
+                st.mean = t.at("mean").get<double>();
+                st.sd = t.at("sd").get<double>();
+                st.min = t.at("min").get<double>();
+                st.max = t.at("max").get<double>();
+                st.units = t.value("units", std::string());
+                st.areaMm2 = t.value("areaMm2", 0.0);
+                st.volumeMm3 = t.value("volumeMm3", 0.0);
+                st.exact = t.value("exact", true);
+                st.approximateVoxels = t.value("approximateVoxels", std::uint64_t(0));
+                st.note = t.value("note", std::string());
+                m.stats = st;
+            }
+            m.label = e.at("label").get<std::string>();
+            if (m.label.size() > 1 && m.label[0] == 'M')  // labels stay; new ones follow the highest
+                list.next_ = std::max(list.next_, std::atoi(m.label.c_str() + 1) + 1);
+            list.items_.push_back(std::move(m));
+        }
+    } catch (const json::exception& e) {
+        throw Error(std::string("measurements: not a measurement list (") + e.what() + ")");
+    }
+    return list;
+}
+
+}  // namespace hvx::core

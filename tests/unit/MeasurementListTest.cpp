@@ -1,0 +1,91 @@
+// The measurement list: labels that survive deletions, CSV that Python's csv module reads back
+// field for field (quoting of names with commas and quotes), JSON with the patient, study and
+// series UIDs and LPS points that reads back to the same list, and refusals of other text.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "core/base/Error.h"
+#include "core/reference/MeasurementList.h"
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+core::MeasurementList sample() {
+    core::MeasurementList list;
+    core::Measurement d;
+    d.kind = core::Measurement::Kind::Distance;
+    d.view = "axial";
+    d.a = {10, -20, 30};
+    d.b = {13, -16, 30};
+    list.add(d);
+    core::Measurement r;
+    r.kind = core::Measurement::Kind::Region;
+    r.view = "coronal";
+    r.region = core::MeasureRegion::disc({1.5, 2.5, -3.5}, {0, 1, 0}, 12.0, 1.0);
+    core::RegionStatistics st;
+    st.voxels = 452;
+    st.mean = 41.25;
+    st.sd = 7.5;
+    st.min = -3;
+    st.max = 88;
+    st.units = "HU";
+    st.areaMm2 = 452.0;
+    st.volumeMm3 = 452.0;
+    r.stats = st;
+    list.add(r);
+    return list;
+}
+
+core::MeasurementSource source() {
+    return {"DOE, \"JJ\"^JANE", "P1", "1.2.3", "1.2.3.4", "/data/ct.hvo"};
+}
+}  // namespace
+
+TEST(MeasurementList, LabelsSurviveDeletions) {
+    auto list = sample();
+    ASSERT_EQ(list.items().size(), 2u);
+    EXPECT_EQ(list.items()[0].label, "M1");
+    EXPECT_EQ(list.items()[1].label, "M2");
+    EXPECT_DOUBLE_EQ(list.items()[0].lengthMm(), 5.0);
+    EXPECT_TRUE(list.remove("M1"));
+    EXPECT_FALSE(list.remove("M1"));
+    EXPECT_EQ(list.items()[0].label, "M2");
+    EXPECT_EQ(list.add(core::Measurement{}).label, "M3");
+}
+
+TEST(MeasurementList, CsvReadsBackInPython) {
+    test::TempDir dir;
+    const std::string csv = sample().toCsv(source());
+    std::ofstream(dir.file("m.csv")) << csv;
+    // Python's csv module, not Holovox, reads the file: every row has the header's fields.
+    const auto r = test::runCommand("/usr/bin/python3 -c \"import csv,sys; rows=list(csv.DictReader(open('" +
+                                    dir.file("m.csv") +
+                                    "'))); print(len(rows)); print(rows[0]['length_mm'], rows[0]['a_x_lps'], rows[0]['b_y_lps']);"
+                                    " print(rows[1]['mean'], rows[1]['voxels'], rows[1]['units'], rows[1]['region']);"
+                                    " print(rows[1]['patient_name']); print(rows[0]['series_uid'], rows[0]['study_uid'])\"");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output, "2\n5 10 -16\n41.25 452 HU disc\nDOE, \"JJ\"^JANE\n1.2.3.4 1.2.3\n");
+}
+
+TEST(MeasurementList, JsonCarriesTheUidsAndReadsBack) {
+    const auto list = sample();
+    const std::string json = list.toJson(source());
+    EXPECT_NE(json.find("\"seriesInstanceUid\": \"1.2.3.4\""), std::string::npos) << json;
+    EXPECT_NE(json.find("LPS"), std::string::npos);
+    auto back = core::MeasurementList::fromJson(json);
+    ASSERT_EQ(back.items().size(), 2u);
+    EXPECT_EQ(back.items()[0].label, "M1");
+    EXPECT_EQ(back.items()[0].b, list.items()[0].b);
+    ASSERT_TRUE(back.items()[1].stats && back.items()[1].region);
+    EXPECT_EQ(back.items()[1].stats->voxels, 452u);
+    EXPECT_EQ(back.items()[1].region->kind, core::MeasureRegion::Kind::Disc);
+    EXPECT_DOUBLE_EQ(back.items()[1].region->radius, 12.0);
+    EXPECT_EQ(back.add(core::Measurement{}).label, "M3") << "new labels follow the highest read";
+    for (const char* bad : {"", "[]", "{\"measurements\": [{\"kind\": \"distance\"}]}",
+                            "{\"measurements\": [{\"label\": \"M1\", \"kind\": \"distance\", \"a\": [1,2], \"b\": [1,2,3]}]}"})
+        EXPECT_THROW(core::MeasurementList::fromJson(bad), core::Error) << bad;
+}
