@@ -16,12 +16,16 @@ WorkingSet::WorkingSet(const OctreeReader& reader, BrickCache& cache, BrickLoade
                   scalarSize(reader.geometry().scalarType);
 }
 
-void WorkingSet::corners(std::uint32_t node, glm::dvec3 out[8]) const {
+void WorkingSet::box(std::uint32_t node, glm::dvec3& lo, glm::dvec3& hi) const {
     const auto& n = reader_.nodes()[node];
-    const int depth = reader_.levelCount() - 1 - n.level;
-    const double size = std::ldexp(1.0, -depth);
-    const glm::dvec3 lo = glm::dvec3(n.x, n.y, n.z) * size;
-    const glm::dvec3 hi = glm::min(lo + size, space_.extent);
+    const double size = std::ldexp(1.0, -(reader_.levelCount() - 1 - n.level));
+    lo = glm::dvec3(n.x, n.y, n.z) * size;
+    hi = glm::min(lo + size, space_.extent);
+}
+
+void WorkingSet::corners(std::uint32_t node, glm::dvec3 out[8]) const {
+    glm::dvec3 lo, hi;
+    box(node, lo, hi);
     for (int c = 0; c < 8; ++c) {
         const glm::dvec3 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
         out[c] = glm::dvec3(space_.octreeToPatient * glm::dvec4(p, 1.0));
@@ -36,9 +40,8 @@ bool WorkingSet::skip(std::uint32_t node, const std::vector<glm::dmat4>& clips, 
         return true;
     }
     if (!options_.crop.whole()) {  // the node's box in octree space against the crop box
-        const int depth = reader_.levelCount() - 1 - n.level;
-        const double size = std::ldexp(1.0, -depth);
-        const glm::dvec3 lo = glm::dvec3(n.x, n.y, n.z) * size, hi = lo + size;
+        glm::dvec3 lo, hi;
+        box(node, lo, hi);
         const glm::dvec3 cropLo = options_.crop.min * space_.extent, cropHi = options_.crop.max * space_.extent;
         for (int a = 0; a < 3; ++a)
             if (hi[a] <= cropLo[a] || lo[a] >= cropHi[a]) return true;

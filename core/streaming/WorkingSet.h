@@ -83,6 +83,8 @@ private:
     bool skip(std::uint32_t node, const std::vector<glm::dmat4>& clips, const TransferFunction& tf) const;
     double error(std::uint32_t node, const std::vector<View>& views, const AccuracyFunction& accuracy) const;
     bool available(std::uint32_t node, double priority);
+    /// The node's box in octree space (clipped to the volume's extent).
+    void box(std::uint32_t node, glm::dvec3& lo, glm::dvec3& hi) const;
     void corners(std::uint32_t node, glm::dvec3 out[8]) const;
 
     const OctreeReader& reader_;
