@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <exception>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -25,8 +26,15 @@ std::vector<pid_t> processesUsing(const std::string& folder) {
         if (name.find_first_not_of("0123456789") != std::string::npos) continue;
         const pid_t pid = pid_t(std::stol(name));
         if (pid == ::getpid()) continue;
-        std::ifstream in(e.path() / "cmdline", std::ios::binary);
-        const std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        // A process that exits while its cmdline is read makes the read fail (ESRCH), which
+        // libstdc++'s filebuf throws through istreambuf_iterator: that process is gone anyway.
+        std::string cmdline;
+        try {
+            std::ifstream in(e.path() / "cmdline", std::ios::binary);
+            cmdline.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        } catch (const std::exception&) {
+            continue;
+        }
         if (cmdline.find(folder) != std::string::npos) found.push_back(pid);
     }
     return found;
