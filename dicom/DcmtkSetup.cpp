@@ -21,8 +21,8 @@ void DcmtkSetup::ensure() {
         DcmRLEDecoderRegistration::registerCodecs();
         // A read that gets no byte for this long fails, instead of DCMTK's 60 s. Waiting for the
         // next DIMSE message is a select() bounded by each node's own timeout; this bounds a
-        // peer that stops in the middle of a PDU, and the storage listener's read of an
-        // A-ASSOCIATE-RQ, which DCMTK does on the listening thread itself.
+        // peer that stops in the middle of a PDU, and the storage receiver's read of an
+        // A-ASSOCIATE-RQ (on that connection's own worker).
         dcmSocketReceiveTimeout.set(kSocketReadTimeoutSeconds);
         // DCMTK 3.6.7 leaves Nagle's algorithm on unless TCP_NODELAY=1 is in the environment,
         // which it reads on every connection it opens or accepts: each small DIMSE message

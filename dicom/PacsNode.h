@@ -43,6 +43,9 @@ struct PacsNode {
 struct LocalNode {
     std::string aeTitle = "HOLOVOX";
     std::uint16_t port = 11112;
+    /// The IPv4 address the storage SCP listens on; empty: all interfaces, as a DICOM node must be
+    /// reachable by the modalities and archives that send to it.
+    std::string bindAddress;
     std::string storageDir;
     std::vector<std::string> allowedCallers;  ///< empty: the AE titles of the configured nodes
     int timeoutSeconds = 30;                  ///< network timeout (connect, ACSE, DIMSE)

@@ -97,6 +97,7 @@ PacsSettings PacsSettings::load(const std::string& path) {
         const int port = l.value("port", int(s.local.port));
         if (port <= 0 || port > 65535) throw core::Error(path + ": local port " + std::to_string(port) + " is invalid");
         s.local.port = std::uint16_t(port);
+        s.local.bindAddress = l.value("bindAddress", std::string());
         s.local.storageDir = l.value("storageDir", s.local.storageDir);
         s.local.allowedCallers = l.value("allowedCallers", std::vector<std::string>{});
         s.local.timeoutSeconds = l.value("timeoutSeconds", s.local.timeoutSeconds);
@@ -121,7 +122,8 @@ PacsSettings PacsSettings::load(const std::string& path) {
 
 void PacsSettings::save(const std::string& path) const {
     nlohmann::json j;
-    j["local"] = {{"aeTitle", local.aeTitle},       {"port", local.port}, {"storageDir", local.storageDir},
+    j["local"] = {{"aeTitle", local.aeTitle},       {"port", local.port}, {"bindAddress", local.bindAddress},
+                  {"storageDir", local.storageDir},
                   {"allowedCallers", local.allowedCallers}, {"timeoutSeconds", local.timeoutSeconds},
                   {"minFreeMiB", local.minFreeBytes >> 20}, {"maxInstanceMiB", local.maxInstanceBytes >> 20},
                   {"tlsCertificate", local.tlsCertificate}, {"tlsPrivateKey", local.tlsPrivateKey},

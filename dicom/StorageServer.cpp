@@ -13,7 +13,9 @@
 #include <netdb.h>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
+#include <fcntl.h>
 #include <sys/socket.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -29,6 +31,7 @@
 #include "dicom/IncomingStore.h"
 #include "dicom/PacsProtocol.h"
 #include "dicom/QuickAckTransport.h"
+#include "dicom/TcpListener.h"
 
 namespace hvx::dicom {
 
@@ -47,12 +50,6 @@ struct Shared {
     std::mutex socketsMutex;
     std::set<int> sockets;  // of the associations being served, for stop()
     bool closing = false;   // under socketsMutex: stop() has cut the sockets
-};
-
-/// The socket of an association's transport connection, which DCMTK keeps protected: it is
-/// needed to set TCP_NODELAY and to cut the association on stop().
-struct SocketOf : DcmTransportConnection {
-    static int of(DcmTransportConnection* c) { return int((c->*(&SocketOf::getSocket))()); }
 };
 
 /// One association: C-ECHO, and C-STORE into the IncomingStore.
@@ -125,21 +122,11 @@ public:
                shared_->allowed.end();
     }
 
-    /// Serves one association to its end: TCP_NODELAY, and its socket registered for stop().
-    void serve(T_ASC_Association* assoc) {
-        if (DcmTransportConnection* c = DUL_getTransportConnection(assoc->DULassociation)) socket_ = SocketOf::of(c);
-        if (socket_ >= 0) {
-            const int one = 1;  // answer each DIMSE message at once, not after a delayed ACK
-            ::setsockopt(socket_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
-            std::lock_guard lock(shared_->socketsMutex);
-            shared_->sockets.insert(socket_);
-            if (shared_->closing) ::shutdown(socket_, SHUT_RDWR);  // accepted as stop() began
-        }
+    /// Serves one association to its end; `socket` is a handle on its connection's socket, to cut
+    /// an instance over the cap.
+    void serve(T_ASC_Association* assoc, int socket) {
+        socket_ = socket;
         run(assoc);
-        if (socket_ >= 0) {
-            std::lock_guard lock(shared_->socketsMutex);
-            shared_->sockets.erase(socket_);
-        }
         socket_ = -1;
     }
 
@@ -149,62 +136,73 @@ private:
     bool overCap_ = false;  // the instance being received grew past maxInstanceBytes
 };
 
-/// The listener and its association workers. DCMTK's DcmBaseSCPPool deletes a finished worker
-/// without joining or detaching its thread (dcmnet/libsrc/scppool.cc, 3.6.7), so every
-/// association would leave a thread's stack behind; here each worker is a std::thread that the
-/// listener joins as soon as it has ended, and all of them before the listener itself ends.
-/// Kept alive by the listener's thread: stop() may return before a listener stuck reading a
-/// half-sent A-ASSOCIATE-RQ notices, and what it uses must outlive it.
+/// Hands an accepted socket to DCMTK, which takes one from a process-wide variable
+/// (dcmExternalSocketHandle) the next time a network receives an association. The handover
+/// holds a lock only until DCMTK has taken the socket (its transport layer is asked for the
+/// connection), not while the peer sends its A-ASSOCIATE-RQ: so each connection's request is
+/// read on its own worker, and a peer that sends half of one holds nothing else.
+class Handover : public DcmTransportLayer {
+public:
+    Handover(DcmTransportLayer* inner, std::unique_lock<std::mutex>& held) : inner_(inner), held_(held) {}
+    DcmTransportConnection* createConnection(DcmNativeSocketType socket, OFBool secure) override {
+        release();
+        taken_ = true;
+        return inner_->createConnection(socket, secure);
+    }
+    /// Lets the next connection's handover go ahead (idempotent).
+    void release() {
+        if (!held_.owns_lock()) return;
+        dcmExternalSocketHandle.set(DCMNET_INVALID_SOCKET);
+        held_.unlock();
+    }
+    /// Whether DCMTK took the socket over (then it closes it).
+    bool taken() const { return taken_; }
+    static std::mutex& mutex() {
+        static std::mutex m;
+        return m;
+    }
+
+private:
+    DcmTransportLayer* inner_;
+    std::unique_lock<std::mutex>& held_;
+    bool taken_ = false;
+};
+
+/// The listener and its connection workers. The listening socket is Holovox's own (TcpListener:
+/// a bind address, and a stop that wakes it at once); each accepted connection is served on a
+/// std::thread of its own, from its A-ASSOCIATE-RQ to its release, and joined as soon as it has
+/// ended (DCMTK's DcmBaseSCPPool would leave each finished worker's thread behind, scppool.cc
+/// 3.6.7). Kept alive by the listener's thread, which joins every worker before it ends.
 struct Listening {
     std::shared_ptr<Shared> shared;
     std::shared_ptr<IncomingStore> store;
     DcmSCPConfig config;
-    std::unique_ptr<DcmTLSTransportLayer> tls;  // when the node speaks TLS; outlives the network
-    std::unique_ptr<DcmTransportLayer> quickAck = makeQuickAckTransport();  // otherwise; outlives the network
+    std::unique_ptr<DcmTLSTransportLayer> tls;  // when the node speaks TLS
+    std::unique_ptr<DcmTransportLayer> quickAck = makeQuickAckTransport();  // otherwise
+    std::unique_ptr<TcpListener> socket;
     std::atomic<bool> stopping{false};
-    OFCondition result = EC_Normal;
+    int maxAssociations = 0;
     std::mutex workersMutex;
-    std::map<long, std::thread> workers;  // by association number
+    std::map<long, std::thread> workers;  // by connection number
     std::vector<long> finished;           // ended, not joined yet
+    int serving = 0;                      // under workersMutex: associations accepted and being served
 
-    /// Opens the port and accepts associations until `stopping`; each is served on a worker
-    /// thread of its own, at most `maxAssociations` at once (more are rejected as busy).
-    void listen(std::uint16_t port, int maxAssociations) {
-        T_ASC_Network* network = nullptr;
-        result = ASC_initializeNetwork(NET_ACCEPTOR, int(port), int(config.getACSETimeout()), &network);
-        if (result.bad()) return;
-        result = tls ? ASC_setTransportLayer(network, tls.get(), 0) : ASC_setTransportLayer(network, quickAck.get(), 0);
-        if (result.bad()) {
-            ASC_dropNetwork(&network);
-            return;
-        }
+    /// Accepts connections until `stopping`. At most `maxAssociations` associations are served
+    /// at once (more are rejected as busy); beyond twice as many connections, more are closed
+    /// at once, so that a flood of connections costs a bounded number of threads.
+    void listen() {
         const DcmSharedSCPConfig sharedConfig(config);
         for (long number = 0; !stopping.load(); ++number) {
-            T_ASC_Association* assoc = nullptr;
-            const OFCondition c = ASC_receiveAssociation(network, &assoc, long(config.getMaxReceivePDULength()),
-                                                         nullptr, nullptr, tls ? OFTrue : OFFalse, DUL_NOBLOCK,
-                                                         1);  // wakes each second
+            const int fd = socket->accept(1000);
             reap();
-            if (c.bad() || stopping.load()) {
-                if (c != DUL_NOASSOCIATIONREQUEST && assoc) ASC_dropAssociation(assoc);
-                ASC_destroyAssociation(&assoc);
-                continue;
-            }
+            if (fd < 0) continue;
             std::lock_guard lock(workersMutex);
-            if (long(workers.size()) >= maxAssociations) {  // busy: the caller may try again later
-                T_ASC_RejectParameters rej{ASC_RESULT_REJECTEDTRANSIENT, ASC_SOURCE_SERVICEPROVIDER_PRESENTATION_RELATED,
-                                           ASC_REASON_SP_PRES_LOCALLIMITEXCEEDED};
-                ASC_rejectAssociation(assoc, &rej);
-                ASC_dropAssociation(assoc);
-                ASC_destroyAssociation(&assoc);
+            if (stopping.load() || long(workers.size()) >= 2L * maxAssociations) {
+                ::close(fd);
                 continue;
             }
-            workers[number] = std::thread([this, assoc, number, &sharedConfig] {
-                {
-                    Scp scp(shared.get());
-                    scp.setSharedConfig(sharedConfig);
-                    scp.serve(assoc);  // DcmThreadSCP takes the association over
-                }
+            workers[number] = std::thread([this, fd, number, &sharedConfig] {
+                serveConnection(fd, sharedConfig);
                 std::lock_guard done(workersMutex);
                 finished.push_back(number);
             });
@@ -218,8 +216,70 @@ struct Listening {
             lock.lock();
         }
         finished.clear();
-        lock.unlock();
-        ASC_dropNetwork(&network);
+    }
+
+    /// One connection, on its worker: the association request, then the association.
+    void serveConnection(int fd, const DcmSharedSCPConfig& sharedConfig) {
+        const int cut = registerSocket(fd);  // a second handle on the socket, for stop()
+        T_ASC_Association* assoc = nullptr;
+        OFCondition c = EC_Normal;
+        {
+            std::unique_lock<std::mutex> held(Handover::mutex());
+            Handover handover(tls ? static_cast<DcmTransportLayer*>(tls.get()) : quickAck.get(), held);
+            dcmExternalSocketHandle.set(fd);
+            T_ASC_Network* network = nullptr;
+            c = ASC_initializeNetwork(NET_ACCEPTOR, 0, int(config.getACSETimeout()), &network);
+            if (c.good()) c = ASC_setTransportLayer(network, &handover, 0);
+            if (c.good())
+                c = ASC_receiveAssociation(network, &assoc, long(config.getMaxReceivePDULength()), nullptr, nullptr,
+                                           tls ? OFTrue : OFFalse, DUL_BLOCK, 0);
+            handover.release();
+            if (!handover.taken()) ::close(fd);
+            if (c.good() && !stopping.load()) serveAssociation(assoc, cut, sharedConfig);  // takes it over
+            else if (assoc) {
+                ASC_dropAssociation(assoc);
+                ASC_destroyAssociation(&assoc);
+            }
+            if (network) ASC_dropNetwork(&network);  // after the association, which uses its layer
+        }
+        std::lock_guard lock(shared->socketsMutex);
+        shared->sockets.erase(cut);
+        ::close(cut);
+    }
+
+    /// Serves an association to its end, or rejects it as busy when `maxAssociations` are served.
+    void serveAssociation(T_ASC_Association* assoc, int cut, const DcmSharedSCPConfig& sharedConfig) {
+        {
+            std::lock_guard lock(workersMutex);
+            if (serving >= maxAssociations) {  // busy: the caller may try again later
+                T_ASC_RejectParameters rej{ASC_RESULT_REJECTEDTRANSIENT, ASC_SOURCE_SERVICEPROVIDER_PRESENTATION_RELATED,
+                                           ASC_REASON_SP_PRES_LOCALLIMITEXCEEDED};
+                ASC_rejectAssociation(assoc, &rej);
+                ASC_dropAssociation(assoc);
+                ASC_destroyAssociation(&assoc);
+                return;
+            }
+            ++serving;
+        }
+        {
+            Scp scp(shared.get());
+            scp.setSharedConfig(sharedConfig);
+            scp.serve(assoc, cut);  // DcmThreadSCP takes the association over
+        }
+        std::lock_guard lock(workersMutex);
+        --serving;
+    }
+
+    /// A duplicate of the connection's socket, kept until the worker ends, that stop() shuts
+    /// down: DCMTK closes its own handle, whose number the system may give to another file.
+    int registerSocket(int fd) {
+        const int cut = ::fcntl(fd, F_DUPFD_CLOEXEC, 0);
+        const int one = 1;  // answer each message at once, not after a delayed ACK
+        ::setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &one, sizeof one);
+        std::lock_guard lock(shared->socketsMutex);
+        if (cut >= 0) shared->sockets.insert(cut);
+        if (shared->closing) ::shutdown(fd, SHUT_RDWR);  // accepted as stop() began
+        return cut;
     }
 
     /// Joins the workers that have ended.
@@ -322,7 +382,6 @@ void StorageServer::start() {
     DcmSCPConfig& cfg = l->config;
     cfg.setPort(impl_->local.port);
     cfg.setAETitle(impl_->local.aeTitle.c_str());
-    cfg.setConnectionBlockingMode(DUL_NOBLOCK);
     cfg.setDIMSEBlockingMode(DIMSE_NONBLOCKING);
     const Uint32 t = Uint32(std::max(1, impl_->local.timeoutSeconds));
     cfg.setDIMSETimeout(t);
@@ -337,21 +396,14 @@ void StorageServer::start() {
     for (int i = 0; i < numberOfDcmAllStorageSOPClassUIDs; ++i)
         cfg.addPresentationContext(dcmAllStorageSOPClassUIDs[i], storage);
 
-    // The port is opened on the listener's thread, which returns at once when it cannot be
-    // opened and otherwise only after stop().
+    l->socket = std::make_unique<TcpListener>(impl_->local.bindAddress, impl_->local.port);  // throws when taken
+    l->maxAssociations = kMaxAssociations;
     auto done = std::make_shared<std::promise<void>>();
     impl_->finished = done->get_future().share();
-    const std::uint16_t port = impl_->local.port;
-    thread_ = std::thread([l, done, port] {
-        l->listen(port, kMaxAssociations);
+    thread_ = std::thread([l, done] {
+        l->listen();
         done->set_value();
     });
-    if (impl_->finished.wait_for(std::chrono::milliseconds(300)) == std::future_status::ready) {
-        thread_.join();
-        const std::string why = l->result.bad() ? l->result.text() : "the listener ended";
-        throw core::Error("cannot listen on port " + std::to_string(impl_->local.port) + " (" + why +
-                          ") — is another storage SCP running there?");
-    }
     impl_->listening = l;
 }
 
@@ -370,9 +422,10 @@ void StorageServer::stop() {
         l->shared->closing = true;
         for (int fd : l->shared->sockets) ::shutdown(fd, SHUT_RDWR);
     }
-    // A listener reading a half-sent association request ends within the socket read timeout;
-    // it owns what it needs (Listening), so it may finish after stop() has returned.
-    if (impl_->finished.wait_for(std::chrono::seconds(1)) == std::future_status::ready) thread_.join();
+    l->socket->wake();
+    // The listener joins its workers, whose connections are cut: it ends at once. It owns what
+    // it needs (Listening), so were a worker slow to end, stop() would still return.
+    if (impl_->finished.wait_for(std::chrono::seconds(2)) == std::future_status::ready) thread_.join();
     else thread_.detach();
 }
 

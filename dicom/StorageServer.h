@@ -17,9 +17,11 @@ namespace hvx::dicom {
 /// the target of pushes from modalities and workstations. Associations are served at once, up
 /// to kMaxAssociations, each on a worker thread of its own (joined when it ends), with
 /// TCP_NODELAY; below the free-space floor instances are refused as Out of Resources, and one
-/// larger than the cap is cut off (LocalNode::minFreeBytes, maxInstanceBytes); a peer
-/// that connects and sends nothing holds the listener at most kRequestTimeoutSeconds, and one
-/// that stalls inside an association holds only its own worker until the DIMSE timeout.
+/// larger than the cap is cut off (LocalNode::minFreeBytes, maxInstanceBytes). It listens on
+/// LocalNode::bindAddress (all interfaces when empty) with a socket of its own; each connection
+/// is served on its own worker from its A-ASSOCIATE-RQ on, so a peer that sends half a request,
+/// or stalls inside an association, holds only its own worker (for kRequestTimeoutSeconds or
+/// the DIMSE timeout), never the listener.
 ///
 /// Threading: start() and stop() from one thread; onStored runs on the workers' threads, one
 /// instance at a time.
@@ -33,14 +35,16 @@ public:
     /// Accepts `aeTitle` only from the addresses `host` resolves to (a node's entry in the node
     /// table); an allowed AE title without such an entry is accepted from anywhere. Before start().
     void requireHost(const std::string& aeTitle, const std::string& host);
-    /// Opens the port (throws core::Error naming it when it is in use, or a required host that
-    /// does not resolve) and serves in the background until stop().
+    /// Opens the port on the bind address (throws core::Error naming it when it is in use or
+    /// the address is not this machine's, or a required host that does not resolve) and serves
+    /// in the background until stop().
     void start();
-    /// Stops accepting, cuts the associations in progress and returns within about a second.
+    /// Stops accepting, cuts the connections in progress and returns at once (within two
+    /// seconds at worst).
     void stop();
     static constexpr int kMaxAssociations = 16;
-    /// How long a connection that sends no complete A-ASSOCIATE-RQ holds the listener (DCMTK
-    /// reads the request on the listening thread): DcmtkSetup's socket read timeout.
+    /// How long a connection that sends no complete A-ASSOCIATE-RQ holds its worker: DcmtkSetup's
+    /// socket read timeout.
     static constexpr int kRequestTimeoutSeconds = 10;
     /// Instances stored so far.
     std::size_t received() const { return received_.load(); }

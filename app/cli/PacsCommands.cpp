@@ -207,9 +207,10 @@ extern "C" void onStop(int) { g_stop = 1; }
 }  // namespace
 
 int listenCommand(int argc, char** argv) {
-    const CliArgs args(argc, argv, 2, {"config", "port", "ae", "storage", "db", "allow"}, {});
+    const CliArgs args(argc, argv, 2, {"config", "port", "bind", "ae", "storage", "db", "allow"}, {});
     auto s = loadSettings(args);
     if (args.value("port")) s.local.port = std::uint16_t(args.integer("port", 11112, 1, 65535));
+    if (auto bind = args.value("bind")) s.local.bindAddress = *bind;
     if (auto ae = args.value("ae")) s.local.aeTitle = *ae;
     if (auto dir = args.value("storage")) s.local.storageDir = *dir;
     std::vector<std::string> allowed = s.local.allowedCallers;
@@ -229,8 +230,9 @@ int listenCommand(int argc, char** argv) {
     server.start();
     std::string who;
     for (const auto& a : allowed) who += (who.empty() ? "" : ", ") + a;
-    std::printf("storage SCP AE %s listening on port %u, storing into %s; accepting %s (Ctrl-C stops)\n",
-                s.local.aeTitle.c_str(), s.local.port, s.local.storageDir.c_str(), who.empty() ? "nobody" : who.c_str());
+    std::printf("storage SCP AE %s listening on port %u of %s, storing into %s; accepting %s (Ctrl-C stops)\n",
+                s.local.aeTitle.c_str(), s.local.port,
+                s.local.bindAddress.empty() ? "all interfaces" : s.local.bindAddress.c_str(), s.local.storageDir.c_str(), who.empty() ? "nobody" : who.c_str());
     std::fflush(stdout);
     std::signal(SIGINT, onStop);
     std::signal(SIGTERM, onStop);

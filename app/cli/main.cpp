@@ -33,7 +33,7 @@ void usage() {
         "        [--level study|series|image] [--study UID] [--limit N]\n"
         "  pacs get|move NODE STUDY_UID [SERIES_UID] [--db FILE] [--no-build]\n"
         "  pacs send NODE FILE...         C-STORE files to a node\n"
-        "  listen [--port N] [--ae AE] [--storage DIR] [--allow AE]   storage SCP in the foreground\n"
+        "  listen [--port N] [--bind ADDR] [--ae AE] [--storage DIR] [--allow AE]   storage SCP in the foreground\n"
         "  dicom-info FILE               one-line summary of a DICOM file's header\n"
         "  render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] [--tf PRESET]\n"
         "        [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json]\n"

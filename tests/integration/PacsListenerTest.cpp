@@ -247,6 +247,70 @@ TEST(StorageServer, HalfOpenPeerDoesNotBlockThreeSenders) {
     EXPECT_EQ(same, 300u);
 }
 
+// Each connection's A-ASSOCIATE-RQ is read on its own worker: five half-open peers do not delay
+// an association that follows them (read on the listening thread, as DCMTK's own accept loop
+// does, they would hold every later caller for the socket read timeout, 10 s each).
+TEST(StorageServer, HalfOpenPeersDoNotDelayTheNextAssociation) {
+    Listener l;
+    std::vector<int> blockers;
+    for (int i = 0; i < 5; ++i) {
+        blockers.push_back(halfOpen(l.local.port));
+        ASSERT_GE(blockers.back(), 0);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const auto start = std::chrono::steady_clock::now();
+    const bool echoed = l.echoes();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    for (int b : blockers) ::close(b);
+    EXPECT_TRUE(echoed);
+    EXPECT_LT(seconds, 2.0) << "an echo waited behind half-open peers";
+    std::printf("C-ECHO beside 5 half-open peers: %.2f s\n", seconds);
+}
+
+// A flood of connections that send nothing costs a bounded number of workers: the ones beyond
+// it are closed at once, and once the flood has gone the receiver answers again.
+TEST(StorageServer, ConnectionFloodIsBoundedAndPasses) {
+    Listener l;
+    std::vector<int> flood;
+    for (int i = 0; i < 4 * dicom::StorageServer::kMaxAssociations; ++i) flood.push_back(halfOpen(l.local.port));
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    // Connections past twice the association limit were closed by the receiver: reading them
+    // ends (0 bytes, or a reset, as they had sent bytes it never read) instead of waiting.
+    std::size_t closedByReceiver = 0;
+    for (int s : flood) {
+        if (s < 0) continue;
+        timeval tv{0, 50000};
+        ::setsockopt(s, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+        char c;
+        const auto n = ::recv(s, &c, 1, 0);
+        closedByReceiver += n == 0 || (n < 0 && errno == ECONNRESET);
+    }
+    EXPECT_GE(closedByReceiver, std::size_t(2 * dicom::StorageServer::kMaxAssociations) - 2);
+    for (int s : flood) ::close(s);
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    EXPECT_TRUE(l.echoes());
+}
+
+// The receiver listens on the configured address only: 127.0.0.2 answers, 127.0.0.1 is refused.
+TEST(StorageServer, ListensOnTheBindAddressOnly) {
+    Listener l([](dicom::LocalNode& n) { n.bindAddress = "127.0.0.2"; });
+    const std::string port = std::to_string(l.local.port);
+    EXPECT_EQ(test::runCommand("echoscu -aet MODALITY1 -aec HOLOVOX 127.0.0.2 " + port + " 2>&1").exitCode, 0);
+    const auto refused = test::runCommand("echoscu -to 3 -aet MODALITY1 -aec HOLOVOX 127.0.0.1 " + port + " 2>&1");
+    EXPECT_NE(refused.exitCode, 0);
+    EXPECT_NE(refused.output.find("refused"), std::string::npos) << refused.output;
+    // An address that is not this machine's is refused with a sentence naming it.
+    dicom::LocalNode other = l.local;
+    other.bindAddress = "192.0.2.1";  // TEST-NET-1: never a local address
+    dicom::StorageServer elsewhere(other, {"MODALITY1"}, {});
+    try {
+        elsewhere.start();
+        FAIL() << "listened on an address that is not this machine's";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("192.0.2.1"), std::string::npos) << e.what();
+    }
+}
+
 // stop() returns within about a second while one peer is half-open and another sender is
 // frozen in the middle of its association.
 TEST(StorageServer, StopReturnsWithinASecondWhilePeersStall) {
