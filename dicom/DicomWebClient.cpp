@@ -1,6 +1,10 @@
 #include "dicom/DicomWebClient.h"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -12,6 +16,7 @@
 #include "dicom/DicomJson.h"
 #include "dicom/DicomWebUrl.h"
 #include "dicom/HttpRequest.h"
+#include "dicom/IncomingFiler.h"
 #include "dicom/IncomingStore.h"
 #include "dicom/MultipartReader.h"
 
@@ -20,12 +25,13 @@ namespace hvx::dicom {
 namespace {
 const char* kAcceptDicom = "Accept: multipart/related; type=\"application/dicom\"; transfer-syntax=*";
 
-/// Writes each part of a WADO-RS answer to a temporary file of the store and files it when the
-/// part is complete; a part left incomplete is removed.
+/// Writes each part of a WADO-RS answer to a temporary file of the store and, when the part is
+/// complete, hands it to an IncomingFiler, which files it while the next parts arrive; a part
+/// left incomplete is removed. Filed instances are reported on the receiving thread.
 class WadoSink : public MultipartReader::Sink {
 public:
     WadoSink(IncomingStore& store, std::function<void(const DicomInstance&)> onStored)
-        : store_(store), onStored_(std::move(onStored)) {}
+        : store_(store), filer_(store), onStored_(std::move(onStored)) {}
     ~WadoSink() override { discard(); }
     WadoSink(const WadoSink&) = delete;
     WadoSink& operator=(const WadoSink&) = delete;
@@ -34,33 +40,61 @@ public:
         if (const auto it = headers.find("content-type"); it != headers.end() &&
                                                           it->second.rfind("application/dicom", 0) != 0)
             throw core::Error("a part of the answer is '" + it->second + "', not a DICOM instance");
-        path_ = store_.temporaryPath();
-        file_ = std::fopen(path_.c_str(), "wb");
-        if (!file_) throw core::Error("cannot write " + path_);
+        path_ = store_.temporaryFile(fd_);
+        buffered_ = 0;
     }
     void partData(const char* data, std::size_t size) override {
-        if (std::fwrite(data, 1, size, file_) != size) throw core::Error("cannot write " + path_ + " (disk full?)");
+        if (buffered_ + size > buffer_.size()) flush();
+        if (size >= buffer_.size()) return writeAll(data, size);
+        std::memcpy(buffer_.data() + buffered_, data, size);
+        buffered_ += size;
     }
     void endPart() override {
-        const bool ok = std::fclose(file_) == 0;
-        file_ = nullptr;
+        flush();
+        const bool ok = ::close(std::exchange(fd_, -1)) == 0;
         if (!ok) throw core::Error("cannot write " + path_ + " (disk full?)");
-        const std::string tmp = std::exchange(path_, std::string());
-        onStored_(store_.finalize(tmp));  // finalize removes a file that is not DICOM, and says so
+        filer_.submit(std::exchange(path_, std::string()), onStored_);  // the filer removes a file that is not DICOM
     }
+    /// Waits for the instances being filed and reports them; throws the first one's error.
+    void finish() { filer_.finish(onStored_); }
 
 private:
+    void flush() {
+        writeAll(buffer_.data(), buffered_);
+        buffered_ = 0;
+    }
+    void writeAll(const char* data, std::size_t size) {
+        while (size > 0) {
+            const ssize_t n = ::write(fd_, data, size);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) throw core::Error("cannot write " + path_ + " (" + std::strerror(errno) + ")");
+            data += n;
+            size -= std::size_t(n);
+        }
+    }
     void discard() {
-        if (file_) std::fclose(file_);
-        file_ = nullptr;
+        if (fd_ >= 0) ::close(fd_);
+        fd_ = -1;
         if (!path_.empty()) std::remove(path_.c_str());
         path_.clear();
     }
     IncomingStore& store_;
+    IncomingFiler filer_;
     std::function<void(const DicomInstance&)> onStored_;
     std::string path_;
-    std::FILE* file_ = nullptr;
+    int fd_ = -1;
+    std::vector<char> buffer_ = std::vector<char>(std::size_t(1) << 20);  // writes of 1 MiB, not of each chunk
+    std::size_t buffered_ = 0;
 };
+
+/// After a failed transfer: the instances already filed are reported all the same (their error,
+/// if any, is the lesser one).
+void reportFiled(WadoSink& sink) {
+    try {
+        sink.finish();
+    } catch (const std::exception&) {
+    }
+}
 
 std::string randomBoundary() {
     std::random_device rd;
@@ -189,9 +223,12 @@ void DicomWebClient::retrieve(const std::string& url, IncomingStore& store, Retr
             }
             reader->finish();
         }
+        sink.finish();
     } catch (const core::Cancelled&) {
+        reportFiled(sink);
         throw;
     } catch (const core::Error& e) {
+        reportFiled(sink);
         throw core::Error(what() + " (WADO-RS retrieve): " + e.what() + " (" + std::to_string(progress.received) +
                           " instances were stored completely)");
     }

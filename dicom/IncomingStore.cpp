@@ -97,6 +97,13 @@ std::uint64_t IncomingStore::freeBytes() const {
 }
 
 std::string IncomingStore::temporaryPath() {
+    int fd = -1;
+    std::string path = temporaryFile(fd);
+    ::close(fd);
+    return path;
+}
+
+std::string IncomingStore::temporaryFile(int& fd) {
     if (minFreeBytes_ > 0) {
         const std::uint64_t free = freeBytes();
         if (free < minFreeBytes_)
@@ -110,11 +117,8 @@ std::string IncomingStore::temporaryPath() {
                       static_cast<unsigned long long>(random()));
         const std::string path = (fs::path(dir_) / ".incoming" / name).string();
         // Created here, exclusively and without following a link, so the name is ours alone.
-        const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-        if (fd >= 0) {
-            ::close(fd);
-            return path;
-        }
+        fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+        if (fd >= 0) return path;
         if (errno != EEXIST)
             throw core::Error(dir_ + ": cannot create a file for a received instance (" + std::strerror(errno) + ")");
     }

@@ -24,6 +24,9 @@ public:
     /// A fresh temporary file name inside the storage folder. Throws core::Error when it cannot
     /// be made, or when the free space is below the floor (saying how much is free).
     std::string temporaryPath();
+    /// As temporaryPath(), with the file left open for writing: `fd` is the caller's to close.
+    /// (Opening the empty file again with truncation would make ext4 write it back at close.)
+    std::string temporaryFile(int& fd);
     /// Bytes free for an unprivileged writer on the storage folder's file system.
     std::uint64_t freeBytes() const;
     /// Moves a completely received temporary file into place and returns its header (path set

@@ -3,17 +3,19 @@
 # peer-tool baseline (a benchmark, not a test):
 #   - Orthanc 1.10 with its DICOMweb plugin: a 500-instance 256x256 CT series by C-GET
 #     (getscu vs holovox), C-MOVE (movescu vs holovox), C-STORE (storescu vs holovox) and
-#     WADO-RS (curl of the same multipart URL vs holovox); a 5-series study (5 x 100) by C-GET
+#     WADO-RS (curl of the same multipart URL vs holovox, and curl plus copying and flushing the
+#     same 500 files, which Holovox must store as files); a 5-series study (5 x 100) by C-GET
 #     with one association and with three at once;
 #   - dcmqrscp: the same series by C-GET (getscu vs holovox).
 # Prints instances/s and MB/s per row and the ratios.
 #
-#   bash tests/bench/bench_pacs.sh [--cli PATH] [--instances 500]
+#   bash tests/bench/bench_pacs.sh [--cli PATH] [--instances 500] [--only store|get|move|wado|study|dcmqrscp]
 set -euo pipefail
 cli=build/release/app/holovox-cli
 count=500
+only=
 while [ $# -gt 0 ]; do
-  case $1 in --cli) cli=$2; shift 2 ;; --instances) count=$2; shift 2 ;; *) echo "unknown option $1" >&2; exit 2 ;; esac
+  case $1 in --cli) cli=$2; shift 2 ;; --instances) count=$2; shift 2 ;; --only) only=$2; shift 2 ;; *) echo "unknown option $1" >&2; exit 2 ;; esac
 done
 [ -x "$cli" ] || { echo "build first: cmake --workflow --preset release (or pass --cli)" >&2; exit 2; }
 cli=$(realpath "$cli")
@@ -70,47 +72,67 @@ export HOLOVOX_PACS_CONFIG="$work/pacs.json" HOLOVOX_DB="$work/db.sqlite"
 t() { local s e; s=$(date +%s.%N); "$@" >"$work/last.log" 2>&1 || { cat "$work/last.log" >&2; exit 1; }; e=$(date +%s.%N); echo "$e - $s" | bc -l; }
 row() { printf '  %-40s %7.2f s  %7.1f inst/s  %6.1f MB/s\n' "$1" "$2" "$(echo "$3 / $2" | bc -l)" "$(echo "$4 / 1000000 / $2" | bc -l)"; }
 ratio() { printf '  %-40s %.2fx\n' "$1" "$(echo "$2 / $3" | bc -l)"; }
+want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 fresh() { rm -rf "$work/rx" "$work/db.sqlite"* "$work/g"; mkdir -p "$work/g"; }
 
-echo "C-STORE of $count instances ($(echo "$bytes/1000000" | bc) MB) to Orthanc on loopback:"
-s1=$(t storescu -aet SEEDER -aec ORTHANC 127.0.0.1 $port "$work"/series/*.dcm)
-row "storescu" "$s1" $count $bytes
-for id in $(curl -s "http://127.0.0.1:$http/studies" | tr -d '[]", ' | tr '\n' ' '); do curl -s -X DELETE "http://127.0.0.1:$http/studies/$id" >/dev/null; done
-s2=$(t "$cli" pacs send bench "$work"/series/*.dcm)
-row "holovox pacs send (3 associations)" "$s2" $count $bytes
-ratio "holovox / storescu throughput" "$s1" "$s2"
-storescu -aet SEEDER -aec ORTHANC 127.0.0.1 $port "$work"/study5/s*/*.dcm >/dev/null
-storescu -aet SEEDER -aec DCMQR 127.0.0.1 $qr "$work"/series/*.dcm >/dev/null
+if want store; then
+  echo "C-STORE of $count instances ($(echo "$bytes/1000000" | bc) MB) to Orthanc on loopback:"
+  s1=$(t storescu -aet SEEDER -aec ORTHANC 127.0.0.1 $port "$work"/series/*.dcm)
+  row "storescu" "$s1" $count $bytes
+  for id in $(curl -s "http://127.0.0.1:$http/studies" | tr -d '[]", ' | tr '\n' ' '); do curl -s -X DELETE "http://127.0.0.1:$http/studies/$id" >/dev/null; done
+  s2=$(t "$cli" pacs send bench "$work"/series/*.dcm)
+  row "holovox pacs send (3 associations)" "$s2" $count $bytes
+  ratio "holovox / storescu throughput" "$s1" "$s2"
+else
+  "$cli" pacs send bench "$work"/series/*.dcm >/dev/null
+fi
+want study && storescu -aet SEEDER -aec ORTHANC 127.0.0.1 $port "$work"/study5/s*/*.dcm >/dev/null
+want dcmqrscp && storescu -aet SEEDER -aec DCMQR 127.0.0.1 $qr "$work"/series/*.dcm >/dev/null
 
-echo "retrieve of the same series from Orthanc:"
-fresh; g1=$(t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
-row "getscu (C-GET)" "$g1" $count $bytes
-fresh; g2=$(TCP_NODELAY=1 t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
-row "getscu with TCP_NODELAY=1 in its env" "$g2" $count $bytes
-fresh; h1=$(t "$cli" pacs get bench $study --no-build)
-row "holovox pacs get (C-GET)" "$h1" $count $bytes
-ratio "holovox / getscu throughput" "$g1" "$h1"
-fresh; m1=$(t movescu -S -aet MOVESCU -aec ORTHANC -aem MOVESCU --port $scp -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
-row "movescu (C-MOVE, own SCP)" "$m1" $count $bytes
-fresh; h2=$(t "$cli" pacs move bench $study --no-build)
-row "holovox pacs move (C-MOVE)" "$h2" $count $bytes
-ratio "holovox / movescu throughput" "$m1" "$h2"
-fresh; c1=$(t curl -s -o "$work/g/all.multipart" -H 'Accept: multipart/related; type="application/dicom"; transfer-syntax=*' "http://127.0.0.1:$http/dicom-web/studies/$study/series/$series")
-row "curl of the WADO-RS multipart URL" "$c1" $count "$(stat -c %s "$work/g/all.multipart")"
-fresh; w1=$(t "$cli" pacs get web $study --no-build)
-row "holovox pacs get (WADO-RS)" "$w1" $count $bytes
-ratio "holovox / curl time (target <= 1.2)" "$w1" "$c1"
+want get || want move || want wado && echo "retrieve of the same series from Orthanc:"
+if want get; then
+  fresh; g1=$(t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+  row "getscu (C-GET)" "$g1" $count $bytes
+  fresh; g2=$(TCP_NODELAY=1 t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+  row "getscu with TCP_NODELAY=1 in its env" "$g2" $count $bytes
+  fresh; h1=$(t "$cli" pacs get bench $study --no-build)
+  row "holovox pacs get (C-GET)" "$h1" $count $bytes
+  ratio "holovox / getscu throughput" "$g1" "$h1"
+fi
+if want move; then
+  fresh; m1=$(t movescu -S -aet MOVESCU -aec ORTHANC -aem MOVESCU --port $scp -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+  row "movescu (C-MOVE, own SCP)" "$m1" $count $bytes
+  fresh; h2=$(t "$cli" pacs move bench $study --no-build)
+  row "holovox pacs move (C-MOVE)" "$h2" $count $bytes
+  ratio "holovox / movescu throughput" "$m1" "$h2"
+fi
+if want wado; then
+  fresh; c1=$(t curl -s -o "$work/g/all.multipart" -H 'Accept: multipart/related; type="application/dicom"; transfer-syntax=*' "http://127.0.0.1:$http/dicom-web/studies/$study/series/$series")
+  row "curl of the WADO-RS multipart URL" "$c1" $count "$(stat -c %s "$work/g/all.multipart")"
+  fresh; w1=$(t "$cli" pacs get web $study --no-build)
+  row "holovox pacs get (WADO-RS)" "$w1" $count $bytes
+  ratio "holovox / curl time (target <= 1.2)" "$w1" "$c1"
+  # The plain cost of what Holovox must do besides the transfer: store the instances as 500
+  # files, flushed (curl writes one file, unflushed).
+  fresh; k1=$(t sh -c "cp -r '$work/series' '$work/g/copy' && sync -f '$work/g/copy/IMG00001.dcm'")
+  row "cp of the 500 files + syncfs" "$k1" $count $bytes
+  ratio "holovox / (curl + cp + syncfs) time" "$w1" "$(echo "$c1 + $k1" | bc -l)"
+fi
 
-echo "a study of 5 series x 100 instances ($(echo "$bytes5/1000000" | bc) MB) from Orthanc by C-GET:"
-fresh; p1=$(t "$cli" pacs get bench $study5 --no-build --parallel 1)
-row "holovox, one association at a time" "$p1" 500 $bytes5
-fresh; p3=$(t "$cli" pacs get bench $study5 --no-build --parallel 3)
-row "holovox, three associations at once" "$p3" 500 $bytes5
-ratio "speed-up of three associations" "$p1" "$p3"
+if want study; then
+  echo "a study of 5 series x 100 instances ($(echo "$bytes5/1000000" | bc) MB) from Orthanc by C-GET:"
+  fresh; p1=$(t "$cli" pacs get bench $study5 --no-build --parallel 1)
+  row "holovox, one association at a time" "$p1" 500 $bytes5
+  fresh; p3=$(t "$cli" pacs get bench $study5 --no-build --parallel 3)
+  row "holovox, three associations at once" "$p3" 500 $bytes5
+  ratio "speed-up of three associations" "$p1" "$p3"
+fi
 
-echo "retrieve of the same series from dcmqrscp:"
-fresh; q1=$(t getscu -S -aet HOLOVOX -aec DCMQR -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $qr)
-row "getscu (C-GET)" "$q1" $count $bytes
-fresh; q2=$(t "$cli" pacs get qr $study --no-build)
-row "holovox pacs get (C-GET)" "$q2" $count $bytes
-ratio "holovox / getscu throughput" "$q1" "$q2"
+if want dcmqrscp; then
+  echo "retrieve of the same series from dcmqrscp:"
+  fresh; q1=$(t getscu -S -aet HOLOVOX -aec DCMQR -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $qr)
+  row "getscu (C-GET)" "$q1" $count $bytes
+  fresh; q2=$(t "$cli" pacs get qr $study --no-build)
+  row "holovox pacs get (C-GET)" "$q2" $count $bytes
+  ratio "holovox / getscu throughput" "$q1" "$q2"
+fi
