@@ -7,7 +7,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <atomic>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <random>
 #include <set>
 
@@ -263,14 +266,37 @@ std::size_t DicomWebClient::store(const std::vector<std::string>& files, const s
         DicomInstance in;
         if (DicomHeaderReader::read(f, in) != DicomHeaderReader::Kind::Dicom) throw core::Error(f + ": not a DICOM file");
     }
-    std::size_t accepted = 0;
-    for (std::size_t at = 0; at < files.size(); at += kStowBatch) {
-        if (job_) job_->throwIfCancelled();
-        const std::vector<std::string> batch(files.begin() + long(at),
-                                             files.begin() + long(std::min(files.size(), at + kStowBatch)));
-        accepted += storeBatch(batch);
-        if (onProgress) onProgress(at + batch.size());
-    }
+    // Requests of kStowBatch files, `parallelAssociations` of them at once, each worker taking
+    // the next batch; the first error stops the others after their request.
+    const std::size_t batches = (files.size() + kStowBatch - 1) / kStowBatch;
+    std::mutex mutex;
+    std::size_t sent = 0;
+    std::exception_ptr failure;
+    std::atomic<std::size_t> next{0}, accepted{0};
+    auto work = [&] {
+        try {
+            for (std::size_t b = next++; b < batches; b = next++) {
+                if (job_) job_->throwIfCancelled();
+                const std::size_t at = b * kStowBatch;
+                const std::vector<std::string> batch(files.begin() + long(at),
+                                                     files.begin() + long(std::min(files.size(), at + kStowBatch)));
+                accepted += storeBatch(batch);
+                std::lock_guard lock(mutex);
+                sent += batch.size();
+                if (onProgress) onProgress(sent);
+            }
+        } catch (...) {
+            std::lock_guard lock(mutex);
+            if (!failure) failure = std::current_exception();
+            next = batches;
+        }
+    };
+    const int workers = int(std::min<std::size_t>(std::size_t(std::max(1, local_.parallelAssociations)), batches));
+    std::vector<std::thread> threads;
+    for (int i = 1; i < workers; ++i) threads.emplace_back(work);
+    work();
+    for (auto& t : threads) t.join();
+    if (failure) std::rethrow_exception(failure);
     return accepted;
 }
 

@@ -38,8 +38,9 @@ public:
                          const std::function<void(const DicomInstance&)>& onStored,
                          const std::function<void(const RetrieveProgress&)>& onProgress,
                          const std::vector<std::string>& sopUids = {});
-    /// Uploads files; returns how many the server stored. Throws core::Error when a file is
-    /// not DICOM, or the server refuses the request.
+    /// Uploads files, kStowBatch to a request and LocalNode::parallelAssociations requests at
+    /// once (onProgress from those threads, one call at a time); returns how many the server
+    /// stored. Throws core::Error when a file is not DICOM, or the server refuses a request.
     std::size_t store(const std::vector<std::string>& files, const std::function<void(std::size_t)>& onProgress);
 
     /// The QIDO-RS URL of one page of a search (exposed for tests).
