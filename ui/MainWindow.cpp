@@ -114,9 +114,12 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     connect(pacs_, &PacsPanel::retrieved, browser_, &StudyBrowser::refresh);
     connect(tfEditor_, &TransferFunctionEditor::changed, this, &MainWindow::applyTransferFunction);
     connect(tfEditor_, &TransferFunctionEditor::failed, this, &MainWindow::showError);
-    for (auto* s : slices_)
+    for (auto* s : slices_) {
         connect(s, &SliceView::measured, this, [this](const core::Measurement& m) { measurements_->add(m); });
+        connect(s, &SliceView::removeRequested, this, [this](const std::string& label) { measurements_->remove(label); });
+    }
     connect(measurements_, &MeasurementsPanel::changed, this, [this] {
+        for (auto* s : slices_) s->setMeasurements(measurements_->list().items());
         if (!measurementsKey_.isEmpty())  // kept per volume with the session
             QSettings().setValue("measurements/" + measurementsKey_,
                                  QString::fromStdString(measurements_->list().toJson(core::MeasurementSource{})));
@@ -344,6 +347,7 @@ void MainWindow::restoreMeasurements(const QString& path) {
         }
     }
     measurements_->setVolume(source, list);
+    for (auto* s : slices_) s->setMeasurements(measurements_->list().items());  // after the views' setVolume
 }
 
 core::RenderSettings MainWindow::renderSettings() const {

@@ -18,6 +18,7 @@ namespace hvx::ui {
 namespace {
 QString value(const core::Measurement& m) {
     if (m.kind == core::Measurement::Kind::Distance) return QStringLiteral("%1 mm").arg(m.lengthMm(), 0, 'f', 1);
+    if (m.kind == core::Measurement::Kind::Angle) return QStringLiteral("%1\u00b0").arg(m.angleDegrees(), 0, 'f', 1);
     if (!m.stats) return QObject::tr("no statistics");
     const auto& s = *m.stats;
     const QString units = s.units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(s.units);
@@ -34,7 +35,7 @@ QString value(const core::Measurement& m) {
 }
 
 QString where(const core::Measurement& m) {
-    const glm::dvec3 p = m.region ? m.region->centre : m.a;
+    const glm::dvec3 p = m.region ? m.region->centre : m.kind == core::Measurement::Kind::Angle ? m.b : m.a;
     return QStringLiteral("(%1, %2, %3)").arg(p.x, 0, 'f', 1).arg(p.y, 0, 'f', 1).arg(p.z, 0, 'f', 1);
 }
 }  // namespace
@@ -93,13 +94,21 @@ int MeasurementsPanel::removeSelected() {
     return int(labels.size());
 }
 
+bool MeasurementsPanel::remove(const std::string& label) {
+    if (!list_.remove(label)) return false;
+    refresh();
+    emit changed();
+    return true;
+}
+
 void MeasurementsPanel::refresh() {
     table_->setRowCount(int(list_.items().size()));
     int row = 0;
     for (const auto& m : list_.items()) {
-        const QString kind = m.kind == core::Measurement::Kind::Distance
-                                 ? tr("distance")
-                                 : m.region && m.region->kind == core::MeasureRegion::Kind::Disc ? tr("circle") : tr("region");
+        const QString kind = m.kind == core::Measurement::Kind::Distance ? tr("distance")
+                             : m.kind == core::Measurement::Kind::Angle  ? tr("angle")
+                             : m.region && m.region->kind == core::MeasureRegion::Kind::Disc ? tr("circle")
+                                                                                             : tr("region");
         const QStringList cells{QString::fromStdString(m.label), kind, QString::fromStdString(m.view), value(m), where(m)};
         for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));
         ++row;

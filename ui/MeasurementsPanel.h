@@ -23,6 +23,8 @@ public:
     void add(const core::Measurement& m);
     /// Removes the selected rows; returns how many.
     int removeSelected();
+    /// Removes the measurement with this label (Del in a slice view); false when there is none.
+    bool remove(const std::string& label);
     const core::MeasurementList& list() const { return list_; }
     /// Writes the list as CSV, or as JSON when the name ends in .json. Returns an error
     /// sentence, or an empty string when written.

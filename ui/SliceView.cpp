@@ -22,7 +22,8 @@ SliceView::SliceView(core::SlicePlane::Orientation orientation, QWidget* parent)
     setFocusPolicy(Qt::StrongFocus);
     setToolTip(tr("Click or drag: move the cursor \u2022 Wheel, Up/Down: next slice (Page Up/Down: ten) \u2022 "
                   "Right drag: window/level\n] / [: thicker / thinner slab \u2022 M: MIP, MinIP, mean\n"
-                  "Shift-drag: distance \u2022 Ctrl-drag: circle statistics \u2022 Esc: clear them\n"
+                  "Shift-drag: distance \u2022 Ctrl-drag: circle statistics \u2022 A, then three clicks: angle\n"
+                  "Esc: cancel \u2022 Del: remove the newest measurement on this slice\n"
                   "1-9: window presets (the DICOM's, then for CT: brain, subdural, stroke, bone, lung, "
                   "mediastinum, abdomen, liver)"));
 }
@@ -32,6 +33,10 @@ void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
     normal_ = glm::dvec3(0.0);  // a tilt belongs to the anatomy it followed: the standard plane again
     ruler_.reset();  // measurements belong to the volume they were made on
     roi_.reset();
+    items_.clear();
+    anglePoints_.clear();
+    placingAngle_ = false;
+    setMouseTracking(false);
     roiStats_.reset();
     roiError_.clear();
     sampler_.reset();
@@ -74,11 +79,26 @@ void SliceView::setAutomaticWindow(const core::DisplayWindow& w) {
 
 void SliceView::keyPressEvent(QKeyEvent* e) {
     if (e->key() == Qt::Key_Escape || e->key() == Qt::Key_Delete) {
+        if (e->key() == Qt::Key_Delete && !placingAngle_ && measuring_ == Measuring::None) {
+            // The newest measurement of the list drawn on this slice.
+            for (auto it = items_.rbegin(); it != items_.rend(); ++it)
+                if (onThisSlice(it->region ? it->region->centre : it->a)) {
+                    emit removeRequested(it->label);
+                    break;
+                }
+        }
         ruler_.reset();
         roi_.reset();
         roiStats_.reset();
         roiError_.clear();
+        anglePoints_.clear();
+        placingAngle_ = false;
+        setMouseTracking(false);
         update();
+        return;
+    }
+    if (e->key() == Qt::Key_A && !(e->modifiers() & Qt::ControlModifier)) {
+        startAngle();
         return;
     }
     if (e->modifiers() & Qt::ControlModifier) {
@@ -220,6 +240,26 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
     pressCentre_ = centre_;
     pressWidth_ = width_;
     measuring_ = Measuring::None;
+    if (placingAngle_ && e->button() == Qt::LeftButton && reader_) {
+        const glm::dvec3 at = patientAt(e->position());
+        if (anglePoints_.empty()) anglePoints_.push_back(at);
+        anglePoints_.back() = at;     // the point that followed the mouse is placed here
+        anglePoints_.push_back(at);   // and the next one follows the mouse
+        if (anglePoints_.size() == 4) {
+            core::Measurement m;
+            m.kind = core::Measurement::Kind::Angle;
+            m.view = viewName();
+            m.a = anglePoints_[0];
+            m.b = anglePoints_[1];
+            m.c = anglePoints_[2];
+            anglePoints_.clear();
+            placingAngle_ = false;
+            setMouseTracking(false);
+            if (glm::length(m.a - m.b) > 0.0 && glm::length(m.c - m.b) > 0.0) emit measured(m);  // an arm of no length: nothing
+        }
+        update();
+        return;
+    }
     if (e->button() == Qt::LeftButton && reader_ && (e->modifiers() & (Qt::ShiftModifier | Qt::ControlModifier))) {
         const glm::dvec3 at = patientAt(e->position());
         if (e->modifiers() & Qt::ShiftModifier) {
@@ -242,6 +282,11 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
 }
 
 void SliceView::mouseMoveEvent(QMouseEvent* e) {
+    if (placingAngle_) {
+        if (!anglePoints_.empty()) anglePoints_.back() = patientAt(e->position());
+        update();
+        return;
+    }
     if (measuring_ == Measuring::Ruler && ruler_) {
         ruler_->second = patientAt(e->position());
         update();
@@ -338,9 +383,26 @@ QString SliceView::levelReadout() const {
     return level_ == 0 ? tr("full resolution") : tr("level %1 of %2").arg(level_).arg(reader_->levelCount() - 1);
 }
 
-void SliceView::mouseReleaseEvent(QMouseEvent* e) {
+std::string SliceView::viewName() const {
     static const char* names[3] = {"axial", "coronal", "sagittal"};
-    const std::string view = std::string(names[int(orientation_)]) + (tiltDegrees() > 0.01 ? " (tilted)" : "");
+    return std::string(names[int(orientation_)]) + (tiltDegrees() > 0.01 ? " (tilted)" : "");
+}
+
+void SliceView::startAngle() {
+    if (!reader_) return;
+    anglePoints_.clear();
+    placingAngle_ = true;
+    setMouseTracking(true);  // the arm being placed follows the mouse
+    update();
+}
+
+void SliceView::setMeasurements(std::vector<core::Measurement> items) {
+    items_ = std::move(items);
+    update();
+}
+
+void SliceView::mouseReleaseEvent(QMouseEvent* e) {
+    const std::string view = viewName();
     if (measuring_ == Measuring::Roi && roi_) {
         roi_->radius = glm::length(patientAt(e->position()) - roi_->centre);
         measureRoi();
@@ -411,7 +473,9 @@ void SliceView::paintMeasurements(QPainter& p) {
         p.drawText(area, flags, text);
     };
     p.setRenderHint(QPainter::Antialiasing);
-    if (ruler_ && onThisSlice(ruler_->first)) {
+    paintList(p, colour);
+    // What is being drawn now (the list draws it once it is made).
+    if (ruler_ && measuring_ == Measuring::Ruler && onThisSlice(ruler_->first)) {
         const QPointF a = widgetAt(ruler_->first), b = widgetAt(ruler_->second);
         p.setPen(QPen(colour, 1.5));
         p.drawLine(a, b);
@@ -421,12 +485,22 @@ void SliceView::paintMeasurements(QPainter& p) {
         boxed(QRectF(mid.x() - 80, mid.y() - 22, 160, 18), Qt::AlignHCenter | Qt::AlignBottom,
               tr("%1 mm%2").arg(*rulerMm(), 0, 'f', 1).arg(unit));
     }
+    if (anglePoints_.size() >= 2) {
+        const glm::dvec3 c = anglePoints_.size() >= 3 ? anglePoints_[2] : anglePoints_[1];
+        core::Measurement m;
+        m.kind = core::Measurement::Kind::Angle;
+        m.a = anglePoints_[0], m.b = anglePoints_[1], m.c = c;
+        paintAngle(p, m.a, m.b, m.c, anglePoints_.size() >= 3 ? tr("%1\u00b0").arg(m.angleDegrees(), 0, 'f', 1) : QString(),
+                   colour);
+    }
     if (roi_ && onThisSlice(roi_->centre) && roi_->radius > 0) {
-        const QPointF c = widgetAt(roi_->centre);
-        const double r = roi_->radius / plane().pixelMm;
-        p.setPen(QPen(colour, 1.5));
-        p.setBrush(Qt::NoBrush);
-        p.drawEllipse(c, r, r);
+        if (measuring_ == Measuring::Roi) {
+            const QPointF c = widgetAt(roi_->centre);
+            const double r = roi_->radius / plane().pixelMm;
+            p.setPen(QPen(colour, 1.5));
+            p.setBrush(Qt::NoBrush);
+            p.drawEllipse(c, r, r);
+        }
         QString text;
         if (roiStats_) {
             const auto& s = *roiStats_;
@@ -443,6 +517,85 @@ void SliceView::paintMeasurements(QPainter& p) {
             boxed(QRectF(6, 22, std::max(80, width() / 2), height() / 2), Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap,
                   text);
     }
+}
+
+void SliceView::paintList(QPainter& p, const QColor& colour) {
+    labels_.clear();
+    const double pixelMm = plane().pixelMm;
+    const auto label = [&](const QPointF& at, const QString& text) { drawLabel(p, QPointF(at.x() + 6, at.y() - 20), text, colour); };
+    for (const auto& m : items_) {
+        const QString name = QString::fromStdString(m.label);
+        p.setPen(QPen(colour, 1.5));
+        p.setBrush(Qt::NoBrush);
+        if (m.kind == core::Measurement::Kind::Distance && onThisSlice(m.a)) {
+            const QPointF a = widgetAt(m.a), b = widgetAt(m.b);
+            p.drawLine(a, b);
+            p.drawEllipse(a, 2.5, 2.5);
+            p.drawEllipse(b, 2.5, 2.5);
+            label((a + b) / 2.0, tr("%1  %2 mm").arg(name).arg(m.lengthMm(), 0, 'f', 1));
+        } else if (m.kind == core::Measurement::Kind::Angle && onThisSlice(m.b)) {
+            paintAngle(p, m.a, m.b, m.c, tr("%1  %2\u00b0").arg(name).arg(m.angleDegrees(), 0, 'f', 1), colour);
+        } else if (m.kind == core::Measurement::Kind::Region && m.region && m.region->kind == core::MeasureRegion::Kind::Disc &&
+                   onThisSlice(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, plane().normal())) - 1.0) < 1e-6) {
+            const QPointF c = widgetAt(m.region->centre);
+            const double r = m.region->radius / pixelMm;
+            p.drawEllipse(c, r, r);
+            QString text = name;
+            if (m.stats) {
+                const QString u = m.stats->units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(m.stats->units);
+                text += tr("  mean %1%2").arg(m.stats->mean, 0, 'f', 1).arg(u);
+            }
+            label(c + QPointF(r * 0.7071, -r * 0.7071), text);
+        }
+    }
+}
+
+void SliceView::paintAngle(QPainter& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                           const QString& text, const QColor& colour) {
+    const QPointF pa = widgetAt(a), pb = widgetAt(b), pc = widgetAt(c);
+    p.setPen(QPen(colour, 1.5));
+    p.setBrush(Qt::NoBrush);
+    p.drawLine(pa, pb);
+    p.drawLine(pb, pc);
+    p.drawEllipse(pa, 2.5, 2.5);
+    p.drawEllipse(pb, 2.5, 2.5);
+    p.drawEllipse(pc, 2.5, 2.5);
+    // The arc between the arms, at the vertex (angles on screen: y grows downwards).
+    const QPointF u = pa - pb, v = pc - pb;
+    const double lu = std::hypot(u.x(), u.y()), lv = std::hypot(v.x(), v.y());
+    if (lu > 1 && lv > 1) {
+        const double r = std::min({20.0, lu / 2, lv / 2});
+        const double start = std::atan2(-u.y(), u.x()), end = std::atan2(-v.y(), v.x());
+        double span = end - start;
+        while (span > M_PI) span -= 2 * M_PI;
+        while (span < -M_PI) span += 2 * M_PI;
+        p.drawArc(QRectF(pb.x() - r, pb.y() - r, 2 * r, 2 * r), int(std::lround(glm::degrees(start) * 16)),
+                  int(std::lround(glm::degrees(span) * 16)));
+    }
+    if (!text.isEmpty()) drawLabel(p, QPointF(pb.x() + 8, pb.y() + 4), text, colour);
+}
+
+void SliceView::drawLabel(QPainter& p, QPointF topLeft, const QString& text, const QColor& colour) {
+    // On a dark box, moved inside the view when it would run over an edge, and below the
+    // labels already drawn that it would cover.
+    QRectF used = p.boundingRect(QRectF(topLeft, QSizeF(400, 18)), Qt::AlignLeft | Qt::AlignTop, text);
+    const auto inside = [&] {
+        const double dx = std::min(0.0, width() - 4.0 - used.right()) + std::max(0.0, 4.0 - used.left());
+        const double dy = std::min(0.0, height() - 4.0 - used.bottom()) + std::max(0.0, 4.0 - used.top());
+        used.translate(dx, dy);
+    };
+    inside();
+    for (int tries = 0; tries < 8; ++tries) {
+        const auto hit = std::find_if(labels_.begin(), labels_.end(),
+                                      [&](const QRectF& r) { return r.intersects(used.adjusted(-3, -2, 3, 2)); });
+        if (hit == labels_.end()) break;
+        used.moveTop(hit->bottom() + 3);
+        inside();
+    }
+    labels_.push_back(used.adjusted(-3, -2, 3, 2));
+    p.fillRect(used.adjusted(-3, -2, 3, 2), QColor(0, 0, 0, 170));
+    p.setPen(colour);
+    p.drawText(used, Qt::AlignLeft | Qt::AlignTop, text);
 }
 
 }  // namespace hvx::ui

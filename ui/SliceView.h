@@ -26,7 +26,10 @@ namespace hvx::ui {
 /// the DICOM's, else CT's W 400 / L 40, else its value range until the histogram's 1st-99th
 /// percentile arrives); the number keys pick its presets. Shift-drag measures a distance (mm),
 /// Ctrl-drag a circle's statistics (a disc one slice thick, from the octree's level 0, in HU for
-/// CT); Esc clears them; both are drawn only on the slice they were made on. Up/Down and the
+/// CT); A then three clicks an angle (an arm's end, the vertex, the other arm's end). Every
+/// measurement of the list (setMeasurements) is drawn with its label on the slice it lies on;
+/// Esc cancels the one in progress and hides the statistics, Del asks to remove the newest one
+/// on this slice (removeRequested). Up/Down and the
 /// wheel step a slice, Page keys ten; ] and [ make a thick slab, M changes its mode; Ctrl+arrows
 /// tilt the plane, O resets it.
 ///
@@ -79,6 +82,12 @@ public:
     QString levelReadout() const;
     /// The distance measured by Shift-drag (mm between its ends), if any.
     std::optional<double> rulerMm() const;
+    /// The measurements to draw (those of the open volume; each on the slice it lies on).
+    void setMeasurements(std::vector<core::Measurement> items);
+    /// Starts an angle: the next three clicks place an arm's end, the vertex and the other end.
+    void startAngle();
+    /// The points of the angle being placed (empty when none is).
+    const std::vector<glm::dvec3>& anglePoints() const { return anglePoints_; }
     /// The circle measured by Ctrl-drag and its statistics, if any.
     const std::optional<core::MeasureRegion>& roi() const { return roi_; }
     const std::optional<core::RegionStatistics>& roiStatistics() const { return roiStats_; }
@@ -87,8 +96,10 @@ signals:
     void pointChanged(const glm::dvec3& patient);
     /// The user chose a window (a drag or a preset key), in physical units.
     void windowChosen(double centre, double width, const QString& name);
-    /// A distance or a circle was completed (mouse released), for the measurement list.
+    /// A distance, a circle or an angle was completed, for the measurement list.
     void measured(const hvx::core::Measurement& m);
+    /// Del on the view: the newest measurement drawn on this slice should go.
+    void removeRequested(const std::string& label);
 
 protected:
     void paintEvent(QPaintEvent*) override;
@@ -110,6 +121,14 @@ private:
     /// Moves the slice `slices` steps along the normal.
     void step(int slices);
     void paintMeasurements(QPainter& p);
+    /// The list's measurements that lie on this slice, with their labels.
+    void paintList(QPainter& p, const QColor& colour);
+    void paintAngle(QPainter& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const QString& label,
+                    const QColor& colour);
+    /// A measurement's label at `topLeft`, on a dark box, kept inside the view.
+    void drawLabel(QPainter& p, QPointF topLeft, const QString& text, const QColor& colour);
+    /// The view's name for the measurement list: "axial", "coronal (tilted)", ...
+    std::string viewName() const;
 
     core::SlicePlane::Orientation orientation_;
     std::shared_ptr<const core::OctreeReader> reader_;
@@ -134,6 +153,10 @@ private:
     std::optional<core::MeasureRegion> roi_;
     std::optional<core::RegionStatistics> roiStats_;
     QString roiError_;
+    std::vector<core::Measurement> items_;  // the list's, to draw
+    std::vector<glm::dvec3> anglePoints_;   // the angle being placed: clicked points, then the mouse's
+    bool placingAngle_ = false;
+    std::vector<QRectF> labels_;  // drawn so far in this paint, so that labels do not cover each other
 };
 
 }  // namespace hvx::ui

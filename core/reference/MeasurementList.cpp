@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "core/base/Error.h"
 
@@ -45,6 +46,19 @@ glm::dvec3 vecOf(const json& j, const char* what) {
 
 double Measurement::lengthMm() const { return kind == Kind::Distance ? glm::length(b - a) : 0.0; }
 
+double Measurement::angleDegrees() const {
+    if (kind != Kind::Angle) return 0.0;
+    const glm::dvec3 u = a - b, v = c - b;
+    const double lu = glm::length(u), lv = glm::length(v);
+    if (lu <= 0.0 || lv <= 0.0) return 0.0;
+    // atan2 of the cross and dot products: exact near 0 and 180 degrees, where acos is not.
+    return glm::degrees(std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v)));
+}
+
+const char* Measurement::kindName() const {
+    return kind == Kind::Distance ? "distance" : kind == Kind::Angle ? "angle" : "region";
+}
+
 const Measurement& MeasurementList::add(Measurement m) {
     m.label = "M" + std::to_string(next_++);
     items_.push_back(std::move(m));
@@ -65,10 +79,10 @@ void MeasurementList::clear() { items_.clear(); }
 std::string MeasurementList::toCsv(const MeasurementSource& s) const {
     std::string out =
         "label,kind,view,length_mm,region,centre_x_lps,centre_y_lps,centre_z_lps,radius_mm,voxels,mean,sd,min,max,"
-        "units,area_mm2,volume_mm3,exact,note,a_x_lps,a_y_lps,a_z_lps,b_x_lps,b_y_lps,b_z_lps,patient_name,patient_id,"
-        "study_uid,series_uid,volume\n";
+        "units,area_mm2,volume_mm3,exact,note,a_x_lps,a_y_lps,a_z_lps,b_x_lps,b_y_lps,b_z_lps,angle_deg,c_x_lps,c_y_lps,"
+        "c_z_lps,patient_name,patient_id,study_uid,series_uid,volume\n";
     for (const auto& m : items_) {
-        std::vector<std::string> f{m.label, m.kind == Measurement::Kind::Distance ? "distance" : "region", m.view};
+        std::vector<std::string> f{m.label, m.kindName(), m.view};
         f.push_back(m.kind == Measurement::Kind::Distance ? number(m.lengthMm()) : "");
         if (m.region) {
             f.insert(f.end(), {kindName(m.region->kind), number(m.region->centre.x), number(m.region->centre.y),
@@ -83,9 +97,12 @@ std::string MeasurementList::toCsv(const MeasurementSource& s) const {
         } else {
             f.insert(f.end(), 10, "");
         }
-        const bool d = m.kind == Measurement::Kind::Distance;
+        const bool points = m.kind != Measurement::Kind::Region;  // a distance's ends, an angle's end and vertex
         for (const auto& p : {m.a, m.b})
-            for (int c = 0; c < 3; ++c) f.push_back(d ? number(p[c]) : "");
+            for (int c = 0; c < 3; ++c) f.push_back(points ? number(p[c]) : "");
+        const bool angle = m.kind == Measurement::Kind::Angle;
+        f.push_back(angle ? number(m.angleDegrees()) : "");
+        for (int c = 0; c < 3; ++c) f.push_back(angle ? number(m.c[c]) : "");
         f.insert(f.end(), {s.patientName, s.patientId, s.studyUid, s.seriesUid, s.volume});
         for (std::size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + field(f[i]);
         out += "\n";
@@ -106,6 +123,12 @@ std::string MeasurementList::toJson(const MeasurementSource& s) const {
             e["a"] = vec(m.a);
             e["b"] = vec(m.b);
             e["lengthMm"] = m.lengthMm();
+        } else if (m.kind == Measurement::Kind::Angle) {
+            e["kind"] = "angle";
+            e["a"] = vec(m.a);
+            e["vertex"] = vec(m.b);
+            e["c"] = vec(m.c);
+            e["degrees"] = m.angleDegrees();
         } else {
             e["kind"] = "region";
         }
@@ -133,10 +156,18 @@ MeasurementList MeasurementList::fromJson(const std::string& text) {
         for (const auto& e : j.at("measurements")) {
             Measurement m;
             m.view = e.value("view", std::string());
-            m.kind = e.at("kind").get<std::string>() == "distance" ? Measurement::Kind::Distance : Measurement::Kind::Region;
+            const std::string kind = e.at("kind").get<std::string>();
+            m.kind = kind == "distance" ? Measurement::Kind::Distance
+                     : kind == "angle"  ? Measurement::Kind::Angle
+                     : kind == "region" ? Measurement::Kind::Region
+                                        : throw Error("measurements: unknown kind '" + kind + "'");
             if (m.kind == Measurement::Kind::Distance) {
                 m.a = vecOf(e.at("a"), "a distance's end");
                 m.b = vecOf(e.at("b"), "a distance's end");
+            } else if (m.kind == Measurement::Kind::Angle) {
+                m.a = vecOf(e.at("a"), "an angle's end");
+                m.b = vecOf(e.at("vertex"), "an angle's vertex");
+                m.c = vecOf(e.at("c"), "an angle's end");
             }
             if (e.contains("region")) {
                 const auto& r = e["region"];

@@ -9,19 +9,26 @@
 
 namespace hvx::core {
 
-/// One measurement a reader made: a distance between two points, or a region with its
-/// statistics (from level 0, see RegionStatistics). Points are patient coordinates (LPS mm).
+/// One measurement a reader made: a distance between two points, an angle at a vertex between
+/// two arms, or a region with its statistics (from level 0, see RegionStatistics). Points are
+/// patient coordinates (LPS mm).
 struct Measurement {
-    enum class Kind { Distance, Region };
+    enum class Kind { Distance, Region, Angle };
     Kind kind = Kind::Distance;
     std::string label;                  ///< "M1", "M2", … given by the list
     std::string view;                   ///< where it was made: "axial", "coronal", "sagittal", "3D"
-    glm::dvec3 a{0.0}, b{0.0};          ///< a distance's ends
+    glm::dvec3 a{0.0}, b{0.0};          ///< a distance's ends; an angle's first arm's end and its vertex
+    glm::dvec3 c{0.0};                  ///< an angle's second arm's end
     std::optional<MeasureRegion> region;
     std::optional<RegionStatistics> stats;
 
-    /// A distance's length in mm (0 for a region).
+    /// A distance's length in mm (0 for the other kinds).
     double lengthMm() const;
+    /// An angle's size in degrees, 0 to 180, in the plane of its three points (0 for the other
+    /// kinds, and for an arm of no length).
+    double angleDegrees() const;
+    /// "distance", "angle" or "region".
+    const char* kindName() const;
 };
 
 /// Whose measurements they are, for the exports: the patient and the DICOM identities of the

@@ -608,6 +608,52 @@ private slots:
         QVERIFY(!axial->roi().has_value());
     }
 
+    // A, then three clicks, measures an angle (a right angle drawn on the screen's axes is
+    // 90.0 degrees); every measurement of the list is drawn with its label on its slice, and
+    // only there; Del on the view removes the newest one on the slice.
+    void sliceViewMeasuresAnAngleAndDrawsTheList() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* panel = window_->measurements();
+        const std::size_t before = panel->list().items().size();
+        const QPoint vertex(axial->width() / 2 + 10, axial->height() / 2 + 30);
+        const QPoint end1 = vertex + QPoint(-50, 0), end2 = vertex + QPoint(0, -40);
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_A);
+        QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, end1);
+        QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, vertex);
+        QCOMPARE(axial->anglePoints().size(), std::size_t(3));  // two placed, one following the mouse
+        QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, end2);
+        QVERIFY(axial->anglePoints().empty());
+        QCOMPARE(panel->list().items().size(), before + 1);
+        const auto& angle = panel->list().items().back();
+        QCOMPARE(angle.kind, core::Measurement::Kind::Angle);
+        QVERIFY2(std::abs(angle.angleDegrees() - 90.0) < 1e-9, qPrintable(QString::number(angle.angleDegrees())));
+        const int row = panel->table()->rowCount() - 1;
+        QCOMPARE(panel->table()->item(row, 1)->text(), QString("angle"));
+        QCOMPARE(panel->table()->item(row, 3)->text(), QString("90.0\u00b0"));
+        // Drawn on this slice: the arms' middles are the measurement colour; one slice up, not.
+        const auto green = [](const QImage& img, QPoint at) {
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const QColor c = img.pixelColor(at + QPoint(dx, dy));
+                    if (c.green() > 200 && c.red() < 170 && c.blue() < 190) return true;
+                }
+            return false;
+        };
+        QImage shot = axial->grab().toImage();
+        QVERIFY(green(shot, (end1 + vertex) / 2));
+        QVERIFY(green(shot, (end2 + vertex) / 2));
+        shot.save(kArtifacts + "/slice-angle-and-list.png");
+        QTest::keyClick(axial, Qt::Key_Up);
+        QVERIFY2(!green(axial->grab().toImage(), (end1 + vertex) / 2), "an angle drawn on a slice it is not on");
+        QTest::keyClick(axial, Qt::Key_Down);
+        QTest::keyClick(axial, Qt::Key_Delete);  // the newest on this slice: the angle
+        QCOMPARE(panel->list().items().size(), before);
+        QVERIFY(std::none_of(panel->list().items().begin(), panel->list().items().end(),
+                             [](const core::Measurement& m) { return m.kind == core::Measurement::Kind::Angle; }));
+    }
+
     // Up/Down and Page keys step one and ten slices (the voxel spacing along the normal); ] makes
     // a thick slab whose MIP is nowhere darker than the thin slice and M its MinIP nowhere
     // brighter; the views say which slice and which octree level they show.

@@ -3,7 +3,9 @@
 // series UIDs and LPS points that reads back to the same list, and refusals of other text.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdio>
+#include <sstream>
 #include <fstream>
 
 #include "core/base/Error.h"
@@ -88,4 +90,56 @@ TEST(MeasurementList, JsonCarriesTheUidsAndReadsBack) {
     for (const char* bad : {"", "[]", "{\"measurements\": [{\"kind\": \"distance\"}]}",
                             "{\"measurements\": [{\"label\": \"M1\", \"kind\": \"distance\", \"a\": [1,2], \"b\": [1,2,3]}]}"})
         EXPECT_THROW(core::MeasurementList::fromJson(bad), core::Error) << bad;
+}
+
+// Angles: the size at the vertex, checked against numpy's arccos of the normalised dot product
+// (an independent computation), near 0 and 180 degrees too; exported to CSV and JSON and read back.
+TEST(MeasurementList, AnglesAgreeWithNumpyAndReadBack) {
+    const std::vector<std::array<glm::dvec3, 3>> cases{
+        {glm::dvec3(10, 0, 0), glm::dvec3(0, 0, 0), glm::dvec3(0, 7, 0)},             // 90
+        {glm::dvec3(1, 2, 3), glm::dvec3(-4, 5, 0.5), glm::dvec3(7, -1, 2)},           // oblique, in 3D
+        {glm::dvec3(100, 0.001, 0), glm::dvec3(0, 0, 0), glm::dvec3(100, 0, 0)},       // almost 0
+        {glm::dvec3(-50, 0, 0), glm::dvec3(0, 0, 0), glm::dvec3(50, 0.0005, 0)},       // almost 180
+    };
+    std::string script = "import numpy as np\n";
+    core::MeasurementList list;
+    for (const auto& k : cases) {
+        core::Measurement m;
+        m.kind = core::Measurement::Kind::Angle;
+        m.view = "sagittal";
+        m.a = k[0], m.b = k[1], m.c = k[2];
+        list.add(m);
+        char line[1024];
+        std::snprintf(line, sizeof line,
+                      "u=np.array([%.17g,%.17g,%.17g])-np.array([%.17g,%.17g,%.17g]); "
+                      "v=np.array([%.17g,%.17g,%.17g])-np.array([%.17g,%.17g,%.17g]); "
+                      "print('%%.9f' %% np.degrees(np.arctan2(np.linalg.norm(np.cross(u,v)), np.dot(u,v))))\n",
+                      k[0].x, k[0].y, k[0].z, k[1].x, k[1].y, k[1].z, k[2].x, k[2].y, k[2].z, k[1].x, k[1].y, k[1].z);
+        script += line;
+    }
+    test::TempDir dir;
+    std::ofstream(dir.file("a.py")) << script;
+    const auto r = test::runCommand("/usr/bin/python3 " + dir.file("a.py"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::istringstream numpy(r.output);
+    for (const auto& m : list.items()) {
+        double expected = 0;
+        numpy >> expected;
+        EXPECT_NEAR(m.angleDegrees(), expected, 1e-9) << m.label;
+    }
+    EXPECT_NEAR(list.items()[0].angleDegrees(), 90.0, 1e-12);
+    core::Measurement flat;
+    flat.kind = core::Measurement::Kind::Angle;  // an arm of no length: no angle, not NaN
+    EXPECT_EQ(flat.angleDegrees(), 0.0);
+
+    std::ofstream(dir.file("m.csv")) << list.toCsv(source());
+    const auto csv = test::runCommand("/usr/bin/python3 -c \"import csv; rows=list(csv.DictReader(open('" +
+                                      dir.file("m.csv") + "'))); print(rows[0]['kind'], rows[0]['angle_deg'], rows[0]['c_y_lps'])\"");
+    EXPECT_EQ(csv.output, "angle 90 7\n");
+    const auto back = core::MeasurementList::fromJson(list.toJson(source()));
+    ASSERT_EQ(back.items().size(), cases.size());
+    EXPECT_EQ(back.items()[1].kind, core::Measurement::Kind::Angle);
+    EXPECT_EQ(back.items()[1].c, cases[1][2]);
+    EXPECT_DOUBLE_EQ(back.items()[1].angleDegrees(), list.items()[1].angleDegrees());
+    EXPECT_THROW(core::MeasurementList::fromJson("{\"measurements\": [{\"kind\": \"angle\", \"a\": [0,0,0]}]}"), core::Error);
 }
