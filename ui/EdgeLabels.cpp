@@ -9,10 +9,15 @@ void drawEdgeLabels(QPainter& p, const QRect& area, const QStringList& labels, d
     f.setPointSizeF(f.pointSizeF() * fontScale);
     f.setBold(true);
     p.setFont(f);
-    p.setPen(QColor(255, 230, 120));
     const Qt::Alignment where[] = {Qt::AlignLeft | Qt::AlignVCenter, Qt::AlignRight | Qt::AlignVCenter,
                                    Qt::AlignTop | Qt::AlignHCenter, Qt::AlignBottom | Qt::AlignHCenter};
-    for (int i = 0; i < 4 && i < labels.size(); ++i) p.drawText(area, int(where[i]), labels[i]);
+    for (int i = 0; i < 4 && i < labels.size(); ++i) {
+        // On a dark box: a letter over bright tissue or bone stays readable.
+        const QRect used = p.boundingRect(area, int(where[i]), labels[i]);
+        p.fillRect(used.adjusted(-2, 0, 2, 0), QColor(0, 0, 0, 150));
+        p.setPen(QColor(255, 230, 120));
+        p.drawText(area, int(where[i]), labels[i]);
+    }
 }
 
 QStringList assumedGeometryNotes(const core::VolumeGeometry& g) {

@@ -9,6 +9,7 @@
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QHBoxLayout>
+#include <QVBoxLayout>
 #include <QInputDialog>
 #include <QKeySequence>
 #include <QLabel>
@@ -42,6 +43,7 @@
 #include "ui/RenderControls.h"
 #include "ui/CropControls.h"
 #include "ui/MeasurementsPanel.h"
+#include "ui/SliceScroller.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
 #include "ui/TransferFunctionEditor.h"
@@ -74,7 +76,12 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     slicesLayout->setContentsMargins(2, 2, 2, 2);
     for (int i = 0; i < 3; ++i) {
         slices_[i] = new SliceView(core::SlicePlane::Orientation(i));
-        slicesLayout->addWidget(slices_[i]);
+        scrollers_[i] = new SliceScroller(slices_[i]);
+        auto* column = new QVBoxLayout;
+        column->setSpacing(1);
+        column->addWidget(slices_[i], 1);
+        column->addWidget(scrollers_[i]);
+        slicesLayout->addLayout(column);
     }
     auto* studies = addDock(tr("Studies"), "studiesDock", browser_, Qt::LeftDockWidgetArea);
     auto* pacsDock = addDock(tr("PACS"), "pacsDock", pacs_, Qt::LeftDockWidgetArea);

@@ -22,6 +22,7 @@ class RenderControls;
 class CropControls;
 class MeasurementsPanel;
 class SliceView;
+class SliceScroller;
 class StudyBrowser;
 class ToolsPanel;
 class TransferFunctionEditor;
@@ -67,6 +68,8 @@ public:
     MeasurementsPanel* measurements() const { return measurements_; }
     LightFieldPanel* lightField() const { return lightField_; }
     SliceView* slice(int i) const { return slices_[i]; }
+    /// The slider and cine bar under slice view i.
+    SliceScroller* scroller(int i) const { return scrollers_[i]; }
     const QString& openLabel() const { return openLabel_; }
     /// The illustrative tools of the session (saved with the window layout).
     const core::ToolSet& tools() const { return tools_; }
@@ -110,6 +113,7 @@ private:
     QHash<QString, QString> seriesOfOctree_;  // octree path -> the series it was built from
     LightFieldPanel* lightField_;
     SliceView* slices_[3];
+    SliceScroller* scrollers_[3];
     QLabel* readouts_;
     std::shared_ptr<const core::OctreeReader> reader_;
     double referenceLength_ = 1.0;

@@ -192,6 +192,7 @@ void SliceView::resample() {
         }
     }
     update();
+    emit resampled();
 }
 
 void SliceView::paintEvent(QPaintEvent*) {
@@ -362,15 +363,37 @@ void SliceView::setSlab(double mm, core::SlabMode mode) {
     resample();
 }
 
-QString SliceView::slicePosition() const {
-    if (!reader_) return {};
+int SliceView::nearestAxis() const {
     const auto& g = reader_->geometry();
     const glm::dvec3 n = plane().normal();
     int axis = 0;
     for (int a = 1; a < 3; ++a)
         if (std::abs(glm::dot(n, g.direction[a])) > std::abs(glm::dot(n, g.direction[axis]))) axis = a;
-    const glm::dvec3 index(glm::inverse(g.indexToPatient()) * glm::dvec4(point_, 1.0));
-    const long slice = std::lround(index[axis]) + 1;
+    return axis;
+}
+
+int SliceView::sliceCount() const { return reader_ ? int(reader_->geometry().dims[std::size_t(nearestAxis())]) : 0; }
+
+int SliceView::sliceIndex() const {
+    if (!reader_) return 0;
+    const glm::dvec3 index(glm::inverse(reader_->geometry().indexToPatient()) * glm::dvec4(point_, 1.0));
+    return int(std::lround(index[nearestAxis()]));
+}
+
+void SliceView::goToSlice(int index) {
+    if (!reader_) return;
+    const int steps = std::clamp(index, 0, sliceCount() - 1) - sliceIndex();
+    // Along the normal, one step a slice: the slice's sign follows the normal's along the axis.
+    const double sign = glm::dot(plane().normal(), reader_->geometry().direction[nearestAxis()]) < 0 ? -1.0 : 1.0;
+    if (steps != 0) step(int(sign) * steps);
+}
+
+QString SliceView::slicePosition() const {
+    if (!reader_) return {};
+    const auto& g = reader_->geometry();
+    const glm::dvec3 n = plane().normal();
+    const int axis = nearestAxis();
+    const long slice = sliceIndex() + 1;
     // The patient axis the normal runs along, and the point's coordinate on it.
     int patientAxis = 0;
     for (int a = 1; a < 3; ++a)

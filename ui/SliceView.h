@@ -75,6 +75,12 @@ public:
     /// One slice: the volume's voxel spacing along the view's normal (the wheel, Up/Down; Page
     /// Up/Down step ten).
     double sliceStepMm() const;
+    /// How many slices the volume has along the axis nearest the view's normal (0 without a volume).
+    int sliceCount() const;
+    /// The 0-based slice nearest the plane along that axis.
+    int sliceIndex() const;
+    /// Moves to a slice (clamped to the volume), as that many steps of the wheel would.
+    void goToSlice(int index);
     /// "slice 12/48 \u2022 42.0 mm": the slice nearest the plane along the volume axis closest to
     /// its normal, and the plane's position along its normal (patient mm).
     QString slicePosition() const;
@@ -94,6 +100,8 @@ public:
 
 signals:
     void pointChanged(const glm::dvec3& patient);
+    /// The image was sampled again (another slice, volume, window, tilt or size).
+    void resampled();
     /// The user chose a window (a drag or a preset key), in physical units.
     void windowChosen(double centre, double width, const QString& name);
     /// A distance, a circle or an angle was completed, for the measurement list.
@@ -118,6 +126,8 @@ private:
     /// Whether a point made on some slice lies on the current one (within half a voxel).
     bool onThisSlice(const glm::dvec3& patient) const;
     void measureRoi();
+    /// The volume axis (0, 1, 2) nearest the plane's normal.
+    int nearestAxis() const;
     /// Moves the slice `slices` steps along the normal.
     void step(int slices);
     void paintMeasurements(QPainter& p);

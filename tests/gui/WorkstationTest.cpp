@@ -46,6 +46,7 @@
 #include "ui/PacsNodeDialog.h"
 #include "ui/PacsPanel.h"
 #include "ui/RenderControls.h"
+#include "ui/SliceScroller.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
 #include "ui/ToolsPanel.h"
@@ -652,6 +653,38 @@ private slots:
         QCOMPARE(panel->list().items().size(), before);
         QVERIFY(std::none_of(panel->list().items().begin(), panel->list().items().end(),
                              [](const core::Measurement& m) { return m.kind == core::Measurement::Kind::Angle; }));
+    }
+
+    // The slider under each view spans its slices and scrolls the view; keys and clicks in
+    // another view move it; cine plays through the slices at the chosen rate and loops.
+    void sliceScrollerFollowsAndPlays() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* bar = window_->scroller(0);
+        QCOMPARE(bar->slider()->maximum(), 47);  // w-ct.hvo: 48 slices
+        QCOMPARE(bar->slider()->value(), axial->sliceIndex());
+        bar->slider()->setValue(10);
+        QCOMPARE(axial->sliceIndex(), 10);
+        QVERIFY2(axial->slicePosition().startsWith("slice 11/48"), qPrintable(axial->slicePosition()));
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_Up);
+        QCOMPARE(bar->slider()->value(), axial->sliceIndex());
+        // A click in the coronal view moves the axial slice: its slider follows.
+        auto* coronal = window_->slice(1);
+        QTest::mouseClick(coronal, Qt::LeftButton, Qt::NoModifier, QPoint(coronal->width() / 2, coronal->height() / 4));
+        QCOMPARE(bar->slider()->value(), axial->sliceIndex());
+        bar->slider()->setValue(45);
+        bar->setRate(20);
+        bar->setPlaying(true);
+        QTRY_VERIFY_WITH_TIMEOUT(axial->sliceIndex() < 45, 5000);  // past the last slice, back to the first
+        QTRY_VERIFY_WITH_TIMEOUT(axial->sliceIndex() >= 3, 5000);
+        bar->setPlaying(false);
+        const int stopped = axial->sliceIndex();
+        QTest::qWait(300);
+        QCOMPARE(axial->sliceIndex(), stopped);
+        QCOMPARE(bar->slider()->value(), stopped);
+        window_->grab().save(kArtifacts + "/slices-with-scrollers.png");
+        coronal->grab().save(kArtifacts + "/slice-coronal.png");
     }
 
     // Up/Down and Page keys step one and ten slices (the voxel spacing along the normal); ] makes
