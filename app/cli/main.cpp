@@ -7,8 +7,7 @@
 #include "core/base/Error.h"
 
 namespace {
-void usage() {
-    std::puts(
+const char* const kUsage =
         "holovox-cli — Holovox command line\n"
         "\n"
         "  build INPUT -o OUT.hvo [--brick N] [--border N] [--empty-below V] [--labels]\n"
@@ -27,12 +26,14 @@ void usage() {
         "  export-dicom INPUT -o FOLDER [--syntax explicit-little|implicit-little|explicit-big|deflate|rle|\n"
         "        jpeg-lossless|jpeg-ls] [--enhanced] [--modality CT|MR|PT|NM|OT] [--patient NAME] [--patient-id ID] [--study TEXT]\n"
         "  export-dicom --series-uid UID [--db FILE] [--volume N] -o FOLDER   (keeps patient, study, frame of reference)\n"
-        "  pacs nodes | add NAME --ae AE --host H --port P [--move] [--default] [--tls --tls-ca CA.pem]\n"
+        "  pacs nodes | add NAME --ae AE --host H --port P [--move] [--default] [--max-pdu BYTES]\n"
+        "        [--tls --tls-ca CA.pem [--tls-cert C.pem --tls-key K.pem]]\n"
+        "  pacs add NAME --dicomweb URL [--token T | --user U --password P] [--insecure] [--default]\n"
         "  pacs echo NODE\n"
         "  pacs find NODE [--patient P] [--id I] [--date D|D1-D2] [--modality M] [--accession A]\n"
         "        [--level study|series|image] [--study UID] [--limit N]\n"
-        "  pacs get|move NODE STUDY_UID [SERIES_UID] [--db FILE] [--no-build]\n"
-        "  pacs send NODE FILE...         C-STORE files to a node\n"
+        "  pacs get|move NODE STUDY_UID [SERIES_UID] [--db FILE] [--no-build] [--parallel N]\n"
+        "  pacs send NODE FILE... [--parallel N]   C-STORE (STOW-RS for a DICOMweb node) files to a node\n"
         "  listen [--port N] [--bind ADDR] [--ae AE] [--storage DIR] [--allow AE]   storage SCP in the foreground\n"
         "  dicom-info FILE               one-line summary of a DICOM file's header\n"
         "  render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] [--tf PRESET]\n"
@@ -46,7 +47,29 @@ void usage() {
         "  slice FILE.hvo --plane axial|coronal|sagittal|NX,NY,NZ [--at X,Y,Z] [--size WxH] [--pixel MM]\n"
         "        [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--level N] -o OUT.png   a windowed slice\n"
         "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
-        "  version                       versions of Holovox and its libraries");
+        "  version                       versions of Holovox and its libraries";
+
+void usage() { std::puts(kUsage); }
+
+/// The lines of the usage that describe `cmd` (a line naming it and the indented lines that
+/// continue it); empty for an unknown command.
+std::string commandUsage(const std::string& cmd) {
+    std::string out, line;
+    bool in = false;
+    for (const char* c = kUsage;; ++c) {
+        if (*c != '\n' && *c != '\0') {
+            line += *c;
+            continue;
+        }
+        const bool head = line.rfind("  " + cmd + " ", 0) == 0 || line == "  " + cmd;
+        const bool continued = line.rfind("      ", 0) == 0;
+        if (head) in = true;
+        else if (!continued) in = false;
+        if (in) out += line + "\n";
+        line.clear();
+        if (*c == '\0') break;
+    }
+    return out;
 }
 }  // namespace
 
@@ -56,6 +79,17 @@ int main(int argc, char** argv) {
         return argc < 2 ? 2 : 0;
     }
     const std::string cmd = argv[1];
+    // COMMAND --help (or -h) anywhere after the command: that command's usage, and nothing run.
+    for (int i = 2; i < argc; ++i)
+        if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) {
+            const std::string text = commandUsage(cmd);
+            if (text.empty()) {
+                std::fprintf(stderr, "holovox-cli: unknown command '%s' (try --help)\n", cmd.c_str());
+                return 2;
+            }
+            std::printf("usage: holovox-cli\n%s", text.c_str());
+            return 0;
+        }
     try {
         if (cmd == "build") return hvx::app::buildCommand(argc, argv);
         if (cmd == "info") return hvx::app::infoCommand(argc, argv);

@@ -91,6 +91,30 @@ TEST(CliBadInput, BadOptionsAndUsage) {
     expectCleanFailure("info " + dir.file("none.hvo"), dir, dir.file("none.hvo"), {});
 }
 
+// COMMAND --help and -h print that command's usage (and only its lines) and exit 0 without
+// running it (demo --help starts no archive, listen --help opens no port); an unknown command's
+// help is an error.
+TEST(CliBadInput, EveryCommandHasItsOwnHelp) {
+    test::TempDir dir;
+    for (const std::string cmd : {"build", "info", "phantom", "demo", "import", "studies", "prune", "build-series",
+                                  "export-dicom", "pacs", "listen", "dicom-info", "render", "lightfield", "measure",
+                                  "slice", "gl-info", "version"})
+        for (const char* help : {"--help", "-h"}) {
+            const auto r = test::runCommand("cd " + dir.path().string() + " && " + cli + " " + cmd + " " + help + " 2>&1");
+            EXPECT_EQ(r.exitCode, 0) << cmd << " " << help << ": " << r.output;
+            EXPECT_EQ(r.output.rfind("usage: holovox-cli\n  " + cmd, 0), 0u) << cmd << ": " << r.output;
+            EXPECT_EQ(r.output.find("  render "), cmd == "render" ? r.output.find("  render ") : std::string::npos)
+                << cmd << ": another command's usage too";
+        }
+    const auto sub = test::runCommand(cli + " pacs get --help 2>&1");
+    EXPECT_EQ(sub.exitCode, 0);
+    EXPECT_NE(sub.output.find("pacs get|move NODE STUDY_UID"), std::string::npos) << sub.output;
+    EXPECT_TRUE(dir.entries().empty()) << "a command ran";
+    const auto unknown = test::runCommand(cli + " frobnicate --help 2>&1");
+    EXPECT_EQ(unknown.exitCode, 2);
+    EXPECT_NE(unknown.output.find("unknown command 'frobnicate'"), std::string::npos) << unknown.output;
+}
+
 TEST(CliBadInput, LightFieldAndToolInputsFailCleanlyBeforeRendering) {
     test::TempDir dir;
     ASSERT_EQ(test::runCommand(cli + " phantom --size 32x32x24 -o " + dir.file("p.hvo") + " --quiet").exitCode, 0);
