@@ -1,6 +1,7 @@
 #include "app/cli/DemoArchive.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -9,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "core/base/Error.h"
@@ -62,6 +64,23 @@ void startOrthanc(const DemoArchive::Config& c) {
         ::execlp("Orthanc", "Orthanc", config.c_str(), static_cast<char*>(nullptr));
         ::_exit(127);
     }
+    std::ofstream(fs::path(c.folder) / "orthanc.pid") << pid << "\n";  // for demo --stop and --status
+}
+
+/// The pid of the demo archive's Orthanc when that process is alive (not a zombie) and is the
+/// Orthanc started with this archive's configuration; 0 otherwise.
+pid_t archivePid(const DemoArchive::Config& c) {
+    pid_t pid = 0;
+    std::ifstream(fs::path(c.folder) / "orthanc.pid") >> pid;
+    if (pid <= 0) return 0;
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string name, state;
+    pid_t ignored = 0;
+    if (!(stat >> ignored >> name >> state) || state == "Z") return 0;
+    std::ifstream cmd("/proc/" + std::to_string(pid) + "/cmdline");
+    const std::string line((std::istreambuf_iterator<char>(cmd)), std::istreambuf_iterator<char>());
+    const std::string config = (fs::path(c.folder) / "orthanc.json").string();
+    return line.find("Orthanc") != std::string::npos && line.find(config) != std::string::npos ? pid : 0;
 }
 
 void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dicom::PacsNode& node) {
@@ -136,6 +155,30 @@ std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath
     return "Orthanc (AE ORTHANC) on 127.0.0.1:" + std::to_string(c.dicomPort) + " with " + std::to_string(studies) +
            " demo studies, saved as default node 'demo'" +
            (hasWeb ? " and DICOMweb node 'demo-web' (" + web.baseUrl + ")" : std::string()) + " in " + settingsPath;
+}
+
+std::string DemoArchive::status(const Config& c) {
+    const pid_t pid = archivePid(c);
+    if (pid == 0) return "stopped";
+    return "running (Orthanc, pid " + std::to_string(pid) + ", DICOM on 127.0.0.1:" + std::to_string(c.dicomPort) +
+           ", HTTP on 127.0.0.1:" + std::to_string(c.httpPort) + ", folder " + c.folder + ")";
+}
+
+std::string DemoArchive::stop(const Config& c) {
+    const pid_t pid = archivePid(c);
+    if (pid == 0) {
+        fs::remove(fs::path(c.folder) / "orthanc.pid");
+        return "the demo archive is not running";
+    }
+    ::kill(pid, SIGTERM);  // Orthanc closes its database cleanly on SIGTERM
+    for (int i = 0; i < 100 && archivePid(c) != 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (archivePid(c) != 0) {
+        ::kill(pid, SIGKILL);
+        for (int i = 0; i < 20 && archivePid(c) != 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        if (archivePid(c) != 0) throw core::Error("the demo archive (Orthanc, pid " + std::to_string(pid) + ") did not stop");
+    }
+    fs::remove(fs::path(c.folder) / "orthanc.pid");
+    return "stopped the demo archive (Orthanc, pid " + std::to_string(pid) + ")";
 }
 
 std::string DemoArchive::dataFolder() {

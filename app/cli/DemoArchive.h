@@ -11,7 +11,8 @@ namespace hvx::app {
 /// the MRI template written as DICOM series with plausible patient and study attributes) and
 /// registered as the default PACS node, so query/retrieve can be tried at once; with Debian's
 /// orthanc-dicomweb plugin the same archive is also the DICOMweb node "demo-web". Orthanc keeps
-/// running after the command; a second run reuses it.
+/// running after the command (its pid in the folder's orthanc.pid); a second run reuses it;
+/// stop() ends it.
 class DemoArchive {
 public:
     struct Config {
@@ -25,6 +26,11 @@ public:
     /// the settings file. Returns a one-line description. Throws core::Error when Orthanc is
     /// missing or cannot start (the message names the log file).
     static std::string ensure(const Config& config, const std::string& settingsPath);
+    /// "running (Orthanc, pid N, DICOM on …)" when this archive's Orthanc runs, else "stopped".
+    static std::string status(const Config& config);
+    /// Stops this archive's Orthanc (SIGTERM, then SIGKILL after 10 s) and says so; an archive
+    /// that is not running, or a process Holovox did not start, is left alone.
+    static std::string stop(const Config& config);
     /// Holovox's data folder: $XDG_DATA_HOME/holovox, else ~/.local/share/holovox.
     static std::string dataFolder();
 };

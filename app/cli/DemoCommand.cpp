@@ -18,7 +18,18 @@ std::filesystem::path dataDir() { return DemoArchive::dataFolder(); }
 }  // namespace
 
 int demoCommand(int argc, char** argv) {
-    const CliArgs args(argc, argv, 2, {"input", "o", "output", "config"}, {"no-pacs"});
+    const CliArgs args(argc, argv, 2, {"input", "o", "output", "config"}, {"no-pacs", "stop", "status"});
+    if (args.flag("stop") || args.flag("status")) {
+        DemoArchive::Config archive;
+        archive.folder = (dataDir() / "demo-archive").string();
+        if (args.flag("stop")) {
+            std::printf("%s\n", DemoArchive::stop(archive).c_str());
+            return 0;
+        }
+        const std::string status = DemoArchive::status(archive);
+        std::printf("demo archive: %s\n", status.c_str());
+        return status == "stopped" ? 3 : 0;  // as LSB's "status": 3 when not running
+    }
     std::string input = "/usr/share/mricron/templates/ch2better.nii.gz";
     if (const char* env = std::getenv("HOLOVOX_DEMO_DATA"); env && *env) input = env;
     if (const auto i = args.value("input")) input = *i;

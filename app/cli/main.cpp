@@ -18,7 +18,7 @@ const char* const kUsage =
         "  info FILE.hvo [--verify]      levels, nodes, empty fraction, compression, size\n"
         "  phantom --size XxYxZ -o OUT.{nrrd,hvo} [--seed N] [--noise HU]\n"
         "  demo [--input FILE] [-o OUT.hvo] [--no-pacs]   build the demo octree (MRI template) and\n"
-        "        start the demo archive (local Orthanc with demo studies, default node 'demo')\n"
+        "        start the demo archive (local Orthanc with demo studies, default node 'demo')\n"        "  demo --status | --stop        whether the demo archive runs (exit 3 when not) | stop it\n"
         "  import PATH... [--db FILE] [--build]   scan folders/DICOMDIR/files into the study database\n"
         "  studies [--db FILE] [--patient TEXT] [--from YYYYMMDD] [--to YYYYMMDD] [--modality CT]\n"
         "  prune [--db FILE]             remove the rows of deleted files (unreachable folders are kept)\n"

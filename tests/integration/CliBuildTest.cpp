@@ -169,6 +169,18 @@ TEST(CliBuild, DemoBuildsTheMriTemplate) {
     EXPECT_TRUE(contains(r.output, "301 x 370 x 316 uint8, MR")) << r.output;
     EXPECT_TRUE(contains(r.output, "direction   i=(-1.000,0.000,0.000)")) << r.output;
     EXPECT_TRUE(std::filesystem::exists(dir.file("demo.hvo")));
+    // The demo archive it started is Holovox's to report and to stop.
+    auto status = test::runCommand(cli + " demo --status");
+    EXPECT_EQ(status.exitCode, 0) << status.output;
+    EXPECT_TRUE(contains(status.output, "demo archive: running (Orthanc, pid ")) << status.output;
+    const auto stop = test::runCommand(cli + " demo --stop");
+    EXPECT_EQ(stop.exitCode, 0) << stop.output;
+    EXPECT_TRUE(contains(stop.output, "stopped the demo archive")) << stop.output;
+    status = test::runCommand(cli + " demo --status");
+    EXPECT_EQ(status.exitCode, 3) << status.output;
+    EXPECT_EQ(status.output, "demo archive: stopped\n");
+    EXPECT_NE(test::runCommand("echoscu -to 2 127.0.0.1 4243 2>&1").exitCode, 0) << "the archive still answers";
+    EXPECT_TRUE(contains(test::runCommand(cli + " demo --stop").output, "not running"));
 }
 
 TEST(CliRender, CpuRendersPngAndExrOfTheDemoAndRefusesBadViews) {
