@@ -1,5 +1,7 @@
 #include "ui/MainWindow.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
@@ -156,6 +158,19 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
         for (auto* panel : toolPanels_) panel->setTools(tools_);
     });
     for (auto* s : slices_) {
+        // Dragging a crosshair's handle turns the other two planes about this one's normal (they
+        // stay perpendicular to each other); O puts all three back on the acquisition axes.
+        connect(s, &SliceView::rotateRequested, this, [this, s](const glm::dvec3& axis, double degrees) {
+            const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), glm::radians(degrees), axis);
+            for (auto* other : slices_)
+                if (other != s) other->setNormal(glm::dvec3(turn * glm::dvec4(other->normal(), 0.0)));
+        });
+        connect(s, &SliceView::orientationReset, this, [this] {
+            for (auto* other : slices_) other->resetTilt();
+        });
+        connect(s, &SliceView::resampled, this, [this] {
+            for (int k = 0; k < 3; ++k) slices_[k]->setCrossNormals(slices_[(k + 1) % 3]->normal(), slices_[(k + 2) % 3]->normal());
+        });
         connect(s, &SliceView::pointChanged, this, [this, s](const glm::dvec3& p) {
             for (auto* other : slices_)
                 if (other != s) other->setPoint(p);

@@ -111,7 +111,10 @@ void SliceView::keyPressEvent(QKeyEvent* e) {
         }
     }
     switch (e->key()) {
-    case Qt::Key_O: resetTilt(); return;
+    case Qt::Key_O:
+        resetTilt();
+        emit orientationReset();
+        return;
     case Qt::Key_Up: step(1); return;
     case Qt::Key_Down: step(-1); return;
     case Qt::Key_PageUp: step(10); return;
@@ -200,15 +203,24 @@ void SliceView::paintEvent(QPaintEvent*) {
     p.fillRect(rect(), Qt::black);
     if (image_.isNull()) return;
     p.drawImage(0, 0, image_);
-    // The cursor at the current point.
-    const auto pl = plane();
-    const QPointF c(width() / 2.0 + glm::dot(point_ - pl.centre, pl.right) / pl.pixelMm,
-                    height() / 2.0 + glm::dot(point_ - pl.centre, pl.down) / pl.pixelMm);
+    // The cursor at the current point: where the other two planes cut this one, each line with
+    // a rotation handle on either side (plain lines when the others are not known).
+    const QPointF c = cursorAt();
     p.setPen(QPen(QColor(80, 200, 255, 180), 1));
-    p.drawLine(QPointF(0, c.y()), QPointF(c.x() - 6, c.y()));
-    p.drawLine(QPointF(c.x() + 6, c.y()), QPointF(width(), c.y()));
-    p.drawLine(QPointF(c.x(), 0), QPointF(c.x(), c.y() - 6));
-    p.drawLine(QPointF(c.x(), c.y() + 6), QPointF(c.x(), height()));
+    std::vector<QPointF> directions;
+    for (const auto& n : cross_)
+        if (const auto d = crossDirection(n)) directions.push_back(*d);
+    if (directions.size() != 2) directions = {QPointF(1, 0), QPointF(0, 1)};
+    const double reach = std::hypot(width(), height());
+    for (const QPointF& d : directions) {
+        p.drawLine(c + 6 * d, c + reach * d);
+        p.drawLine(c - 6 * d, c - reach * d);
+    }
+    p.setRenderHint(QPainter::Antialiasing);
+    p.setBrush(QColor(80, 200, 255, 120));
+    for (const QPointF& h : rotationHandles()) p.drawEllipse(h, 4.0, 4.0);
+    p.setBrush(Qt::NoBrush);
+    p.setRenderHint(QPainter::Antialiasing, false);
     const QRect r = rect().adjusted(5, 3, -5, -3);
     static const char* names[] = {"Axial", "Coronal", "Sagittal"};
     p.setPen(QColor(200, 200, 200));
@@ -241,6 +253,15 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
     pressCentre_ = centre_;
     pressWidth_ = width_;
     measuring_ = Measuring::None;
+    if (e->button() == Qt::LeftButton && reader_ && e->modifiers() == Qt::NoModifier && !placingAngle_) {
+        for (const QPointF& h : rotationHandles())
+            if (std::hypot(h.x() - e->position().x(), h.y() - e->position().y()) <= 7.0) {
+                const QPointF v = e->position() - cursorAt();
+                measuring_ = Measuring::Rotate;
+                rotateAngle_ = std::atan2(v.y(), v.x());
+                return;
+            }
+    }
     if (placingAngle_ && e->button() == Qt::LeftButton && reader_) {
         const glm::dvec3 at = patientAt(e->position());
         if (anglePoints_.empty()) anglePoints_.push_back(at);
@@ -283,6 +304,21 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
 }
 
 void SliceView::mouseMoveEvent(QMouseEvent* e) {
+    if (measuring_ == Measuring::Rotate) {
+        const QPointF v = e->position() - cursorAt();
+        if (std::hypot(v.x(), v.y()) < 3.0) return;  // too near the centre to say which way
+        const double angle = std::atan2(v.y(), v.x());
+        double delta = angle - rotateAngle_;
+        while (delta > M_PI) delta -= 2 * M_PI;
+        while (delta < -M_PI) delta += 2 * M_PI;
+        rotateAngle_ = angle;
+        // A screen angle (y down) turns about the normal one way or the other, as right x down is
+        // the normal or its opposite.
+        const auto pl = plane();
+        const double sign = glm::dot(glm::cross(pl.right, pl.down), pl.normal()) < 0 ? -1.0 : 1.0;
+        emit rotateRequested(pl.normal(), glm::degrees(delta) * sign);
+        return;
+    }
     if (placingAngle_) {
         if (!anglePoints_.empty()) anglePoints_.back() = patientAt(e->position());
         update();
@@ -404,6 +440,46 @@ QString SliceView::slicePosition() const {
 QString SliceView::levelReadout() const {
     if (!reader_) return {};
     return level_ == 0 ? tr("full resolution") : tr("level %1 of %2").arg(level_).arg(reader_->levelCount() - 1);
+}
+
+glm::dvec3 SliceView::normal() const { return plane().normal(); }
+
+void SliceView::setNormal(const glm::dvec3& normal) {
+    normal_ = glm::length(normal) > 0 ? glm::normalize(normal) : glm::dvec3(0.0);
+    resample();
+}
+
+void SliceView::setCrossNormals(const glm::dvec3& first, const glm::dvec3& second) {
+    if (cross_[0] == first && cross_[1] == second) return;
+    cross_[0] = first;
+    cross_[1] = second;
+    update();
+}
+
+QPointF SliceView::cursorAt() const { return widgetAt(point_); }
+
+std::optional<QPointF> SliceView::crossDirection(const glm::dvec3& other) const {
+    if (glm::length(other) == 0.0) return std::nullopt;
+    const auto pl = plane();
+    const glm::dvec3 d = glm::cross(pl.normal(), other);
+    if (glm::length(d) < 1e-9) return std::nullopt;
+    const QPointF s(glm::dot(d, pl.right), glm::dot(d, pl.down));
+    const double l = std::hypot(s.x(), s.y());
+    if (l < 1e-9) return std::nullopt;
+    return s / l;
+}
+
+std::vector<QPointF> SliceView::rotationHandles() const {
+    std::vector<QPointF> out;
+    if (!reader_) return out;
+    const QPointF c = cursorAt();
+    const double r = 0.35 * std::min(width(), height());
+    for (const auto& n : cross_)
+        if (const auto d = crossDirection(n)) {
+            out.push_back(c + r * *d);
+            out.push_back(c - r * *d);
+        }
+    return out;
 }
 
 std::string SliceView::viewName() const {

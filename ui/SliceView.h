@@ -31,7 +31,8 @@ namespace hvx::ui {
 /// Esc cancels the one in progress and hides the statistics, Del asks to remove the newest one
 /// on this slice (removeRequested). Up/Down and the
 /// wheel step a slice, Page keys ten; ] and [ make a thick slab, M changes its mode; Ctrl+arrows
-/// tilt the plane, O resets it.
+/// tilt the plane; the crosshair is where the other planes cut this one, and dragging one of its
+/// handles asks them to turn about this normal (rotateRequested); O resets (orientationReset).
 ///
 /// Threading: GUI thread only.
 class SliceView : public QWidget {
@@ -57,12 +58,23 @@ public:
     int level() const { return level_; }
     /// Patient position under a widget position.
     glm::dvec3 patientAt(const QPointF& pos) const;
+    /// Widget position of a patient point projected on the current plane.
+    QPointF widgetAt(const glm::dvec3& patient) const;
     /// Tilts the plane: `aboutHorizontal` degrees about its horizontal axis, `aboutVertical` about
     /// its vertical one (Ctrl+Up/Down, Ctrl+Left/Right by 5 degrees; O resets). The plane stays
     /// the standard one nearest its normal, seen as a reader expects, with letters for any tilt.
     void tilt(double aboutHorizontal, double aboutVertical);
     /// Back to the standard plane.
     void resetTilt();
+    /// The plane's unit normal.
+    glm::dvec3 normal() const;
+    /// Sets the plane's normal (the other views' crosshair rotation); zero: the standard plane.
+    void setNormal(const glm::dvec3& normal);
+    /// The normals of the other two views' planes: the crosshair draws where they cut this
+    /// plane, with a rotation handle on each side of each line. Zero: plain cursor lines.
+    void setCrossNormals(const glm::dvec3& first, const glm::dvec3& second);
+    /// Widget positions of the rotation handles (two per crosshair line; none without cross normals).
+    std::vector<QPointF> rotationHandles() const;
     /// Degrees between the plane's normal and the standard plane's.
     double tiltDegrees() const;
     /// The orientation letters at the left, right, top and bottom edges ("?" when unknown).
@@ -108,6 +120,11 @@ signals:
     void measured(const hvx::core::Measurement& m);
     /// Del on the view: the newest measurement drawn on this slice should go.
     void removeRequested(const std::string& label);
+    /// A rotation handle was dragged: the other two planes should turn about `axis` (this plane's
+    /// normal) by `degrees` (right-handed), so that their lines follow the mouse.
+    void rotateRequested(const glm::dvec3& axis, double degrees);
+    /// O: every plane back to the acquisition axes.
+    void orientationReset();
 
 protected:
     void paintEvent(QPaintEvent*) override;
@@ -121,8 +138,6 @@ protected:
 private:
     core::SlicePlane plane() const;
     void resample();
-    /// Widget position of a patient point on the current plane.
-    QPointF widgetAt(const glm::dvec3& patient) const;
     /// Whether a point made on some slice lies on the current one (within half a voxel).
     bool onThisSlice(const glm::dvec3& patient) const;
     void measureRoi();
@@ -158,7 +173,14 @@ private:
     glm::dvec3 normal_{0.0};  ///< the plane's normal; zero: the standard plane's
     double slabMm_ = 0;
     core::SlabMode slabMode_ = core::SlabMode::Mip;
-    enum class Measuring { None, Ruler, Roi } measuring_ = Measuring::None;
+    enum class Measuring { None, Ruler, Roi, Rotate } measuring_ = Measuring::None;
+    glm::dvec3 cross_[2]{glm::dvec3(0.0), glm::dvec3(0.0)};  // the other planes' normals
+    double rotateAngle_ = 0;  // screen angle of the handle being dragged, about the cursor (radians)
+    /// Where the cursor point is drawn.
+    QPointF cursorAt() const;
+    /// Screen direction of the line where the plane with normal `other` cuts this one (unit), or
+    /// none when the two planes are parallel.
+    std::optional<QPointF> crossDirection(const glm::dvec3& other) const;
     std::optional<std::pair<glm::dvec3, glm::dvec3>> ruler_;
     std::optional<core::MeasureRegion> roi_;
     std::optional<core::RegionStatistics> roiStats_;

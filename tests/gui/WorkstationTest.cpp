@@ -16,6 +16,7 @@
 #include <QPushButton>
 #include <QSettings>
 #include <QSlider>
+#include <QtMath>
 #include <QSpinBox>
 #include <QSignalSpy>
 #include <QSurfaceFormat>
@@ -685,6 +686,58 @@ private slots:
         QCOMPARE(bar->slider()->value(), stopped);
         window_->grab().save(kArtifacts + "/slices-with-scrollers.png");
         coronal->grab().save(kArtifacts + "/slice-coronal.png");
+    }
+
+    // Dragging a crosshair handle in the axial view turns the coronal and sagittal planes about
+    // the axial normal: they stay perpendicular to it and to each other, turned by the angle the
+    // mouse went round the cursor; the axial crosshair follows the mouse; their letters stay
+    // right; O puts all three back on the acquisition axes.
+    void crosshairHandleRotatesTheOtherPlanes() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* coronal = window_->slice(1);
+        auto* sagittal = window_->slice(2);
+        QVERIFY(QTest::qWaitForWindowExposed(axial));
+        const auto handles = axial->rotationHandles();
+        QCOMPARE(handles.size(), std::size_t(4));
+        // The handle to the right of the cursor, on the horizontal line (the coronal plane's).
+        const QPointF c = axial->widgetAt(axial->point());
+        const auto right = std::max_element(handles.begin(), handles.end(),
+                                            [](const QPointF& a, const QPointF& b) { return a.x() < b.x(); });
+        const QPoint press = right->toPoint();
+        const double r = std::hypot(right->x() - c.x(), right->y() - c.y());
+        QTest::mousePress(axial, Qt::LeftButton, Qt::NoModifier, press);
+        QPoint last = press;
+        for (int degrees = 10; degrees <= 30; degrees += 10) {  // counterclockwise on the screen
+            last = QPointF(c.x() + r * std::cos(qDegreesToRadians(double(degrees))),
+                           c.y() - r * std::sin(qDegreesToRadians(double(degrees)))).toPoint();
+            QMouseEvent move(QEvent::MouseMove, QPointF(last), axial->mapToGlobal(QPointF(last)), Qt::NoButton,
+                             Qt::LeftButton, Qt::NoModifier);
+            QApplication::sendEvent(axial, &move);
+        }
+        QTest::mouseRelease(axial, Qt::LeftButton, Qt::NoModifier, last);
+        const double turned = qRadiansToDegrees(std::atan2(-(last.y() - c.y()), last.x() - c.x()) -
+                                                std::atan2(-(press.y() - c.y()), press.x() - c.x()));
+        QVERIFY2(std::abs(turned - 30.0) < 2.0, qPrintable(QString::number(turned)));
+        const glm::dvec3 na = axial->normal(), nc = coronal->normal(), ns = sagittal->normal();
+        QVERIFY(std::abs(glm::dot(na, nc)) < 1e-9 && std::abs(glm::dot(na, ns)) < 1e-9 && std::abs(glm::dot(nc, ns)) < 1e-9);
+        QVERIFY2(std::abs(coronal->tiltDegrees() - std::abs(turned)) < 1e-6,
+                 qPrintable(QString("%1 for %2").arg(coronal->tiltDegrees()).arg(turned)));
+        QVERIFY(std::abs(sagittal->tiltDegrees() - std::abs(turned)) < 1e-6);
+        QCOMPARE(axial->tiltDegrees(), 0.0);
+        // The axial crosshair now runs through where the mouse let go.
+        const double mouse = std::atan2(last.y() - c.y(), last.x() - c.x());
+        bool follows = false;
+        for (const QPointF& h : axial->rotationHandles())
+            follows |= std::abs(std::remainder(std::atan2(h.y() - c.y(), h.x() - c.x()) - mouse, 2 * M_PI)) < 1e-6;
+        QVERIFY2(follows, "the crosshair did not follow the handle");
+        const QStringList letters = coronal->edgeLabels();
+        QVERIFY2(letters[0].startsWith("R") && letters[1].startsWith("L") && letters[2] == "S" && letters[3] == "I",
+                 qPrintable(letters.join(",")));
+        saveArtifact("slices-crosshair-rotated.png");
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_O);
+        for (auto* v : {axial, coronal, sagittal}) QCOMPARE(v->tiltDegrees(), 0.0);
     }
 
     // Up/Down and Page keys step one and ten slices (the voxel spacing along the normal); ] makes
