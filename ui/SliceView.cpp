@@ -1,6 +1,8 @@
 #include "ui/SliceView.h"
 
 #include "ui/EdgeLabels.h"
+#include "ui/MeasurementOverlay.h"
+#include "ui/SliceCrosshair.h"
 
 #include <QMouseEvent>
 #include <QKeyEvent>
@@ -203,24 +205,8 @@ void SliceView::paintEvent(QPaintEvent*) {
     p.fillRect(rect(), Qt::black);
     if (image_.isNull()) return;
     p.drawImage(0, 0, image_);
-    // The cursor at the current point: where the other two planes cut this one, each line with
-    // a rotation handle on either side (plain lines when the others are not known).
-    const QPointF c = cursorAt();
-    p.setPen(QPen(QColor(80, 200, 255, 180), 1));
-    std::vector<QPointF> directions;
-    for (const auto& n : cross_)
-        if (const auto d = crossDirection(n)) directions.push_back(*d);
-    if (directions.size() != 2) directions = {QPointF(1, 0), QPointF(0, 1)};
-    const double reach = std::hypot(width(), height());
-    for (const QPointF& d : directions) {
-        p.drawLine(c + 6 * d, c + reach * d);
-        p.drawLine(c - 6 * d, c - reach * d);
-    }
-    p.setRenderHint(QPainter::Antialiasing);
-    p.setBrush(QColor(80, 200, 255, 120));
-    for (const QPointF& h : rotationHandles()) p.drawEllipse(h, 4.0, 4.0);
-    p.setBrush(Qt::NoBrush);
-    p.setRenderHint(QPainter::Antialiasing, false);
+    // The cursor at the current point: where the other two planes cut this one, with handles.
+    crosshair().paint(p);
     const QRect r = rect().adjusted(5, 3, -5, -3);
     static const char* names[] = {"Axial", "Coronal", "Sagittal"};
     p.setPen(QColor(200, 200, 200));
@@ -254,13 +240,12 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
     pressWidth_ = width_;
     measuring_ = Measuring::None;
     if (e->button() == Qt::LeftButton && reader_ && e->modifiers() == Qt::NoModifier && !placingAngle_) {
-        for (const QPointF& h : rotationHandles())
-            if (std::hypot(h.x() - e->position().x(), h.y() - e->position().y()) <= 7.0) {
-                const QPointF v = e->position() - cursorAt();
-                measuring_ = Measuring::Rotate;
-                rotateAngle_ = std::atan2(v.y(), v.x());
-                return;
-            }
+        if (crosshair().handleAt(e->position())) {
+            const QPointF v = e->position() - widgetAt(point_);
+            measuring_ = Measuring::Rotate;
+            rotateAngle_ = std::atan2(v.y(), v.x());
+            return;
+        }
     }
     if (placingAngle_ && e->button() == Qt::LeftButton && reader_) {
         const glm::dvec3 at = patientAt(e->position());
@@ -305,7 +290,7 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
 
 void SliceView::mouseMoveEvent(QMouseEvent* e) {
     if (measuring_ == Measuring::Rotate) {
-        const QPointF v = e->position() - cursorAt();
+        const QPointF v = e->position() - widgetAt(point_);
         if (std::hypot(v.x(), v.y()) < 3.0) return;  // too near the centre to say which way
         const double angle = std::atan2(v.y(), v.x());
         double delta = angle - rotateAngle_;
@@ -456,31 +441,9 @@ void SliceView::setCrossNormals(const glm::dvec3& first, const glm::dvec3& secon
     update();
 }
 
-QPointF SliceView::cursorAt() const { return widgetAt(point_); }
+SliceCrosshair SliceView::crosshair() const { return {plane(), widgetAt(point_), size(), cross_[0], cross_[1]}; }
 
-std::optional<QPointF> SliceView::crossDirection(const glm::dvec3& other) const {
-    if (glm::length(other) == 0.0) return std::nullopt;
-    const auto pl = plane();
-    const glm::dvec3 d = glm::cross(pl.normal(), other);
-    if (glm::length(d) < 1e-9) return std::nullopt;
-    const QPointF s(glm::dot(d, pl.right), glm::dot(d, pl.down));
-    const double l = std::hypot(s.x(), s.y());
-    if (l < 1e-9) return std::nullopt;
-    return s / l;
-}
-
-std::vector<QPointF> SliceView::rotationHandles() const {
-    std::vector<QPointF> out;
-    if (!reader_) return out;
-    const QPointF c = cursorAt();
-    const double r = 0.35 * std::min(width(), height());
-    for (const auto& n : cross_)
-        if (const auto d = crossDirection(n)) {
-            out.push_back(c + r * *d);
-            out.push_back(c - r * *d);
-        }
-    return out;
-}
+std::vector<QPointF> SliceView::rotationHandles() const { return reader_ ? crosshair().handles() : std::vector<QPointF>{}; }
 
 std::string SliceView::viewName() const {
     static const char* names[3] = {"axial", "coronal", "sagittal"};
@@ -561,45 +524,12 @@ bool SliceView::onThisSlice(const glm::dvec3& patient) const {
 
 void SliceView::paintMeasurements(QPainter& p) {
     if (!reader_) return;
-    const bool assumed = reader_->geometry().spacingAssumed;
-    const QString unit = assumed ? tr(" (spacing assumed)") : QString();
-    const QColor colour(120, 255, 140);
-    // Text on a dark box, so that it reads over bright tissue and never hides under other text.
-    const auto boxed = [&](const QRectF& area, int flags, const QString& text) {
-        const QRectF used = p.boundingRect(area, flags, text);
-        p.fillRect(used.adjusted(-3, -2, 3, 2), QColor(0, 0, 0, 170));
-        p.setPen(colour);
-        p.drawText(area, flags, text);
-    };
-    p.setRenderHint(QPainter::Antialiasing);
-    paintList(p, colour);
-    // What is being drawn now (the list draws it once it is made).
-    if (ruler_ && measuring_ == Measuring::Ruler && onThisSlice(ruler_->first)) {
-        const QPointF a = widgetAt(ruler_->first), b = widgetAt(ruler_->second);
-        p.setPen(QPen(colour, 1.5));
-        p.drawLine(a, b);
-        p.drawEllipse(a, 2.5, 2.5);
-        p.drawEllipse(b, 2.5, 2.5);
-        const QPointF mid = (a + b) / 2.0;
-        boxed(QRectF(mid.x() - 80, mid.y() - 22, 160, 18), Qt::AlignHCenter | Qt::AlignBottom,
-              tr("%1 mm%2").arg(*rulerMm(), 0, 'f', 1).arg(unit));
-    }
-    if (anglePoints_.size() >= 2) {
-        const glm::dvec3 c = anglePoints_.size() >= 3 ? anglePoints_[2] : anglePoints_[1];
-        core::Measurement m;
-        m.kind = core::Measurement::Kind::Angle;
-        m.a = anglePoints_[0], m.b = anglePoints_[1], m.c = c;
-        paintAngle(p, m.a, m.b, m.c, anglePoints_.size() >= 3 ? tr("%1\u00b0").arg(m.angleDegrees(), 0, 'f', 1) : QString(),
-                   colour);
-    }
+    const auto pl = plane();
+    MeasurementOverlay overlay(p, size(), [this](const glm::dvec3& x) { return widgetAt(x); },
+                               [this](const glm::dvec3& x) { return onThisSlice(x); }, pl.normal(), pl.pixelMm);
+    // The statistics of the last circle at the top left, clear of the letters and the window.
     if (roi_ && onThisSlice(roi_->centre) && roi_->radius > 0) {
-        if (measuring_ == Measuring::Roi) {
-            const QPointF c = widgetAt(roi_->centre);
-            const double r = roi_->radius / plane().pixelMm;
-            p.setPen(QPen(colour, 1.5));
-            p.setBrush(Qt::NoBrush);
-            p.drawEllipse(c, r, r);
-        }
+        const QString unit = reader_->geometry().spacingAssumed ? tr(" (spacing assumed)") : QString();
         QString text;
         if (roiStats_) {
             const auto& s = *roiStats_;
@@ -611,90 +541,21 @@ void SliceView::paintMeasurements(QPainter& p) {
         } else if (!roiError_.isEmpty()) {
             text = roiError_;
         }
-        // The statistics at the top left, clear of the orientation letters and the window.
-        if (!text.isEmpty())
-            boxed(QRectF(6, 22, std::max(80, width() / 2), height() / 2), Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap,
-                  text);
+        if (!text.isEmpty()) overlay.box(QRectF(6, 22, std::max(80, width() / 2), height() / 2), text);
+        if (measuring_ == Measuring::Roi) overlay.circle(roi_->centre, roi_->radius, {});
     }
-}
-
-void SliceView::paintList(QPainter& p, const QColor& colour) {
-    labels_.clear();
-    const double pixelMm = plane().pixelMm;
-    const auto label = [&](const QPointF& at, const QString& text) { drawLabel(p, QPointF(at.x() + 6, at.y() - 20), text, colour); };
-    for (const auto& m : items_) {
-        const QString name = QString::fromStdString(m.label);
-        p.setPen(QPen(colour, 1.5));
-        p.setBrush(Qt::NoBrush);
-        if (m.kind == core::Measurement::Kind::Distance && onThisSlice(m.a)) {
-            const QPointF a = widgetAt(m.a), b = widgetAt(m.b);
-            p.drawLine(a, b);
-            p.drawEllipse(a, 2.5, 2.5);
-            p.drawEllipse(b, 2.5, 2.5);
-            label((a + b) / 2.0, tr("%1  %2 mm").arg(name).arg(m.lengthMm(), 0, 'f', 1));
-        } else if (m.kind == core::Measurement::Kind::Angle && onThisSlice(m.b)) {
-            paintAngle(p, m.a, m.b, m.c, tr("%1  %2\u00b0").arg(name).arg(m.angleDegrees(), 0, 'f', 1), colour);
-        } else if (m.kind == core::Measurement::Kind::Region && m.region && m.region->kind == core::MeasureRegion::Kind::Disc &&
-                   onThisSlice(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, plane().normal())) - 1.0) < 1e-6) {
-            const QPointF c = widgetAt(m.region->centre);
-            const double r = m.region->radius / pixelMm;
-            p.drawEllipse(c, r, r);
-            QString text = name;
-            if (m.stats) {
-                const QString u = m.stats->units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(m.stats->units);
-                text += tr("  mean %1%2").arg(m.stats->mean, 0, 'f', 1).arg(u);
-            }
-            label(c + QPointF(r * 0.7071, -r * 0.7071), text);
-        }
+    overlay.list(items_);
+    // What is being drawn now (the list draws it once it is made).
+    if (ruler_ && measuring_ == Measuring::Ruler && onThisSlice(ruler_->first)) {
+        const QString unit = reader_->geometry().spacingAssumed ? tr(" (spacing assumed)") : QString();
+        overlay.distance(ruler_->first, ruler_->second, tr("%1 mm%2").arg(*rulerMm(), 0, 'f', 1).arg(unit));
     }
-}
-
-void SliceView::paintAngle(QPainter& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
-                           const QString& text, const QColor& colour) {
-    const QPointF pa = widgetAt(a), pb = widgetAt(b), pc = widgetAt(c);
-    p.setPen(QPen(colour, 1.5));
-    p.setBrush(Qt::NoBrush);
-    p.drawLine(pa, pb);
-    p.drawLine(pb, pc);
-    p.drawEllipse(pa, 2.5, 2.5);
-    p.drawEllipse(pb, 2.5, 2.5);
-    p.drawEllipse(pc, 2.5, 2.5);
-    // The arc between the arms, at the vertex (angles on screen: y grows downwards).
-    const QPointF u = pa - pb, v = pc - pb;
-    const double lu = std::hypot(u.x(), u.y()), lv = std::hypot(v.x(), v.y());
-    if (lu > 1 && lv > 1) {
-        const double r = std::min({20.0, lu / 2, lv / 2});
-        const double start = std::atan2(-u.y(), u.x()), end = std::atan2(-v.y(), v.x());
-        double span = end - start;
-        while (span > M_PI) span -= 2 * M_PI;
-        while (span < -M_PI) span += 2 * M_PI;
-        p.drawArc(QRectF(pb.x() - r, pb.y() - r, 2 * r, 2 * r), int(std::lround(glm::degrees(start) * 16)),
-                  int(std::lround(glm::degrees(span) * 16)));
+    if (anglePoints_.size() >= 2) {
+        core::Measurement m;
+        m.kind = core::Measurement::Kind::Angle;
+        m.a = anglePoints_[0], m.b = anglePoints_[1], m.c = anglePoints_.size() >= 3 ? anglePoints_[2] : anglePoints_[1];
+        overlay.angle(m.a, m.b, m.c, anglePoints_.size() >= 3 ? tr("%1\u00b0").arg(m.angleDegrees(), 0, 'f', 1) : QString());
     }
-    if (!text.isEmpty()) drawLabel(p, QPointF(pb.x() + 8, pb.y() + 4), text, colour);
-}
-
-void SliceView::drawLabel(QPainter& p, QPointF topLeft, const QString& text, const QColor& colour) {
-    // On a dark box, moved inside the view when it would run over an edge, and below the
-    // labels already drawn that it would cover.
-    QRectF used = p.boundingRect(QRectF(topLeft, QSizeF(400, 18)), Qt::AlignLeft | Qt::AlignTop, text);
-    const auto inside = [&] {
-        const double dx = std::min(0.0, width() - 4.0 - used.right()) + std::max(0.0, 4.0 - used.left());
-        const double dy = std::min(0.0, height() - 4.0 - used.bottom()) + std::max(0.0, 4.0 - used.top());
-        used.translate(dx, dy);
-    };
-    inside();
-    for (int tries = 0; tries < 8; ++tries) {
-        const auto hit = std::find_if(labels_.begin(), labels_.end(),
-                                      [&](const QRectF& r) { return r.intersects(used.adjusted(-3, -2, 3, 2)); });
-        if (hit == labels_.end()) break;
-        used.moveTop(hit->bottom() + 3);
-        inside();
-    }
-    labels_.push_back(used.adjusted(-3, -2, 3, 2));
-    p.fillRect(used.adjusted(-3, -2, 3, 2), QColor(0, 0, 0, 170));
-    p.setPen(colour);
-    p.drawText(used, Qt::AlignLeft | Qt::AlignTop, text);
 }
 
 }  // namespace hvx::ui

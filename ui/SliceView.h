@@ -19,6 +19,8 @@ class QPainter;
 
 namespace hvx::ui {
 
+class SliceCrosshair;
+
 /// One 2D slice view (axial, coronal or sagittal) through the current point, read from the
 /// octree at the level matching its pixels, with window/level (right drag), a cursor linked to
 /// the other views (click or drag sets the point; the wheel steps through slices) and
@@ -146,12 +148,6 @@ private:
     /// Moves the slice `slices` steps along the normal.
     void step(int slices);
     void paintMeasurements(QPainter& p);
-    /// The list's measurements that lie on this slice, with their labels.
-    void paintList(QPainter& p, const QColor& colour);
-    void paintAngle(QPainter& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const QString& label,
-                    const QColor& colour);
-    /// A measurement's label at `topLeft`, on a dark box, kept inside the view.
-    void drawLabel(QPainter& p, QPointF topLeft, const QString& text, const QColor& colour);
     /// The view's name for the measurement list: "axial", "coronal (tilted)", ...
     std::string viewName() const;
 
@@ -176,11 +172,8 @@ private:
     enum class Measuring { None, Ruler, Roi, Rotate } measuring_ = Measuring::None;
     glm::dvec3 cross_[2]{glm::dvec3(0.0), glm::dvec3(0.0)};  // the other planes' normals
     double rotateAngle_ = 0;  // screen angle of the handle being dragged, about the cursor (radians)
-    /// Where the cursor point is drawn.
-    QPointF cursorAt() const;
-    /// Screen direction of the line where the plane with normal `other` cuts this one (unit), or
-    /// none when the two planes are parallel.
-    std::optional<QPointF> crossDirection(const glm::dvec3& other) const;
+    /// The crosshair as it is drawn now.
+    SliceCrosshair crosshair() const;
     std::optional<std::pair<glm::dvec3, glm::dvec3>> ruler_;
     std::optional<core::MeasureRegion> roi_;
     std::optional<core::RegionStatistics> roiStats_;
@@ -188,7 +181,6 @@ private:
     std::vector<core::Measurement> items_;  // the list's, to draw
     std::vector<glm::dvec3> anglePoints_;   // the angle being placed: clicked points, then the mouse's
     bool placingAngle_ = false;
-    std::vector<QRectF> labels_;  // drawn so far in this paint, so that labels do not cover each other
 };
 
 }  // namespace hvx::ui

@@ -1,0 +1,113 @@
+#include "ui/MeasurementOverlay.h"
+
+#include <QObject>
+#include <QPainter>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+
+namespace hvx::ui {
+
+const QColor MeasurementOverlay::kColour(120, 255, 140);
+
+MeasurementOverlay::MeasurementOverlay(QPainter& painter, QSize size, std::function<QPointF(const glm::dvec3&)> toWidget,
+                                       std::function<bool(const glm::dvec3&)> onSlice, const glm::dvec3& normal,
+                                       double pixelMm)
+    : p_(painter), size_(size), toWidget_(std::move(toWidget)), onSlice_(std::move(onSlice)), normal_(normal),
+      pixelMm_(pixelMm) {
+    p_.setRenderHint(QPainter::Antialiasing);
+}
+
+void MeasurementOverlay::list(const std::vector<core::Measurement>& items) {
+    for (const auto& m : items) {
+        const QString name = QString::fromStdString(m.label);
+        if (m.kind == core::Measurement::Kind::Distance && onSlice_(m.a)) {
+            distance(m.a, m.b, QObject::tr("%1  %2 mm").arg(name).arg(m.lengthMm(), 0, 'f', 1));
+        } else if (m.kind == core::Measurement::Kind::Angle && onSlice_(m.b)) {
+            angle(m.a, m.b, m.c, QObject::tr("%1  %2\u00b0").arg(name).arg(m.angleDegrees(), 0, 'f', 1));
+        } else if (m.kind == core::Measurement::Kind::Region && m.region && m.region->kind == core::MeasureRegion::Kind::Disc &&
+                   onSlice_(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, normal_)) - 1.0) < 1e-6) {
+            QString text = name;
+            if (m.stats) {
+                const QString u = m.stats->units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(m.stats->units);
+                text += QObject::tr("  mean %1%2").arg(m.stats->mean, 0, 'f', 1).arg(u);
+            }
+            circle(m.region->centre, m.region->radius, text);
+        }
+    }
+}
+
+void MeasurementOverlay::distance(const glm::dvec3& a3, const glm::dvec3& b3, const QString& text) {
+    const QPointF a = toWidget_(a3), b = toWidget_(b3);
+    p_.setPen(QPen(kColour, 1.5));
+    p_.setBrush(Qt::NoBrush);
+    p_.drawLine(a, b);
+    p_.drawEllipse(a, 2.5, 2.5);
+    p_.drawEllipse(b, 2.5, 2.5);
+    const QPointF mid = (a + b) / 2.0;
+    if (!text.isEmpty()) label(QPointF(mid.x() + 6, mid.y() - 20), text);
+}
+
+void MeasurementOverlay::angle(const glm::dvec3& a3, const glm::dvec3& b3, const glm::dvec3& c3, const QString& text) {
+    const QPointF a = toWidget_(a3), b = toWidget_(b3), c = toWidget_(c3);
+    p_.setPen(QPen(kColour, 1.5));
+    p_.setBrush(Qt::NoBrush);
+    p_.drawLine(a, b);
+    p_.drawLine(b, c);
+    for (const QPointF& q : {a, b, c}) p_.drawEllipse(q, 2.5, 2.5);
+    // The arc between the arms, at the vertex (screen angles: y grows downwards).
+    const QPointF u = a - b, v = c - b;
+    const double lu = std::hypot(u.x(), u.y()), lv = std::hypot(v.x(), v.y());
+    if (lu > 1 && lv > 1) {
+        const double r = std::min({20.0, lu / 2, lv / 2});
+        const double start = std::atan2(-u.y(), u.x());
+        const double span = std::remainder(std::atan2(-v.y(), v.x()) - start, 2 * M_PI);
+        p_.drawArc(QRectF(b.x() - r, b.y() - r, 2 * r, 2 * r), int(std::lround(glm::degrees(start) * 16)),
+                   int(std::lround(glm::degrees(span) * 16)));
+    }
+    if (!text.isEmpty()) label(QPointF(b.x() + 8, b.y() + 4), text);
+}
+
+void MeasurementOverlay::circle(const glm::dvec3& centre, double radiusMm, const QString& text) {
+    const QPointF c = toWidget_(centre);
+    const double r = radiusMm / pixelMm_;
+    p_.setPen(QPen(kColour, 1.5));
+    p_.setBrush(Qt::NoBrush);
+    p_.drawEllipse(c, r, r);
+    if (!text.isEmpty()) label(c + QPointF(r * 0.7071 + 6, -r * 0.7071 - 20), text);
+}
+
+void MeasurementOverlay::label(QPointF topLeft, const QString& text) {
+    QRectF used = p_.boundingRect(QRectF(topLeft, QSizeF(400, 18)), Qt::AlignLeft | Qt::AlignTop, text);
+    const auto inside = [&] {
+        const double dx = std::min(0.0, size_.width() - 4.0 - used.right()) + std::max(0.0, 4.0 - used.left());
+        const double dy = std::min(0.0, size_.height() - 4.0 - used.bottom()) + std::max(0.0, 4.0 - used.top());
+        used.translate(dx, dy);
+    };
+    inside();
+    for (int tries = 0; tries < 8; ++tries) {
+        const auto hit = std::find_if(labels_.begin(), labels_.end(),
+                                      [&](const QRectF& r) { return r.intersects(used.adjusted(-3, -2, 3, 2)); });
+        if (hit == labels_.end()) break;
+        used.moveTop(hit->bottom() + 3);
+        inside();
+    }
+    labels_.push_back(used.adjusted(-3, -2, 3, 2));
+    p_.fillRect(labels_.back(), QColor(0, 0, 0, 170));
+    p_.setPen(kColour);
+    p_.drawText(used, Qt::AlignLeft | Qt::AlignTop, text);
+}
+
+void MeasurementOverlay::box(const QRectF& area, const QString& text) {
+    const int flags = Qt::AlignLeft | Qt::AlignTop | Qt::TextWordWrap;
+    const QRectF used = p_.boundingRect(area, flags, text);
+    labels_.push_back(used.adjusted(-3, -2, 3, 2));
+    p_.fillRect(labels_.back(), QColor(0, 0, 0, 170));
+    p_.setPen(kColour);
+    p_.drawText(area, flags, text);
+}
+
+}  // namespace hvx::ui

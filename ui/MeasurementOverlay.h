@@ -1,0 +1,51 @@
+#pragma once
+#include <QColor>
+#include <QPointF>
+#include <QRectF>
+#include <QSize>
+#include <QString>
+
+#include <functional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "core/reference/MeasurementList.h"
+
+class QPainter;
+
+namespace hvx::ui {
+
+/// Draws measurements over a slice: distances, angles (with the arc at the vertex) and circles,
+/// each with its label on a dark box, labels kept inside the view and clear of the ones drawn
+/// before. The slice view says where a patient point falls on the screen and whether it lies on
+/// the slice.
+class MeasurementOverlay {
+public:
+    /// `toWidget` projects a patient point (LPS mm) on the view; `onSlice` says whether it lies
+    /// on the slice shown; `normal` is the plane's, `pixelMm` its pixel size.
+    MeasurementOverlay(QPainter& painter, QSize size, std::function<QPointF(const glm::dvec3&)> toWidget,
+                       std::function<bool(const glm::dvec3&)> onSlice, const glm::dvec3& normal, double pixelMm);
+    /// Every measurement of the list that lies on this slice, with its label (M1 70.0 mm …).
+    void list(const std::vector<core::Measurement>& items);
+    void distance(const glm::dvec3& a, const glm::dvec3& b, const QString& label);
+    /// An angle at vertex `b` between the arms to `a` and `c`.
+    void angle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const QString& label);
+    void circle(const glm::dvec3& centre, double radiusMm, const QString& label);
+    /// A label whose box starts at `topLeft`, moved inside the view and below labels it would cover.
+    void label(QPointF topLeft, const QString& text);
+    /// Text on a dark box in `area` (wrapped), for the statistics of the circle being drawn.
+    void box(const QRectF& area, const QString& text);
+    static const QColor kColour;
+
+private:
+    QPainter& p_;
+    QSize size_;
+    std::function<QPointF(const glm::dvec3&)> toWidget_;
+    std::function<bool(const glm::dvec3&)> onSlice_;
+    glm::dvec3 normal_;
+    double pixelMm_;
+    std::vector<QRectF> labels_;  // drawn so far, so that labels do not cover each other
+};
+
+}  // namespace hvx::ui
