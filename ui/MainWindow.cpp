@@ -153,6 +153,10 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     });
     for (auto* panel : toolPanels_) connect(panel, &ToolsPanel::changed, this, &MainWindow::applyTools);
     connect(view_, &VolumeView::surfacePicked, this, &MainWindow::placeTool);
+    connect(view_, &VolumeView::frameRendered, this, [this] {  // slices along the 3D view follow its camera
+        for (auto* s : slices_)
+            if (s->followsView()) s->setNormal(view_->camera().back());
+    });
     connect(view_, &VolumeView::toolsEdited, this, [this](const core::ToolSet& t) {
         tools_ = t;
         for (auto* panel : toolPanels_) panel->setTools(tools_);
@@ -165,8 +169,14 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
             for (auto* other : slices_)
                 if (other != s) other->setNormal(glm::dvec3(turn * glm::dvec4(other->normal(), 0.0)));
         });
+        connect(s, &SliceView::followViewToggled, this, [this, s](bool on) {
+            if (on) s->setNormal(view_->camera().back());  // seen from where the 3D view sees
+        });
         connect(s, &SliceView::orientationReset, this, [this] {
-            for (auto* other : slices_) other->resetTilt();
+            for (auto* other : slices_) {
+                other->setFollowsView(false);
+                other->resetTilt();
+            }
         });
         connect(s, &SliceView::resampled, this, [this] {
             for (int k = 0; k < 3; ++k) slices_[k]->setCrossNormals(slices_[(k + 1) % 3]->normal(), slices_[(k + 2) % 3]->normal());

@@ -26,6 +26,7 @@ SliceView::SliceView(core::SlicePlane::Orientation orientation, QWidget* parent)
                   "Right drag: window/level\n] / [: thicker / thinner slab \u2022 M: MIP, MinIP, mean\n"
                   "Shift-drag: distance \u2022 Ctrl-drag: circle statistics \u2022 A, then three clicks: angle\n"
                   "Esc: cancel \u2022 Del: remove the newest measurement on this slice\n"
+                  "Drag a crosshair handle: turn the other planes \u2022 V: slice along the 3D view \u2022 O: reset\n"
                   "1-9: window presets (the DICOM's, then for CT: brain, subdural, stroke, bone, lung, "
                   "mediastinum, abdomen, liver)"));
 }
@@ -33,6 +34,7 @@ SliceView::SliceView(core::SlicePlane::Orientation orientation, QWidget* parent)
 void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
     reader_ = std::move(reader);
     normal_ = glm::dvec3(0.0);  // a tilt belongs to the anatomy it followed: the standard plane again
+    followsView_ = false;
     ruler_.reset();  // measurements belong to the volume they were made on
     roi_.reset();
     items_.clear();
@@ -114,9 +116,11 @@ void SliceView::keyPressEvent(QKeyEvent* e) {
     }
     switch (e->key()) {
     case Qt::Key_O:
+        setFollowsView(false);
         resetTilt();
         emit orientationReset();
         return;
+    case Qt::Key_V: setFollowsView(!followsView_); return;
     case Qt::Key_Up: step(1); return;
     case Qt::Key_Down: step(-1); return;
     case Qt::Key_PageUp: step(10); return;
@@ -215,7 +219,8 @@ void SliceView::paintEvent(QPaintEvent*) {
     p.setFont(info);
     static const char* modes[] = {"MIP", "MinIP", "mean"};
     QString slab = slabMm_ > 0 ? tr("\nslab %1 mm %2").arg(slabMm_, 0, 'g', 4).arg(modes[int(slabMode_)]) : QString();
-    if (const double t = tiltDegrees(); t > 0.05) slab += tr("\ntilted %1\u00b0").arg(t, 0, 'f', 1);
+    if (followsView_) slab += tr("\nalong the 3D view");
+    else if (const double t = tiltDegrees(); t > 0.05) slab += tr("\ntilted %1\u00b0").arg(t, 0, 'f', 1);
     const QString text = QStringLiteral("%1\n%2 \u2022 %3%4\nW %5\nL %6%7")
                              .arg(QString::fromLatin1(names[int(orientation_)]), slicePosition(), levelReadout(), slab)
                              .arg(width_, 0, 'f', 0)
@@ -430,8 +435,17 @@ QString SliceView::levelReadout() const {
 glm::dvec3 SliceView::normal() const { return plane().normal(); }
 
 void SliceView::setNormal(const glm::dvec3& normal) {
-    normal_ = glm::length(normal) > 0 ? glm::normalize(normal) : glm::dvec3(0.0);
+    const glm::dvec3 n = glm::length(normal) > 0 ? glm::normalize(normal) : glm::dvec3(0.0);
+    if (glm::length(n - normal_) < 1e-12) return;  // the camera did not turn: nothing to sample again
+    normal_ = n;
     resample();
+}
+
+void SliceView::setFollowsView(bool on) {
+    if (on == followsView_) return;
+    followsView_ = on;
+    emit followViewToggled(on);
+    update();
 }
 
 void SliceView::setCrossNormals(const glm::dvec3& first, const glm::dvec3& second) {

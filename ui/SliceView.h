@@ -72,6 +72,10 @@ public:
     glm::dvec3 normal() const;
     /// Sets the plane's normal (the other views' crosshair rotation); zero: the standard plane.
     void setNormal(const glm::dvec3& normal);
+    /// Whether the plane follows the 3D view's viewing direction (V toggles; O stops it): the
+    /// owner sets the normal from the camera (setNormal) while it is on.
+    bool followsView() const { return followsView_; }
+    void setFollowsView(bool on);
     /// The normals of the other two views' planes: the crosshair draws where they cut this
     /// plane, with a rotation handle on each side of each line. Zero: plain cursor lines.
     void setCrossNormals(const glm::dvec3& first, const glm::dvec3& second);
@@ -127,6 +131,8 @@ signals:
     void rotateRequested(const glm::dvec3& axis, double degrees);
     /// O: every plane back to the acquisition axes.
     void orientationReset();
+    /// V: the plane now follows the 3D view's direction (or no longer does).
+    void followViewToggled(bool on);
 
 protected:
     void paintEvent(QPaintEvent*) override;
@@ -181,6 +187,7 @@ private:
     std::vector<core::Measurement> items_;  // the list's, to draw
     std::vector<glm::dvec3> anglePoints_;   // the angle being placed: clicked points, then the mouse's
     bool placingAngle_ = false;
+    bool followsView_ = false;
 };
 
 }  // namespace hvx::ui

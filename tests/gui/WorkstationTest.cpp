@@ -15,6 +15,7 @@
 #include <QGroupBox>
 #include <QPushButton>
 #include <QSettings>
+#include <QSet>
 #include <QSlider>
 #include <QtMath>
 #include <QSpinBox>
@@ -738,6 +739,32 @@ private slots:
         axial->setFocus();
         QTest::keyClick(axial, Qt::Key_O);
         for (auto* v : {axial, coronal, sagittal}) QCOMPARE(v->tiltDegrees(), 0.0);
+    }
+
+    // V makes a slice view follow the 3D view's direction (MedVis's re-slicing along the viewing
+    // direction): the plane turns with the camera, its letters with it; O ends it.
+    void sliceFollowsTheThreeDView() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_V);
+        QVERIFY(axial->followsView());
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Left);
+        QTRY_VERIFY_WITH_TIMEOUT(std::abs(std::abs(glm::dot(axial->normal(), glm::dvec3(1, 0, 0))) - 1.0) < 1e-9, 20000);
+        QStringList letters = axial->edgeLabels();
+        QVERIFY2((QSet<QString>{letters[0], letters[1]} == QSet<QString>{"A", "P"}) && letters[2] == "S" && letters[3] == "I",
+                 qPrintable(letters.join(",")));
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Anterior);
+        QTRY_VERIFY_WITH_TIMEOUT(std::abs(std::abs(glm::dot(axial->normal(), glm::dvec3(0, 1, 0))) - 1.0) < 1e-9, 20000);
+        letters = axial->edgeLabels();
+        QVERIFY2(letters[0] == "R" && letters[1] == "L" && letters[2] == "S" && letters[3] == "I", qPrintable(letters.join(",")));
+        saveArtifact("slice-along-3d-view.png");
+        QTest::keyClick(axial, Qt::Key_O);
+        QVERIFY(!axial->followsView());
+        QCOMPARE(axial->tiltDegrees(), 0.0);
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Left);
+        QTest::qWait(300);
+        QCOMPARE(axial->tiltDegrees(), 0.0);  // no longer follows
     }
 
     // Up/Down and Page keys step one and ten slices (the voxel spacing along the normal); ] makes
