@@ -129,6 +129,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     }
     connect(measurements_, &MeasurementsPanel::changed, this, [this] {
         for (auto* s : slices_) s->setMeasurements(measurements_->list().items());
+        view_->setMeasurements(measurements_->list().items());
         if (!measurementsKey_.isEmpty())  // kept per volume with the session
             QSettings().setValue("measurements/" + measurementsKey_,
                                  QString::fromStdString(measurements_->list().toJson(core::MeasurementSource{})));
@@ -153,6 +154,8 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     });
     for (auto* panel : toolPanels_) connect(panel, &ToolsPanel::changed, this, &MainWindow::applyTools);
     connect(view_, &VolumeView::surfacePicked, this, &MainWindow::placeTool);
+    connect(view_, &VolumeView::measured, this, [this](const core::Measurement& m) { measurements_->add(m); });
+    connect(view_, &VolumeView::hint, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     connect(view_, &VolumeView::frameRendered, this, [this] {  // slices along the 3D view follow its camera
         for (auto* s : slices_)
             if (s->followsView()) s->setNormal(view_->camera().back());
@@ -380,6 +383,7 @@ void MainWindow::restoreMeasurements(const QString& path) {
     }
     measurements_->setVolume(source, list);
     for (auto* s : slices_) s->setMeasurements(measurements_->list().items());  // after the views' setVolume
+    view_->setMeasurements(measurements_->list().items());
 }
 
 core::RenderSettings MainWindow::renderSettings() const {

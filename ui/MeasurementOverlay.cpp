@@ -24,9 +24,11 @@ MeasurementOverlay::MeasurementOverlay(QPainter& painter, QSize size, std::funct
 void MeasurementOverlay::list(const std::vector<core::Measurement>& items) {
     for (const auto& m : items) {
         const QString name = QString::fromStdString(m.label);
-        if (m.kind == core::Measurement::Kind::Distance && onSlice_(m.a)) {
+        // Only what lies in this slice: a distance or an angle with a point off it would be
+        // drawn shorter or at another angle than it is.
+        if (m.kind == core::Measurement::Kind::Distance && onSlice_(m.a) && onSlice_(m.b)) {
             distance(m.a, m.b, QObject::tr("%1  %2 mm").arg(name).arg(m.lengthMm(), 0, 'f', 1));
-        } else if (m.kind == core::Measurement::Kind::Angle && onSlice_(m.b)) {
+        } else if (m.kind == core::Measurement::Kind::Angle && onSlice_(m.a) && onSlice_(m.b) && onSlice_(m.c)) {
             angle(m.a, m.b, m.c, QObject::tr("%1  %2\u00b0").arg(name).arg(m.angleDegrees(), 0, 'f', 1));
         } else if (m.kind == core::Measurement::Kind::Region && m.region && m.region->kind == core::MeasureRegion::Kind::Disc &&
                    onSlice_(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, normal_)) - 1.0) < 1e-6) {

@@ -26,7 +26,8 @@ public:
     /// on the slice shown; `normal` is the plane's, `pixelMm` its pixel size.
     MeasurementOverlay(QPainter& painter, QSize size, std::function<QPointF(const glm::dvec3&)> toWidget,
                        std::function<bool(const glm::dvec3&)> onSlice, const glm::dvec3& normal, double pixelMm);
-    /// Every measurement of the list that lies on this slice, with its label (M1 70.0 mm …).
+    /// Every measurement of the list that lies in this slice (all its points), with its label
+    /// (M1 70.0 mm …).
     void list(const std::vector<core::Measurement>& items);
     void distance(const glm::dvec3& a, const glm::dvec3& b, const QString& label);
     /// An angle at vertex `b` between the arms to `a` and `c`.

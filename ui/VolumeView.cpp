@@ -29,6 +29,7 @@
 #include "render/GpuRayCaster.h"
 #include "render/LightFieldRenderer.h"
 #include "ui/EdgeLabels.h"
+#include "ui/MeasurementOverlay.h"
 #include "ui/ImageConversion.h"
 
 namespace hvx::ui {
@@ -50,7 +51,7 @@ VolumeView::VolumeView(QWidget* parent) : QOpenGLWidget(parent) {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(200, 200);
     setToolTip(tr("Left drag: rotate \u2022 Middle or Shift+drag: pan \u2022 Right drag or wheel: zoom\n"
-                  "A P L R S I: standard views \u2022 Home: reset\n"
+                  "A P L R S I: standard views \u2022 Home: reset \u2022 D, then two clicks: a distance on the surface\n"
                   "Ctrl+click: place the probes on the surface \u2022 Ctrl+drag: move them (with Shift: in depth) "
                   "\u2022 Ctrl+wheel: scale them \u2022 Alt+click: pick a band\n"
                   "Clip plane alone: Ctrl+drag pushes it along its normal, Ctrl+Shift+drag tilts it"));
@@ -298,6 +299,17 @@ void VolumeView::paintOverlays(QPainter& p) {
     };
     if (tools.focal.enabled) handle(tools.focal.centre, std::max({tools.focal.radii.x, tools.focal.radii.y, tools.focal.radii.z}), QColor(120, 220, 255));
     if (tools.context.enabled) handle(tools.context.centre, tools.context.radius, QColor(255, 170, 90));
+    // Distances measured in this view, and the end picked of the one being measured.
+    MeasurementOverlay overlay(
+        p, size(),
+        [this](const glm::dvec3& x) {
+            QPointF at;
+            double depth = 0;
+            return project(x, at, depth) ? at : QPointF(-1e6, -1e6);
+        },
+        [](const glm::dvec3&) { return true; }, -camera_.back(), 1.0);
+    overlay.list(measurements_);
+    for (const auto& x : picked_) overlay.distance(x, x, {});
 }
 
 void VolumeView::capture(const QString& path, int width, int height) {
@@ -366,6 +378,29 @@ void VolumeView::interacted() {
 
 void VolumeView::mousePressEvent(QMouseEvent* e) {
     lastPos_ = e->position().toPoint();
+    if (measuring_ && e->button() == Qt::LeftButton) {  // D: a distance's end on the surface
+        const auto at = surfaceAt(e->position());
+        if (!at) {
+            emit hint(tr("Distance: nothing under the cursor; click on the volume (Esc cancels)"));
+            return;
+        }
+        picked_.push_back(*at);
+        if (picked_.size() == 2) {
+            core::Measurement m;
+            m.kind = core::Measurement::Kind::Distance;
+            m.view = "3D";
+            m.a = picked_[0];
+            m.b = picked_[1];
+            measuring_ = false;
+            picked_.clear();
+            emit hint(tr("Distance: %1 mm").arg(m.lengthMm(), 0, 'f', 1));
+            emit measured(m);
+        } else {
+            emit hint(tr("Distance: click its other end"));
+        }
+        update();
+        return;
+    }
     const bool modified = e->modifiers() & (Qt::ControlModifier | Qt::AltModifier);
     if (e->button() == Qt::LeftButton && modified) {  // tools: pick on release, or drag the probes
         toolDrag_.press(lastPos_);
@@ -406,20 +441,37 @@ void VolumeView::mouseMoveEvent(QMouseEvent* e) {
 }
 
 void VolumeView::mouseReleaseEvent(QMouseEvent* e) {
-    if (toolDrag_.release() && scene_ && !lastDepth_.empty()) {
-        // A click: the first significant sample under the cursor.
-        const double sx = e->position().x() / std::max(1, width()) * lastView_.width;
-        const double sy = e->position().y() / std::max(1, height()) * lastView_.height;
-        const int px = std::clamp(int(sx), 0, lastView_.width - 1), py = std::clamp(int(sy), 0, lastView_.height - 1);
-        const float depth = lastDepth_[std::size_t(py) * std::size_t(lastView_.width) + std::size_t(px)];
-        if (std::isfinite(depth)) {
-            glm::dvec3 o, d;
-            lastView_.ray(px, py, o, d);
-            emit surfacePicked(o + d * double(depth), (e->modifiers() & Qt::AltModifier) != 0);
-        }
+    if (toolDrag_.release()) {
+        if (const auto at = surfaceAt(e->position())) emit surfacePicked(*at, (e->modifiers() & Qt::AltModifier) != 0);
     }
     dragging_ = false;
     update();  // the next frame is full quality
+}
+
+std::optional<glm::dvec3> VolumeView::surfaceAt(QPointF pos) const {
+    if (!scene_ || lastDepth_.empty()) return std::nullopt;
+    const double sx = pos.x() / std::max(1, width()) * lastView_.width;
+    const double sy = pos.y() / std::max(1, height()) * lastView_.height;
+    const int px = std::clamp(int(sx), 0, lastView_.width - 1), py = std::clamp(int(sy), 0, lastView_.height - 1);
+    const float depth = lastDepth_[std::size_t(py) * std::size_t(lastView_.width) + std::size_t(px)];
+    if (!std::isfinite(depth)) return std::nullopt;
+    glm::dvec3 o, d;
+    lastView_.ray(px, py, o, d);
+    return o + d * double(depth);
+}
+
+void VolumeView::startDistance() {
+    if (!scene_) return;
+    measuring_ = true;
+    picked_.clear();
+    emit hint(tr("Distance: click its first end on the volume (Esc cancels)"));
+}
+
+void VolumeView::setMeasurements(std::vector<core::Measurement> items) {
+    measurements_.clear();
+    for (auto& m : items)
+        if (m.view == "3D") measurements_.push_back(std::move(m));
+    update();
 }
 
 void VolumeView::wheelEvent(QWheelEvent* e) {
@@ -455,6 +507,12 @@ void VolumeView::keyPressEvent(QKeyEvent* e) {
     case Qt::Key_S: camera_.setStandard(S::Superior); break;
     case Qt::Key_I: camera_.setStandard(S::Inferior); break;
     case Qt::Key_Home: resetView(); break;
+    case Qt::Key_D: startDistance(); return;
+    case Qt::Key_Escape:
+        measuring_ = false;
+        picked_.clear();
+        update();
+        return;
     case Qt::Key_Left: camera_.rotate(-height() / 36.0, 0, height()); break;
     case Qt::Key_Right: camera_.rotate(height() / 36.0, 0, height()); break;
     case Qt::Key_Up: camera_.rotate(0, -height() / 36.0, height()); break;

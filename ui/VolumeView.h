@@ -5,8 +5,11 @@
 #include <QTimer>
 
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include "core/reference/CpuRayCaster.h"
+#include "core/reference/MeasurementList.h"
 #include "core/camera/DisplayModel.h"
 #include "core/camera/InteractiveQuality.h"
 #include "core/octree/OctreeReader.h"
@@ -74,6 +77,17 @@ public:
     QImage lastFrame() const { return frame_; }
     int frameCount() const { return frames_; }
     const Readouts& readouts() const { return readouts_; }
+    /// D: the next two left clicks on the volume pick a distance's ends on the rendered surface
+    /// (the depth the ray caster returned for that pixel); Esc cancels.
+    void startDistance();
+    bool measuringDistance() const { return measuring_; }
+    /// The first significant sample under a widget position in the last frame, if any.
+    std::optional<glm::dvec3> surfaceAt(QPointF pos) const;
+    /// The measurements to draw: those made in the 3D view, projected, with their labels.
+    void setMeasurements(std::vector<core::Measurement> items);
+    /// Widget position of a patient point in the current view, and its distance along the view
+    /// (mm); false when behind the eye.
+    bool project(const glm::dvec3& p, QPointF& out, double& depth) const;
     /// The labels drawn at the left, right, top and bottom edges (e.g. "R", "L", "S", "I").
     QStringList orientationLabels() const;
     /// What the last frame drew: "full resolution", "levels 1-3 of 5, as fine as the pixels
@@ -87,6 +101,10 @@ signals:
     /// The probes were moved or scaled in the view (Ctrl+drag, Ctrl+Shift+drag, Ctrl+wheel).
     void toolsEdited(const core::ToolSet& tools);
     void failed(const QString& message);
+    /// A distance picked in the view (D, then two clicks), for the measurement list.
+    void measured(const hvx::core::Measurement& m);
+    /// A word for the status bar ("click on the volume: nothing under the cursor").
+    void hint(const QString& message);
 
 protected:
     void initializeGL() override;
@@ -113,6 +131,9 @@ private:
     double accuracy_ = 1.0;
     QImage frame_;
     std::vector<float> lastDepth_;  // of the last frame, at its own (maybe reduced) size
+    bool measuring_ = false;              // D: picking a distance's ends
+    std::vector<glm::dvec3> picked_;      // its ends picked so far
+    std::vector<core::Measurement> measurements_;  // to draw (those made in the 3D view)
     core::View lastView_;
     QString error_;
     int frames_ = 0;
@@ -120,8 +141,6 @@ private:
     Readouts readouts_;
     bool dragging_ = false;
     ToolDragger toolDrag_;
-    /// Widget position of a patient point, and its distance along the view (mm); false behind the eye.
-    bool project(const glm::dvec3& p, QPointF& out, double& depth) const;
     /// The tools changed by a gesture in the view: kept, announced and redrawn.
     void editTools(const core::ToolSet& tools);
     Qt::MouseButton dragButton_ = Qt::NoButton;

@@ -17,6 +17,7 @@
 #include <QSettings>
 #include <QSet>
 #include <QSlider>
+#include <QStatusBar>
 #include <QtMath>
 #include <QSpinBox>
 #include <QSignalSpy>
@@ -765,6 +766,50 @@ private slots:
         window_->view()->setStandardView(core::OrbitCamera::Standard::Left);
         QTest::qWait(300);
         QCOMPARE(axial->tiltDegrees(), 0.0);  // no longer follows
+    }
+
+    // D, then two clicks on the 3D view, measures a distance between two points of the rendered
+    // surface (the ray caster's depth): each end projects back under its click and lies inside
+    // the volume; the list says "3D"; a click on nothing picks nothing and says so.
+    void threeDViewMeasuresADistanceOnTheSurface() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* v = window_->view();
+        v->setStandardView(core::OrbitCamera::Standard::Anterior);
+        settledFrame();
+        auto* panel = window_->measurements();
+        const std::size_t before = panel->list().items().size();
+        const QPoint a(v->width() / 2, v->height() / 2), b(v->width() / 2, v->height() / 2 - 60);
+        QVERIFY2(v->surfaceAt(a).has_value() && v->surfaceAt(b).has_value(), "the spine is not under the view's centre");
+        v->setFocus();
+        QTest::keyClick(v, Qt::Key_D);
+        QVERIFY(v->measuringDistance());
+        QTest::mouseClick(v, Qt::LeftButton, Qt::NoModifier, QPoint(3, 3));  // black corner: nothing there
+        QVERIFY(v->measuringDistance());
+        QVERIFY2(window_->statusBar()->currentMessage().contains("nothing under the cursor"),
+                 qPrintable(window_->statusBar()->currentMessage()));
+        QTest::mouseClick(v, Qt::LeftButton, Qt::NoModifier, a);
+        QTest::mouseClick(v, Qt::LeftButton, Qt::NoModifier, b);
+        QVERIFY(!v->measuringDistance());
+        QCOMPARE(panel->list().items().size(), before + 1);
+        const auto& m = panel->list().items().back();
+        QCOMPARE(m.view, std::string("3D"));
+        const auto reader = core::OctreeReader::open(dir_.file("w-ct.hvo"));
+        const glm::dmat4 toIndex = glm::inverse(reader->geometry().indexToPatient());
+        for (const auto& [end, click] : {std::pair{m.a, a}, std::pair{m.b, b}}) {
+            QPointF at;
+            double depth = 0;
+            QVERIFY(v->project(end, at, depth));
+            QVERIFY2(std::hypot(at.x() - click.x(), at.y() - click.y()) < 1.5,
+                     qPrintable(QString("(%1, %2) for a click at (%3, %4)").arg(at.x()).arg(at.y()).arg(click.x()).arg(click.y())));
+            const glm::dvec3 i(toIndex * glm::dvec4(end, 1.0));
+            for (int k = 0; k < 3; ++k)
+                QVERIFY(i[k] >= -0.5 && i[k] <= reader->geometry().dims[std::size_t(k)] - 0.5);
+        }
+        QVERIFY(m.lengthMm() > 0.0);
+        saveArtifact("volume-distance.png");
+        QTest::keyClick(v, Qt::Key_D);
+        QTest::keyClick(v, Qt::Key_Escape);
+        QVERIFY(!v->measuringDistance());
     }
 
     // Up/Down and Page keys step one and ten slices (the voxel spacing along the normal); ] makes
