@@ -2,6 +2,7 @@
 
 #include <QObject>
 #include <QPainter>
+#include <QPolygonF>
 
 #include <algorithm>
 #include <cmath>
@@ -21,6 +22,18 @@ MeasurementOverlay::MeasurementOverlay(QPainter& painter, QSize size, std::funct
     p_.setRenderHint(QPainter::Antialiasing);
 }
 
+namespace {
+/// "M2  mean 25.6 HU"
+QString regionLabel(const core::Measurement& m) {
+    QString text = QString::fromStdString(m.label);
+    if (m.stats) {
+        const QString u = m.stats->units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(m.stats->units);
+        text += QObject::tr("  mean %1%2").arg(m.stats->mean, 0, 'f', 1).arg(u);
+    }
+    return text;
+}
+}  // namespace
+
 void MeasurementOverlay::list(const std::vector<core::Measurement>& items) {
     for (const auto& m : items) {
         const QString name = QString::fromStdString(m.label);
@@ -32,12 +45,10 @@ void MeasurementOverlay::list(const std::vector<core::Measurement>& items) {
             angle(m.a, m.b, m.c, QObject::tr("%1  %2\u00b0").arg(name).arg(m.angleDegrees(), 0, 'f', 1));
         } else if (m.kind == core::Measurement::Kind::Region && m.region && m.region->kind == core::MeasureRegion::Kind::Disc &&
                    onSlice_(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, normal_)) - 1.0) < 1e-6) {
-            QString text = name;
-            if (m.stats) {
-                const QString u = m.stats->units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(m.stats->units);
-                text += QObject::tr("  mean %1%2").arg(m.stats->mean, 0, 'f', 1).arg(u);
-            }
-            circle(m.region->centre, m.region->radius, text);
+            circle(m.region->centre, m.region->radius, regionLabel(m));
+        } else if (m.kind == core::Measurement::Kind::Region && m.region && m.region->kind == core::MeasureRegion::Kind::Polygon &&
+                   onSlice_(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, normal_)) - 1.0) < 1e-6) {
+            outline(m.region->outline, true, regionLabel(m));
         }
     }
 }
@@ -80,6 +91,18 @@ void MeasurementOverlay::circle(const glm::dvec3& centre, double radiusMm, const
     p_.setBrush(Qt::NoBrush);
     p_.drawEllipse(c, r, r);
     if (!text.isEmpty()) label(c + QPointF(r * 0.7071 + 6, -r * 0.7071 - 20), text);
+}
+
+void MeasurementOverlay::outline(const std::vector<glm::dvec3>& corners, bool closed, const QString& text) {
+    QPolygonF poly;
+    for (const auto& c : corners) poly << toWidget_(c);
+    p_.setPen(QPen(kColour, 1.5));
+    p_.setBrush(Qt::NoBrush);
+    if (closed) p_.drawPolygon(poly);
+    else p_.drawPolyline(poly);
+    if (text.isEmpty() || poly.isEmpty()) return;
+    const QRectF box = poly.boundingRect();
+    label(QPointF(box.right() + 6, box.top() - 10), text);
 }
 
 void MeasurementOverlay::label(QPointF topLeft, const QString& text) {

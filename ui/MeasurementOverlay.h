@@ -33,6 +33,8 @@ public:
     /// An angle at vertex `b` between the arms to `a` and `c`.
     void angle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const QString& label);
     void circle(const glm::dvec3& centre, double radiusMm, const QString& label);
+    /// A polygon through `corners` (closed, or an open polyline while it is drawn).
+    void outline(const std::vector<glm::dvec3>& corners, bool closed, const QString& label);
     /// A label whose box starts at `topLeft`, moved inside the view and below labels it would cover.
     void label(QPointF topLeft, const QString& text);
     /// Text on a dark box in `area` (wrapped), for the statistics of the circle being drawn.

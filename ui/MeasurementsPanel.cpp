@@ -108,6 +108,7 @@ void MeasurementsPanel::refresh() {
         const QString kind = m.kind == core::Measurement::Kind::Distance ? tr("distance")
                              : m.kind == core::Measurement::Kind::Angle  ? tr("angle")
                              : m.region && m.region->kind == core::MeasureRegion::Kind::Disc ? tr("circle")
+                             : m.region && m.region->kind == core::MeasureRegion::Kind::Polygon ? tr("outline")
                                                                                              : tr("region");
         const QStringList cells{QString::fromStdString(m.label), kind, QString::fromStdString(m.view), value(m), where(m)};
         for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));

@@ -274,7 +274,13 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
     }
     if (e->button() == Qt::LeftButton && reader_ && (e->modifiers() & (Qt::ShiftModifier | Qt::ControlModifier))) {
         const glm::dvec3 at = patientAt(e->position());
-        if (e->modifiers() & Qt::ShiftModifier) {
+        if ((e->modifiers() & Qt::ShiftModifier) && (e->modifiers() & Qt::ControlModifier)) {  // freehand outline
+            measuring_ = Measuring::Polygon;
+            outline_ = {at};
+            roi_.reset();
+            roiStats_.reset();
+            roiError_.clear();
+        } else if (e->modifiers() & Qt::ShiftModifier) {
             measuring_ = Measuring::Ruler;
             ruler_ = std::make_pair(at, at);
         } else {
@@ -321,6 +327,12 @@ void SliceView::mouseMoveEvent(QMouseEvent* e) {
     }
     if (measuring_ == Measuring::Roi && roi_) {
         roi_->radius = glm::length(patientAt(e->position()) - roi_->centre);
+        update();
+        return;
+    }
+    if (measuring_ == Measuring::Polygon) {  // a corner every 3 px the mouse moves
+        if (std::hypot(e->position().x() - widgetAt(outline_.back()).x(), e->position().y() - widgetAt(outline_.back()).y()) >= 3.0)
+            outline_.push_back(patientAt(e->position()));
         update();
         return;
     }
@@ -479,10 +491,18 @@ void SliceView::setMeasurements(std::vector<core::Measurement> items) {
 
 void SliceView::mouseReleaseEvent(QMouseEvent* e) {
     const std::string view = viewName();
-    if (measuring_ == Measuring::Roi && roi_) {
-        roi_->radius = glm::length(patientAt(e->position()) - roi_->centre);
+    if (measuring_ == Measuring::Polygon) {  // the outline closes from its last corner to its first
+        outline_.push_back(patientAt(e->position()));
+        roi_ = core::MeasureRegion::polygon(outline_, plane().normal(), 1.0);
+        outline_.clear();
         measureRoi();
-        if (roiStats_) {  // a circle with its statistics goes to the measurement list
+    }
+    if ((measuring_ == Measuring::Roi || measuring_ == Measuring::Polygon) && roi_) {
+        if (measuring_ == Measuring::Roi) {
+            roi_->radius = glm::length(patientAt(e->position()) - roi_->centre);
+            measureRoi();
+        }
+        if (roiStats_) {  // a region with its statistics goes to the measurement list
             core::Measurement m;
             m.kind = core::Measurement::Kind::Region;
             m.view = view;
@@ -512,6 +532,15 @@ void SliceView::measureRoi() {
     double thickness = 0;
     for (int a = 0; a < 3; ++a) thickness += std::abs(glm::dot(n, g.direction[a])) * g.spacing[a];
     roi_->thickness = thickness;
+    // A plane along a voxel layer measures the layer it names ("slice 25/48"): between two
+    // layers it would take half of each, or both.
+    const int axis = nearestAxis();
+    if (std::abs(std::abs(glm::dot(n, g.direction[axis])) - 1.0) < 1e-9) {
+        const glm::dvec3 index(glm::inverse(g.indexToPatient()) * glm::dvec4(roi_->centre, 1.0));
+        const glm::dvec3 shift = (double(std::lround(index[axis])) - index[axis]) * g.spacing[axis] * g.direction[axis];
+        roi_->centre += shift;
+        for (auto& corner : roi_->outline) corner += shift;
+    }
     try {
         roiStats_ = core::RegionStatistics::compute(*reader_, *roi_);
     } catch (const std::exception& ex) {
@@ -531,9 +560,9 @@ QPointF SliceView::widgetAt(const glm::dvec3& patient) const {
 }
 
 bool SliceView::onThisSlice(const glm::dvec3& patient) const {
+    // Within half a slice along the normal (a region snapped to the slice shown is on it).
     const auto p = plane();
-    const auto& g = reader_->geometry();
-    return std::abs(glm::dot(patient - p.centre, p.normal())) <= 0.5 * std::min({g.spacing.x, g.spacing.y, g.spacing.z}) + 1e-6;
+    return std::abs(glm::dot(patient - p.centre, p.normal())) <= 0.5 * sliceStepMm() + 1e-6;
 }
 
 void SliceView::paintMeasurements(QPainter& p) {
@@ -542,7 +571,7 @@ void SliceView::paintMeasurements(QPainter& p) {
     MeasurementOverlay overlay(p, size(), [this](const glm::dvec3& x) { return widgetAt(x); },
                                [this](const glm::dvec3& x) { return onThisSlice(x); }, pl.normal(), pl.pixelMm);
     // The statistics of the last circle at the top left, clear of the letters and the window.
-    if (roi_ && onThisSlice(roi_->centre) && roi_->radius > 0) {
+    if (roi_ && onThisSlice(roi_->centre) && (roi_->radius > 0 || roi_->kind == core::MeasureRegion::Kind::Polygon)) {
         const QString unit = reader_->geometry().spacingAssumed ? tr(" (spacing assumed)") : QString();
         QString text;
         if (roiStats_) {
@@ -559,6 +588,7 @@ void SliceView::paintMeasurements(QPainter& p) {
         if (measuring_ == Measuring::Roi) overlay.circle(roi_->centre, roi_->radius, {});
     }
     overlay.list(items_);
+    if (outline_.size() >= 2) overlay.outline(outline_, false, {});  // the freehand outline being drawn
     // What is being drawn now (the list draws it once it is made).
     if (ruler_ && measuring_ == Measuring::Ruler && onThisSlice(ruler_->first)) {
         const QString unit = reader_->geometry().spacingAssumed ? tr(" (spacing assumed)") : QString();

@@ -28,7 +28,7 @@ class SliceCrosshair;
 /// the DICOM's, else CT's W 400 / L 40, else its value range until the histogram's 1st-99th
 /// percentile arrives); the number keys pick its presets. Shift-drag measures a distance (mm),
 /// Ctrl-drag a circle's statistics (a disc one slice thick, from the octree's level 0, in HU for
-/// CT); A then three clicks an angle (an arm's end, the vertex, the other arm's end). Every
+/// CT), Ctrl+Shift-drag a freehand outline's; A then three clicks an angle (an arm's end, the vertex, the other arm's end). Every
 /// measurement of the list (setMeasurements) is drawn with its label on the slice it lies on;
 /// Esc cancels the one in progress and hides the statistics, Del asks to remove the newest one
 /// on this slice (removeRequested). Up/Down and the
@@ -175,7 +175,8 @@ private:
     glm::dvec3 normal_{0.0};  ///< the plane's normal; zero: the standard plane's
     double slabMm_ = 0;
     core::SlabMode slabMode_ = core::SlabMode::Mip;
-    enum class Measuring { None, Ruler, Roi, Rotate } measuring_ = Measuring::None;
+    enum class Measuring { None, Ruler, Roi, Polygon, Rotate } measuring_ = Measuring::None;
+    std::vector<glm::dvec3> outline_;  // the freehand outline being drawn (Ctrl+Shift-drag)
     glm::dvec3 cross_[2]{glm::dvec3(0.0), glm::dvec3(0.0)};  // the other planes' normals
     double rotateAngle_ = 0;  // screen angle of the handle being dragged, about the cursor (radians)
     /// The crosshair as it is drawn now.

@@ -33,7 +33,10 @@ std::string number(double v) {
 }
 
 const char* kindName(MeasureRegion::Kind k) {
-    return k == MeasureRegion::Kind::Sphere ? "sphere" : k == MeasureRegion::Kind::Box ? "box" : "disc";
+    return k == MeasureRegion::Kind::Sphere    ? "sphere"
+           : k == MeasureRegion::Kind::Box     ? "box"
+           : k == MeasureRegion::Kind::Polygon ? "polygon"
+                                               : "disc";
 }
 
 json vec(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
@@ -137,6 +140,10 @@ std::string MeasurementList::toJson(const MeasurementSource& s) const {
             e["region"] = {{"shape", kindName(r.kind)}, {"centre", vec(r.centre)}, {"radiusMm", r.radius},
                            {"low", vec(r.low)}, {"high", vec(r.high)}, {"normal", vec(r.normal)},
                            {"thicknessMm", r.thickness}};
+            if (r.kind == MeasureRegion::Kind::Polygon) {
+                e["region"]["outline"] = json::array();
+                for (const auto& p : r.outline) e["region"]["outline"].push_back(vec(p));
+            }
         }
         if (m.stats) {
             const auto& t = *m.stats;
@@ -176,6 +183,7 @@ MeasurementList MeasurementList::fromJson(const std::string& text) {
                 g.kind = shape == "sphere" ? MeasureRegion::Kind::Sphere
                          : shape == "box"  ? MeasureRegion::Kind::Box
                          : shape == "disc" ? MeasureRegion::Kind::Disc
+                         : shape == "polygon" ? MeasureRegion::Kind::Polygon
                                            : throw Error("measurements: unknown region shape '" + shape + "'");
                 g.centre = vecOf(r.at("centre"), "a region's centre");
                 g.radius = r.at("radiusMm").get<double>();
@@ -183,6 +191,10 @@ MeasurementList MeasurementList::fromJson(const std::string& text) {
                 g.high = vecOf(r.at("high"), "a box corner");
                 g.normal = vecOf(r.at("normal"), "a disc's normal");
                 g.thickness = r.at("thicknessMm").get<double>();
+                if (g.kind == MeasureRegion::Kind::Polygon) {
+                    for (const auto& p : r.at("outline")) g.outline.push_back(vecOf(p, "a polygon's corner"));
+                    if (g.outline.size() < 3) throw Error("measurements: a polygon needs three corners or more");
+                }
                 m.region = g;
             }
             if (e.contains("statistics")) {

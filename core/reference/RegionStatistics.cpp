@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
@@ -41,6 +42,40 @@ MeasureRegion MeasureRegion::disc(const glm::dvec3& centre, const glm::dvec3& no
     return r;
 }
 
+MeasureRegion MeasureRegion::polygon(const std::vector<glm::dvec3>& outline, const glm::dvec3& normal, double thicknessMm) {
+    MeasureRegion r;
+    r.kind = Kind::Polygon;
+    r.outline = outline;
+    const double len = glm::length(normal);
+    r.normal = len > 0 ? normal / len : glm::dvec3(0.0);
+    r.thickness = thicknessMm;
+    for (const auto& p : outline) r.centre += p / double(std::max<std::size_t>(1, outline.size()));
+    return r;
+}
+
+namespace {
+/// Two unit axes spanning the plane perpendicular to `n`.
+std::pair<glm::dvec3, glm::dvec3> planeAxes(const glm::dvec3& n) {
+    const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+    const glm::dvec3 u = glm::normalize(glm::cross(n, helper));
+    return {u, glm::cross(n, u)};
+}
+
+/// Whether `p` lies inside the polygon (even-odd rule, in the plane's coordinates).
+bool insidePolygon(const MeasureRegion& r, const glm::dvec3& p) {
+    const auto [u, v] = planeAxes(r.normal);
+    const double px = glm::dot(p - r.centre, u), py = glm::dot(p - r.centre, v);
+    bool inside = false;
+    const std::size_t n = r.outline.size();
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+        const double xi = glm::dot(r.outline[i] - r.centre, u), yi = glm::dot(r.outline[i] - r.centre, v);
+        const double xj = glm::dot(r.outline[j] - r.centre, u), yj = glm::dot(r.outline[j] - r.centre, v);
+        if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi) inside = !inside;
+    }
+    return inside;
+}
+}  // namespace
+
 MeasureRegion MeasureRegion::parse(const std::string& text) {
     const auto colon = text.find(':');
     const std::string kind = text.substr(0, colon);
@@ -73,8 +108,13 @@ bool MeasureRegion::contains(const glm::dvec3& p) const {
         const glm::dvec3 d = p - centre;
         const double along = glm::dot(d, normal);
         const glm::dvec3 across = d - along * normal;
-        return std::abs(along) <= thickness / 2 && glm::dot(across, across) <= radius * radius;
+        // Half-open along the normal: a slab one spacing thick takes one layer of voxels even
+        // when it lies midway between two.
+        return along >= -thickness / 2 && along < thickness / 2 && glm::dot(across, across) <= radius * radius;
     }
+    if (kind == Kind::Polygon)
+        return outline.size() >= 3 && glm::dot(p - centre, normal) >= -thickness / 2 &&
+               glm::dot(p - centre, normal) < thickness / 2 && insidePolygon(*this, p);
     return p.x >= low.x && p.x <= high.x && p.y >= low.y && p.y <= high.y && p.z >= low.z && p.z <= high.z;
 }
 
@@ -86,6 +126,9 @@ std::string MeasureRegion::describe() const {
     else if (kind == Kind::Disc)
         std::snprintf(buf, sizeof buf, "disc of radius %.4g mm, %.4g mm thick, at (%.4g, %.4g, %.4g)", radius, thickness,
                       centre.x, centre.y, centre.z);
+    else if (kind == Kind::Polygon)
+        std::snprintf(buf, sizeof buf, "polygon of %zu corners, %.4g mm thick, about (%.4g, %.4g, %.4g)", outline.size(),
+                      thickness, centre.x, centre.y, centre.z);
     else
         std::snprintf(buf, sizeof buf, "box (%.4g, %.4g, %.4g) to (%.4g, %.4g, %.4g)", low.x, low.y, low.z, high.x,
                       high.y, high.z);
@@ -94,7 +137,22 @@ std::string MeasureRegion::describe() const {
 
 RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const MeasureRegion& region) {
     const auto& g = reader.geometry();
-    if (region.kind != MeasureRegion::Kind::Box && !(region.radius > 0))
+    const bool polygon = region.kind == MeasureRegion::Kind::Polygon;
+    if (polygon) {
+        double area2 = 0, extent2 = 0;  // twice the signed area (shoelace), in the plane; the size squared
+        const auto [u, v] = planeAxes(region.normal);
+        for (std::size_t i = 0, n = region.outline.size(); i < n; ++i) {
+            const glm::dvec3 a = region.outline[i] - region.centre, b = region.outline[(i + 1) % n] - region.centre;
+            area2 += glm::dot(a, u) * glm::dot(b, v) - glm::dot(b, u) * glm::dot(a, v);
+            extent2 = std::max(extent2, glm::dot(a, a));
+        }
+        // (Corners on one line leave a rounding error's worth of area.)
+        if (region.outline.size() < 3 || !(std::abs(area2) > 1e-9 * extent2))
+            throw Error("the polygon has no area: it needs three corners or more, not all on one line");
+        if (!(region.thickness > 0) || !(glm::length(region.normal) > 0.5))
+            throw Error("the polygon needs a thickness above 0 mm and a normal");
+    }
+    if (region.kind != MeasureRegion::Kind::Box && !polygon && !(region.radius > 0))
         throw Error("the " + std::string(region.kind == MeasureRegion::Kind::Disc ? "disc" : "sphere") +
                     " has no volume (radius " + std::to_string(region.radius) + " mm)");
     if (region.kind == MeasureRegion::Kind::Disc && (!(region.thickness > 0) || !(glm::length(region.normal) > 0.5)))
@@ -108,8 +166,14 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
                              ? std::sqrt(region.radius * region.radius + region.thickness * region.thickness / 4)
                              : region.radius;
     const bool round = region.kind != MeasureRegion::Kind::Box;
-    const glm::dvec3 lo = round ? region.centre - reach : region.low;
-    const glm::dvec3 hi = round ? region.centre + reach : region.high;
+    glm::dvec3 lo = round ? region.centre - reach : region.low;
+    glm::dvec3 hi = round ? region.centre + reach : region.high;
+    if (polygon) {  // the corners' box, widened by half the thickness along the normal
+        lo = hi = region.outline[0];
+        for (const auto& p : region.outline) lo = glm::min(lo, p), hi = glm::max(hi, p);
+        lo -= glm::abs(region.normal) * (region.thickness / 2);
+        hi += glm::abs(region.normal) * (region.thickness / 2);
+    }
     const glm::dmat4 toIndex = glm::inverse(g.indexToPatient());
     glm::dvec3 first(std::numeric_limits<double>::max()), last(std::numeric_limits<double>::lowest());
     for (int c = 0; c < 8; ++c) {
@@ -192,7 +256,7 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
     s.max = maxV;
     const glm::dmat3 step(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y, g.direction[2] * g.spacing.z);
     s.volumeMm3 = n * std::abs(glm::determinant(step));
-    if (region.kind == MeasureRegion::Kind::Disc) s.areaMm2 = s.volumeMm3 / region.thickness;
+    if (region.kind == MeasureRegion::Kind::Disc || polygon) s.areaMm2 = s.volumeMm3 / region.thickness;
     if (s.approximateVoxels) {
         s.exact = false;
         s.note = std::to_string(s.approximateVoxels) + " of the voxels lie in bricks stored " +

@@ -10,19 +10,26 @@
 namespace hvx::core {
 
 /// A measurement region in patient space (LPS mm): a sphere, a box whose faces are
-/// perpendicular to the patient axes, or a disc (a circle drawn on a slice: a cylinder of radius
-/// `radius` about `normal`, `thickness` mm thick, so one slice's voxels when it is the spacing).
+/// perpendicular to the patient axes, a disc (a circle drawn on a slice: a cylinder of radius
+/// `radius` about `normal`, `thickness` mm thick, half-open along the normal ([-t/2, t/2)), so
+/// one slice's voxels when it is the spacing, even midway between two),
+/// or a polygon drawn on a slice (a prism of its outline along `normal`, `thickness` mm thick;
+/// inside by the even-odd rule, so a freehand outline that crosses itself is still a region).
 struct MeasureRegion {
-    enum class Kind { Sphere, Box, Disc } kind = Kind::Sphere;
+    enum class Kind { Sphere, Box, Disc, Polygon } kind = Kind::Sphere;
     glm::dvec3 centre{0.0};  ///< sphere, disc
     double radius = 0.0;     ///< sphere, disc, mm
     glm::dvec3 low{0.0}, high{0.0};  ///< box corners (low < high on every axis)
-    glm::dvec3 normal{0, 0, 1};      ///< disc, unit
-    double thickness = 0.0;          ///< disc, mm
+    glm::dvec3 normal{0, 0, 1};      ///< disc, polygon; unit
+    double thickness = 0.0;          ///< disc, polygon; mm
+    std::vector<glm::dvec3> outline; ///< polygon: its corners, on the plane through `centre`
 
     static MeasureRegion sphere(const glm::dvec3& centre, double radiusMm);
     static MeasureRegion box(const glm::dvec3& a, const glm::dvec3& b);
     static MeasureRegion disc(const glm::dvec3& centre, const glm::dvec3& normal, double radiusMm, double thicknessMm);
+    /// A polygon through `outline`'s corners (projected on the plane through their mean, with
+    /// `normal`); `centre` is that mean.
+    static MeasureRegion polygon(const std::vector<glm::dvec3>& outline, const glm::dvec3& normal, double thicknessMm);
     /// "sphere:X,Y,Z,R", "box:X0,Y0,Z0,X1,Y1,Z1" or "disc:X,Y,Z,NX,NY,NZ,R,T" (LPS mm); throws
     /// core::Error otherwise.
     static MeasureRegion parse(const std::string& text);
@@ -38,7 +45,7 @@ struct RegionStatistics {
     std::uint64_t voxels = 0;
     double mean = 0, sd = 0, min = 0, max = 0;  ///< physical units; sd is the population SD
     double volumeMm3 = 0;                       ///< voxels times one voxel's volume
-    double areaMm2 = 0;                         ///< a disc's: volumeMm3 over its thickness
+    double areaMm2 = 0;                         ///< a disc's or polygon's: volumeMm3 over its thickness
     std::uint64_t approximateVoxels = 0;        ///< in empty or lossy bricks
     bool exact = true;
     std::string units;  ///< "HU" for CT, else empty

@@ -812,6 +812,43 @@ private slots:
         QVERIFY(!v->measuringDistance());
     }
 
+    // Ctrl+Shift-drag draws a freehand outline: its statistics come from level 0 for the slice
+    // it was drawn on (the same as computing the region it stored), its area is the drawn one's
+    // within the voxels along its edge, and it is listed as an outline and drawn with its label.
+    void sliceViewMeasuresAFreehandOutline() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* panel = window_->measurements();
+        const std::size_t before = panel->list().items().size();
+        const QPoint c(axial->width() / 2, axial->height() / 2);
+        const QList<QPoint> corners{c + QPoint(-30, -20), c + QPoint(30, -20), c + QPoint(30, 25), c + QPoint(-30, 25)};
+        QTest::mousePress(axial, Qt::LeftButton, Qt::ControlModifier | Qt::ShiftModifier, corners[0]);
+        for (int i = 1; i <= 4; ++i) {
+            const QPoint at = corners[i % 4];
+            QMouseEvent move(QEvent::MouseMove, QPointF(at), axial->mapToGlobal(QPointF(at)), Qt::NoButton, Qt::LeftButton,
+                             Qt::ControlModifier | Qt::ShiftModifier);
+            QApplication::sendEvent(axial, &move);
+        }
+        QTest::mouseRelease(axial, Qt::LeftButton, Qt::ControlModifier | Qt::ShiftModifier, corners[0]);
+        QCOMPARE(panel->list().items().size(), before + 1);
+        const auto& m = panel->list().items().back();
+        QVERIFY(m.region && m.stats);
+        QCOMPARE(m.region->kind, core::MeasureRegion::Kind::Polygon);
+        const int row = panel->table()->rowCount() - 1;
+        QCOMPARE(panel->table()->item(row, 1)->text(), QString("outline"));
+        const auto reader = core::OctreeReader::open(dir_.file("w-ct.hvo"));
+        const auto direct = core::RegionStatistics::compute(*reader, *m.region);
+        QCOMPARE(m.stats->voxels, direct.voxels);
+        QCOMPARE(m.stats->mean, direct.mean);
+        const double pixelMm = 300.0 / std::min(axial->width(), axial->height());
+        const double drawn = 60 * pixelMm * 45 * pixelMm;  // mm^2
+        const auto& g = reader->geometry();
+        const double edgeVoxels = 2 * (60 + 45) * pixelMm / g.spacing.x;  // voxels along the outline
+        QVERIFY2(std::abs(m.stats->areaMm2 - drawn) <= edgeVoxels * g.spacing.x * g.spacing.y,
+                 qPrintable(QString("%1 mm2 for %2 drawn").arg(m.stats->areaMm2).arg(drawn)));
+        axial->grab().save(kArtifacts + "/slice-outline.png");
+    }
+
     // Up/Down and Page keys step one and ten slices (the voxel spacing along the normal); ] makes
     // a thick slab whose MIP is nowhere darker than the thin slice and M its MinIP nowhere
     // brighter; the views say which slice and which octree level they show.

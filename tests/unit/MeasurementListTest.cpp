@@ -143,3 +143,19 @@ TEST(MeasurementList, AnglesAgreeWithNumpyAndReadBack) {
     EXPECT_DOUBLE_EQ(back.items()[1].angleDegrees(), list.items()[1].angleDegrees());
     EXPECT_THROW(core::MeasurementList::fromJson("{\"measurements\": [{\"kind\": \"angle\", \"a\": [0,0,0]}]}"), core::Error);
 }
+
+// A polygon region keeps its outline through JSON; CSV names its shape.
+TEST(MeasurementList, PolygonOutlinesReadBack) {
+    core::MeasurementList list;
+    core::Measurement m;
+    m.kind = core::Measurement::Kind::Region;
+    m.view = "axial";
+    m.region = core::MeasureRegion::polygon({{0, 0, 5}, {10, 0, 5}, {10, 7, 5}, {3, 9, 5}}, {0, 0, 1}, 2.0);
+    list.add(m);
+    const auto back = core::MeasurementList::fromJson(list.toJson(source()));
+    ASSERT_EQ(back.items().size(), 1u);
+    ASSERT_TRUE(back.items()[0].region);
+    EXPECT_EQ(back.items()[0].region->kind, core::MeasureRegion::Kind::Polygon);
+    EXPECT_EQ(back.items()[0].region->outline, m.region->outline);
+    EXPECT_NE(list.toCsv(source()).find(",polygon,"), std::string::npos);
+}

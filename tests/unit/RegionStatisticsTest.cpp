@@ -146,6 +146,10 @@ TEST(RegionStatistics, ADiscOnASliceTakesThatSlicesVoxelsWithinItsRadius) {
     EXPECT_NEAR(s.areaMm2, M_PI * radius * radius, 0.05 * M_PI * radius * radius) << "close to the circle's area";
     EXPECT_THROW(core::RegionStatistics::compute(*reader, core::MeasureRegion::disc(centre, {0, 0, 1}, radius, 0.0)),
                  core::Error);
+    // Midway between slices 18 and 19, one slice thick: one layer of voxels, not both.
+    const auto mid = core::RegionStatistics::compute(*reader, core::MeasureRegion::disc(centre + glm::dvec3(0, 0, 1.0),
+                                                                                        {0, 0, 1}, radius, 2.0));
+    EXPECT_EQ(mid.voxels, n);
 }
 
 TEST(RegionStatistics, AnisotropicShearedRescaledVolumeMatchesBruteForce) {
@@ -214,4 +218,48 @@ TEST(RegionStatistics, BricksStoredWithoutTheirValuesMakeTheFiguresApproximate) 
     const auto inside = core::RegionStatistics::compute(*reader, core::MeasureRegion::sphere(g.origin + 8.0, 3.0));
     EXPECT_TRUE(inside.exact) << inside.note;
     expectSame(inside, bruteForce(g, v, core::MeasureRegion::sphere(g.origin + 8.0, 3.0)), "ball bricks");
+}
+
+// A polygon drawn on a slice: a rectangle takes exactly the voxels of the box over the same
+// slab (another containment rule, another code path), an L-shape those of its two boxes, and
+// an outline with fewer than three corners or on one line is refused.
+TEST(RegionStatistics, PolygonsTakeTheVoxelsOfTheBoxesTheyCover) {
+    test::TempDir dir;
+    const auto g = ctGeometry({50, 44, 37}, {0.8, 0.8, 2.0});
+    const glm::dvec3 centre = g.origin + glm::dvec3(20.0, 17.6, 36.0);  // slice k = 18
+    const auto v = ballVolume(g, centre, 9.0, 7);
+    core::BuildOptions o;
+    o.brickSize = 8;
+    const auto reader = core::OctreeReader::open(build(dir, g, v, o));
+    // Corners between voxel centres (0.8 mm apart): no centre lies on an edge.
+    const double z = centre.z, x0 = g.origin.x + 10.2, x1 = g.origin.x + 26.2, y0 = g.origin.y + 6.2, y1 = g.origin.y + 22.2;
+    const auto rect = core::MeasureRegion::polygon({{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, {0, 0, 1}, 2.0);
+    const auto sr = core::RegionStatistics::compute(*reader, rect);
+    const auto sb = core::RegionStatistics::compute(*reader, core::MeasureRegion::box({x0, y0, z - 0.99}, {x1, y1, z + 0.99}));
+    EXPECT_EQ(sr.voxels, sb.voxels);
+    EXPECT_EQ(sr.voxels, 20u * 20u) << "20 x 20 voxel centres in 16 mm x 16 mm at 0.8 mm";
+    EXPECT_DOUBLE_EQ(sr.mean, sb.mean);
+    EXPECT_DOUBLE_EQ(sr.min, sb.min);
+    EXPECT_DOUBLE_EQ(sr.max, sb.max);
+    EXPECT_NEAR(sr.areaMm2, 16.0 * 16.0, 1e-9);
+    // An L: the rectangle without its upper right quarter = two boxes.
+    const double xm = g.origin.x + 18.2, ym = g.origin.y + 14.2;
+    const auto l = core::MeasureRegion::polygon(
+        {{x0, y0, z}, {x1, y0, z}, {x1, ym, z}, {xm, ym, z}, {xm, y1, z}, {x0, y1, z}}, {0, 0, -1}, 2.0);
+    const auto sl = core::RegionStatistics::compute(*reader, l);
+    const auto b1 = core::RegionStatistics::compute(*reader, core::MeasureRegion::box({x0, y0, z - 0.99}, {x1, ym, z + 0.99}));
+    const auto b2 = core::RegionStatistics::compute(*reader, core::MeasureRegion::box({x0, ym, z - 0.99}, {xm, y1, z + 0.99}));
+    EXPECT_EQ(sl.voxels, b1.voxels + b2.voxels);
+    EXPECT_NEAR(sl.mean, (b1.mean * double(b1.voxels) + b2.mean * double(b2.voxels)) / double(b1.voxels + b2.voxels),
+                1e-9 * std::abs(sl.mean));
+    EXPECT_DOUBLE_EQ(sl.max, std::max(b1.max, b2.max));
+    for (const auto& bad : {core::MeasureRegion::polygon({{x0, y0, z}, {x1, y1, z}}, {0, 0, 1}, 2.0),
+                            core::MeasureRegion::polygon({{x0, y0, z}, {xm, ym, z}, {x1, y1, z}}, {0, 0, 1}, 2.0)}) {
+        try {
+            core::RegionStatistics::compute(*reader, bad);
+            ADD_FAILURE() << "a polygon without area was measured";
+        } catch (const core::Error& e) {
+            EXPECT_NE(std::string(e.what()).find("no area"), std::string::npos) << e.what();
+        }
+    }
 }
