@@ -1,6 +1,15 @@
 #include "ui/JobsPanel.h"
 
+#include <QAction>
+#include <QApplication>
+#include <QClipboard>
+#include <QDateTime>
+#include <QDir>
+#include <QFile>
 #include <QHBoxLayout>
+#include <QMessageBox>
+#include <QFileInfo>
+#include <QStandardPaths>
 #include <QHeaderView>
 #include <QLabel>
 #include <QProgressBar>
@@ -29,7 +38,8 @@ JobsPanel::JobsPanel(JobManager& jobs, QWidget* parent)
     table_->horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
     table_->verticalHeader()->hide();
     table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-    table_->setSelectionMode(QAbstractItemView::NoSelection);
+    table_->setSelectionMode(QAbstractItemView::SingleSelection);
+    table_->setSelectionBehavior(QAbstractItemView::SelectRows);
     auto* layout = new QVBoxLayout(this);
     layout->setContentsMargins(2, 2, 2, 2);
     layout->addWidget(table_);
@@ -40,6 +50,18 @@ JobsPanel::JobsPanel(JobManager& jobs, QWidget* parent)
     statusBar_->setMaximumWidth(160);
     statusBar_->setRange(0, 1000);
     status_->setVisible(false);
+    table_->setToolTip(tr("Double-click a job for its whole message; right-click or Ctrl+C copies it"));
+    table_->setContextMenuPolicy(Qt::ActionsContextMenu);
+    auto* copy = new QAction(tr("Copy message"), table_);
+    copy->setShortcut(QKeySequence::Copy);
+    copy->setShortcutContext(Qt::WidgetShortcut);
+    table_->addAction(copy);
+    connect(copy, &QAction::triggered, this, [this] {
+        if (const int id = idAt(table_->currentRow()); id >= 0) copyDetails(id);
+    });
+    connect(table_, &QTableWidget::cellDoubleClicked, this, [this](int row, int) {
+        if (const int id = idAt(row); id >= 0) showDetails(id);
+    });
     connect(&jobs_, &JobManager::started, this, &JobsPanel::onStarted);
     connect(&jobs_, &JobManager::progressed, this, &JobsPanel::onProgress);
     connect(&jobs_, &JobManager::finished, this, &JobsPanel::onFinished);
@@ -96,11 +118,48 @@ void JobsPanel::onFinished(int id, const QString& state, const QString& message)
     if (auto* bar = qobject_cast<QProgressBar*>(table_->cellWidget(row, 1)); bar && state == "done") bar->setValue(1000);
     const QString text = state == "done" ? tr("done") : state == "cancelled" ? tr("cancelled") : tr("failed: %1").arg(message);
     table_->item(row, 2)->setText(text);
-    table_->item(row, 2)->setToolTip(message);
+    table_->item(row, 2)->setToolTip(message.isEmpty() ? text : message);
+    outcomes_[id] = text;
+    // The job log keeps every outcome, whole, for when the dock has been cleared or the text cut.
+    const QString path = logPath();
+    QDir().mkpath(QFileInfo(path).absolutePath());
+    QFile log(path);
+    if (log.open(QIODevice::Append | QIODevice::Text))
+        log.write(QStringLiteral("%1  %2: %3\n")
+                      .arg(QDateTime::currentDateTime().toString(Qt::ISODate), titles_[id], text)
+                      .toUtf8());
     if (auto* cancel = table_->cellWidget(row, 3)) cancel->hide();  // gone at once, deleted by the table
     table_->removeCellWidget(row, 3);
     table_->setItem(row, 3, new QTableWidgetItem(QString()));
     updateStatus();
+}
+
+int JobsPanel::idAt(int row) const {
+    for (const auto& [id, r] : rows_)
+        if (r == row) return id;
+    return -1;
+}
+
+QString JobsPanel::details(int id) const {
+    const auto it = outcomes_.find(id);
+    return it != outcomes_.end() ? it->second : cellText(id, 2);
+}
+
+void JobsPanel::copyDetails(int id) const {
+    const auto title = titles_.find(id);
+    QApplication::clipboard()->setText((title != titles_.end() ? title->second + ": " : QString()) + details(id));
+}
+
+void JobsPanel::showDetails(int id) {
+    auto* box = new QMessageBox(QMessageBox::Information, titles_[id], details(id), QMessageBox::Close, this);
+    box->setTextInteractionFlags(Qt::TextSelectableByMouse | Qt::TextSelectableByKeyboard);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->setObjectName("jobDetails");
+    box->open();  // not modal to the application: the jobs go on
+}
+
+QString JobsPanel::logPath() {
+    return QStandardPaths::writableLocation(QStandardPaths::GenericDataLocation) + "/holovox/jobs.log";
 }
 
 void JobsPanel::updateStatus() {

@@ -3,6 +3,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <QAction>
+#include <QPlainTextEdit>
+#include <QDialog>
 #include <QApplication>
 #include <QCloseEvent>
 #include <QCryptographicHash>
@@ -248,6 +250,22 @@ void MainWindow::buildMenus() {
     for (auto* d : docks_) viewMenu->addAction(d->toggleViewAction());
 
     QMenu* help = menuBar()->addMenu(tr("&Help"));
+    help->addAction(tr("&Job log"), this, [this] {  // every finished job's whole outcome
+        QFile f(JobsPanel::logPath());
+        const QString text = f.open(QIODevice::ReadOnly | QIODevice::Text) ? QString::fromUtf8(f.readAll())
+                                                                            : tr("No job has finished yet.");
+        auto* dialog = new QDialog(this);
+        dialog->setWindowTitle(tr("Job log \u2014 %1").arg(JobsPanel::logPath()));
+        dialog->setObjectName("jobLog");
+        dialog->setAttribute(Qt::WA_DeleteOnClose);
+        auto* view = new QPlainTextEdit(text, dialog);
+        view->setReadOnly(true);
+        view->moveCursor(QTextCursor::End);
+        auto* layout = new QVBoxLayout(dialog);
+        layout->addWidget(view);
+        dialog->resize(900, 500);
+        dialog->open();
+    });
     help->addAction(tr("&About Holovox"), this, [this] {
         QMessageBox::about(this, tr("About Holovox"),
                            tr("Holovox \u2014 out-of-core volume ray casting for medical imaging.\n"

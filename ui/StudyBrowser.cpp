@@ -152,11 +152,16 @@ void StudyBrowser::refresh() {
                                                                   QString::fromStdString(s.patientSex)));
                 lastPatient = key;
             }
+            // The study's Images column counts its images (the series' own rows count theirs).
+            const auto seriesRows = db.seriesOfStudy(s.studyUid);
+            int images = 0;
+            for (const auto& se : seriesRows) images += se.instanceCount;
             auto* study = new QTreeWidgetItem(patient, {QString::fromStdString(s.description.empty() ? "(no description)" : s.description),
                                                         QString::fromStdString(s.date), QString::fromStdString(s.modalities),
-                                                        QString::number(s.seriesCount)});
+                                                        QString::number(images)});
             study->setToolTip(0, tr("Accession %1").arg(QString::fromStdString(s.accession)));
-            for (const auto& se : db.seriesOfStudy(s.studyUid)) {
+            study->setToolTip(3, tr("%n image(s)", nullptr, images) + tr(" in %n series", nullptr, s.seriesCount));
+            for (const auto& se : seriesRows) {
                 const QString label = QStringLiteral("%1 %2").arg(se.number).arg(QString::fromStdString(se.description));
                 auto* item = new QTreeWidgetItem(study, {label, QString::fromStdString(se.bodyPart),
                                                          QString::fromStdString(se.modality), QString::number(se.instanceCount)});

@@ -17,6 +17,9 @@
 #include <QSettings>
 #include <QSet>
 #include <QSlider>
+#include <QFile>
+#include <QMessageBox>
+#include <QClipboard>
 #include <QStatusBar>
 #include <QtMath>
 #include <QSpinBox>
@@ -139,6 +142,9 @@ private slots:
         QVERIFY2(series, "the imported series is listed in the study browser");
         QVERIFY2(!series->icon(0).isNull(), "a thumbnail from the DICOM images before any octree exists");
         QVERIFY(tree->topLevelItem(0)->text(0).contains("GUI IMPORT"));
+        // The study row's Images column counts its images, as the series row does (one series).
+        QCOMPARE(series->parent()->text(3), series->text(3));
+        QVERIFY(series->text(3).toInt() > 1);
         // Double-click: the octree is built in the background, then the view opens it.
         tree->scrollToItem(series);
         const QRect r = tree->visualItemRect(series);
@@ -423,6 +429,35 @@ private slots:
         QCOMPARE(finished.last().at(1).toString(), QString("cancelled"));
         QCOMPARE(window_->jobsPanel()->cellText(id, 2), QString("cancelled"));
         QVERIFY2(!std::filesystem::exists(out), "a cancelled build leaves no output");
+    }
+
+    // A failed job's whole message is readable: in its details window (selectable), on the
+    // clipboard, and in the job log that the Help menu opens.
+    void failedJobsMessageIsReadableWhole() {
+        const QString message = "cannot connect to 127.0.0.1:4243 (Connection refused): start the demo archive with "
+                                "'holovox-cli demo', or check the node's host and port in the PACS panel; " +
+                                QString(200, 'x') + " END";
+        QSignalSpy finished(window_->jobs(), &ui::JobManager::finished);
+        const int id = window_->jobs()->start("Retrieve for the test", [message](core::JobContext&) -> QString {
+            throw core::Error(message.toStdString());
+        });
+        QTRY_VERIFY_WITH_TIMEOUT(!finished.isEmpty() && finished.last().at(0).toInt() == id, 10000);
+        auto* panel = window_->jobsPanel();
+        QVERIFY2(panel->details(id).endsWith(message), qPrintable(panel->details(id)));
+        panel->copyDetails(id);
+        QVERIFY(QApplication::clipboard()->text().startsWith("Retrieve for the test: failed: "));
+        QVERIFY(QApplication::clipboard()->text().endsWith(" END"));
+        panel->showDetails(id);
+        auto* box = panel->findChild<QMessageBox*>("jobDetails");
+        QVERIFY(box);
+        QTRY_VERIFY(box->isVisible());
+        QVERIFY(box->text().endsWith(" END"));
+        box->close();
+        const QString log = ui::JobsPanel::logPath();
+        QVERIFY(log.endsWith("/holovox/jobs.log"));  // under the test's XDG_DATA_HOME (CI checks the real HOME is untouched)
+        QFile f(log);
+        QVERIFY(f.open(QIODevice::ReadOnly));
+        QVERIFY(QString::fromUtf8(f.readAll()).contains("Retrieve for the test: failed: " + message));
     }
 
     void pacsRoundTripAgainstOrthanc() {
