@@ -30,13 +30,20 @@ MeasureRegion MeasureRegion::box(const glm::dvec3& a, const glm::dvec3& b) {
     return r;
 }
 
+namespace {
+/// `v` of length 1, or zero when it has no length (refused when measured).
+glm::dvec3 unitOrZero(const glm::dvec3& v) {
+    const double len = glm::length(v);
+    return len > 0 ? v / len : glm::dvec3(0.0);
+}
+}  // namespace
+
 MeasureRegion MeasureRegion::disc(const glm::dvec3& centre, const glm::dvec3& normal, double radiusMm,
                                   double thicknessMm) {
     MeasureRegion r;
     r.kind = Kind::Disc;
     r.centre = centre;
-    const double len = glm::length(normal);
-    r.normal = len > 0 ? normal / len : glm::dvec3(0.0);
+    r.normal = unitOrZero(normal);
     r.radius = radiusMm;
     r.thickness = thicknessMm;
     return r;
@@ -46,8 +53,7 @@ MeasureRegion MeasureRegion::polygon(const std::vector<glm::dvec3>& outline, con
     MeasureRegion r;
     r.kind = Kind::Polygon;
     r.outline = outline;
-    const double len = glm::length(normal);
-    r.normal = len > 0 ? normal / len : glm::dvec3(0.0);
+    r.normal = unitOrZero(normal);
     r.thickness = thicknessMm;
     for (const auto& p : outline) r.centre += p / double(std::max<std::size_t>(1, outline.size()));
     return r;

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <tuple>
+#include <memory>
 
 #include <glm/matrix.hpp>
 
@@ -121,14 +123,24 @@ TEST(RegionStatistics, SphereAndBoxesMatchABruteForcePassOnManySmallBricks) {
 
 // A circle drawn on an axial slice (a disc one slice thick): the voxels of that slice whose
 // centres lie within the radius, counted here by hand in the slice's own index plane.
-TEST(RegionStatistics, ADiscOnASliceTakesThatSlicesVoxelsWithinItsRadius) {
+/// An anisotropic CT (0.8 x 0.8 x 2 mm) with a ball centred on slice k = 18, in bricks of 8.
+struct SliceCase {
     test::TempDir dir;
-    const auto g = ctGeometry({50, 44, 37}, {0.8, 0.8, 2.0});
-    const glm::dvec3 centre = g.origin + glm::dvec3(20.0, 17.6, 36.0);  // slice k = 18
-    const auto v = ballVolume(g, centre, 9.0, 5);
-    core::BuildOptions o;
-    o.brickSize = 8;
-    const auto reader = core::OctreeReader::open(build(dir, g, v, o));
+    core::VolumeGeometry g = ctGeometry({50, 44, 37}, {0.8, 0.8, 2.0});
+    glm::dvec3 centre = g.origin + glm::dvec3(20.0, 17.6, 36.0);
+    test::DenseVolume v;
+    std::shared_ptr<const core::OctreeReader> reader;
+    explicit SliceCase(unsigned seed) : v(ballVolume(g, centre, 9.0, seed)) {
+        core::BuildOptions o;
+        o.brickSize = 8;
+        reader = core::OctreeReader::open(build(dir, g, v, o));
+    }
+};
+
+TEST(RegionStatistics, ADiscOnASliceTakesThatSlicesVoxelsWithinItsRadius) {
+    const SliceCase c(5);
+    const auto& [g, centre, v] = std::tie(c.g, c.centre, c.v);
+    const auto& reader = c.reader;
     const double radius = 6.3;
     const auto s = core::RegionStatistics::compute(*reader, core::MeasureRegion::disc(centre, {0, 0, 1}, radius, 2.0));
     std::uint64_t n = 0;
@@ -224,13 +236,9 @@ TEST(RegionStatistics, BricksStoredWithoutTheirValuesMakeTheFiguresApproximate) 
 // slab (another containment rule, another code path), an L-shape those of its two boxes, and
 // an outline with fewer than three corners or on one line is refused.
 TEST(RegionStatistics, PolygonsTakeTheVoxelsOfTheBoxesTheyCover) {
-    test::TempDir dir;
-    const auto g = ctGeometry({50, 44, 37}, {0.8, 0.8, 2.0});
-    const glm::dvec3 centre = g.origin + glm::dvec3(20.0, 17.6, 36.0);  // slice k = 18
-    const auto v = ballVolume(g, centre, 9.0, 7);
-    core::BuildOptions o;
-    o.brickSize = 8;
-    const auto reader = core::OctreeReader::open(build(dir, g, v, o));
+    const SliceCase c(7);
+    const auto& [g, centre] = std::tie(c.g, c.centre);
+    const auto& reader = c.reader;
     // Corners between voxel centres (0.8 mm apart): no centre lies on an edge.
     const double z = centre.z, x0 = g.origin.x + 10.2, x1 = g.origin.x + 26.2, y0 = g.origin.y + 6.2, y1 = g.origin.y + 22.2;
     const auto rect = core::MeasureRegion::polygon({{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, {0, 0, 1}, 2.0);
