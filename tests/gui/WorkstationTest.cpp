@@ -884,6 +884,51 @@ private slots:
         axial->grab().save(kArtifacts + "/slice-outline.png");
     }
 
+    // Left is never right: a bone block on the patient's left (+x in LPS) shows on the image's
+    // right in the anterior 3D view and on the axial slice (radiological convention), and on the
+    // image's left in the posterior 3D view.
+    void patientsLeftIsOnTheImagesRightWhereItShouldBe() {
+        core::VolumeGeometry g;
+        g.dims = {64, 64, 48};
+        g.spacing = {2.0, 2.0, 2.0};
+        g.modality = "CT";
+        g.scalarType = core::ScalarType::Int16;
+        g.rescaleIntercept = -1024;
+        test::DenseVolume v;
+        v.dims = g.dims;
+        v.values.assign(std::size_t(64) * 64 * 48, 0.0);  // air
+        for (std::uint32_t k = 18; k < 30; ++k)
+            for (std::uint32_t j = 26; j < 38; ++j)
+                for (std::uint32_t i = 46; i < 58; ++i)  // +x: the patient's left
+                    v.values[(std::size_t(k) * 64 + j) * 64 + i] = 2024.0;  // 1000 HU
+        test::MemoryVoxelSource source(g, v);
+        core::JobContext job;
+        core::OctreeBuilder(core::BuildOptions{}).build(source, dir_.file("left.hvo"), job);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("left.hvo"))));
+        // The bright pixels' mean column, as a fraction of the image's width.
+        const auto brightColumn = [](const QImage& img) {
+            double sum = 0, n = 0;
+            for (int y = 0; y < img.height(); ++y)
+                for (int x = 0; x < img.width(); ++x)
+                    if (qGray(img.pixel(x, y)) > 128) sum += x, n += 1;
+            return n > 0 ? sum / n / img.width() : -1.0;
+        };
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Anterior);
+        const double anterior = brightColumn(settledFrame());
+        QVERIFY2(anterior > 0.55, qPrintable(QString("anterior view: the left block at %1 of the width").arg(anterior)));
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Posterior);
+        const double posterior = brightColumn(settledFrame());
+        QVERIFY2(posterior >= 0 && posterior < 0.45, qPrintable(QString("posterior view: at %1 of the width").arg(posterior)));
+        auto* axial = window_->slice(0);
+        axial->setPoint(glm::dvec3(g.origin) + glm::dvec3(104, 64, 48));  // through the block
+        const double slice = brightColumn(axial->image());
+        QVERIFY2(slice > 0.55, qPrintable(QString("axial slice: at %1 of the width").arg(slice)));
+        QCOMPARE(axial->edgeLabels()[1], QString("L"));
+        axial->grab().save(kArtifacts + "/slice-left-block.png");
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Anterior);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));  // what the next cases read
+    }
+
     // Up/Down and Page keys step one and ten slices (the voxel spacing along the normal); ] makes
     // a thick slab whose MIP is nowhere darker than the thin slice and M its MinIP nowhere
     // brighter; the views say which slice and which octree level they show.
