@@ -1,0 +1,84 @@
+#pragma once
+// What the GUI test programs share: the artefact folder, image comparisons, a settled 3D frame,
+// the main window as the tests open it, and the program's start (OpenGL 4.5 core, a
+// QApplication under its own organisation name, so that QSettings stays the tests').
+#include <QApplication>
+#include <QDir>
+#include <QImage>
+#include <QSettings>
+#include <QSurfaceFormat>
+#include <QTest>
+
+#include <cmath>
+#include <memory>
+
+#include "tests/support/TempDir.h"
+#include "ui/MainWindow.h"
+#include "ui/VolumeView.h"
+
+namespace hvx::test {
+
+/// Where the GUI tests keep their screenshots: <build>/test-artifacts/gui (made on first use).
+inline QString guiArtifacts() {
+    const QString dir = QStringLiteral(HVX_BINARY_DIR "/test-artifacts/gui");
+    QDir().mkpath(dir);
+    return dir;
+}
+
+/// Fraction of pixels that are not black.
+inline double coverage(const QImage& img) {
+    std::size_t lit = 0;
+    for (int y = 0; y < img.height(); ++y)
+        for (int x = 0; x < img.width(); ++x) lit += (img.pixel(x, y) & 0xFFFFFF) != 0;
+    return double(lit) / double(std::max(1, img.width() * img.height()));
+}
+
+/// Mean absolute difference per channel (0..255) of two images of the same size (255 otherwise).
+inline double difference(const QImage& a, const QImage& b) {
+    if (a.size() != b.size()) return 255.0;
+    double sum = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
+            sum += std::abs(qRed(p) - qRed(q)) + std::abs(qGreen(p) - qGreen(q)) + std::abs(qBlue(p) - qBlue(q));
+        }
+    return sum / (3.0 * a.width() * a.height());
+}
+
+/// Waits until the view has drawn a complete, full-quality frame after the last change, and
+/// returns it (a timeout is reported as the calling test's failure).
+inline QImage settledFrame(ui::VolumeView* view) {
+    const int start = view->frameCount();
+    view->update();
+    [&] { QTRY_VERIFY_WITH_TIMEOUT(view->frameCount() > start && view->readouts().complete &&
+                                       view->readouts().resolution >= 1.0, 60000); }();
+    QTest::qWait(300);  // bricks still arriving are drawn by the view's own timer
+    return view->lastFrame();
+}
+
+/// The main window with its study database and PACS settings in `dir`, no saved layout or
+/// tools from an earlier run, shown at 1400 x 900.
+inline std::unique_ptr<ui::MainWindow> openWorkstation(const TempDir& dir) {
+    QSettings().clear();
+    auto window = std::make_unique<ui::MainWindow>(QString::fromStdString(dir.file("db/studies.sqlite")),
+                                                   QString::fromStdString(dir.file("pacs.json")));
+    window->resize(1400, 900);
+    window->show();
+    return window;
+}
+
+/// A GUI test program's main. HOME and the XDG folders are a temporary folder of this process
+/// (tests/support/Hermetic.cpp).
+template <class Test>
+int runGuiTests(int argc, char** argv) {
+    QSurfaceFormat format;
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    QSurfaceFormat::setDefaultFormat(format);
+    QApplication app(argc, argv);
+    QApplication::setOrganizationName("HolovoxTests");
+    Test t;
+    return QTest::qExec(&t, argc, argv);
+}
+
+}  // namespace hvx::test

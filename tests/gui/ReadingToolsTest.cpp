@@ -1,0 +1,570 @@
+// GUI tests of the reading tools under Xvfb (Qt Test), on volumes built here: each volume's
+// window and presets; distances, circles, angles and freehand outlines in the slice views, with
+// their list, labels and statistics from level 0; a distance on the 3D view's surface; the
+// slider and cine, slab, stepping and level readout; crosshair reformat and the slice along
+// the 3D view; and left never shown as right. Screenshots under <build>/test-artifacts/gui/.
+#include <QApplication>
+#include <QCheckBox>
+#include <QTableWidget>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QDir>
+#include <QElapsedTimer>
+#include <QLineEdit>
+#include <QMouseEvent>
+#include <QGroupBox>
+#include <QPushButton>
+#include <QSettings>
+#include <QSet>
+#include <QSlider>
+#include <QFile>
+#include <QMessageBox>
+#include <QClipboard>
+#include <QStatusBar>
+#include <QtMath>
+#include <QSpinBox>
+#include <QSignalSpy>
+#include <QSurfaceFormat>
+#include <QTest>
+#include <QTreeWidget>
+#include <QTreeWidgetItemIterator>
+#include <QWheelEvent>
+
+#include <cmath>
+#include <filesystem>
+
+#include "core/octree/OctreeBuilder.h"
+#include "core/octree/OctreeReader.h"
+#include "core/reference/RegionStatistics.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "dicom/DicomSeriesWriter.h"
+#include "tests/support/MemoryVoxelSource.h"
+#include "tests/support/PacsPeer.h"
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+#include "tests/gui/GuiTestSupport.h"
+#include "ui/JobManager.h"
+#include "ui/JobsPanel.h"
+#include "ui/LightFieldPanel.h"
+#include "ui/LightFieldWindow.h"
+#include "ui/MainWindow.h"
+#include "ui/CropControls.h"
+#include "ui/MeasurementsPanel.h"
+#include "ui/PacsNodeDialog.h"
+#include "ui/PacsPanel.h"
+#include "ui/RenderControls.h"
+#include "ui/SliceScroller.h"
+#include "ui/SliceView.h"
+#include "ui/StudyBrowser.h"
+#include "ui/ToolsPanel.h"
+#include "core/base/Error.h"
+#include "ui/TransferFunctionCanvas.h"
+#include "ui/TransferFunctionEditor.h"
+#include "ui/VolumeView.h"
+
+using namespace hvx;
+
+namespace {
+const QString kArtifacts = test::guiArtifacts();
+using test::difference;
+}  // namespace
+
+class ReadingToolsTest : public QObject {
+    Q_OBJECT
+    test::TempDir dir_;
+    std::unique_ptr<ui::MainWindow> window_;
+
+    ui::VolumeView* view() const { return window_->view(); }
+    QImage settledFrame() { return test::settledFrame(view()); }
+    void saveArtifact(const QString& name) { window_->grab().save(kArtifacts + "/" + name); }
+
+private slots:
+    void initTestCase() {
+        window_ = test::openWorkstation(dir_);
+        QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
+    }
+
+    // A CT opened after an MR gets its own window (not the MR's), the number keys pick the CT
+    // presets in all three views, a window chosen for a volume comes back when it is opened
+    // again, and the pixels follow.
+    void eachVolumeOpensWithItsOwnWindowAndPresetsByKey() {
+        core::JobContext job;
+        core::PhantomVoxelSource ct({48, 48, 48}, 5, {300, 300, 300}, 5.0);
+        core::OctreeBuilder(core::BuildOptions{}).build(ct, dir_.file("w-ct.hvo"), job);
+        core::VolumeGeometry mrg = ct.geometry();
+        mrg.modality = "MR";
+        mrg.scalarType = core::ScalarType::UInt16;
+        mrg.rescaleSlope = 1;
+        mrg.rescaleIntercept = 0;
+        test::DenseVolume mv;
+        mv.dims = mrg.dims;
+        for (std::size_t i = 0; i < std::size_t(48 * 48 * 48); ++i) mv.values.push_back(double((i * 37) % 1000));
+        test::MemoryVoxelSource mr(mrg, mv);
+        core::OctreeBuilder(core::BuildOptions{}).build(mr, dir_.file("w-mr.hvo"), job);
+        auto* axial = window_->slice(0);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-mr.hvo"))));
+        QVERIFY(window_->jobs()->waitIdle(60000));  // the histogram's percentile window
+        QVERIFY2(axial->windowWidth() < 1000.0 && axial->windowWidth() > 900.0, qPrintable(QString::number(axial->windowWidth())));
+        // The user narrows the MR's window with a right drag: remembered for this volume.
+        QTest::mousePress(axial, Qt::RightButton, {}, QPoint(40, 40));
+        QMouseEvent drag(QEvent::MouseMove, QPointF(10, 40), axial->mapToGlobal(QPointF(10, 40)), Qt::NoButton,
+                         Qt::RightButton, Qt::NoModifier);
+        QApplication::sendEvent(axial, &drag);
+        QTest::mouseRelease(axial, Qt::RightButton, {}, QPoint(10, 40));
+        const double mrWidth = axial->windowWidth(), mrCentre = axial->windowCentre();
+        QVERIFY(mrWidth < 900.0);
+        QCOMPARE(window_->slice(1)->windowWidth(), mrWidth);  // one window for the three views
+
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        QCOMPARE(axial->windowCentre(), 40.0);
+        QCOMPARE(axial->windowWidth(), 400.0);
+        const QImage soft = axial->image();
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_5);  // CT presets: 1 brain ... 5 lung
+        QCOMPARE(axial->windowName(), QString("lung"));
+        QCOMPARE(window_->slice(2)->windowCentre(), -600.0);
+        QVERIFY2(difference(soft, axial->image()) > 5.0, "the lung window shows the same pixels as W 400 / L 40");
+        saveArtifact("slices-lung-window.png");
+
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-mr.hvo"))));
+        QCOMPARE(axial->windowWidth(), mrWidth);
+        QCOMPARE(axial->windowCentre(), mrCentre);
+        QVERIFY(window_->jobs()->waitIdle(60000));
+        QCOMPARE(axial->windowWidth(), mrWidth);  // the percentile window does not override a choice
+    }
+
+    // Shift-drag measures a distance in mm (the pixel size being the volume's extent over the
+    // view's shorter side), Ctrl-drag a circle's statistics, computed from level 0 for the
+    // disc one slice thick that was drawn; Esc clears both.
+    void sliceViewMeasuresADistanceAndACircle() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        QVERIFY(QTest::qWaitForWindowExposed(axial));
+        const QPoint a(axial->width() / 2 - 40, axial->height() / 2), b(axial->width() / 2 + 20, axial->height() / 2);
+        QTest::mousePress(axial, Qt::LeftButton, Qt::ShiftModifier, a);
+        QMouseEvent drag(QEvent::MouseMove, QPointF(b), axial->mapToGlobal(QPointF(b)), Qt::NoButton, Qt::LeftButton,
+                         Qt::ShiftModifier);
+        QApplication::sendEvent(axial, &drag);
+        QTest::mouseRelease(axial, Qt::LeftButton, Qt::ShiftModifier, b);
+        QVERIFY(axial->rulerMm().has_value());
+        const double pixelMm = 300.0 / std::min(axial->width(), axial->height());  // the phantom spans 300 mm
+        QVERIFY2(std::abs(*axial->rulerMm() - 60 * pixelMm) < 1e-6 * 60 * pixelMm,
+                 qPrintable(QString("%1 mm for 60 px of %2 mm").arg(*axial->rulerMm()).arg(pixelMm)));
+        // A circle of 25 px around the view's centre.
+        const QPoint c(axial->width() / 2, axial->height() / 2), rim = c + QPoint(25, 0);
+        QTest::mousePress(axial, Qt::LeftButton, Qt::ControlModifier, c);
+        QMouseEvent grow(QEvent::MouseMove, QPointF(rim), axial->mapToGlobal(QPointF(rim)), Qt::NoButton, Qt::LeftButton,
+                         Qt::ControlModifier);
+        QApplication::sendEvent(axial, &grow);
+        QTest::mouseRelease(axial, Qt::LeftButton, Qt::ControlModifier, rim);
+        QVERIFY(axial->roiStatistics().has_value());
+        const auto& roi = *axial->roi();
+        QVERIFY2(std::abs(roi.radius - 25 * pixelMm) < 1e-6 * 25 * pixelMm, qPrintable(QString::number(roi.radius)));
+        QCOMPARE(roi.normal, glm::dvec3(0, 0, 1));
+        const auto reader = core::OctreeReader::open(dir_.file("w-ct.hvo"));
+        const auto direct = core::RegionStatistics::compute(*reader, roi);
+        QCOMPARE(axial->roiStatistics()->voxels, direct.voxels);
+        QCOMPARE(axial->roiStatistics()->mean, direct.mean);
+        QVERIFY(direct.voxels > 10);
+        QCOMPARE(axial->roiStatistics()->units, std::string("HU"));
+        settledFrame();
+        saveArtifact("slice-measurements.png");
+        // Both went to the measurement list: its table, CSV and JSON exports (read back by
+        // Python's csv and json modules), Del removes one, and the list comes back with the volume.
+        auto* panel = window_->measurements();
+        QCOMPARE(panel->list().items().size(), std::size_t(2));
+        QCOMPARE(panel->table()->rowCount(), 2);
+        QCOMPARE(panel->table()->item(0, 1)->text(), QString("distance"));
+        QVERIFY2(panel->table()->item(0, 3)->text().contains(QString::number(*axial->rulerMm(), 'f', 1)),
+                 qPrintable(panel->table()->item(0, 3)->text()));
+        QVERIFY2(panel->table()->item(1, 3)->text().contains("HU"), qPrintable(panel->table()->item(1, 3)->text()));
+        const QString csv = QString::fromStdString(dir_.file("m.csv")), json = QString::fromStdString(dir_.file("m.json"));
+        QVERIFY(panel->exportTo(csv).isEmpty());
+        QVERIFY(panel->exportTo(json).isEmpty());
+        const auto py = test::runCommand("/usr/bin/python3 -c \"import csv,json; r=list(csv.DictReader(open('" +
+                                         csv.toStdString() + "'))); j=json.load(open('" + json.toStdString() +
+                                         "')); print(len(r), r[1]['voxels'], r[1]['units'], len(j['measurements']), "
+                                         "j['measurements'][0]['kind'])\"");
+        QCOMPARE(QString::fromStdString(py.output).trimmed(),
+                 QString("2 %1 HU 2 distance").arg(qulonglong(axial->roiStatistics()->voxels)));
+        QVERIFY2(panel->exportTo("/nonexistent-dir/m.csv").contains("nonexistent"), "a folder that is not there is named");
+        panel->table()->clearSelection();
+        panel->table()->selectRow(0);
+        panel->table()->setFocus();
+        QTest::keyClick(panel->table(), Qt::Key_Delete);
+        QCOMPARE(panel->list().items().size(), std::size_t(1));
+        QCOMPARE(panel->list().items()[0].label, std::string("M2"));
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));  // again: the list is kept
+        QCOMPARE(panel->list().items().size(), std::size_t(1));
+        QCOMPARE(panel->list().items()[0].label, std::string("M2"));
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_Escape);
+        QVERIFY(!axial->rulerMm().has_value());
+        QVERIFY(!axial->roi().has_value());
+    }
+
+    // A, then three clicks, measures an angle (a right angle drawn on the screen's axes is
+    // 90.0 degrees); every measurement of the list is drawn with its label on its slice, and
+    // only there; Del on the view removes the newest one on the slice.
+    void sliceViewMeasuresAnAngleAndDrawsTheList() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* panel = window_->measurements();
+        const std::size_t before = panel->list().items().size();
+        const QPoint vertex(axial->width() / 2 + 10, axial->height() / 2 + 30);
+        const QPoint end1 = vertex + QPoint(-50, 0), end2 = vertex + QPoint(0, -40);
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_A);
+        QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, end1);
+        QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, vertex);
+        QCOMPARE(axial->anglePoints().size(), std::size_t(3));  // two placed, one following the mouse
+        QTest::mouseClick(axial, Qt::LeftButton, Qt::NoModifier, end2);
+        QVERIFY(axial->anglePoints().empty());
+        QCOMPARE(panel->list().items().size(), before + 1);
+        const auto& angle = panel->list().items().back();
+        QCOMPARE(angle.kind, core::Measurement::Kind::Angle);
+        QVERIFY2(std::abs(angle.angleDegrees() - 90.0) < 1e-9, qPrintable(QString::number(angle.angleDegrees())));
+        const int row = panel->table()->rowCount() - 1;
+        QCOMPARE(panel->table()->item(row, 1)->text(), QString("angle"));
+        QCOMPARE(panel->table()->item(row, 3)->text(), QString("90.0\u00b0"));
+        // Drawn on this slice: the arms' middles are the measurement colour; one slice up, not.
+        const auto green = [](const QImage& img, QPoint at) {
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const QColor c = img.pixelColor(at + QPoint(dx, dy));
+                    if (c.green() > 200 && c.red() < 170 && c.blue() < 190) return true;
+                }
+            return false;
+        };
+        QImage shot = axial->grab().toImage();
+        QVERIFY(green(shot, (end1 + vertex) / 2));
+        QVERIFY(green(shot, (end2 + vertex) / 2));
+        shot.save(kArtifacts + "/slice-angle-and-list.png");
+        QTest::keyClick(axial, Qt::Key_Up);
+        QVERIFY2(!green(axial->grab().toImage(), (end1 + vertex) / 2), "an angle drawn on a slice it is not on");
+        QTest::keyClick(axial, Qt::Key_Down);
+        QTest::keyClick(axial, Qt::Key_Delete);  // the newest on this slice: the angle
+        QCOMPARE(panel->list().items().size(), before);
+        QVERIFY(std::none_of(panel->list().items().begin(), panel->list().items().end(),
+                             [](const core::Measurement& m) { return m.kind == core::Measurement::Kind::Angle; }));
+    }
+
+    // The slider under each view spans its slices and scrolls the view; keys and clicks in
+    // another view move it; cine plays through the slices at the chosen rate and loops.
+    void sliceScrollerFollowsAndPlays() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* bar = window_->scroller(0);
+        QCOMPARE(bar->slider()->maximum(), 47);  // w-ct.hvo: 48 slices
+        QCOMPARE(bar->slider()->value(), axial->sliceIndex());
+        bar->slider()->setValue(10);
+        QCOMPARE(axial->sliceIndex(), 10);
+        QVERIFY2(axial->slicePosition().startsWith("slice 11/48"), qPrintable(axial->slicePosition()));
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_Up);
+        QCOMPARE(bar->slider()->value(), axial->sliceIndex());
+        // A click in the coronal view moves the axial slice: its slider follows.
+        auto* coronal = window_->slice(1);
+        QTest::mouseClick(coronal, Qt::LeftButton, Qt::NoModifier, QPoint(coronal->width() / 2, coronal->height() / 4));
+        QCOMPARE(bar->slider()->value(), axial->sliceIndex());
+        bar->slider()->setValue(45);
+        bar->setRate(20);
+        bar->setPlaying(true);
+        QTRY_VERIFY_WITH_TIMEOUT(axial->sliceIndex() < 45, 5000);  // past the last slice, back to the first
+        QTRY_VERIFY_WITH_TIMEOUT(axial->sliceIndex() >= 3, 5000);
+        bar->setPlaying(false);
+        const int stopped = axial->sliceIndex();
+        QTest::qWait(300);
+        QCOMPARE(axial->sliceIndex(), stopped);
+        QCOMPARE(bar->slider()->value(), stopped);
+        window_->grab().save(kArtifacts + "/slices-with-scrollers.png");
+        coronal->grab().save(kArtifacts + "/slice-coronal.png");
+    }
+
+    // Dragging a crosshair handle in the axial view turns the coronal and sagittal planes about
+    // the axial normal: they stay perpendicular to it and to each other, turned by the angle the
+    // mouse went round the cursor; the axial crosshair follows the mouse; their letters stay
+    // right; O puts all three back on the acquisition axes.
+    void crosshairHandleRotatesTheOtherPlanes() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* coronal = window_->slice(1);
+        auto* sagittal = window_->slice(2);
+        QVERIFY(QTest::qWaitForWindowExposed(axial));
+        const auto handles = axial->rotationHandles();
+        QCOMPARE(handles.size(), std::size_t(4));
+        // The handle to the right of the cursor, on the horizontal line (the coronal plane's).
+        const QPointF c = axial->widgetAt(axial->point());
+        const auto right = std::max_element(handles.begin(), handles.end(),
+                                            [](const QPointF& a, const QPointF& b) { return a.x() < b.x(); });
+        const QPoint press = right->toPoint();
+        const double r = std::hypot(right->x() - c.x(), right->y() - c.y());
+        QTest::mousePress(axial, Qt::LeftButton, Qt::NoModifier, press);
+        QPoint last = press;
+        for (int degrees = 10; degrees <= 30; degrees += 10) {  // counterclockwise on the screen
+            last = QPointF(c.x() + r * std::cos(qDegreesToRadians(double(degrees))),
+                           c.y() - r * std::sin(qDegreesToRadians(double(degrees)))).toPoint();
+            QMouseEvent move(QEvent::MouseMove, QPointF(last), axial->mapToGlobal(QPointF(last)), Qt::NoButton,
+                             Qt::LeftButton, Qt::NoModifier);
+            QApplication::sendEvent(axial, &move);
+        }
+        QTest::mouseRelease(axial, Qt::LeftButton, Qt::NoModifier, last);
+        const double turned = qRadiansToDegrees(std::atan2(-(last.y() - c.y()), last.x() - c.x()) -
+                                                std::atan2(-(press.y() - c.y()), press.x() - c.x()));
+        QVERIFY2(std::abs(turned - 30.0) < 2.0, qPrintable(QString::number(turned)));
+        const glm::dvec3 na = axial->normal(), nc = coronal->normal(), ns = sagittal->normal();
+        QVERIFY(std::abs(glm::dot(na, nc)) < 1e-9 && std::abs(glm::dot(na, ns)) < 1e-9 && std::abs(glm::dot(nc, ns)) < 1e-9);
+        QVERIFY2(std::abs(coronal->tiltDegrees() - std::abs(turned)) < 1e-6,
+                 qPrintable(QString("%1 for %2").arg(coronal->tiltDegrees()).arg(turned)));
+        QVERIFY(std::abs(sagittal->tiltDegrees() - std::abs(turned)) < 1e-6);
+        QCOMPARE(axial->tiltDegrees(), 0.0);
+        // The axial crosshair now runs through where the mouse let go.
+        const double mouse = std::atan2(last.y() - c.y(), last.x() - c.x());
+        bool follows = false;
+        for (const QPointF& h : axial->rotationHandles())
+            follows |= std::abs(std::remainder(std::atan2(h.y() - c.y(), h.x() - c.x()) - mouse, 2 * M_PI)) < 1e-6;
+        QVERIFY2(follows, "the crosshair did not follow the handle");
+        const QStringList letters = coronal->edgeLabels();
+        QVERIFY2(letters[0].startsWith("R") && letters[1].startsWith("L") && letters[2] == "S" && letters[3] == "I",
+                 qPrintable(letters.join(",")));
+        saveArtifact("slices-crosshair-rotated.png");
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_O);
+        for (auto* v : {axial, coronal, sagittal}) QCOMPARE(v->tiltDegrees(), 0.0);
+    }
+
+    // V makes a slice view follow the 3D view's direction (MedVis's re-slicing along the viewing
+    // direction): the plane turns with the camera, its letters with it; O ends it.
+    void sliceFollowsTheThreeDView() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        axial->setFocus();
+        QTest::keyClick(axial, Qt::Key_V);
+        QVERIFY(axial->followsView());
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Left);
+        QTRY_VERIFY_WITH_TIMEOUT(std::abs(std::abs(glm::dot(axial->normal(), glm::dvec3(1, 0, 0))) - 1.0) < 1e-9, 20000);
+        QStringList letters = axial->edgeLabels();
+        QVERIFY2((QSet<QString>{letters[0], letters[1]} == QSet<QString>{"A", "P"}) && letters[2] == "S" && letters[3] == "I",
+                 qPrintable(letters.join(",")));
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Anterior);
+        QTRY_VERIFY_WITH_TIMEOUT(std::abs(std::abs(glm::dot(axial->normal(), glm::dvec3(0, 1, 0))) - 1.0) < 1e-9, 20000);
+        letters = axial->edgeLabels();
+        QVERIFY2(letters[0] == "R" && letters[1] == "L" && letters[2] == "S" && letters[3] == "I", qPrintable(letters.join(",")));
+        saveArtifact("slice-along-3d-view.png");
+        QTest::keyClick(axial, Qt::Key_O);
+        QVERIFY(!axial->followsView());
+        QCOMPARE(axial->tiltDegrees(), 0.0);
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Left);
+        QTest::qWait(300);
+        QCOMPARE(axial->tiltDegrees(), 0.0);  // no longer follows
+    }
+
+    // D, then two clicks on the 3D view, measures a distance between two points of the rendered
+    // surface (the ray caster's depth): each end projects back under its click and lies inside
+    // the volume; the list says "3D"; a click on nothing picks nothing and says so.
+    void threeDViewMeasuresADistanceOnTheSurface() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* v = window_->view();
+        v->setStandardView(core::OrbitCamera::Standard::Anterior);
+        settledFrame();
+        auto* panel = window_->measurements();
+        const std::size_t before = panel->list().items().size();
+        const QPoint a(v->width() / 2, v->height() / 2), b(v->width() / 2, v->height() / 2 - 60);
+        QVERIFY2(v->surfaceAt(a).has_value() && v->surfaceAt(b).has_value(), "the spine is not under the view's centre");
+        v->setFocus();
+        QTest::keyClick(v, Qt::Key_D);
+        QVERIFY(v->measuringDistance());
+        QTest::mouseClick(v, Qt::LeftButton, Qt::NoModifier, QPoint(3, 3));  // black corner: nothing there
+        QVERIFY(v->measuringDistance());
+        QVERIFY2(window_->statusBar()->currentMessage().contains("nothing under the cursor"),
+                 qPrintable(window_->statusBar()->currentMessage()));
+        QTest::mouseClick(v, Qt::LeftButton, Qt::NoModifier, a);
+        QTest::mouseClick(v, Qt::LeftButton, Qt::NoModifier, b);
+        QVERIFY(!v->measuringDistance());
+        QCOMPARE(panel->list().items().size(), before + 1);
+        const auto& m = panel->list().items().back();
+        QCOMPARE(m.view, std::string("3D"));
+        const auto reader = core::OctreeReader::open(dir_.file("w-ct.hvo"));
+        const glm::dmat4 toIndex = glm::inverse(reader->geometry().indexToPatient());
+        for (const auto& [end, click] : {std::pair{m.a, a}, std::pair{m.b, b}}) {
+            QPointF at;
+            double depth = 0;
+            QVERIFY(v->project(end, at, depth));
+            QVERIFY2(std::hypot(at.x() - click.x(), at.y() - click.y()) < 1.5,
+                     qPrintable(QString("(%1, %2) for a click at (%3, %4)").arg(at.x()).arg(at.y()).arg(click.x()).arg(click.y())));
+            const glm::dvec3 i(toIndex * glm::dvec4(end, 1.0));
+            for (int k = 0; k < 3; ++k)
+                QVERIFY(i[k] >= -0.5 && i[k] <= reader->geometry().dims[std::size_t(k)] - 0.5);
+        }
+        QVERIFY(m.lengthMm() > 0.0);
+        saveArtifact("volume-distance.png");
+        QTest::keyClick(v, Qt::Key_D);
+        QTest::keyClick(v, Qt::Key_Escape);
+        QVERIFY(!v->measuringDistance());
+    }
+
+    // Ctrl+Shift-drag draws a freehand outline: its statistics come from level 0 for the slice
+    // it was drawn on (the same as computing the region it stored), its area is the drawn one's
+    // within the voxels along its edge, and it is listed as an outline and drawn with its label.
+    void sliceViewMeasuresAFreehandOutline() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* panel = window_->measurements();
+        const std::size_t before = panel->list().items().size();
+        const QPoint c(axial->width() / 2, axial->height() / 2);
+        const QList<QPoint> corners{c + QPoint(-30, -20), c + QPoint(30, -20), c + QPoint(30, 25), c + QPoint(-30, 25)};
+        QTest::mousePress(axial, Qt::LeftButton, Qt::ControlModifier | Qt::ShiftModifier, corners[0]);
+        for (int i = 1; i <= 4; ++i) {
+            const QPoint at = corners[i % 4];
+            QMouseEvent move(QEvent::MouseMove, QPointF(at), axial->mapToGlobal(QPointF(at)), Qt::NoButton, Qt::LeftButton,
+                             Qt::ControlModifier | Qt::ShiftModifier);
+            QApplication::sendEvent(axial, &move);
+        }
+        QTest::mouseRelease(axial, Qt::LeftButton, Qt::ControlModifier | Qt::ShiftModifier, corners[0]);
+        QCOMPARE(panel->list().items().size(), before + 1);
+        const auto& m = panel->list().items().back();
+        QVERIFY(m.region && m.stats);
+        QCOMPARE(m.region->kind, core::MeasureRegion::Kind::Polygon);
+        const int row = panel->table()->rowCount() - 1;
+        QCOMPARE(panel->table()->item(row, 1)->text(), QString("outline"));
+        const auto reader = core::OctreeReader::open(dir_.file("w-ct.hvo"));
+        const auto direct = core::RegionStatistics::compute(*reader, *m.region);
+        QCOMPARE(m.stats->voxels, direct.voxels);
+        QCOMPARE(m.stats->mean, direct.mean);
+        const double pixelMm = 300.0 / std::min(axial->width(), axial->height());
+        const double drawn = 60 * pixelMm * 45 * pixelMm;  // mm^2
+        const auto& g = reader->geometry();
+        const double edgeVoxels = 2 * (60 + 45) * pixelMm / g.spacing.x;  // voxels along the outline
+        QVERIFY2(std::abs(m.stats->areaMm2 - drawn) <= edgeVoxels * g.spacing.x * g.spacing.y,
+                 qPrintable(QString("%1 mm2 for %2 drawn").arg(m.stats->areaMm2).arg(drawn)));
+        axial->grab().save(kArtifacts + "/slice-outline.png");
+    }
+
+    // Left is never right: a bone block on the patient's left (+x in LPS) shows on the image's
+    // right in the anterior 3D view and on the axial slice (radiological convention), and on the
+    // image's left in the posterior 3D view.
+    void patientsLeftIsOnTheImagesRightWhereItShouldBe() {
+        core::VolumeGeometry g;
+        g.dims = {64, 64, 48};
+        g.spacing = {2.0, 2.0, 2.0};
+        g.modality = "CT";
+        g.scalarType = core::ScalarType::Int16;
+        g.rescaleIntercept = -1024;
+        test::DenseVolume v;
+        v.dims = g.dims;
+        v.values.assign(std::size_t(64) * 64 * 48, 0.0);  // air
+        for (std::uint32_t k = 18; k < 30; ++k)
+            for (std::uint32_t j = 26; j < 38; ++j)
+                for (std::uint32_t i = 46; i < 58; ++i)  // +x: the patient's left
+                    v.values[(std::size_t(k) * 64 + j) * 64 + i] = 2024.0;  // 1000 HU
+        test::MemoryVoxelSource source(g, v);
+        core::JobContext job;
+        core::OctreeBuilder(core::BuildOptions{}).build(source, dir_.file("left.hvo"), job);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("left.hvo"))));
+        // The bright pixels' mean column, as a fraction of the image's width.
+        const auto brightColumn = [](const QImage& img) {
+            double sum = 0, n = 0;
+            for (int y = 0; y < img.height(); ++y)
+                for (int x = 0; x < img.width(); ++x)
+                    if (qGray(img.pixel(x, y)) > 128) sum += x, n += 1;
+            return n > 0 ? sum / n / img.width() : -1.0;
+        };
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Anterior);
+        const double anterior = brightColumn(settledFrame());
+        QVERIFY2(anterior > 0.55, qPrintable(QString("anterior view: the left block at %1 of the width").arg(anterior)));
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Posterior);
+        const double posterior = brightColumn(settledFrame());
+        QVERIFY2(posterior >= 0 && posterior < 0.45, qPrintable(QString("posterior view: at %1 of the width").arg(posterior)));
+        auto* axial = window_->slice(0);
+        axial->setPoint(glm::dvec3(g.origin) + glm::dvec3(104, 64, 48));  // through the block
+        const double slice = brightColumn(axial->image());
+        QVERIFY2(slice > 0.55, qPrintable(QString("axial slice: at %1 of the width").arg(slice)));
+        QCOMPARE(axial->edgeLabels()[1], QString("L"));
+        axial->grab().save(kArtifacts + "/slice-left-block.png");
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Anterior);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));  // what the next cases read
+    }
+
+    // Up/Down and Page keys step one and ten slices (the voxel spacing along the normal); ] makes
+    // a thick slab whose MIP is nowhere darker than the thin slice and M its MinIP nowhere
+    // brighter; the views say which slice and which octree level they show.
+    void sliceViewStepsSlabsAndSaysItsLevel() {
+        auto* axial = window_->slice(0);  // w-ct.hvo: 48 slices, 6.25 mm apart
+        axial->setFocus();
+        const double z = axial->point().z;
+        QCOMPARE(axial->sliceStepMm(), 6.25);
+        QTest::keyClick(axial, Qt::Key_Up);
+        QCOMPARE(axial->point().z, z + 6.25);
+        QCOMPARE(window_->slice(1)->point(), axial->point());  // the three views share the point
+        QCOMPARE(window_->slice(2)->point(), axial->point());
+        QWheelEvent wheel(QPointF(20, 20), axial->mapToGlobal(QPointF(20, 20)), QPoint(), QPoint(0, -120), Qt::NoButton,
+                          Qt::NoModifier, Qt::NoScrollPhase, false);
+        QApplication::sendEvent(axial, &wheel);
+        QCOMPARE(axial->point().z, z);  // the wheel steps one slice back
+        QTest::keyClick(axial, Qt::Key_Up);
+        QTest::keyClick(axial, Qt::Key_PageDown);
+        QVERIFY(std::abs(axial->point().z - (z + 6.25 - 62.5)) < 1e-9);
+        QVERIFY2(axial->slicePosition().contains("/48"), qPrintable(axial->slicePosition()));
+        QCOMPARE(axial->levelReadout(), QString("full resolution"));
+        QTest::keyClick(axial, Qt::Key_PageUp);
+        const QImage thin = axial->image();
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_BracketRight);  // 5, 10, 20 mm
+        QCOMPARE(axial->slabMm(), 20.0);
+        const auto compare = [&](const QImage& slab, int sign) {  // sign 1: slab >= thin everywhere
+            int wrong = 0, differ = 0;
+            for (int y = 0; y < thin.height(); ++y)
+                for (int x = 0; x < thin.width(); ++x) {
+                    const int d = qGray(slab.pixel(x, y)) - qGray(thin.pixel(x, y));
+                    wrong += d * sign < 0;
+                    differ += d != 0;
+                }
+            return std::make_pair(wrong, differ);
+        };
+        const auto mip = compare(axial->image(), 1);
+        QCOMPARE(mip.first, 0);
+        QVERIFY2(mip.second > 100, "a 20 mm MIP shows more than the thin slice");
+        QTest::keyClick(axial, Qt::Key_M);
+        QCOMPARE(axial->slabMode(), core::SlabMode::MinIp);
+        const auto minip = compare(axial->image(), -1);
+        QCOMPARE(minip.first, 0);
+        QVERIFY(minip.second > 100);
+        saveArtifact("slab-minip.png");
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_BracketLeft);
+        QCOMPARE(axial->slabMm(), 0.0);
+        QCOMPARE(compare(axial->image(), 1).second, 0);
+        // Ctrl+Up tilts the axial plane about its horizontal axis, 5 degrees a press; the letters
+        // follow (top anterior and, past about 17 degrees, superior or inferior too); O resets.
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_Up, Qt::ControlModifier);
+        QVERIFY2(std::abs(axial->tiltDegrees() - 15.0) < 1e-6, qPrintable(QString::number(axial->tiltDegrees())));
+        QCOMPARE(axial->edgeLabels(), (QStringList{"R", "L", "A", "P"}));
+        for (int i = 0; i < 5; ++i) QTest::keyClick(axial, Qt::Key_Up, Qt::ControlModifier);
+        QVERIFY(std::abs(axial->tiltDegrees() - 40.0) < 1e-6);
+        const QStringList tilted = axial->edgeLabels();
+        QCOMPARE(tilted.mid(0, 2), (QStringList{"R", "L"}));
+        QVERIFY2((tilted[2] == "AI" && tilted[3] == "PS") || (tilted[2] == "AS" && tilted[3] == "PI"),
+                 qPrintable(tilted.join(",")));
+        saveArtifact("slice-tilted.png");
+        // Another volume opens on the standard plane, not on the last one's tilt.
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_Up, Qt::ControlModifier);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-mr.hvo"))));
+        QCOMPARE(axial->tiltDegrees(), 0.0);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        axial->setFocus();
+        for (int i = 0; i < 3; ++i) QTest::keyClick(axial, Qt::Key_Up, Qt::ControlModifier);
+        QTest::keyClick(axial, Qt::Key_O);
+        QCOMPARE(axial->tiltDegrees(), 0.0);
+        QCOMPARE(axial->edgeLabels(), (QStringList{"R", "L", "A", "P"}));
+        settledFrame();
+        QVERIFY2(!view()->levelReadout().isEmpty(), "the 3D view says which levels it shows");
+        QVERIFY2(!view()->levelReadout().contains("refining"), qPrintable(view()->levelReadout()));
+    }
+
+    void cleanupTestCase() {
+        window_->jobs()->waitIdle(30000);
+        window_.reset();
+    }
+};
+
+int main(int argc, char** argv) { return test::runGuiTests<ReadingToolsTest>(argc, argv); }
+
+#include "ReadingToolsTest.moc"
