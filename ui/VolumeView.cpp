@@ -3,6 +3,8 @@
 
 #include "ui/VolumeView.h"
 
+#include <QSurfaceFormat>
+
 #include <QKeyEvent>
 #include <QMouseEvent>
 #include <QNativeGestureEvent>
@@ -458,6 +460,13 @@ std::optional<glm::dvec3> VolumeView::surfaceAt(QPointF pos) const {
     glm::dvec3 o, d;
     lastView_.ray(px, py, o, d);
     return o + d * double(depth);
+}
+
+void VolumeView::requestGlFormat() {
+    QSurfaceFormat format;
+    format.setVersion(4, 5);
+    format.setProfile(QSurfaceFormat::CoreProfile);
+    QSurfaceFormat::setDefaultFormat(format);
 }
 
 void VolumeView::startDistance() {

@@ -44,6 +44,9 @@ public:
     };
 
     explicit VolumeView(QWidget* parent = nullptr);
+    /// Asks Qt for the OpenGL 4.5 core profile the render module needs (compute shaders,
+    /// direct state access) for every window: call before the QApplication is made.
+    static void requestGlFormat();
     ~VolumeView() override;
 
     /// Shows a volume (framed in the anterior view, or keeping the camera: the full octree

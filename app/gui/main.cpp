@@ -5,7 +5,6 @@
 #include <QDir>
 #include <QFileInfo>
 #include <QPointer>
-#include <QSurfaceFormat>
 #include <QTimer>
 
 #include <filesystem>
@@ -56,11 +55,7 @@ void startDemo(hvx::ui::MainWindow& window, const QString& pacsConfig) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    // The render module needs OpenGL 4.5 core (compute shaders, direct state access).
-    QSurfaceFormat format;
-    format.setVersion(4, 5);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    QSurfaceFormat::setDefaultFormat(format);
+    hvx::ui::VolumeView::requestGlFormat();
     QApplication app(argc, argv);
     QApplication::setApplicationName("Holovox");
     QApplication::setOrganizationName("Holovox");

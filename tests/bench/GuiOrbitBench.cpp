@@ -5,7 +5,6 @@
 //   xvfb-run -a -s "-screen 0 1600x1000x24" build/release/tests/bench/hvx_bench_gui FILE.hvo [--frames 40]
 #include <QApplication>
 #include <QElapsedTimer>
-#include <QSurfaceFormat>
 #include <QTest>
 
 #include <algorithm>
@@ -26,10 +25,7 @@
 using namespace hvx;
 
 int main(int argc, char** argv) {
-    QSurfaceFormat format;
-    format.setVersion(4, 5);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    QSurfaceFormat::setDefaultFormat(format);
+    ui::VolumeView::requestGlFormat();
     qputenv("XDG_CONFIG_HOME", "/tmp/hvx-bench-gui-config");
     QApplication app(argc, argv);
     if (argc < 2) {

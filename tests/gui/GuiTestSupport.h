@@ -6,13 +6,13 @@
 #include <QDir>
 #include <QImage>
 #include <QSettings>
-#include <QSurfaceFormat>
 #include <QTest>
 
 #include <cmath>
 #include <memory>
 
 #include "tests/support/TempDir.h"
+#include "ui/JobManager.h"
 #include "ui/MainWindow.h"
 #include "ui/VolumeView.h"
 
@@ -56,25 +56,36 @@ inline QImage settledFrame(ui::VolumeView* view) {
     return view->lastFrame();
 }
 
-/// The main window with its study database and PACS settings in `dir`, no saved layout or
-/// tools from an earlier run, shown at 1400 x 900.
-inline std::unique_ptr<ui::MainWindow> openWorkstation(const TempDir& dir) {
-    QSettings().clear();
-    auto window = std::make_unique<ui::MainWindow>(QString::fromStdString(dir.file("db/studies.sqlite")),
-                                                   QString::fromStdString(dir.file("pacs.json")));
-    window->resize(1400, 900);
-    window->show();
-    return window;
-}
+/// What a GUI test case holds: a temporary folder and the main window, its study database and
+/// PACS settings in that folder, no saved layout or tools from an earlier run, shown at
+/// 1400 x 900 (open() in initTestCase, close() in cleanupTestCase).
+struct GuiFixture {
+    TempDir dir_;
+    std::unique_ptr<ui::MainWindow> window_;
+
+    void open() {
+        QSettings().clear();
+        window_ = std::make_unique<ui::MainWindow>(QString::fromStdString(dir_.file("db/studies.sqlite")),
+                                                   QString::fromStdString(dir_.file("pacs.json")));
+        window_->resize(1400, 900);
+        window_->show();
+        [&] { QVERIFY(QTest::qWaitForWindowExposed(window_.get())); }();
+    }
+    void close() {
+        window_->jobs()->waitIdle(30000);
+        window_.reset();
+    }
+    ui::VolumeView* view() const { return window_->view(); }
+    QImage settledFrame() { return test::settledFrame(view()); }
+    /// A screenshot of the whole window, kept as an artefact.
+    void saveArtifact(const QString& name) { window_->grab().save(guiArtifacts() + "/" + name); }
+};
 
 /// A GUI test program's main. HOME and the XDG folders are a temporary folder of this process
 /// (tests/support/Hermetic.cpp).
 template <class Test>
 int runGuiTests(int argc, char** argv) {
-    QSurfaceFormat format;
-    format.setVersion(4, 5);
-    format.setProfile(QSurfaceFormat::CoreProfile);
-    QSurfaceFormat::setDefaultFormat(format);
+    ui::VolumeView::requestGlFormat();
     QApplication app(argc, argv);
     QApplication::setOrganizationName("HolovoxTests");
     Test t;

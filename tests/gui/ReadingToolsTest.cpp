@@ -69,20 +69,11 @@ const QString kArtifacts = test::guiArtifacts();
 using test::difference;
 }  // namespace
 
-class ReadingToolsTest : public QObject {
+class ReadingToolsTest : public QObject, test::GuiFixture {
     Q_OBJECT
-    test::TempDir dir_;
-    std::unique_ptr<ui::MainWindow> window_;
-
-    ui::VolumeView* view() const { return window_->view(); }
-    QImage settledFrame() { return test::settledFrame(view()); }
-    void saveArtifact(const QString& name) { window_->grab().save(kArtifacts + "/" + name); }
 
 private slots:
-    void initTestCase() {
-        window_ = test::openWorkstation(dir_);
-        QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
-    }
+    void initTestCase() { open(); }
 
     // A CT opened after an MR gets its own window (not the MR's), the number keys pick the CT
     // presets in all three views, a window chosen for a volume comes back when it is opened
@@ -559,10 +550,7 @@ private slots:
         QVERIFY2(!view()->levelReadout().contains("refining"), qPrintable(view()->levelReadout()));
     }
 
-    void cleanupTestCase() {
-        window_->jobs()->waitIdle(30000);
-        window_.reset();
-    }
+    void cleanupTestCase() { close(); }
 };
 
 int main(int argc, char** argv) { return test::runGuiTests<ReadingToolsTest>(argc, argv); }

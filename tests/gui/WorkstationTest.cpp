@@ -81,20 +81,11 @@ std::vector<std::string> writeSeries(const std::string& folder, const std::strin
 }
 }  // namespace
 
-class WorkstationTest : public QObject {
+class WorkstationTest : public QObject, test::GuiFixture {
     Q_OBJECT
-    test::TempDir dir_;
-    std::unique_ptr<ui::MainWindow> window_;
-
-    ui::VolumeView* view() const { return window_->view(); }
-    QImage settledFrame() { return test::settledFrame(view()); }
-    void saveArtifact(const QString& name) { window_->grab().save(kArtifacts + "/" + name); }
 
 private slots:
-    void initTestCase() {
-        window_ = test::openWorkstation(dir_);
-        QVERIFY(QTest::qWaitForWindowExposed(window_.get()));
-    }
+    void initTestCase() { open(); }
 
     void importsAGeneratedSeriesAndOpensItToAFirstFrame() {
         QElapsedTimer clock;
@@ -644,10 +635,7 @@ private slots:
         QVERIFY(!s.contains("tools/json"));
     }
 
-    void cleanupTestCase() {
-        window_->jobs()->waitIdle(30000);
-        window_.reset();
-    }
+    void cleanupTestCase() { close(); }
 };
 
 int main(int argc, char** argv) { return test::runGuiTests<WorkstationTest>(argc, argv); }
