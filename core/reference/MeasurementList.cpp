@@ -36,6 +36,8 @@ const char* kindName(MeasureRegion::Kind k) {
     return k == MeasureRegion::Kind::Sphere    ? "sphere"
            : k == MeasureRegion::Kind::Box     ? "box"
            : k == MeasureRegion::Kind::Polygon ? "polygon"
+           : k == MeasureRegion::Kind::Ellipse ? "ellipse"
+           : k == MeasureRegion::Kind::Rectangle ? "rectangle"
                                                : "disc";
 }
 
@@ -79,11 +81,20 @@ bool MeasurementList::remove(const std::string& label) {
 
 void MeasurementList::clear() { items_.clear(); }
 
+bool MeasurementList::replace(const Measurement& m) {
+    for (auto& item : items_)
+        if (item.label == m.label) {
+            item = m;
+            return true;
+        }
+    return false;
+}
+
 std::string MeasurementList::toCsv(const MeasurementSource& s) const {
     std::string out =
         "label,kind,view,length_mm,region,centre_x_lps,centre_y_lps,centre_z_lps,radius_mm,voxels,mean,sd,min,max,"
         "units,area_mm2,volume_mm3,exact,note,a_x_lps,a_y_lps,a_z_lps,b_x_lps,b_y_lps,b_z_lps,angle_deg,c_x_lps,c_y_lps,"
-        "c_z_lps,patient_name,patient_id,study_uid,series_uid,volume\n";
+        "c_z_lps,patient_name,patient_id,study_uid,series_uid,volume,radius2_mm\n";
     for (const auto& m : items_) {
         std::vector<std::string> f{m.label, m.kindName(), m.view};
         f.push_back(m.kind == Measurement::Kind::Distance ? number(m.lengthMm()) : "");
@@ -107,6 +118,8 @@ std::string MeasurementList::toCsv(const MeasurementSource& s) const {
         f.push_back(angle ? number(m.angleDegrees()) : "");
         for (int c = 0; c < 3; ++c) f.push_back(angle ? number(m.c[c]) : "");
         f.insert(f.end(), {s.patientName, s.patientId, s.studyUid, s.seriesUid, s.volume});
+        // An ellipse's second semi-axis (radius_mm is its first, along its axis).
+        f.push_back(m.region && m.region->kind == MeasureRegion::Kind::Ellipse ? number(m.region->radius2) : "");
         for (std::size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + field(f[i]);
         out += "\n";
     }
@@ -140,7 +153,11 @@ std::string MeasurementList::toJson(const MeasurementSource& s) const {
             e["region"] = {{"shape", kindName(r.kind)}, {"centre", vec(r.centre)}, {"radiusMm", r.radius},
                            {"low", vec(r.low)}, {"high", vec(r.high)}, {"normal", vec(r.normal)},
                            {"thicknessMm", r.thickness}};
-            if (r.kind == MeasureRegion::Kind::Polygon) {
+            if (r.kind == MeasureRegion::Kind::Ellipse) {
+                e["region"]["axis"] = vec(r.axis);
+                e["region"]["radius2Mm"] = r.radius2;
+            }
+            if (r.outlined()) {
                 e["region"]["outline"] = json::array();
                 for (const auto& p : r.outline) e["region"]["outline"].push_back(vec(p));
             }
@@ -184,6 +201,8 @@ MeasurementList MeasurementList::fromJson(const std::string& text) {
                          : shape == "box"  ? MeasureRegion::Kind::Box
                          : shape == "disc" ? MeasureRegion::Kind::Disc
                          : shape == "polygon" ? MeasureRegion::Kind::Polygon
+                         : shape == "ellipse" ? MeasureRegion::Kind::Ellipse
+                         : shape == "rectangle" ? MeasureRegion::Kind::Rectangle
                                            : throw Error("measurements: unknown region shape '" + shape + "'");
                 g.centre = vecOf(r.at("centre"), "a region's centre");
                 g.radius = r.at("radiusMm").get<double>();
@@ -191,9 +210,15 @@ MeasurementList MeasurementList::fromJson(const std::string& text) {
                 g.high = vecOf(r.at("high"), "a box corner");
                 g.normal = vecOf(r.at("normal"), "a disc's normal");
                 g.thickness = r.at("thicknessMm").get<double>();
-                if (g.kind == MeasureRegion::Kind::Polygon) {
+                if (g.kind == MeasureRegion::Kind::Ellipse) {
+                    g.axis = vecOf(r.at("axis"), "an ellipse's axis");
+                    g.radius2 = r.at("radius2Mm").get<double>();
+                }
+                if (g.outlined()) {
                     for (const auto& p : r.at("outline")) g.outline.push_back(vecOf(p, "a polygon's corner"));
                     if (g.outline.size() < 3) throw Error("measurements: a polygon needs three corners or more");
+                    if (g.kind == MeasureRegion::Kind::Rectangle && g.outline.size() != 4)
+                        throw Error("measurements: a rectangle needs four corners");
                 }
                 m.region = g;
             }

@@ -46,6 +46,9 @@ class MeasurementList {
 public:
     /// Adds a measurement and returns it with its new label.
     const Measurement& add(Measurement m);
+    /// Puts `m` in place of the measurement with its label (an edit: same label, same place in
+    /// the list); false when there is none.
+    bool replace(const Measurement& m);
     /// Removes the measurement with this label; false when there is none.
     bool remove(const std::string& label);
     void clear();

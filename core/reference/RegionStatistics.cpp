@@ -59,6 +59,39 @@ MeasureRegion MeasureRegion::polygon(const std::vector<glm::dvec3>& outline, con
     return r;
 }
 
+MeasureRegion MeasureRegion::ellipse(const glm::dvec3& centre, const glm::dvec3& normal, const glm::dvec3& axis,
+                                     double a, double b, double thicknessMm) {
+    MeasureRegion r;
+    r.kind = Kind::Ellipse;
+    r.centre = centre;
+    r.normal = unitOrZero(normal);
+    r.axis = unitOrZero(axis - glm::dot(axis, r.normal) * r.normal);
+    r.radius = a;
+    r.radius2 = b;
+    r.thickness = thicknessMm;
+    return r;
+}
+
+MeasureRegion MeasureRegion::rectangle(const glm::dvec3& from, const glm::dvec3& to, const glm::dvec3& normal,
+                                       const glm::dvec3& axis, double thicknessMm) {
+    const glm::dvec3 n = unitOrZero(normal);
+    const glm::dvec3 u = unitOrZero(axis - glm::dot(axis, n) * n), v = glm::cross(n, u);
+    const glm::dvec3 d = to - from;
+    const glm::dvec3 du = glm::dot(d, u) * u, dv = glm::dot(d, v) * v;
+    MeasureRegion r = polygon({from, from + du, from + du + dv, from + dv}, n, thicknessMm);
+    r.kind = Kind::Rectangle;
+    return r;
+}
+
+MeasureRegion MeasureRegion::movedBy(const glm::dvec3& offset) const {
+    MeasureRegion r = *this;
+    r.centre += offset;
+    r.low += offset;
+    r.high += offset;
+    for (auto& p : r.outline) p += offset;
+    return r;
+}
+
 namespace {
 /// Two unit axes spanning the plane perpendicular to `n`.
 std::pair<glm::dvec3, glm::dvec3> planeAxes(const glm::dvec3& n) {
@@ -101,8 +134,10 @@ MeasureRegion MeasureRegion::parse(const std::string& text) {
     if (kind == "sphere" && v.size() == 4) return sphere({v[0], v[1], v[2]}, v[3]);
     if (kind == "box" && v.size() == 6) return box({v[0], v[1], v[2]}, {v[3], v[4], v[5]});
     if (kind == "disc" && v.size() == 8) return disc({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], v[7]);
-    throw Error("'" + text + "' is not a region: sphere:X,Y,Z,R, box:X0,Y0,Z0,X1,Y1,Z1 or disc:X,Y,Z,NX,NY,NZ,R,T "
-                "(LPS mm)");
+    if (kind == "ellipse" && v.size() == 12)
+        return ellipse({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}, v[9], v[10], v[11]);
+    throw Error("'" + text + "' is not a region: sphere:X,Y,Z,R, box:X0,Y0,Z0,X1,Y1,Z1, disc:X,Y,Z,NX,NY,NZ,R,T or "
+                "ellipse:X,Y,Z,NX,NY,NZ,AX,AY,AZ,A,B,T (LPS mm)");
 }
 
 bool MeasureRegion::contains(const glm::dvec3& p) const {
@@ -118,7 +153,13 @@ bool MeasureRegion::contains(const glm::dvec3& p) const {
         // when it lies midway between two.
         return along >= -thickness / 2 && along < thickness / 2 && glm::dot(across, across) <= radius * radius;
     }
-    if (kind == Kind::Polygon)
+    if (kind == Kind::Ellipse) {
+        const glm::dvec3 d = p - centre;
+        const double along = glm::dot(d, normal);
+        const double u = glm::dot(d, axis) / radius, v = glm::dot(d, glm::cross(normal, axis)) / radius2;
+        return along >= -thickness / 2 && along < thickness / 2 && u * u + v * v <= 1.0;
+    }
+    if (outlined())
         return outline.size() >= 3 && glm::dot(p - centre, normal) >= -thickness / 2 &&
                glm::dot(p - centre, normal) < thickness / 2 && insidePolygon(*this, p);
     return p.x >= low.x && p.x <= high.x && p.y >= low.y && p.y <= high.y && p.z >= low.z && p.z <= high.z;
@@ -132,6 +173,13 @@ std::string MeasureRegion::describe() const {
     else if (kind == Kind::Disc)
         std::snprintf(buf, sizeof buf, "disc of radius %.4g mm, %.4g mm thick, at (%.4g, %.4g, %.4g)", radius, thickness,
                       centre.x, centre.y, centre.z);
+    else if (kind == Kind::Ellipse)
+        std::snprintf(buf, sizeof buf, "ellipse of semi-axes %.4g and %.4g mm, %.4g mm thick, at (%.4g, %.4g, %.4g)",
+                      radius, radius2, thickness, centre.x, centre.y, centre.z);
+    else if (kind == Kind::Rectangle)
+        std::snprintf(buf, sizeof buf, "rectangle %.4g by %.4g mm, %.4g mm thick, about (%.4g, %.4g, %.4g)",
+                      glm::length(outline[1] - outline[0]), glm::length(outline[2] - outline[1]), thickness, centre.x,
+                      centre.y, centre.z);
     else if (kind == Kind::Polygon)
         std::snprintf(buf, sizeof buf, "polygon of %zu corners, %.4g mm thick, about (%.4g, %.4g, %.4g)", outline.size(),
                       thickness, centre.x, centre.y, centre.z);
@@ -143,7 +191,10 @@ std::string MeasureRegion::describe() const {
 
 RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const MeasureRegion& region) {
     const auto& g = reader.geometry();
-    const bool polygon = region.kind == MeasureRegion::Kind::Polygon;
+    const bool polygon = region.outlined();
+    const bool ellipse = region.kind == MeasureRegion::Kind::Ellipse;
+    if (region.kind == MeasureRegion::Kind::Rectangle && region.outline.size() != 4)
+        throw Error("a rectangle needs four corners");
     if (polygon) {
         double area2 = 0, extent2 = 0;  // twice the signed area (shoelace), in the plane; the size squared
         const auto [u, v] = planeAxes(region.normal);
@@ -153,12 +204,18 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
             extent2 = std::max(extent2, glm::dot(a, a));
         }
         // (Corners on one line leave a rounding error's worth of area.)
+        const std::string name = region.kind == MeasureRegion::Kind::Rectangle ? "rectangle" : "polygon";
         if (region.outline.size() < 3 || !(std::abs(area2) > 1e-9 * extent2))
-            throw Error("the polygon has no area: it needs three corners or more, not all on one line");
+            throw Error("the " + name + " has no area: it needs three corners or more, not all on one line");
         if (!(region.thickness > 0) || !(glm::length(region.normal) > 0.5))
-            throw Error("the polygon needs a thickness above 0 mm and a normal");
+            throw Error("the " + name + " needs a thickness above 0 mm and a normal");
     }
-    if (region.kind != MeasureRegion::Kind::Box && !polygon && !(region.radius > 0))
+    if (ellipse && (!(region.radius > 0) || !(region.radius2 > 0)))
+        throw Error("the ellipse has no area (semi-axes " + std::to_string(region.radius) + " and " +
+                    std::to_string(region.radius2) + " mm)");
+    if (ellipse && (!(region.thickness > 0) || !(glm::length(region.normal) > 0.5) || !(glm::length(region.axis) > 0.5)))
+        throw Error("the ellipse needs a thickness above 0 mm, a normal and an axis in its plane");
+    if (region.kind != MeasureRegion::Kind::Box && !polygon && !ellipse && !(region.radius > 0))
         throw Error("the " + std::string(region.kind == MeasureRegion::Kind::Disc ? "disc" : "sphere") +
                     " has no volume (radius " + std::to_string(region.radius) + " mm)");
     if (region.kind == MeasureRegion::Kind::Disc && (!(region.thickness > 0) || !(glm::length(region.normal) > 0.5)))
@@ -168,8 +225,9 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
         throw Error("the box has no volume: every side must be longer than 0 mm");
     // The region's patient-space bounding box, in voxel indices.
     // (A disc lies within the sphere through its rim.)
-    const double reach = region.kind == MeasureRegion::Kind::Disc
-                             ? std::sqrt(region.radius * region.radius + region.thickness * region.thickness / 4)
+    const double across = ellipse ? std::max(region.radius, region.radius2) : region.radius;
+    const double reach = region.kind == MeasureRegion::Kind::Disc || ellipse
+                             ? std::sqrt(across * across + region.thickness * region.thickness / 4)
                              : region.radius;
     const bool round = region.kind != MeasureRegion::Kind::Box;
     glm::dvec3 lo = round ? region.centre - reach : region.low;
@@ -262,7 +320,7 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
     s.max = maxV;
     const glm::dmat3 step(g.direction[0] * g.spacing.x, g.direction[1] * g.spacing.y, g.direction[2] * g.spacing.z);
     s.volumeMm3 = n * std::abs(glm::determinant(step));
-    if (region.kind == MeasureRegion::Kind::Disc || polygon) s.areaMm2 = s.volumeMm3 / region.thickness;
+    if (region.kind == MeasureRegion::Kind::Disc || polygon || ellipse) s.areaMm2 = s.volumeMm3 / region.thickness;
     if (s.approximateVoxels) {
         s.exact = false;
         s.note = std::to_string(s.approximateVoxels) + " of the voxels lie in bricks stored " +

@@ -159,3 +159,51 @@ TEST(MeasurementList, PolygonOutlinesReadBack) {
     EXPECT_EQ(back.items()[0].region->outline, m.region->outline);
     EXPECT_NE(list.toCsv(source()).find(",polygon,"), std::string::npos);
 }
+
+// An ellipse keeps its axes and a rectangle its corners through JSON; CSV names their shapes and
+// gives the ellipse's second semi-axis.
+TEST(MeasurementList, EllipsesAndRectanglesReadBack) {
+    core::MeasurementList list;
+    core::Measurement m;
+    m.kind = core::Measurement::Kind::Region;
+    m.view = "coronal";
+    m.region = core::MeasureRegion::ellipse({1, 2, 3}, {0, 1, 0}, {1, 0, 1}, 7.5, 3.25, 2.0);
+    list.add(m);
+    m.region = core::MeasureRegion::rectangle({0, 4, 0}, {10, 4, 6}, {0, 1, 0}, {1, 0, 0}, 1.5);
+    list.add(m);
+    const auto back = core::MeasurementList::fromJson(list.toJson(source()));
+    ASSERT_EQ(back.items().size(), 2u);
+    const auto& e = *back.items()[0].region;
+    EXPECT_EQ(e.kind, core::MeasureRegion::Kind::Ellipse);
+    EXPECT_EQ(e.axis, list.items()[0].region->axis);
+    EXPECT_DOUBLE_EQ(e.radius2, 3.25);
+    EXPECT_EQ(back.items()[1].region->kind, core::MeasureRegion::Kind::Rectangle);
+    EXPECT_EQ(back.items()[1].region->outline, m.region->outline);
+    const std::string csv = list.toCsv(source());
+    EXPECT_NE(csv.find(",ellipse,"), std::string::npos);
+    EXPECT_NE(csv.find(",rectangle,"), std::string::npos);
+    EXPECT_NE(csv.find(",3.25\n"), std::string::npos) << csv;
+    EXPECT_THROW(core::MeasurementList::fromJson(
+                     "{\"measurements\": [{\"kind\": \"region\", \"region\": {\"shape\": \"rectangle\", \"centre\": [0,0,0], "
+                     "\"radiusMm\": 0, \"low\": [0,0,0], \"high\": [0,0,0], \"normal\": [0,0,1], \"thicknessMm\": 1, "
+                     "\"outline\": [[0,0,0],[1,0,0],[1,1,0]]}}]}"),
+                 core::Error);
+}
+
+// An edited measurement keeps its label and its place in the list.
+TEST(MeasurementList, ReplaceKeepsLabelAndOrder) {
+    core::MeasurementList list;
+    core::Measurement m;
+    m.b = {10, 0, 0};
+    list.add(m);
+    list.add(m);
+    core::Measurement edited = list.items()[0];
+    edited.b = {0, 20, 0};
+    EXPECT_TRUE(list.replace(edited));
+    EXPECT_EQ(list.items()[0].label, "M1");
+    EXPECT_DOUBLE_EQ(list.items()[0].lengthMm(), 20.0);
+    EXPECT_DOUBLE_EQ(list.items()[1].lengthMm(), 10.0);
+    edited.label = "M9";
+    EXPECT_FALSE(list.replace(edited));
+    EXPECT_EQ(list.add(m).label, "M3");
+}

@@ -271,3 +271,68 @@ TEST(RegionStatistics, PolygonsTakeTheVoxelsOfTheBoxesTheyCover) {
         }
     }
 }
+
+// An ellipse drawn on a slice, its axes turned 30 degrees from the volume's: the voxels of
+// that slice inside it, counted here by hand; with equal semi-axes it is the circle of that
+// radius; degenerate ones are refused.
+TEST(RegionStatistics, AnEllipseOnASliceTakesThatSlicesVoxelsInside) {
+    const SliceCase c(11);
+    const auto& [g, centre, v] = std::tie(c.g, c.centre, c.v);
+    const auto& reader = c.reader;
+    const double a = 8.3, b = 4.1, turn = 30.0 * M_PI / 180.0;
+    const glm::dvec3 axis(std::cos(turn), std::sin(turn), 0.0);
+    const auto s = core::RegionStatistics::compute(*reader, core::MeasureRegion::ellipse(centre, {0, 0, 1}, axis, a, b, 2.0));
+    std::uint64_t n = 0;
+    double sum = 0, lo = 1e300, hi = -1e300;
+    for (std::uint32_t j = 0; j < g.dims[1]; ++j)
+        for (std::uint32_t i = 0; i < g.dims[0]; ++i) {
+            const double dx = g.origin.x + i * 0.8 - centre.x, dy = g.origin.y + j * 0.8 - centre.y;
+            const double u = (dx * std::cos(turn) + dy * std::sin(turn)) / a, w = (-dx * std::sin(turn) + dy * std::cos(turn)) / b;
+            if (u * u + w * w > 1.0) continue;
+            ++n;
+            const double hu = v.values[(std::size_t(18) * g.dims[1] + j) * g.dims[0] + i] - 1024.0;
+            sum += hu;
+            lo = std::min(lo, hu);
+            hi = std::max(hi, hu);
+        }
+    ASSERT_GT(n, 100u);
+    EXPECT_EQ(s.voxels, n);
+    EXPECT_NEAR(s.mean, sum / double(n), 1e-9 * std::abs(sum / double(n)));
+    EXPECT_DOUBLE_EQ(s.min, lo);
+    EXPECT_DOUBLE_EQ(s.max, hi);
+    EXPECT_NEAR(s.areaMm2, double(n) * 0.8 * 0.8, 1e-9);
+    EXPECT_NEAR(s.areaMm2, M_PI * a * b, 0.06 * M_PI * a * b) << "close to the ellipse's area";
+    const auto round = core::RegionStatistics::compute(*reader, core::MeasureRegion::ellipse(centre, {0, 0, 1}, axis, 6.3, 6.3, 2.0));
+    const auto disc = core::RegionStatistics::compute(*reader, core::MeasureRegion::disc(centre, {0, 0, 1}, 6.3, 2.0));
+    EXPECT_EQ(round.voxels, disc.voxels);
+    EXPECT_DOUBLE_EQ(round.mean, disc.mean);
+    for (const auto& bad : {core::MeasureRegion::ellipse(centre, {0, 0, 1}, axis, 0.0, 3.0, 2.0),
+                            core::MeasureRegion::ellipse(centre, {0, 0, 1}, {0, 0, 1}, 3.0, 3.0, 2.0),
+                            core::MeasureRegion::ellipse(centre, {0, 0, 1}, axis, 3.0, 3.0, 0.0)})
+        EXPECT_THROW(core::RegionStatistics::compute(*reader, bad), core::Error) << bad.describe();
+    const auto parsed = core::MeasureRegion::parse("ellipse:1,2,3,0,0,2,1,1,0,5,4,2");
+    EXPECT_EQ(parsed.kind, core::MeasureRegion::Kind::Ellipse);
+    EXPECT_NEAR(glm::length(parsed.axis - glm::dvec3(M_SQRT1_2, M_SQRT1_2, 0)), 0.0, 1e-12);
+    EXPECT_DOUBLE_EQ(parsed.radius2, 4.0);
+}
+
+// A rectangle dragged corner to corner on a slice is the polygon of its four corners, whichever
+// corner the drag starts from; one of no width is refused.
+TEST(RegionStatistics, ARectangleIsThePolygonOfItsCorners) {
+    const SliceCase c(13);
+    const auto& [g, centre] = std::tie(c.g, c.centre);
+    const auto& reader = c.reader;
+    const double z = centre.z, x0 = g.origin.x + 10.2, x1 = g.origin.x + 26.2, y0 = g.origin.y + 6.2, y1 = g.origin.y + 22.2;
+    const auto box = core::RegionStatistics::compute(*reader, core::MeasureRegion::box({x0, y0, z - 0.99}, {x1, y1, z + 0.99}));
+    for (const auto& r : {core::MeasureRegion::rectangle({x0, y0, z}, {x1, y1, z}, {0, 0, 1}, {1, 0, 0}, 2.0),
+                          core::MeasureRegion::rectangle({x1, y0, z}, {x0, y1, z}, {0, 0, -1}, {0, 1, 0}, 2.0)}) {
+        const auto s = core::RegionStatistics::compute(*reader, r);
+        EXPECT_EQ(s.voxels, 400u);
+        EXPECT_DOUBLE_EQ(s.mean, box.mean);
+        EXPECT_NEAR(s.areaMm2, 256.0, 1e-9);
+        EXPECT_NE(r.describe().find("rectangle 16 by 16 mm"), std::string::npos) << r.describe();
+    }
+    EXPECT_THROW(core::RegionStatistics::compute(
+                     *reader, core::MeasureRegion::rectangle({x0, y0, z}, {x0, y1, z}, {0, 0, 1}, {1, 0, 0}, 2.0)),
+                 core::Error);
+}
