@@ -128,6 +128,8 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     for (auto* s : slices_) {
         connect(s, &SliceView::measured, this, [this](const core::Measurement& m) { measurements_->add(m); });
         connect(s, &SliceView::removeRequested, this, [this](const std::string& label) { measurements_->remove(label); });
+        connect(s, &SliceView::edited, this, [this](const core::Measurement& m) { measurements_->replace(m); });
+        connect(measurements_, &MeasurementsPanel::regionShapeChosen, s, &SliceView::setRegionShape);
     }
     connect(measurements_, &MeasurementsPanel::changed, this, [this] {
         for (auto* s : slices_) s->setMeasurements(measurements_->list().items());

@@ -34,23 +34,52 @@ QString regionLabel(const core::Measurement& m) {
 }
 }  // namespace
 
+bool MeasurementOverlay::drawnOnSlice(const core::Measurement& m, const std::function<bool(const glm::dvec3&)>& onSlice,
+                                      const glm::dvec3& normal) {
+    // Only what lies in this slice: a distance or an angle with a point off it would be drawn
+    // shorter or at another angle than it is.
+    if (m.kind == core::Measurement::Kind::Distance) return onSlice(m.a) && onSlice(m.b);
+    if (m.kind == core::Measurement::Kind::Angle) return onSlice(m.a) && onSlice(m.b) && onSlice(m.c);
+    if (!m.region || m.region->kind == core::MeasureRegion::Kind::Sphere || m.region->kind == core::MeasureRegion::Kind::Box)
+        return false;
+    return onSlice(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, normal)) - 1.0) < 1e-6;
+}
+
 void MeasurementOverlay::list(const std::vector<core::Measurement>& items) {
     for (const auto& m : items) {
+        if (!drawnOnSlice(m, onSlice_, normal_)) continue;
         const QString name = QString::fromStdString(m.label);
-        // Only what lies in this slice: a distance or an angle with a point off it would be
-        // drawn shorter or at another angle than it is.
-        if (m.kind == core::Measurement::Kind::Distance && onSlice_(m.a) && onSlice_(m.b)) {
+        if (m.kind == core::Measurement::Kind::Distance)
             distance(m.a, m.b, QObject::tr("%1  %2 mm").arg(name).arg(m.lengthMm(), 0, 'f', 1));
-        } else if (m.kind == core::Measurement::Kind::Angle && onSlice_(m.a) && onSlice_(m.b) && onSlice_(m.c)) {
+        else if (m.kind == core::Measurement::Kind::Angle)
             angle(m.a, m.b, m.c, QObject::tr("%1  %2\u00b0").arg(name).arg(m.angleDegrees(), 0, 'f', 1));
-        } else if (m.kind == core::Measurement::Kind::Region && m.region && m.region->kind == core::MeasureRegion::Kind::Disc &&
-                   onSlice_(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, normal_)) - 1.0) < 1e-6) {
-            circle(m.region->centre, m.region->radius, regionLabel(m));
-        } else if (m.kind == core::Measurement::Kind::Region && m.region && m.region->kind == core::MeasureRegion::Kind::Polygon &&
-                   onSlice_(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, normal_)) - 1.0) < 1e-6) {
-            outline(m.region->outline, true, regionLabel(m));
-        }
+        else
+            region(*m.region, regionLabel(m));
     }
+}
+
+void MeasurementOverlay::region(const core::MeasureRegion& r, const QString& text) {
+    if (r.kind == core::MeasureRegion::Kind::Disc) circle(r.centre, r.radius, text);
+    else if (r.kind == core::MeasureRegion::Kind::Ellipse) ellipse(r.centre, r.axis, glm::cross(r.normal, r.axis), r.radius, r.radius2, text);
+    else if (r.outlined()) outline(r.outline, true, text);
+}
+
+void MeasurementOverlay::handle(const glm::dvec3& at) {
+    const QPointF c = toWidget_(at);
+    p_.setPen(QPen(kColour, 1.0));
+    p_.setBrush(QColor(0, 0, 0, 160));
+    p_.drawRect(QRectF(c.x() - 3, c.y() - 3, 6, 6));
+    p_.setBrush(Qt::NoBrush);
+}
+
+void MeasurementOverlay::ellipse(const glm::dvec3& centre, const glm::dvec3& axis, const glm::dvec3& across, double a,
+                                 double b, const QString& text) {
+    std::vector<glm::dvec3> rim;
+    for (int i = 0; i < 96; ++i) {
+        const double t = 2 * M_PI * i / 96.0;
+        rim.push_back(centre + a * std::cos(t) * axis + b * std::sin(t) * across);
+    }
+    outline(rim, true, text);
 }
 
 void MeasurementOverlay::distance(const glm::dvec3& a3, const glm::dvec3& b3, const QString& text) {

@@ -29,10 +29,21 @@ public:
     /// Every measurement of the list that lies in this slice (all its points), with its label
     /// (M1 70.0 mm …).
     void list(const std::vector<core::Measurement>& items);
+    /// Whether list() draws `m` on the slice of `normal`: all its points on the slice, and a
+    /// region drawn on a slice parallel to it.
+    static bool drawnOnSlice(const core::Measurement& m, const std::function<bool(const glm::dvec3&)>& onSlice,
+                             const glm::dvec3& normal);
+    /// A region drawn on a slice (circle, ellipse, rectangle or outline), closed.
+    void region(const core::MeasureRegion& r, const QString& label);
+    /// A small square that can be dragged, at a patient point.
+    void handle(const glm::dvec3& at);
     void distance(const glm::dvec3& a, const glm::dvec3& b, const QString& label);
     /// An angle at vertex `b` between the arms to `a` and `c`.
     void angle(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, const QString& label);
     void circle(const glm::dvec3& centre, double radiusMm, const QString& label);
+    /// An ellipse about `centre`, semi-axis `a` mm along the unit `axis` and `b` mm along `across`.
+    void ellipse(const glm::dvec3& centre, const glm::dvec3& axis, const glm::dvec3& across, double a, double b,
+                 const QString& label);
     /// A polygon through `corners` (closed, or an open polyline while it is drawn).
     void outline(const std::vector<glm::dvec3>& corners, bool closed, const QString& label);
     /// A label whose box starts at `topLeft`, moved inside the view and below labels it would cover.

@@ -1,5 +1,6 @@
 #include "ui/MeasurementsPanel.h"
 
+#include <QComboBox>
 #include <QFileDialog>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -9,6 +10,7 @@
 #include <QTableWidget>
 #include <QVBoxLayout>
 
+#include <algorithm>
 #include <set>
 
 #include "core/base/AtomicFileWriter.h"
@@ -40,7 +42,12 @@ QString where(const core::Measurement& m) {
 }
 }  // namespace
 
-MeasurementsPanel::MeasurementsPanel(QWidget* parent) : QWidget(parent), table_(new QTableWidget(0, 5, this)), status_(new QLabel(this)) {
+MeasurementsPanel::MeasurementsPanel(QWidget* parent)
+    : QWidget(parent), table_(new QTableWidget(0, 5, this)), status_(new QLabel(this)), shape_(new QComboBox(this)) {
+    shape_->setObjectName("regionShape");
+    shape_->addItems({tr("Circle"), tr("Ellipse"), tr("Rectangle"), tr("Freehand")});
+    shape_->setToolTip(tr("What Ctrl-drag draws in the slice views: a circle from its centre, an ellipse or a "
+                          "rectangle corner to corner, or a freehand outline (also Ctrl+Shift-drag)"));
     table_->setObjectName("measurementsTable");
     table_->setHorizontalHeaderLabels({tr("Label"), tr("Kind"), tr("View"), tr("Value"), tr("Where (LPS mm)")});
     table_->horizontalHeader()->setStretchLastSection(true);
@@ -56,6 +63,8 @@ MeasurementsPanel::MeasurementsPanel(QWidget* parent) : QWidget(parent), table_(
     csv->setToolTip(tr("One row per measurement, with the patient, study and series UIDs and LPS coordinates"));
     json->setToolTip(tr("The list with the patient, study and series UIDs and LPS coordinates"));
     auto* buttons = new QHBoxLayout;
+    buttons->addWidget(new QLabel(tr("Ctrl-drag draws"), this));
+    buttons->addWidget(shape_);
     buttons->addWidget(remove);
     buttons->addStretch();
     buttons->addWidget(csv);
@@ -65,6 +74,7 @@ MeasurementsPanel::MeasurementsPanel(QWidget* parent) : QWidget(parent), table_(
     layout->addLayout(buttons);
     layout->addWidget(status_);
     connect(remove, &QPushButton::clicked, this, &MeasurementsPanel::removeSelected);
+    connect(shape_, &QComboBox::currentIndexChanged, this, [this] { emit regionShapeChosen(regionShape()); });
     connect(csv, &QPushButton::clicked, this, [this] { exportWithDialog(tr("CSV (*.csv)")); });
     connect(json, &QPushButton::clicked, this, [this] { exportWithDialog(tr("JSON (*.json)")); });
 }
@@ -82,6 +92,15 @@ void MeasurementsPanel::add(const core::Measurement& m) {
     table_->selectRow(table_->rowCount() - 1);
     emit changed();
 }
+
+bool MeasurementsPanel::replace(const core::Measurement& m) {
+    if (!list_.replace(m)) return false;
+    refresh();
+    emit changed();
+    return true;
+}
+
+RegionShape MeasurementsPanel::regionShape() const { return RegionShape(std::max(0, shape_->currentIndex())); }
 
 int MeasurementsPanel::removeSelected() {
     std::set<int> rows;
@@ -109,6 +128,9 @@ void MeasurementsPanel::refresh() {
                              : m.kind == core::Measurement::Kind::Angle  ? tr("angle")
                              : m.region && m.region->kind == core::MeasureRegion::Kind::Disc ? tr("circle")
                              : m.region && m.region->kind == core::MeasureRegion::Kind::Polygon ? tr("outline")
+                             : m.region && m.region->kind == core::MeasureRegion::Kind::Ellipse ? tr("ellipse")
+                             : m.region && m.region->kind == core::MeasureRegion::Kind::Rectangle ? tr("rectangle")
+                             : m.region && m.region->kind == core::MeasureRegion::Kind::Sphere ? tr("sphere")
                                                                                              : tr("region");
         const QStringList cells{QString::fromStdString(m.label), kind, QString::fromStdString(m.view), value(m), where(m)};
         for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));

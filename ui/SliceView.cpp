@@ -24,7 +24,8 @@ SliceView::SliceView(core::SlicePlane::Orientation orientation, QWidget* parent)
     setFocusPolicy(Qt::StrongFocus);
     setToolTip(tr("Click or drag: move the cursor \u2022 Wheel, Up/Down: next slice (Page Up/Down: ten) \u2022 "
                   "Right drag: window/level\n] / [: thicker / thinner slab \u2022 M: MIP, MinIP, mean\n"
-                  "Shift-drag: distance \u2022 Ctrl-drag: circle statistics \u2022 A, then three clicks: angle\n"
+                  "Shift-drag: distance \u2022 Ctrl-drag: region statistics (its shape in the Measurements dock) \u2022 "
+                  "Ctrl+Shift-drag: freehand outline \u2022 A, then three clicks: angle \u2022 drag a handle: edit\n"
                   "Esc: cancel \u2022 Del: remove the newest measurement on this slice\n"
                   "Drag a crosshair handle: turn the other planes \u2022 V: slice along the 3D view \u2022 O: reset\n"
                   "1-9: window presets (the DICOM's, then for CT: brain, subdural, stroke, bone, lung, "
@@ -35,14 +36,7 @@ void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
     reader_ = std::move(reader);
     normal_ = glm::dvec3(0.0);  // a tilt belongs to the anatomy it followed: the standard plane again
     followsView_ = false;
-    ruler_.reset();  // measurements belong to the volume they were made on
-    roi_.reset();
-    items_.clear();
-    anglePoints_.clear();
-    placingAngle_ = false;
-    setMouseTracking(false);
-    roiStats_.reset();
-    roiError_.clear();
+    measuring_.reset();  // measurements belong to the volume they were made on
     sampler_.reset();
     cache_.reset();
     if (reader_) {
@@ -82,29 +76,7 @@ void SliceView::setAutomaticWindow(const core::DisplayWindow& w) {
 }
 
 void SliceView::keyPressEvent(QKeyEvent* e) {
-    if (e->key() == Qt::Key_Escape || e->key() == Qt::Key_Delete) {
-        if (e->key() == Qt::Key_Delete && !placingAngle_ && measuring_ == Measuring::None) {
-            // The newest measurement of the list drawn on this slice.
-            for (auto it = items_.rbegin(); it != items_.rend(); ++it)
-                if (onThisSlice(it->region ? it->region->centre : it->a)) {
-                    emit removeRequested(it->label);
-                    break;
-                }
-        }
-        ruler_.reset();
-        roi_.reset();
-        roiStats_.reset();
-        roiError_.clear();
-        anglePoints_.clear();
-        placingAngle_ = false;
-        setMouseTracking(false);
-        update();
-        return;
-    }
-    if (e->key() == Qt::Key_A && !(e->modifiers() & Qt::ControlModifier)) {
-        startAngle();
-        return;
-    }
+    if (measuring_.key(e)) return;
     if (e->modifiers() & Qt::ControlModifier) {
         switch (e->key()) {
         case Qt::Key_Up: tilt(5, 0); return;
@@ -236,60 +208,19 @@ void SliceView::paintEvent(QPaintEvent*) {
     p.setFont(font());
     drawEdgeLabels(p, r, edgeLabels());
     drawAssumedGeometry(p, r.adjusted(0, 18, 0, 0), reader_->geometry());
-    paintMeasurements(p);
+    measuring_.paint(p);
 }
 
 void SliceView::mousePressEvent(QMouseEvent* e) {
     pressPos_ = e->position();
     pressCentre_ = centre_;
     pressWidth_ = width_;
-    measuring_ = Measuring::None;
-    if (e->button() == Qt::LeftButton && reader_ && e->modifiers() == Qt::NoModifier && !placingAngle_) {
-        if (crosshair().handleAt(e->position())) {
-            const QPointF v = e->position() - widgetAt(point_);
-            measuring_ = Measuring::Rotate;
-            rotateAngle_ = std::atan2(v.y(), v.x());
-            return;
-        }
-    }
-    if (placingAngle_ && e->button() == Qt::LeftButton && reader_) {
-        const glm::dvec3 at = patientAt(e->position());
-        if (anglePoints_.empty()) anglePoints_.push_back(at);
-        anglePoints_.back() = at;     // the point that followed the mouse is placed here
-        anglePoints_.push_back(at);   // and the next one follows the mouse
-        if (anglePoints_.size() == 4) {
-            core::Measurement m;
-            m.kind = core::Measurement::Kind::Angle;
-            m.view = viewName();
-            m.a = anglePoints_[0];
-            m.b = anglePoints_[1];
-            m.c = anglePoints_[2];
-            anglePoints_.clear();
-            placingAngle_ = false;
-            setMouseTracking(false);
-            if (glm::length(m.a - m.b) > 0.0 && glm::length(m.c - m.b) > 0.0) emit measured(m);  // an arm of no length: nothing
-        }
-        update();
-        return;
-    }
-    if (e->button() == Qt::LeftButton && reader_ && (e->modifiers() & (Qt::ShiftModifier | Qt::ControlModifier))) {
-        const glm::dvec3 at = patientAt(e->position());
-        if ((e->modifiers() & Qt::ShiftModifier) && (e->modifiers() & Qt::ControlModifier)) {  // freehand outline
-            measuring_ = Measuring::Polygon;
-            outline_ = {at};
-            roi_.reset();
-            roiStats_.reset();
-            roiError_.clear();
-        } else if (e->modifiers() & Qt::ShiftModifier) {
-            measuring_ = Measuring::Ruler;
-            ruler_ = std::make_pair(at, at);
-        } else {
-            measuring_ = Measuring::Roi;
-            roi_ = core::MeasureRegion::disc(at, plane().normal(), 0.0, 1.0);
-            roiStats_.reset();
-            roiError_.clear();
-        }
-        update();
+    rotating_ = false;
+    if (measuring_.press(e)) return;  // a measurement's handle, one being drawn, an angle's click
+    if (e->button() == Qt::LeftButton && reader_ && e->modifiers() == Qt::NoModifier && crosshair().handleAt(e->position())) {
+        const QPointF v = e->position() - widgetAt(point_);
+        rotating_ = true;
+        rotateAngle_ = std::atan2(v.y(), v.x());
         return;
     }
     if (e->button() == Qt::LeftButton) {
@@ -300,7 +231,7 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
 }
 
 void SliceView::mouseMoveEvent(QMouseEvent* e) {
-    if (measuring_ == Measuring::Rotate) {
+    if (rotating_) {
         const QPointF v = e->position() - widgetAt(point_);
         if (std::hypot(v.x(), v.y()) < 3.0) return;  // too near the centre to say which way
         const double angle = std::atan2(v.y(), v.x());
@@ -315,27 +246,7 @@ void SliceView::mouseMoveEvent(QMouseEvent* e) {
         emit rotateRequested(pl.normal(), glm::degrees(delta) * sign);
         return;
     }
-    if (placingAngle_) {
-        if (!anglePoints_.empty()) anglePoints_.back() = patientAt(e->position());
-        update();
-        return;
-    }
-    if (measuring_ == Measuring::Ruler && ruler_) {
-        ruler_->second = patientAt(e->position());
-        update();
-        return;
-    }
-    if (measuring_ == Measuring::Roi && roi_) {
-        roi_->radius = glm::length(patientAt(e->position()) - roi_->centre);
-        update();
-        return;
-    }
-    if (measuring_ == Measuring::Polygon) {  // a corner every 3 px the mouse moves
-        if (std::hypot(e->position().x() - widgetAt(outline_.back()).x(), e->position().y() - widgetAt(outline_.back()).y()) >= 3.0)
-            outline_.push_back(patientAt(e->position()));
-        update();
-        return;
-    }
+    if (measuring_.move(e)) return;
     if (e->buttons() & Qt::RightButton) {  // window/level: horizontal width, vertical level
         const QPointF d = e->position() - pressPos_;
         setWindow(pressCentre_ - d.y() * pressWidth_ / 200.0, pressWidth_ * std::pow(2.0, d.x() / 150.0));
@@ -476,81 +387,9 @@ std::string SliceView::viewName() const {
     return std::string(names[int(orientation_)]) + (tiltDegrees() > 0.01 ? " (tilted)" : "");
 }
 
-void SliceView::startAngle() {
-    if (!reader_) return;
-    anglePoints_.clear();
-    placingAngle_ = true;
-    setMouseTracking(true);  // the arm being placed follows the mouse
-    update();
-}
-
-void SliceView::setMeasurements(std::vector<core::Measurement> items) {
-    items_ = std::move(items);
-    update();
-}
-
 void SliceView::mouseReleaseEvent(QMouseEvent* e) {
-    const std::string view = viewName();
-    if (measuring_ == Measuring::Polygon) {  // the outline closes from its last corner to its first
-        outline_.push_back(patientAt(e->position()));
-        roi_ = core::MeasureRegion::polygon(outline_, plane().normal(), 1.0);
-        outline_.clear();
-        measureRoi();
-    }
-    if ((measuring_ == Measuring::Roi || measuring_ == Measuring::Polygon) && roi_) {
-        if (measuring_ == Measuring::Roi) {
-            roi_->radius = glm::length(patientAt(e->position()) - roi_->centre);
-            measureRoi();
-        }
-        if (roiStats_) {  // a region with its statistics goes to the measurement list
-            core::Measurement m;
-            m.kind = core::Measurement::Kind::Region;
-            m.view = view;
-            m.region = *roi_;
-            m.stats = *roiStats_;
-            emit measured(m);
-        }
-    } else if (measuring_ == Measuring::Ruler && ruler_ && glm::length(ruler_->second - ruler_->first) > 0.0) {
-        core::Measurement m;
-        m.kind = core::Measurement::Kind::Distance;
-        m.view = view;
-        m.a = ruler_->first;
-        m.b = ruler_->second;
-        emit measured(m);
-    }
-    measuring_ = Measuring::None;
-    update();
-}
-
-void SliceView::measureRoi() {
-    roiStats_.reset();
-    roiError_.clear();
-    if (!roi_ || !reader_) return;
-    // One slice thick: the voxel spacing along the plane's normal.
-    const auto& g = reader_->geometry();
-    const glm::dvec3 n = roi_->normal;
-    double thickness = 0;
-    for (int a = 0; a < 3; ++a) thickness += std::abs(glm::dot(n, g.direction[a])) * g.spacing[a];
-    roi_->thickness = thickness;
-    // A plane along a voxel layer measures the layer it names ("slice 25/48"): between two
-    // layers it would take half of each, or both.
-    const int axis = nearestAxis();
-    if (std::abs(std::abs(glm::dot(n, g.direction[axis])) - 1.0) < 1e-9) {
-        const glm::dvec3 index(glm::inverse(g.indexToPatient()) * glm::dvec4(roi_->centre, 1.0));
-        const glm::dvec3 shift = (double(std::lround(index[axis])) - index[axis]) * g.spacing[axis] * g.direction[axis];
-        roi_->centre += shift;
-        for (auto& corner : roi_->outline) corner += shift;
-    }
-    try {
-        roiStats_ = core::RegionStatistics::compute(*reader_, *roi_);
-    } catch (const std::exception& ex) {
-        roiError_ = QString::fromStdString(ex.what());
-    }
-}
-
-std::optional<double> SliceView::rulerMm() const {
-    if (!ruler_) return std::nullopt;
-    return glm::length(ruler_->second - ruler_->first);
+    rotating_ = false;
+    measuring_.release(e);
 }
 
 QPointF SliceView::widgetAt(const glm::dvec3& patient) const {
@@ -563,43 +402,6 @@ bool SliceView::onThisSlice(const glm::dvec3& patient) const {
     // Within half a slice along the normal (a region snapped to the slice shown is on it).
     const auto p = plane();
     return std::abs(glm::dot(patient - p.centre, p.normal())) <= 0.5 * sliceStepMm() + 1e-6;
-}
-
-void SliceView::paintMeasurements(QPainter& p) {
-    if (!reader_) return;
-    const auto pl = plane();
-    MeasurementOverlay overlay(p, size(), [this](const glm::dvec3& x) { return widgetAt(x); },
-                               [this](const glm::dvec3& x) { return onThisSlice(x); }, pl.normal(), pl.pixelMm);
-    // The statistics of the last circle at the top left, clear of the letters and the window.
-    if (roi_ && onThisSlice(roi_->centre) && (roi_->radius > 0 || roi_->kind == core::MeasureRegion::Kind::Polygon)) {
-        const QString unit = reader_->geometry().spacingAssumed ? tr(" (spacing assumed)") : QString();
-        QString text;
-        if (roiStats_) {
-            const auto& s = *roiStats_;
-            const QString u = s.units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(s.units);
-            text = tr("mean %1%2, SD %3\nmin %4, max %5\n%6 voxels, %7 mm\u00b2%8")
-                       .arg(s.mean, 0, 'f', 1).arg(u).arg(s.sd, 0, 'f', 1).arg(s.min, 0, 'g', 6).arg(s.max, 0, 'g', 6)
-                       .arg(s.voxels).arg(s.areaMm2, 0, 'f', 1).arg(unit);
-            if (!s.note.empty()) text += "\n" + QString::fromStdString(s.note);
-        } else if (!roiError_.isEmpty()) {
-            text = roiError_;
-        }
-        if (!text.isEmpty()) overlay.box(QRectF(6, 22, std::max(80, width() / 2), height() / 2), text);
-        if (measuring_ == Measuring::Roi) overlay.circle(roi_->centre, roi_->radius, {});
-    }
-    overlay.list(items_);
-    if (outline_.size() >= 2) overlay.outline(outline_, false, {});  // the freehand outline being drawn
-    // What is being drawn now (the list draws it once it is made).
-    if (ruler_ && measuring_ == Measuring::Ruler && onThisSlice(ruler_->first)) {
-        const QString unit = reader_->geometry().spacingAssumed ? tr(" (spacing assumed)") : QString();
-        overlay.distance(ruler_->first, ruler_->second, tr("%1 mm%2").arg(*rulerMm(), 0, 'f', 1).arg(unit));
-    }
-    if (anglePoints_.size() >= 2) {
-        core::Measurement m;
-        m.kind = core::Measurement::Kind::Angle;
-        m.a = anglePoints_[0], m.b = anglePoints_[1], m.c = anglePoints_.size() >= 3 ? anglePoints_[2] : anglePoints_[1];
-        overlay.angle(m.a, m.b, m.c, anglePoints_.size() >= 3 ? tr("%1\u00b0").arg(m.angleDegrees(), 0, 'f', 1) : QString());
-    }
 }
 
 }  // namespace hvx::ui

@@ -16,6 +16,7 @@ class QPainter;
 #include "core/reference/RegionStatistics.h"
 #include "core/reference/SliceSampler.h"
 #include "core/volume/DisplayWindow.h"
+#include "ui/SliceMeasuring.h"
 
 namespace hvx::ui {
 
@@ -26,12 +27,13 @@ class SliceCrosshair;
 /// the other views (click or drag sets the point; the wheel steps through slices) and
 /// orientation labels. Each volume opens with its own window (core::DisplayWindow::initial:
 /// the DICOM's, else CT's W 400 / L 40, else its value range until the histogram's 1st-99th
-/// percentile arrives); the number keys pick its presets. Shift-drag measures a distance (mm),
-/// Ctrl-drag a circle's statistics (a disc one slice thick, from the octree's level 0, in HU for
-/// CT), Ctrl+Shift-drag a freehand outline's; A then three clicks an angle (an arm's end, the vertex, the other arm's end). Every
-/// measurement of the list (setMeasurements) is drawn with its label on the slice it lies on;
-/// Esc cancels the one in progress and hides the statistics, Del asks to remove the newest one
-/// on this slice (removeRequested). Up/Down and the
+/// percentile arrives); the number keys pick its presets. Measuring (SliceMeasuring): Shift-drag
+/// a distance (mm), Ctrl-drag a region's statistics (circle, ellipse, rectangle or freehand, as
+/// setRegionShape says; one slice thick, from the octree's level 0, in HU for CT),
+/// Ctrl+Shift-drag a freehand outline's; A then three clicks an angle. Every measurement of the
+/// list (setMeasurements) is drawn with its label and handles on the slice it lies on; dragging a
+/// handle edits it (edited). Esc cancels the one in progress and hides the statistics, Del asks
+/// to remove the newest one on this slice (removeRequested). Up/Down and the
 /// wheel step a slice, Page keys ten; ] and [ make a thick slab, M changes its mode; Ctrl+arrows
 /// tilt the plane; the crosshair is where the other planes cut this one, and dragging one of its
 /// handles asks them to turn about this normal (rotateRequested); O resets (orientationReset).
@@ -105,16 +107,21 @@ public:
     /// "full resolution" or "level 2 of 5": the octree level the last image was read from.
     QString levelReadout() const;
     /// The distance measured by Shift-drag (mm between its ends), if any.
-    std::optional<double> rulerMm() const;
+    std::optional<double> rulerMm() const { return measuring_.rulerMm(); }
     /// The measurements to draw (those of the open volume; each on the slice it lies on).
-    void setMeasurements(std::vector<core::Measurement> items);
+    void setMeasurements(std::vector<core::Measurement> items) { measuring_.setItems(std::move(items)); }
     /// Starts an angle: the next three clicks place an arm's end, the vertex and the other end.
-    void startAngle();
+    void startAngle() { measuring_.startAngle(); }
     /// The points of the angle being placed (empty when none is).
-    const std::vector<glm::dvec3>& anglePoints() const { return anglePoints_; }
-    /// The circle measured by Ctrl-drag and its statistics, if any.
-    const std::optional<core::MeasureRegion>& roi() const { return roi_; }
-    const std::optional<core::RegionStatistics>& roiStatistics() const { return roiStats_; }
+    const std::vector<glm::dvec3>& anglePoints() const { return measuring_.anglePoints(); }
+    /// The region measured by Ctrl-drag and its statistics (or why it has none), if any.
+    const std::optional<core::MeasureRegion>& roi() const { return measuring_.roi(); }
+    const std::optional<core::RegionStatistics>& roiStatistics() const { return measuring_.roiStatistics(); }
+    const QString& roiError() const { return measuring_.roiError(); }
+    /// What Ctrl-drag draws (a circle at first).
+    void setRegionShape(RegionShape shape) { measuring_.setRegionShape(shape); }
+    /// Widget positions of the handles of the measurements drawn on this slice.
+    std::vector<QPointF> measurementHandles() const { return measuring_.handles(); }
 
 signals:
     void pointChanged(const glm::dvec3& patient);
@@ -122,8 +129,10 @@ signals:
     void resampled();
     /// The user chose a window (a drag or a preset key), in physical units.
     void windowChosen(double centre, double width, const QString& name);
-    /// A distance, a circle or an angle was completed, for the measurement list.
+    /// A distance, a region or an angle was completed, for the measurement list.
     void measured(const hvx::core::Measurement& m);
+    /// A measurement of the list was changed by its handles (same label; a region measured again).
+    void edited(const hvx::core::Measurement& m);
     /// Del on the view: the newest measurement drawn on this slice should go.
     void removeRequested(const std::string& label);
     /// A rotation handle was dragged: the other two planes should turn about `axis` (this plane's
@@ -144,16 +153,15 @@ protected:
     void keyPressEvent(QKeyEvent* e) override;
 
 private:
+    friend class SliceMeasuring;
     core::SlicePlane plane() const;
     void resample();
     /// Whether a point made on some slice lies on the current one (within half a voxel).
     bool onThisSlice(const glm::dvec3& patient) const;
-    void measureRoi();
     /// The volume axis (0, 1, 2) nearest the plane's normal.
     int nearestAxis() const;
     /// Moves the slice `slices` steps along the normal.
     void step(int slices);
-    void paintMeasurements(QPainter& p);
     /// The view's name for the measurement list: "axial", "coronal (tilted)", ...
     std::string viewName() const;
 
@@ -175,20 +183,13 @@ private:
     glm::dvec3 normal_{0.0};  ///< the plane's normal; zero: the standard plane's
     double slabMm_ = 0;
     core::SlabMode slabMode_ = core::SlabMode::Mip;
-    enum class Measuring { None, Ruler, Roi, Polygon, Rotate } measuring_ = Measuring::None;
-    std::vector<glm::dvec3> outline_;  // the freehand outline being drawn (Ctrl+Shift-drag)
+    bool rotating_ = false;  // a crosshair handle is being dragged
     glm::dvec3 cross_[2]{glm::dvec3(0.0), glm::dvec3(0.0)};  // the other planes' normals
     double rotateAngle_ = 0;  // screen angle of the handle being dragged, about the cursor (radians)
     /// The crosshair as it is drawn now.
     SliceCrosshair crosshair() const;
-    std::optional<std::pair<glm::dvec3, glm::dvec3>> ruler_;
-    std::optional<core::MeasureRegion> roi_;
-    std::optional<core::RegionStatistics> roiStats_;
-    QString roiError_;
-    std::vector<core::Measurement> items_;  // the list's, to draw
-    std::vector<glm::dvec3> anglePoints_;   // the angle being placed: clicked points, then the mouse's
-    bool placingAngle_ = false;
     bool followsView_ = false;
+    SliceMeasuring measuring_{*this};
 };
 
 }  // namespace hvx::ui

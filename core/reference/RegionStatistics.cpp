@@ -206,7 +206,9 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
         // (Corners on one line leave a rounding error's worth of area.)
         const std::string name = region.kind == MeasureRegion::Kind::Rectangle ? "rectangle" : "polygon";
         if (region.outline.size() < 3 || !(std::abs(area2) > 1e-9 * extent2))
-            throw Error("the " + name + " has no area: it needs three corners or more, not all on one line");
+            throw Error(region.kind == MeasureRegion::Kind::Rectangle
+                            ? std::string("the rectangle has no area: one of its sides has no length")
+                            : "the polygon has no area: it needs three corners or more, not all on one line");
         if (!(region.thickness > 0) || !(glm::length(region.normal) > 0.5))
             throw Error("the " + name + " needs a thickness above 0 mm and a normal");
     }

@@ -431,6 +431,90 @@ private slots:
         axial->grab().save(kArtifacts + "/slice-outline.png");
     }
 
+    // The region shape chosen in the Measurements dock: Ctrl-drag draws an ellipse or a rectangle
+    // corner to corner, measured from level 0 as drawn; dragging a handle edits a measurement in
+    // place (same label, measured again), and one made degenerate is refused with a sentence.
+    void sliceViewDrawsEllipsesAndRectanglesAndEditsThemByHandles() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* panel = window_->measurements();
+        const auto reader = core::OctreeReader::open(dir_.file("w-ct.hvo"));
+        const double pixelMm = 300.0 / std::min(axial->width(), axial->height());
+        const QPoint c(axial->width() / 2, axial->height() / 2);
+        const auto expectMeasured = [&](const core::Measurement& m) {
+            QVERIFY(m.region && m.stats);
+            const auto direct = core::RegionStatistics::compute(*reader, *m.region);
+            QCOMPARE(m.stats->voxels, direct.voxels);
+            QCOMPARE(m.stats->mean, direct.mean);
+            QVERIFY(direct.voxels > 10);
+        };
+        panel->shapeChooser()->setCurrentIndex(1);  // ellipse
+        std::size_t before = panel->list().items().size();
+        test::leftDrag(axial, c - QPoint(30, 15), c + QPoint(30, 15), Qt::ControlModifier);
+        QCOMPARE(panel->list().items().size(), before + 1);
+        const std::string ellipseLabel = panel->list().items().back().label;
+        {
+            const auto& m = panel->list().items().back();
+            QCOMPARE(m.region->kind, core::MeasureRegion::Kind::Ellipse);
+            QVERIFY2(std::abs(m.region->radius - 30 * pixelMm) < 1e-6 && std::abs(m.region->radius2 - 15 * pixelMm) < 1e-6,
+                     qPrintable(QString("%1 x %2 mm").arg(m.region->radius).arg(m.region->radius2)));
+            expectMeasured(m);
+            QCOMPARE(panel->table()->item(panel->table()->rowCount() - 1, 1)->text(), QString("ellipse"));
+        }
+        panel->shapeChooser()->setCurrentIndex(2);  // rectangle, below the ellipse
+        const QPoint r0 = c + QPoint(-40, 30), r1 = c + QPoint(20, 60);
+        test::leftDrag(axial, r0, r1, Qt::ControlModifier);
+        QCOMPARE(panel->list().items().size(), before + 2);
+        const std::string rectLabel = panel->list().items().back().label;
+        {
+            const auto& m = panel->list().items().back();
+            QCOMPARE(m.region->kind, core::MeasureRegion::Kind::Rectangle);
+            expectMeasured(m);
+            QVERIFY2(std::abs(m.stats->areaMm2 - 60 * 30 * pixelMm * pixelMm) < 2 * (60 + 30) * pixelMm * 7.0,
+                     qPrintable(QString::number(m.stats->areaMm2)));  // within a voxel (7 mm here) of the edges
+        }
+        panel->shapeChooser()->setCurrentIndex(0);
+        settledFrame();
+        axial->grab().save(kArtifacts + "/slice-ellipse-rectangle.png");
+        // The ellipse's axis end (its handle at the right of the centre) dragged out by 15 px.
+        const auto handles = axial->measurementHandles();
+        const QPoint axisEnd = c + QPoint(30, 0);
+        QVERIFY(std::any_of(handles.begin(), handles.end(),
+                            [&](const QPointF& h) { return std::hypot(h.x() - axisEnd.x(), h.y() - axisEnd.y()) < 1.0; }));
+        before = panel->list().items().size();
+        const glm::dvec3 cursor = axial->point();
+        test::leftDrag(axial, axisEnd, axisEnd + QPoint(15, 0));
+        QCOMPARE(axial->point(), cursor);  // the drag was the handle's, not the cursor's
+        QCOMPARE(panel->list().items().size(), before);
+        const auto find = [&](const std::string& label) {
+            return *std::find_if(panel->list().items().begin(), panel->list().items().end(),
+                                 [&](const core::Measurement& m) { return m.label == label; });
+        };
+        {
+            const auto m = find(ellipseLabel);
+            QVERIFY2(std::abs(m.region->radius - 45 * pixelMm) < 1e-6, qPrintable(QString::number(m.region->radius)));
+            QVERIFY(std::abs(m.region->radius2 - 15 * pixelMm) < 1e-6);
+            expectMeasured(m);
+        }
+        // The rectangle moved by its centre handle, 10 px right: same size, measured again.
+        const auto oldRect = find(rectLabel);
+        const QPoint centre = (r0 + r1) / 2;
+        test::leftDrag(axial, centre, centre + QPoint(10, 0));
+        {
+            const auto m = find(rectLabel);
+            QVERIFY(glm::length(m.region->centre - oldRect.region->centre - glm::dvec3(10 * pixelMm, 0, 0)) < 1e-6);
+            expectMeasured(m);
+        }
+        // A corner dragged onto its neighbour's side leaves no area: refused, the rectangle kept.
+        const auto kept = find(rectLabel);
+        const QPoint corner = axial->widgetAt(kept.region->outline[2]).toPoint();
+        const QPoint flat(corner.x(), axial->widgetAt(kept.region->outline[0]).toPoint().y());
+        test::leftDrag(axial, corner, flat);
+        QCOMPARE(find(rectLabel).region->outline, kept.region->outline);
+        QVERIFY2(axial->roiError().contains("no area"), qPrintable(axial->roiError()));
+        axial->grab().save(kArtifacts + "/slice-edited-by-handles.png");
+    }
+
     // Left is never right: a bone block on the patient's left (+x in LPS) shows on the image's
     // right in the anterior 3D view and on the axial slice (radiological convention), and on the
     // image's left in the posterior 3D view.
