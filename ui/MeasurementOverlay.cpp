@@ -22,9 +22,7 @@ MeasurementOverlay::MeasurementOverlay(QPainter& painter, QSize size, std::funct
     p_.setRenderHint(QPainter::Antialiasing);
 }
 
-namespace {
-/// "M2  mean 25.6 HU"
-QString regionLabel(const core::Measurement& m) {
+QString MeasurementOverlay::regionLabel(const core::Measurement& m) {
     QString text = QString::fromStdString(m.label);
     if (m.stats) {
         const QString u = m.stats->units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(m.stats->units);
@@ -32,7 +30,6 @@ QString regionLabel(const core::Measurement& m) {
     }
     return text;
 }
-}  // namespace
 
 bool MeasurementOverlay::drawnOnSlice(const core::Measurement& m, const std::function<bool(const glm::dvec3&)>& onSlice,
                                       const glm::dvec3& normal) {
@@ -111,6 +108,14 @@ void MeasurementOverlay::angle(const glm::dvec3& a3, const glm::dvec3& b3, const
                    int(std::lround(glm::degrees(span) * 16)));
     }
     if (!text.isEmpty()) label(QPointF(b.x() + 8, b.y() + 4), text);
+}
+
+void MeasurementOverlay::sphere(QPointF c, double r, const QString& text) {
+    p_.setPen(QPen(kColour, 1.5, Qt::DashLine));
+    p_.setBrush(Qt::NoBrush);
+    p_.drawEllipse(c, r, r);
+    p_.drawEllipse(c, 2.5, 2.5);
+    if (!text.isEmpty()) label(c + QPointF(r * 0.7071 + 6, -r * 0.7071 - 20), text);
 }
 
 void MeasurementOverlay::circle(const glm::dvec3& centre, double radiusMm, const QString& text) {

@@ -35,6 +35,11 @@ public:
                              const glm::dvec3& normal);
     /// A region drawn on a slice (circle, ellipse, rectangle or outline), closed.
     void region(const core::MeasureRegion& r, const QString& label);
+    /// A sphere as seen in the 3D view: its outline, a circle of `radiusPx` about `centre` (widget
+    /// positions), with its label.
+    void sphere(QPointF centre, double radiusPx, const QString& label);
+    /// "M2  mean 25.6 HU": a region's label and mean.
+    static QString regionLabel(const core::Measurement& m);
     /// A small square that can be dragged, at a patient point.
     void handle(const glm::dvec3& at);
     void distance(const glm::dvec3& a, const glm::dvec3& b, const QString& label);

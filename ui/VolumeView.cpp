@@ -53,7 +53,8 @@ VolumeView::VolumeView(QWidget* parent) : QOpenGLWidget(parent) {
     setFocusPolicy(Qt::StrongFocus);
     setMinimumSize(200, 200);
     setToolTip(tr("Left drag: rotate \u2022 Middle or Shift+drag: pan \u2022 Right drag or wheel: zoom\n"
-                  "A P L R S I: standard views \u2022 Home: reset \u2022 D, then two clicks: a distance on the surface\n"
+                  "A P L R S I: standard views \u2022 Home: reset \u2022 D, then two clicks: a distance on the surface "
+                  "\u2022 B, then two clicks: a sphere's centre and rim on the surface, with its statistics\n"
                   "Ctrl+click: place the probes on the surface \u2022 Ctrl+drag: move them (with Shift: in depth) "
                   "\u2022 Ctrl+wheel: scale them \u2022 Alt+click: pick a band\n"
                   "Clip plane alone: Ctrl+drag pushes it along its normal, Ctrl+Shift+drag tilts it"));
@@ -312,6 +313,16 @@ void VolumeView::paintOverlays(QPainter& p) {
         [](const glm::dvec3&) { return true; }, -camera_.back(), 1.0);
     overlay.list(measurements_);
     for (const auto& x : picked_) overlay.distance(x, x, {});
+    // Spheres: their outline as seen (a circle of their radius about the projected centre).
+    for (const auto& m : measurements_) {
+        if (!m.region || m.region->kind != core::MeasureRegion::Kind::Sphere) continue;
+        QPointF centre, rim;
+        double depth = 0;
+        if (!project(m.region->centre, centre, depth) ||
+            !project(m.region->centre + m.region->radius * camera_.right(), rim, depth))
+            continue;
+        overlay.sphere(centre, std::hypot(rim.x() - centre.x(), rim.y() - centre.y()), MeasurementOverlay::regionLabel(m));
+    }
 }
 
 void VolumeView::capture(const QString& path, int width, int height) {
@@ -380,25 +391,39 @@ void VolumeView::interacted() {
 
 void VolumeView::mousePressEvent(QMouseEvent* e) {
     lastPos_ = e->position().toPoint();
-    if (measuring_ && e->button() == Qt::LeftButton) {  // D: a distance's end on the surface
+    if (picking_ != Picking::None && e->button() == Qt::LeftButton) {  // D or B: a point on the surface
+        const bool sphere = picking_ == Picking::Sphere;
+        const QString what = sphere ? tr("Sphere") : tr("Distance");
         const auto at = surfaceAt(e->position());
         if (!at) {
-            emit hint(tr("Distance: nothing under the cursor; click on the volume (Esc cancels)"));
+            emit hint(tr("%1: nothing under the cursor; click on the volume (Esc cancels)").arg(what));
             return;
         }
         picked_.push_back(*at);
         if (picked_.size() == 2) {
             core::Measurement m;
-            m.kind = core::Measurement::Kind::Distance;
             m.view = "3D";
             m.a = picked_[0];
             m.b = picked_[1];
-            measuring_ = false;
+            picking_ = Picking::None;
             picked_.clear();
-            emit hint(tr("Distance: %1 mm").arg(m.lengthMm(), 0, 'f', 1));
-            emit measured(m);
+            if (sphere) {
+                m.kind = core::Measurement::Kind::Region;
+                m.region = core::MeasureRegion::sphere(m.a, glm::length(m.b - m.a));
+                try {
+                    m.stats = core::RegionStatistics::compute(*scene_->reader, *m.region);
+                    emit hint(tr("Sphere: radius %1 mm, %2 voxels").arg(m.region->radius, 0, 'f', 1).arg(m.stats->voxels));
+                    emit measured(m);
+                } catch (const std::exception& ex) {
+                    emit hint(tr("Sphere not measured: %1").arg(QString::fromStdString(ex.what())));
+                }
+            } else {
+                m.kind = core::Measurement::Kind::Distance;
+                emit hint(tr("Distance: %1 mm").arg(m.lengthMm(), 0, 'f', 1));
+                emit measured(m);
+            }
         } else {
-            emit hint(tr("Distance: click its other end"));
+            emit hint(sphere ? tr("Sphere: click a point of its rim") : tr("Distance: click its other end"));
         }
         update();
         return;
@@ -471,9 +496,16 @@ void VolumeView::requestGlFormat() {
 
 void VolumeView::startDistance() {
     if (!scene_) return;
-    measuring_ = true;
+    picking_ = Picking::Distance;
     picked_.clear();
     emit hint(tr("Distance: click its first end on the volume (Esc cancels)"));
+}
+
+void VolumeView::startSphere() {
+    if (!scene_) return;
+    picking_ = Picking::Sphere;
+    picked_.clear();
+    emit hint(tr("Sphere: click its centre on the volume (Esc cancels)"));
 }
 
 void VolumeView::setMeasurements(std::vector<core::Measurement> items) {
@@ -517,8 +549,9 @@ void VolumeView::keyPressEvent(QKeyEvent* e) {
     case Qt::Key_I: camera_.setStandard(S::Inferior); break;
     case Qt::Key_Home: resetView(); break;
     case Qt::Key_D: startDistance(); return;
+    case Qt::Key_B: startSphere(); return;
     case Qt::Key_Escape:
-        measuring_ = false;
+        picking_ = Picking::None;
         picked_.clear();
         update();
         return;

@@ -83,7 +83,11 @@ public:
     /// D: the next two left clicks on the volume pick a distance's ends on the rendered surface
     /// (the depth the ray caster returned for that pixel); Esc cancels.
     void startDistance();
-    bool measuringDistance() const { return measuring_; }
+    bool measuringDistance() const { return picking_ == Picking::Distance; }
+    /// B: the next two left clicks pick a sphere's centre and a point of its rim on the rendered
+    /// surface; its statistics come from the octree's level 0 (measured); Esc cancels.
+    void startSphere();
+    bool measuringSphere() const { return picking_ == Picking::Sphere; }
     /// The first significant sample under a widget position in the last frame, if any.
     std::optional<glm::dvec3> surfaceAt(QPointF pos) const;
     /// The measurements to draw: those made in the 3D view, projected, with their labels.
@@ -104,7 +108,8 @@ signals:
     /// The probes were moved or scaled in the view (Ctrl+drag, Ctrl+Shift+drag, Ctrl+wheel).
     void toolsEdited(const core::ToolSet& tools);
     void failed(const QString& message);
-    /// A distance picked in the view (D, then two clicks), for the measurement list.
+    /// A distance (D, then two clicks) or a sphere with its statistics (B, then two clicks)
+    /// picked in the view, for the measurement list.
     void measured(const hvx::core::Measurement& m);
     /// A word for the status bar ("click on the volume: nothing under the cursor").
     void hint(const QString& message);
@@ -134,8 +139,8 @@ private:
     double accuracy_ = 1.0;
     QImage frame_;
     std::vector<float> lastDepth_;  // of the last frame, at its own (maybe reduced) size
-    bool measuring_ = false;              // D: picking a distance's ends
-    std::vector<glm::dvec3> picked_;      // its ends picked so far
+    enum class Picking { None, Distance, Sphere } picking_ = Picking::None;  // D or B: picking points
+    std::vector<glm::dvec3> picked_;      // the points picked so far
     std::vector<core::Measurement> measurements_;  // to draw (those made in the 3D view)
     core::View lastView_;
     QString error_;

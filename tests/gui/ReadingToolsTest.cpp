@@ -394,6 +394,59 @@ private slots:
         QVERIFY(!v->measuringDistance());
     }
 
+    // B, then two clicks on the rendered surface: a sphere about the first point through the
+    // second, its statistics from level 0 (as computing that sphere gives), listed as a sphere
+    // and drawn as its outline; a click on nothing is refused with a sentence.
+    void threeDViewMeasuresASphere() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* v = window_->view();
+        v->setStandardView(core::OrbitCamera::Standard::Anterior);
+        settledFrame();
+        auto* panel = window_->measurements();
+        const std::size_t before = panel->list().items().size();
+        const QPoint a(v->width() / 2, v->height() / 2), b(v->width() / 2, v->height() / 2 - 30);  // on the spine
+        const auto centre = v->surfaceAt(a), rim = v->surfaceAt(b);
+        QVERIFY2(centre && rim, "the spine is not under the view's centre");
+        v->setFocus();
+        QTest::keyClick(v, Qt::Key_B);
+        QVERIFY(v->measuringSphere());
+        QTest::mouseClick(v, Qt::LeftButton, Qt::NoModifier, QPoint(3, 3));
+        QVERIFY(v->measuringSphere());
+        QVERIFY2(window_->statusBar()->currentMessage().contains("Sphere: nothing under the cursor"),
+                 qPrintable(window_->statusBar()->currentMessage()));
+        QTest::mouseClick(v, Qt::LeftButton, Qt::NoModifier, a);
+        QTest::mouseClick(v, Qt::LeftButton, Qt::NoModifier, b);
+        QVERIFY(!v->measuringSphere());
+        QCOMPARE(panel->list().items().size(), before + 1);
+        const auto m = panel->list().items().back();
+        QVERIFY(m.region && m.stats);
+        QCOMPARE(m.region->kind, core::MeasureRegion::Kind::Sphere);
+        QVERIFY(glm::length(m.region->centre - *centre) < 1e-9);
+        QVERIFY(std::abs(m.region->radius - glm::length(*rim - *centre)) < 1e-9);
+        const auto reader = core::OctreeReader::open(dir_.file("w-ct.hvo"));
+        const auto direct = core::RegionStatistics::compute(*reader, *m.region);
+        QCOMPARE(m.stats->voxels, direct.voxels);
+        QCOMPARE(m.stats->mean, direct.mean);
+        QVERIFY(direct.voxels > 10);
+        QCOMPARE(panel->table()->item(panel->table()->rowCount() - 1, 1)->text(), QString("sphere"));
+        QVERIFY2(window_->statusBar()->currentMessage().contains(QString("%1 voxels").arg(direct.voxels)),
+                 qPrintable(window_->statusBar()->currentMessage()));
+        // Its outline: a circle through the rim point as seen, in the measurement colour.
+        QPointF c, r;
+        double depth = 0;
+        QVERIFY(v->project(m.region->centre, c, depth));
+        QVERIFY(v->project(m.region->centre + m.region->radius * v->camera().right(), r, depth));
+        const QImage shot = v->grab().toImage();
+        bool drawn = false;
+        for (int dy = -2; dy <= 2; ++dy)
+            for (int dx = -2; dx <= 2; ++dx) {
+                const QColor px = shot.pixelColor(r.toPoint() + QPoint(dx, dy));
+                drawn = drawn || (px.green() > 200 && px.red() < 170 && px.blue() < 190);
+            }
+        QVERIFY2(drawn, "no sphere outline at its rim");
+        saveArtifact("volume-sphere.png");
+    }
+
     // Ctrl+Shift-drag draws a freehand outline: its statistics come from level 0 for the slice
     // it was drawn on (the same as computing the region it stored), its area is the drawn one's
     // within the voxels along its edge, and it is listed as an outline and drawn with its label.
