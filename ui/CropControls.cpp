@@ -86,7 +86,10 @@ void CropControls::setBox(const core::CropBox& box) {
             faces_[std::size_t(3 + a)]->setValue(mm[1][a]);
         }
     }
-    apply();
+    // The box itself, not its faces read back from the fields, which round to their decimals.
+    box_ = box;
+    problem_->clear();
+    emit changed();
 }
 
 void CropControls::apply() {
@@ -105,6 +108,8 @@ void CropControls::apply() {
 }
 
 core::CropBox CropControls::box() const { return enabled_->isChecked() ? box_ : core::CropBox{}; }
+
+bool CropControls::isOn() const { return enabled_->isChecked(); }
 
 QString CropControls::problem() const { return problem_->text(); }
 

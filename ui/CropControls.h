@@ -27,8 +27,11 @@ public:
     void setVolume(const std::array<std::uint32_t, 3>& dims, const glm::dvec3& spacing, const glm::dmat3& direction);
     /// The box to render (the whole volume when off).
     core::CropBox box() const;
-    /// Sets the fields and switches the box on unless it is the whole volume.
+    /// Sets the box (as given: the fields show it rounded to their decimals) and switches it on
+    /// unless it is the whole volume.
     void setBox(const core::CropBox& box);
+    /// Whether the box is switched on (its check box).
+    bool isOn() const;
     /// The message under the fields (empty when the typed box is applied).
     QString problem() const;
 

@@ -138,8 +138,10 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
             QSettings().setValue("measurements/" + measurementsKey_,
                                  QString::fromStdString(measurements_->list().toJson(core::MeasurementSource{})));
     });
+    connect(view_, &VolumeView::cropDragged, crop_, &CropControls::setBox);
     connect(crop_, &CropControls::changed, this, [this] {
         view_->setRenderSettings(renderSettings());
+        view_->setCropEditing(crop_->isOn());
         if (!openPath_.isEmpty()) {  // the crop box is kept per volume
             const auto b = crop_->box();
             QSettings().setValue("crop/" + openPath_, QStringList{QString::number(b.min.x, 'g', 17), QString::number(b.min.y, 'g', 17),

@@ -313,6 +313,7 @@ void VolumeView::paintOverlays(QPainter& p) {
         [](const glm::dvec3&) { return true; }, -camera_.back(), 1.0);
     overlay.list(measurements_);
     for (const auto& x : picked_) overlay.distance(x, x, {});
+    if (const auto crop = cropHandlesNow()) crop->paint(p, settings_.crop);
     // Spheres: their outline as seen (a circle of their radius about the projected centre).
     for (const auto& m : measurements_) {
         if (!m.region || m.region->kind != core::MeasureRegion::Kind::Sphere) continue;
@@ -428,6 +429,13 @@ void VolumeView::mousePressEvent(QMouseEvent* e) {
         update();
         return;
     }
+    if (const auto crop = cropHandlesNow(); crop && e->button() == Qt::LeftButton && e->modifiers() == Qt::NoModifier) {
+        if ((cropFace_ = crop->faceAt(settings_.crop, e->position()))) {  // a crop box face's handle
+            cropPress_ = settings_.crop;
+            cropFrom_ = e->position();
+            return;
+        }
+    }
     const bool modified = e->modifiers() & (Qt::ControlModifier | Qt::AltModifier);
     if (e->button() == Qt::LeftButton && modified) {  // tools: pick on release, or drag the probes
         toolDrag_.press(lastPos_);
@@ -453,6 +461,10 @@ void VolumeView::mouseMoveEvent(QMouseEvent* e) {
     const QPoint pos = e->position().toPoint();
     const QPoint d = pos - lastPos_;
     lastPos_ = pos;
+    if (cropFace_) {
+        if (const auto crop = cropHandlesNow()) emit cropDragged(crop->dragged(cropPress_, *cropFace_, cropFrom_, e->position()));
+        return;
+    }
     if (toolDrag_.active()) {  // Ctrl+drag moves the probes or the clip plane (ui/ToolDragger)
         if (auto tools = toolDrag_.move(pos, d, e->modifiers() & Qt::ShiftModifier, settings_.tools, camera_, width(),
                                         height()))
@@ -468,6 +480,7 @@ void VolumeView::mouseMoveEvent(QMouseEvent* e) {
 }
 
 void VolumeView::mouseReleaseEvent(QMouseEvent* e) {
+    cropFace_.reset();
     if (toolDrag_.release()) {
         if (const auto at = surfaceAt(e->position())) emit surfacePicked(*at, (e->modifiers() & Qt::AltModifier) != 0);
     }
@@ -499,6 +512,32 @@ void VolumeView::startDistance() {
     picking_ = Picking::Distance;
     picked_.clear();
     emit hint(tr("Distance: click its first end on the volume (Esc cancels)"));
+}
+
+void VolumeView::setCropEditing(bool on) {
+    cropEditing_ = on;
+    update();
+}
+
+std::optional<CropBoxHandles> VolumeView::cropHandlesNow() const {
+    if (!cropEditing_ || !scene_) return std::nullopt;
+    return CropBoxHandles(scene_->space, scene_->reader->geometry().dims, [this](const glm::dvec3& x) -> std::optional<QPointF> {
+        QPointF at;
+        double depth = 0;
+        if (!project(x, at, depth)) return std::nullopt;
+        return at;
+    });
+}
+
+std::vector<QPointF> VolumeView::cropHandles() const {
+    std::vector<QPointF> out;
+    if (const auto crop = cropHandlesNow())
+        for (int face = 0; face < 6; ++face) {
+            QPointF at;
+            double depth = 0;
+            if (project(crop->faceCentre(settings_.crop, face), at, depth)) out.push_back(at);
+        }
+    return out;
 }
 
 void VolumeView::startSphere() {

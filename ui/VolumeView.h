@@ -10,6 +10,7 @@
 
 #include "core/reference/CpuRayCaster.h"
 #include "core/reference/MeasurementList.h"
+#include "ui/CropBoxHandles.h"
 #include "core/camera/DisplayModel.h"
 #include "core/camera/InteractiveQuality.h"
 #include "core/octree/OctreeReader.h"
@@ -90,6 +91,11 @@ public:
     bool measuringSphere() const { return picking_ == Picking::Sphere; }
     /// The first significant sample under a widget position in the last frame, if any.
     std::optional<glm::dvec3> surfaceAt(QPointF pos) const;
+    /// Shows the crop box (settings' crop) as a wireframe with a handle on each face; dragging a
+    /// handle moves that face (cropDragged). On while the crop box is switched on.
+    void setCropEditing(bool on);
+    /// Widget positions of the crop box's face handles (low i, j, k, then high), when shown.
+    std::vector<QPointF> cropHandles() const;
     /// The measurements to draw: those made in the 3D view, projected, with their labels.
     void setMeasurements(std::vector<core::Measurement> items);
     /// Widget position of a patient point in the current view, and its distance along the view
@@ -105,6 +111,8 @@ signals:
     void frameRendered();
     /// Ctrl+click (or Alt+click) on the volume: the first significant sample under the cursor.
     void surfacePicked(const glm::dvec3& patient, bool alt);
+    /// A crop box face was dragged: the box it makes.
+    void cropDragged(const hvx::core::CropBox& box);
     /// The probes were moved or scaled in the view (Ctrl+drag, Ctrl+Shift+drag, Ctrl+wheel).
     void toolsEdited(const core::ToolSet& tools);
     void failed(const QString& message);
@@ -140,6 +148,12 @@ private:
     QImage frame_;
     std::vector<float> lastDepth_;  // of the last frame, at its own (maybe reduced) size
     enum class Picking { None, Distance, Sphere } picking_ = Picking::None;  // D or B: picking points
+    bool cropEditing_ = false;
+    std::optional<int> cropFace_;  // the crop box face being dragged
+    core::CropBox cropPress_;      // the box when its drag began
+    QPointF cropFrom_;             // where that drag began
+    /// The crop box's handles for the open volume and the current camera.
+    std::optional<CropBoxHandles> cropHandlesNow() const;
     std::vector<glm::dvec3> picked_;      // the points picked so far
     std::vector<core::Measurement> measurements_;  // to draw (those made in the 3D view)
     core::View lastView_;

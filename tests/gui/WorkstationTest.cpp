@@ -253,7 +253,36 @@ private slots:
         QCOMPARE(crop->box().min.x, 0.0);  // the last good box stays
         iLow->setValue(0.0);
         QVERIFY(crop->problem().isEmpty());
+        // The box in the 3D view: a handle on each face; dragging a high face's handle halfway to
+        // the low face's moves that face halfway (the dock's field follows), and dragging it past
+        // the low face stops it a voxel short.
+        auto* view = window_->view();
+        auto handles = view->cropHandles();
+        QCOMPARE(handles.size(), std::size_t(6));
+        int axis = 0;
+        double apart = 0;
+        for (int a = 0; a < 3; ++a) {
+            const QPointF d = handles[std::size_t(a + 3)] - handles[std::size_t(a)];
+            if (std::hypot(d.x(), d.y()) > apart) apart = std::hypot(d.x(), d.y()), axis = a;
+        }
+        QVERIFY2(apart > 40, qPrintable(QString::number(apart)));
+        const core::CropBox before = crop->box();
+        const QPointF high = handles[std::size_t(axis + 3)], low = handles[std::size_t(axis)];
+        test::leftDrag(view, high.toPoint(), ((high + low) / 2).toPoint());
+        const double halfway = (before.min[axis] + before.max[axis]) / 2;
+        QVERIFY2(std::abs(crop->box().max[axis] - halfway) < 0.05,
+                 qPrintable(QString("face at %1, halfway is %2").arg(crop->box().max[axis]).arg(halfway)));
+        auto* field = crop->findChild<QDoubleSpinBox*>(QString("crop%1High").arg(QChar('i' + axis)));
+        QVERIFY(std::abs(field->value() - crop->box().max[axis] * field->maximum()) < 0.06);
+        settledFrame();
+        saveArtifact("crop-handles.png");
+        handles = view->cropHandles();
+        test::leftDrag(view, handles[std::size_t(axis + 3)].toPoint(),
+                       (handles[std::size_t(axis)] * 2 - handles[std::size_t(axis + 3)]).toPoint());
+        QVERIFY2(crop->box().max[axis] > crop->box().min[axis], "the face went past the opposite one");
+        QVERIFY(crop->problem().isEmpty());
         QTest::mouseClick(crop->findChild<QPushButton*>("cropReset"), Qt::LeftButton);
+        QVERIFY(view->cropHandles().empty());
         QVERIFY(crop->box().whole());
         QVERIFY2(difference(whole, settledFrame()) < 1.0, "the reset shows the whole volume again");
     }

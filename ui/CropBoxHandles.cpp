@@ -1,0 +1,81 @@
+#include "ui/CropBoxHandles.h"
+
+#include <QPainter>
+#include <QPen>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/vec4.hpp>
+
+namespace hvx::ui {
+
+CropBoxHandles::CropBoxHandles(const core::OctreeSpace& space, const std::array<std::uint32_t, 3>& dims, Project project)
+    : space_(space), dims_(dims), project_(std::move(project)) {}
+
+glm::dvec3 CropBoxHandles::patient(const glm::dvec3& fraction) const {
+    return glm::dvec3(space_.octreeToPatient * glm::dvec4(fraction * space_.extent, 1.0));
+}
+
+glm::dvec3 CropBoxHandles::faceCentre(const core::CropBox& box, int face) const {
+    glm::dvec3 f = (box.min + box.max) * 0.5;
+    f[face % 3] = face < 3 ? box.min[face % 3] : box.max[face % 3];
+    return patient(f);
+}
+
+std::optional<int> CropBoxHandles::faceAt(const core::CropBox& box, QPointF pos, double px) const {
+    std::optional<int> best;
+    double bestPx = px;
+    for (int face = 0; face < 6; ++face) {
+        const auto at = project_(faceCentre(box, face));
+        if (!at) continue;
+        const double d = std::hypot(at->x() - pos.x(), at->y() - pos.y());
+        if (d < bestPx) bestPx = d, best = face;
+    }
+    return best;
+}
+
+core::CropBox CropBoxHandles::dragged(const core::CropBox& box, int face, QPointF from, QPointF to) const {
+    const int a = face % 3;
+    const bool low = face < 3;
+    // The axis as seen: where the face's centre goes when the face moves by the whole volume.
+    glm::dvec3 f = (box.min + box.max) * 0.5;
+    f[a] = low ? box.min[a] : box.max[a];
+    glm::dvec3 g = f;
+    g[a] += 1.0;
+    const auto s0 = project_(patient(f)), s1 = project_(patient(g));
+    if (!s0 || !s1) return box;
+    const QPointF u = *s1 - *s0;
+    const double len2 = u.x() * u.x() + u.y() * u.y();
+    if (len2 < 4.0) return box;  // the axis points at the eye: the mouse cannot say how far
+    const QPointF d = to - from;
+    const double delta = (d.x() * u.x() + d.y() * u.y()) / len2;
+    // Faces on voxel boundaries (the box keeps whole voxels), at least one voxel apart.
+    const double n = double(std::max<std::uint32_t>(1, dims_[std::size_t(a)]));
+    const auto snap = [n](double x) { return std::round(x * n) / n; };
+    core::CropBox out = box;
+    if (low) out.min[a] = std::clamp(snap(box.min[a] + delta), 0.0, std::max(0.0, box.max[a] - 1.0 / n));
+    else out.max[a] = std::clamp(snap(box.max[a] + delta), std::min(1.0, box.min[a] + 1.0 / n), 1.0);
+    return out;
+}
+
+void CropBoxHandles::paint(QPainter& p, const core::CropBox& box) const {
+    const QColor colour(255, 210, 80);
+    p.setPen(QPen(colour, 1.2));
+    p.setBrush(Qt::NoBrush);
+    const auto corner = [&](int c) {
+        return patient({(c & 1) ? box.max.x : box.min.x, (c & 2) ? box.max.y : box.min.y, (c & 4) ? box.max.z : box.min.z});
+    };
+    for (int c = 0; c < 8; ++c)
+        for (int bit : {1, 2, 4}) {
+            if (c & bit) continue;  // each edge once: from the corner with the bit clear
+            const auto a = project_(corner(c)), b = project_(corner(c | bit));
+            if (a && b) p.drawLine(*a, *b);
+        }
+    p.setBrush(QColor(0, 0, 0, 160));
+    for (int face = 0; face < 6; ++face)
+        if (const auto at = project_(faceCentre(box, face))) p.drawRect(QRectF(at->x() - 4, at->y() - 4, 8, 8));
+    p.setBrush(Qt::NoBrush);
+}
+
+}  // namespace hvx::ui
