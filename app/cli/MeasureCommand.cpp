@@ -12,7 +12,8 @@ namespace hvx::app {
 int measureCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2, {"roi"}, {});
     if (args.positional().size() != 1 || !args.value("roi"))
-        throw core::Error("usage: holovox-cli measure FILE.hvo --roi sphere:X,Y,Z,R | box:X0,Y0,Z0,X1,Y1,Z1  (LPS mm)");
+        throw core::Error("usage: holovox-cli measure FILE.hvo --roi sphere:X,Y,Z,R | box:X0,Y0,Z0,X1,Y1,Z1 | "
+                          "disc:X,Y,Z,NX,NY,NZ,R,T | ellipse:X,Y,Z,NX,NY,NZ,AX,AY,AZ,A,B,T  (LPS mm)");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto region = core::MeasureRegion::parse(*args.value("roi"));
     const auto start = std::chrono::steady_clock::now();

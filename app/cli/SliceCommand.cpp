@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -12,14 +13,17 @@
 #include "core/streaming/BrickCache.h"
 #include "core/volume/DisplayWindow.h"
 
+#include <glm/geometric.hpp>
+
 namespace hvx::app {
 
 int sliceCommand(int argc, char** argv) {
-    const CliArgs args(argc, argv, 2, {"plane", "at", "size", "pixel", "slab", "slab-mode", "window", "level", "o", "output"}, {});
+    const CliArgs args(argc, argv, 2, {"plane", "at", "size", "pixel", "slab", "slab-mode", "window", "level", "scroll", "o", "output"}, {});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli slice FILE.hvo --plane axial|coronal|sagittal|NX,NY,NZ [--at X,Y,Z] "
-                          "[--size WxH] [--pixel MM] [--slab MM --slab-mode mip|minip|mean] [--window W,L] -o OUT.png");
+                          "[--size WxH] [--pixel MM] [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--scroll N] "
+                          "-o OUT.png");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
     core::BrickCache cache(std::size_t(512) << 20);
@@ -49,16 +53,29 @@ int sliceCommand(int argc, char** argv) {
         plane = core::SlicePlane::oblique({n[0], n[1], n[2]}, at, pixel, width, height);
     }
     const int level = args.value("level") ? int(args.integer("level", 0, 0, reader->levelCount() - 1)) : -1;
-    core::SliceImage img;
-    if (args.value("slab")) {
-        const std::string m = args.value("slab-mode").value_or("mip");
-        const auto mode = m == "mip" ? core::SlabMode::Mip : m == "minip" ? core::SlabMode::MinIp
-                          : m == "mean" ? core::SlabMode::Mean
-                                        : throw core::Error("--slab-mode must be mip, minip or mean");
-        img = sampler.sampleSlab(plane, *args.number("slab"), mode, level);
-    } else {
-        img = sampler.sample(plane, level);
+    const std::string m = args.value("slab-mode").value_or("mip");
+    const auto mode = m == "mip" ? core::SlabMode::Mip : m == "minip" ? core::SlabMode::MinIp
+                      : m == "mean" ? core::SlabMode::Mean
+                                    : throw core::Error("--slab-mode must be mip, minip or mean");
+    const auto sample = [&] { return args.value("slab") ? sampler.sampleSlab(plane, *args.number("slab"), mode, level)
+                                                        : sampler.sample(plane, level); };
+    // --scroll N: N slices one after another, a slice apart along the normal (as the wheel
+    // steps in the slice views), in this one process with its cache warming; the last is written.
+    const long scroll = args.value("scroll") ? args.integer("scroll", 1, 1, 100000) : 1;
+    const glm::dvec3 normal = plane.normal();
+    double stepMm = 0;
+    for (int a = 0; a < 3; ++a) stepMm += std::abs(glm::dot(normal, g.direction[a])) * g.spacing[a];
+    const auto started = std::chrono::steady_clock::now();
+    core::SliceImage img = sample();
+    for (long i = 1; i < scroll; ++i) {
+        plane.centre += normal * stepMm;
+        img = sample();
     }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (scroll > 1)
+        std::printf("scrolled %ld slices %.4g mm apart: %.3f ms per slice (level %d)\n", scroll, stepMm,
+                    1000.0 * seconds / double(scroll), img.level);
+    at = plane.centre;
     core::DisplayWindow w = core::DisplayWindow::initial(g);
     if (const auto wl = args.value("window")) {
         const auto v = CliArgs::numbers(*wl, 2, "--window");

@@ -42,10 +42,12 @@ const char* const kUsage =
         "  lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] [--eta 0..1]\n"
         "        [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json]\n"
         "        [--cpu] | --list\n"
-        "  measure FILE.hvo --roi sphere:X,Y,Z,R | box:X0,Y0,Z0,X1,Y1,Z1   voxels, mean, SD, min, max and\n"
-        "        volume of a region (LPS mm), from the full-resolution level, in HU for CT\n"
+        "  measure FILE.hvo --roi sphere:X,Y,Z,R | box:X0,Y0,Z0,X1,Y1,Z1 | disc:X,Y,Z,NX,NY,NZ,R,T |\n"
+        "        ellipse:X,Y,Z,NX,NY,NZ,AX,AY,AZ,A,B,T   voxels, mean, SD, min, max and volume of a region\n"
+        "        (LPS mm), from the full-resolution level, in HU for CT\n"
         "  slice FILE.hvo --plane axial|coronal|sagittal|NX,NY,NZ [--at X,Y,Z] [--size WxH] [--pixel MM]\n"
-        "        [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--level N] -o OUT.png   a windowed slice\n"
+        "        [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--level N] [--scroll N] -o OUT.png\n"
+        "        a windowed slice (--scroll: N slices a slice apart, timed, the last written)\n"
         "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
         "  version                       versions of Holovox and its libraries";
 

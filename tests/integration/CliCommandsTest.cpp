@@ -144,6 +144,20 @@ TEST(CliCommands, SliceAndSlabAgreeWithNumpyOnTheSameVoxels) {
     ASSERT_EQ(std::sscanf(c.output.c_str(), "%d %d", &axial, &mip), 2) << c.output;
     EXPECT_LE(axial, 1) << "largest grey difference of the axial slice";
     EXPECT_LE(mip, 1) << "largest grey difference of the slab MIP";
+    // --scroll 4 steps a slice (1 mm here) three times: its last image is the slice 3 mm up,
+    // which the numpy check above vouches for at its own plane.
+    r = test::runCommand(cli + " slice " + dir.file("v.hvo") + " --plane axial --scroll 4" + at + " -o " + dir.file("s.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("scrolled 4 slices 1 mm apart"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("through (27, 35, 45)"), std::string::npos) << r.output;
+    const std::string up = " --at 27,35,45 --size 21x19 --pixel 1 --window 1200,300";
+    ASSERT_EQ(test::runCommand(cli + " slice " + dir.file("v.hvo") + " --plane axial" + up + " -o " + dir.file("up.png")).exitCode, 0);
+    const auto bytes = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    EXPECT_EQ(bytes(dir.file("s.png")), bytes(dir.file("up.png")));
+    EXPECT_NE(test::runCommand(cli + " slice " + dir.file("v.hvo") + " --scroll 0" + at + " -o " + dir.file("z.png")).exitCode, 0);
     r = test::runCommand(cli + " slice " + dir.file("v.hvo") + " --plane coronal" + at + " -o " + dir.file("co.png"));
     EXPECT_NE(r.output.find("edges: left R, right L, top S, bottom I"), std::string::npos) << r.output;
     r = test::runCommand(cli + " slice " + dir.file("v.hvo") + " --plane 0,0,0" + at + " -o " + dir.file("no.png"));
