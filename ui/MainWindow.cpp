@@ -285,14 +285,16 @@ bool MainWindow::openPath(const QString& path) {
     }
     if (info.isFile() && path.endsWith(".hvo", Qt::CaseInsensitive)) return openOctree(path);
     if (info.isFile() && isVolumeFile(path)) return openVolumeFile(path);
-    // DICOM: import, then open the first series found there.
+    // DICOM: import, then open the first series of that import as the browser lists it (never
+    // another patient's series that happened to be listed first).
     const int id = browser_->importPaths({path});
     QPointer<MainWindow> self(this);
-    connect(jobs_.get(), &JobManager::finished, this, [self, id](int done, const QString& state, const QString&) {
-        if (!self || done != id || state != "done") return;
+    connect(browser_, &StudyBrowser::importedSeries, this, [self, id](int done, const QStringList& uids) {
+        if (!self || done != id) return;
         auto* tree = self->browser_->tree();
         for (QTreeWidgetItemIterator it(tree); *it; ++it)
-            if (!(*it)->data(0, Qt::UserRole + 1).toString().isEmpty()) {
+            if (uids.contains((*it)->data(0, Qt::UserRole + 1).toString())) {
+                tree->setCurrentItem(*it);
                 emit tree->itemActivated(*it, 0);
                 break;
             }

@@ -5,6 +5,8 @@
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
+#include <QCheckBox>
+#include <QSettings>
 #include <QLabel>
 #include <QLineEdit>
 #include <QPointer>
@@ -33,7 +35,18 @@ PacsPanel::PacsPanel(JobManager& jobs, QString settingsPath, QString databasePat
     : QWidget(parent), jobs_(jobs), settingsPath_(std::move(settingsPath)), dbPath_(std::move(databasePath)),
       nodes_(new QComboBox(this)), patient_(new QLineEdit(this)), patientId_(new QLineEdit(this)),
       dates_(new QLineEdit(this)), quick_(new QComboBox(this)), modality_(new QLineEdit(this)),
-      accession_(new QLineEdit(this)), results_(new QTreeWidget(this)), status_(new QLabel(this)) {
+      accession_(new QLineEdit(this)), results_(new QTreeWidget(this)), status_(new QLabel(this)),
+      demo_(new QLabel(this)), keepDemo_(new QCheckBox(tr("Keep the demo archive running when Holovox quits"), this)) {
+    demo_->setObjectName("demoStatus");
+    demo_->setWordWrap(true);
+    demo_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    keepDemo_->setObjectName("keepDemoRunning");
+    keepDemo_->setChecked(keepDemoRunning());
+    keepDemo_->setToolTip(tr("Otherwise the demo archive Holovox started is stopped on quit "
+                             "(holovox-cli demo --stop stops it by hand)"));
+    demo_->hide();
+    keepDemo_->hide();
+    connect(keepDemo_, &QCheckBox::toggled, this, [](bool on) { QSettings().setValue("demo/keepRunning", on); });
     nodes_->setObjectName("pacsNodes");
     nodes_->setToolTip(tr("The PACS to query"));
     auto* edit = new QPushButton(tr("Settings\u2026"), this);
@@ -76,6 +89,8 @@ PacsPanel::PacsPanel(JobManager& jobs, QString settingsPath, QString databasePat
     layout->addLayout(buttons);
     layout->addWidget(results_, 1);
     layout->addWidget(status_);
+    layout->addWidget(demo_);
+    layout->addWidget(keepDemo_);
     connect(edit, &QPushButton::clicked, this, &PacsPanel::editNode);
     connect(searchButton, &QPushButton::clicked, this, &PacsPanel::search);
     connect(retrieveButton, &QPushButton::clicked, this, &PacsPanel::retrieveSelected);
@@ -102,6 +117,17 @@ void PacsPanel::reloadSettings() {
 }
 
 QString PacsPanel::errorText() const { return status_->text(); }
+
+void PacsPanel::setDemoStatus(const QString& status) {
+    demo_->setText(tr("Demo archive: %1").arg(status));
+    demo_->setStyleSheet(status.startsWith("failed") ? "color: #c33" : QString());
+    demo_->show();
+    keepDemo_->show();
+}
+
+QString PacsPanel::demoStatus() const { return demo_->text(); }
+
+bool PacsPanel::keepDemoRunning() { return QSettings().value("demo/keepRunning", false).toBool(); }
 
 void PacsPanel::showError(const QString& message) {
     status_->setStyleSheet("color: #c33");

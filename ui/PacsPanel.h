@@ -4,6 +4,7 @@
 
 #include "dicom/PacsSettings.h"
 
+class QCheckBox;
 class QComboBox;
 class QLineEdit;
 class QTreeWidget;
@@ -36,6 +37,14 @@ public:
     QLineEdit* patientField() const { return patient_; }
     QComboBox* nodes() const { return nodes_; }
     QString errorText() const;
+    /// The demo archive's state as the panel shows it ("starting…", "ready: …", "stopped",
+    /// "failed: why"), with the choice to keep it running when Holovox quits (hidden until the
+    /// first status).
+    void setDemoStatus(const QString& status);
+    QString demoStatus() const;
+    /// Whether the user chose to keep the demo archive running after quitting (a setting).
+    static bool keepDemoRunning();
+    QCheckBox* keepDemoBox() const { return keepDemo_; }
 
 signals:
     void retrieved(const QString& summary);
@@ -59,6 +68,8 @@ private:
     QLineEdit* accession_;
     QTreeWidget* results_;
     QLabel* status_;
+    QLabel* demo_;
+    QCheckBox* keepDemo_;
     QSet<int> myJobs_;
 };
 

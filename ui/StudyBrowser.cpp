@@ -3,6 +3,8 @@
 #include <QColor>
 #include <QComboBox>
 #include <QFileInfo>
+
+#include <memory>
 #include <QFormLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -132,6 +134,10 @@ StudyBrowser::StudyBrowser(JobManager& jobs, QString databasePath, QWidget* pare
 }
 
 void StudyBrowser::refresh() {
+    // The row selected stays selected (a refresh after a build must not lose the open series).
+    const QTreeWidgetItem* current = tree_->currentItem();
+    const QString selectedUid = current ? current->data(0, SeriesUidRole).toString() : QString();
+    const QVariant selectedVolume = current ? current->data(0, VolumeRole) : QVariant();
     tree_->clear();
     try {
         dicom::StudyDatabase db(dbPath_.toStdString());
@@ -202,6 +208,12 @@ void StudyBrowser::refresh() {
             }
         }
         tree_->expandAll();
+        if (!selectedUid.isEmpty())
+            for (QTreeWidgetItemIterator it(tree_); *it; ++it)
+                if ((*it)->data(0, SeriesUidRole).toString() == selectedUid && (*it)->data(0, VolumeRole) == selectedVolume) {
+                    tree_->setCurrentItem(*it);
+                    break;
+                }
         count_->setText(tr("%n studies", nullptr, int(studies.size())));
     } catch (const core::Error& e) {
         count_->setText(QString::fromStdString(e.what()));
@@ -227,9 +239,12 @@ int StudyBrowser::importPaths(const QStringList& paths) {
     std::vector<std::string> list;
     for (const auto& p : paths) list.push_back(p.toStdString());
     const std::string db = dbPath_.toStdString();
-    return jobs_.start(
+    // Written by the job's thread before it ends, read on this thread once it has.
+    auto found = std::make_shared<QStringList>();
+    auto id = std::make_shared<int>(0);
+    *id = jobs_.start(
         tr("Import %1").arg(paths.size() == 1 ? QFileInfo(paths.first()).fileName() : tr("%n items", nullptr, int(paths.size()))),
-        [list, db](core::JobContext& job) {
+        [list, db, found](core::JobContext& job) {
             const auto scan = dicom::DicomScanner::scan(list, job);
             dicom::StudyDatabase database(db);
             const auto stats = database.addInstances(scan.instances);
@@ -238,13 +253,18 @@ int StudyBrowser::importPaths(const QStringList& paths) {
             if (scan.instances.empty())
                 throw core::Error(scan.broken ? "no readable DICOM found: " + std::to_string(scan.broken) + " broken files"
                                               : std::string("no DICOM files found there"));
+            for (const auto& i : scan.instances)
+                if (!found->contains(QString::fromStdString(i.seriesInstanceUid)))
+                    found->append(QString::fromStdString(i.seriesInstanceUid));
             return QObject::tr("%1 DICOM files (%2 new), %3 not DICOM, %4 broken")
                 .arg(scan.instances.size()).arg(stats.added).arg(scan.notDicom).arg(scan.broken);
         },
-        [this](const QString& summary) {
+        [this, found, id](const QString& summary) {
             refresh();
             emit imported(summary);
+            emit importedSeries(*id, *found);
         });
+    return *id;
 }
 
 }  // namespace hvx::ui

@@ -37,6 +37,8 @@ signals:
     /// `volume` 0 opens the series (its largest volume); N opens volume N of a 4D series.
     void openSeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume);
     void imported(const QString& summary);
+    /// Import job `jobId` is done: the series it found (SeriesInstanceUIDs), in the order first met.
+    void importedSeries(int jobId, const QStringList& seriesUids);
     void failed(const QString& message);
 
 private:

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -37,7 +38,8 @@ bool answers(const dicom::LocalNode& local, const dicom::PacsNode& node) {
 /// Debian's orthanc-dicomweb: the demo archive then serves DICOMweb too.
 const char* kDicomWebPlugin = "/usr/share/orthanc/plugins/libOrthancDicomWeb.so";
 
-void startOrthanc(const DemoArchive::Config& c) {
+/// Starts Orthanc on the archive's configuration; returns its pid.
+pid_t startOrthanc(const DemoArchive::Config& c) {
     fs::create_directories(fs::path(c.folder) / "storage");
     const std::string plugins = fs::exists(kDicomWebPlugin)
                                     ? std::string("[\"") + kDicomWebPlugin +
@@ -65,6 +67,7 @@ void startOrthanc(const DemoArchive::Config& c) {
         ::_exit(127);
     }
     std::ofstream(fs::path(c.folder) / "orthanc.pid") << pid << "\n";  // for demo --stop and --status
+    return pid;
 }
 
 /// The pid of the demo archive's Orthanc when that process is alive (not a zombie) and is the
@@ -83,10 +86,34 @@ pid_t archivePid(const DemoArchive::Config& c) {
     return line.find("Orthanc") != std::string::npos && line.find(config) != std::string::npos ? pid : 0;
 }
 
-void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dicom::PacsNode& node) {
-    const fs::path dir = fs::path(c.folder) / "seed";
-    core::JobContext job;
+/// Writes one demo series into `folder` unless it is there: into a folder beside it, renamed
+/// into place when whole, so that a write cut short leaves nothing that looks complete.
+std::vector<std::string> writeOnce(const fs::path& folder, core::VoxelSource& source, const dicom::DicomWriteOptions& o,
+                                   core::JobContext& job) {
     std::vector<std::string> files;
+    if (!fs::exists(folder)) {
+        const fs::path partial = folder.string() + ".partial";
+        fs::remove_all(partial);
+        dicom::DicomSeriesWriter::write(source, partial.string(), o, job);
+        fs::rename(partial, folder);
+    }
+    for (const auto& e : fs::directory_iterator(folder))
+        if (e.is_regular_file()) files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dicom::PacsNode& node) {
+    core::JobContext job;
+    dicom::PacsClient(local, node).store(DemoArchive::series(c, job).files, {});
+}
+}  // namespace
+
+DemoArchive::Series DemoArchive::series(const Config& c, core::JobContext& job) {
+    const fs::path dir = fs::path(c.folder) / "series";
+    fs::create_directories(dir);
+    fs::remove_all(fs::path(c.folder) / "seed");  // where earlier versions wrote them for a moment
+    Series out;
     dicom::DicomWriteOptions ct;
     ct.patientName = "HOLOVOX^PHANTOM";
     ct.patientId = "HVX-CT-0001";
@@ -97,7 +124,8 @@ void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dic
     ct.accessionNumber = "HVX000101";
     ct.modality = "CT";
     core::PhantomVoxelSource phantom({256, 256, 160}, 2024);
-    for (auto& f : dicom::DicomSeriesWriter::write(phantom, (dir / "ct").string(), ct, job)) files.push_back(f);
+    out.ctFolder = (dir / "ct").string();
+    out.files = writeOnce(out.ctFolder, phantom, ct, job);
     if (fs::exists(c.mriTemplate)) {
         dicom::DicomWriteOptions mr;
         mr.patientName = "HOLOVOX^BRAIN";
@@ -109,14 +137,15 @@ void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dic
         mr.accessionNumber = "HVX000102";
         mr.modality = "MR";
         auto mri = core::VoxelSourceFactory::open(c.mriTemplate);
-        for (auto& f : dicom::DicomSeriesWriter::write(*mri, (dir / "mr").string(), mr, job)) files.push_back(f);
+        out.mrFolder = (dir / "mr").string();
+        const auto files = writeOnce(out.mrFolder, *mri, mr, job);
+        out.files.insert(out.files.end(), files.begin(), files.end());
     }
-    dicom::PacsClient(local, node).store(files, {});
-    fs::remove_all(dir);
+    return out;
 }
-}  // namespace
 
-std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath) {
+std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath, bool* started) {
+    if (started) *started = false;
     auto settings = dicom::PacsSettings::load(settingsPath);
     settings.local.port = c.localPort;
     dicom::PacsNode node;
@@ -126,15 +155,32 @@ std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath
     node.port = c.dicomPort;
     settings.local.timeoutSeconds = 5;
     if (!answers(settings.local, node)) {
-        startOrthanc(c);
-        bool up = false;
-        for (int i = 0; i < 150 && !up; ++i) {
-            std::this_thread::sleep_for(std::chrono::milliseconds(200));
-            up = answers(settings.local, node);
+        // One of ours that does not answer (stopping, or hung) goes first: it may hold the port.
+        if (archivePid(c) != 0) stop(c);
+        bool up = false, exited = false;
+        for (int attempt = 0; attempt < 3 && !up; ++attempt) {
+            if (attempt > 0) std::this_thread::sleep_for(std::chrono::seconds(attempt));  // the port may be freed by then
+            const pid_t pid = startOrthanc(c);
+            exited = false;
+            for (int i = 0; i < 150 && !up && !exited; ++i) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(200));
+                int status = 0;
+                exited = ::waitpid(pid, &status, WNOHANG) == pid;  // it gave up (a port taken, a bad folder)
+                up = !exited && answers(settings.local, node);
+            }
+            if (!up && !exited) {  // neither up nor gone after 30 s: not ours to keep
+                ::kill(pid, SIGKILL);
+                ::waitpid(pid, nullptr, 0);
+            }
         }
         if (!up)
-            throw core::Error("the demo archive (Orthanc on port " + std::to_string(c.dicomPort) +
-                              ") did not start; see " + c.folder + "/orthanc.log");
+            throw core::Error("the demo archive (Orthanc on port " + std::to_string(c.dicomPort) + ") did not start" +
+                              (exited ? std::string(": it exited at once, three times (is port ") +
+                                            std::to_string(c.dicomPort) + " or " + std::to_string(c.httpPort) +
+                                            " taken by another program?)"
+                                      : std::string(" within 30 s")) +
+                              "; see " + c.folder + "/orthanc.log");
+        if (started) *started = true;
     }
     std::size_t studies = dicom::PacsClient(settings.local, node).find(dicom::QueryLevel::Study, {}, {});
     if (studies == 0) {

@@ -1,17 +1,22 @@
 // holovox: the workstation GUI. `holovox [FILE.hvo|DICOM-FOLDER|DICOMDIR|DICOM-FILE]` opens
-// directly; `holovox --demo` starts the demo archive, connects it and opens the demo study.
+// directly; `holovox --demo` imports and opens the demo study and starts the demo archive (stopped
+// on quit unless the PACS panel's "keep running" is ticked).
 #include <QApplication>
 #include <QCommandLineParser>
 #include <QDir>
+#include <QElapsedTimer>
+#include <QThread>
 #include <QFileInfo>
 #include <QPointer>
 #include <QTimer>
 
+#include <atomic>
+#include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "app/cli/DemoArchive.h"
-#include "core/octree/OctreeBuilder.h"
-#include "core/volume/VoxelSourceFactory.h"
+#include "core/base/JobContext.h"
 #include "dicom/PacsSettings.h"
 #include "ui/JobManager.h"
 #include "ui/MainWindow.h"
@@ -19,37 +24,54 @@
 #include "ui/VolumeView.h"
 
 namespace {
-// The demo: the MRI template's octree (built once) and the demo archive, both in the background.
-void startDemo(hvx::ui::MainWindow& window, const QString& pacsConfig) {
+/// What the demo started, for the quit.
+struct DemoState {
+    hvx::app::DemoArchive::Config archive;
+    std::atomic<bool> startedArchive{false};  // set by the archive's job
+    bool archiveJobRunning = false;           // GUI thread
+};
+
+// The demo: its series written once as DICOM (the archive is seeded from the same files), the MRI
+// template's imported into the study database like any import and opened; then the demo archive,
+// found running or started, its state in the PACS panel.
+void startDemo(hvx::ui::MainWindow& window, const QString& pacsConfig, const std::shared_ptr<DemoState>& state) {
     const std::filesystem::path data = hvx::app::DemoArchive::dataFolder();
-    std::string input = "/usr/share/mricron/templates/ch2better.nii.gz";
-    if (const char* env = std::getenv("HOLOVOX_DEMO_DATA"); env && *env) input = env;
-    const std::string octree = (data / "demo" / "ch2better.hvo").string();
-    QPointer<hvx::ui::MainWindow> w(&window);
-    window.jobs()->start(
-        QObject::tr("Demo study"),
-        [input, octree](hvx::core::JobContext& job) {
-            if (!std::filesystem::exists(octree)) {
-                std::filesystem::create_directories(std::filesystem::path(octree).parent_path());
-                auto source = hvx::core::VoxelSourceFactory::open(input);
-                hvx::core::OctreeBuilder(hvx::core::BuildOptions{}).build(*source, octree, job);
-            }
-            return QString::fromStdString(octree);
-        },
-        [w](const QString& path) {
-            if (w) w->openOctree(path, QObject::tr("Demo: MRI template (ch2better)"));
-        });
+    state->archive.folder = (data / "demo-archive").string();
+    if (const char* env = std::getenv("HOLOVOX_DEMO_DATA"); env && *env) state->archive.mriTemplate = env;
     const std::string settings = pacsConfig.isEmpty() ? hvx::dicom::PacsSettings::defaultPath() : pacsConfig.toStdString();
+    QPointer<hvx::ui::MainWindow> w(&window);
+    window.pacs()->setDemoStatus(QObject::tr("starting\u2026"));
+    const auto archiveJob = [w, state, settings] {
+        if (!w) return;
+        state->archiveJobRunning = true;
+        const int id = w->jobs()->start(
+            QObject::tr("Demo archive (Orthanc)"),
+            [state, settings](hvx::core::JobContext&) {
+                bool started = false;
+                const std::string text = hvx::app::DemoArchive::ensure(state->archive, settings, &started);
+                state->startedArchive = started;
+                return QString::fromStdString(text);
+            },
+            [w](const QString& text) {
+                if (!w) return;
+                w->pacs()->reloadSettings();
+                w->pacs()->setDemoStatus(QObject::tr("ready: %1").arg(text));
+            });
+        QObject::connect(w->jobs(), &hvx::ui::JobManager::finished, w, [w, id, state](int done, const QString& st, const QString& why) {
+            if (done != id) return;
+            state->archiveJobRunning = false;
+            if (w && st != "done") w->pacs()->setDemoStatus(QStringLiteral("%1: %2").arg(st, why));
+        });
+    };
     window.jobs()->start(
-        QObject::tr("Demo archive (Orthanc)"),
-        [input, data, settings](hvx::core::JobContext&) {
-            hvx::app::DemoArchive::Config archive;
-            archive.folder = (data / "demo-archive").string();
-            archive.mriTemplate = input;
-            return QString::fromStdString(hvx::app::DemoArchive::ensure(archive, settings));
+        QObject::tr("Demo series"),
+        [state](hvx::core::JobContext& job) {
+            const auto series = hvx::app::DemoArchive::series(state->archive, job);
+            return QString::fromStdString(series.mrFolder.empty() ? series.ctFolder : series.mrFolder);
         },
-        [w](const QString&) {
-            if (w) w->pacs()->reloadSettings();
+        [w, archiveJob](const QString& folder) {
+            if (w) w->openPath(folder);  // imported (thumbnail, octree) and opened, selected in the browser
+            archiveJob();
         });
 }
 }  // namespace
@@ -77,7 +99,8 @@ int main(int argc, char** argv) {
 
     hvx::ui::MainWindow window(parser.value(db), parser.value(pacs));
     window.show();
-    if (parser.isSet(demo)) startDemo(window, parser.value(pacs));
+    auto demoState = std::make_shared<DemoState>();
+    if (parser.isSet(demo)) startDemo(window, parser.value(pacs), demoState);
     else if (!parser.positionalArguments().isEmpty()) window.openPath(parser.positionalArguments().first());
     if (parser.isSet(screenshot)) {
         const QString out = parser.value(screenshot);
@@ -96,5 +119,24 @@ int main(int argc, char** argv) {
         });
         QTimer::singleShot(60000, &window, grab);
     }
-    return QApplication::exec();
+    const int code = QApplication::exec();
+    // The demo archive this session started is Holovox's: it stops with it, unless kept. One
+    // still starting is let finish first (stopped half-way, its job would start it again).
+    if (demoState->archiveJobRunning && !hvx::ui::PacsPanel::keepDemoRunning()) {
+        std::fprintf(stderr, "holovox: waiting for the demo archive to finish starting, to stop it\n");
+        QElapsedTimer waited;
+        waited.start();
+        while (demoState->archiveJobRunning && waited.elapsed() < 120000) {
+            QCoreApplication::processEvents(QEventLoop::AllEvents, 50);
+            QThread::msleep(20);
+        }
+    }
+    if (demoState->startedArchive && !hvx::ui::PacsPanel::keepDemoRunning()) {
+        try {
+            std::fprintf(stderr, "%s\n", hvx::app::DemoArchive::stop(demoState->archive).c_str());
+        } catch (const std::exception& e) {
+            std::fprintf(stderr, "holovox: %s\n", e.what());
+        }
+    }
+    return code;
 }
