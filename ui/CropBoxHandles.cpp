@@ -6,12 +6,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
 #include <glm/vec4.hpp>
 
 namespace hvx::ui {
 
-CropBoxHandles::CropBoxHandles(const core::OctreeSpace& space, const std::array<std::uint32_t, 3>& dims, Project project)
-    : space_(space), dims_(dims), project_(std::move(project)) {}
+CropBoxHandles::CropBoxHandles(const core::OctreeSpace& space, const std::array<std::uint32_t, 3>& dims, Project project,
+                               Unproject unproject)
+    : space_(space), dims_(dims), project_(std::move(project)), unproject_(std::move(unproject)) {}
 
 glm::dvec3 CropBoxHandles::patient(const glm::dvec3& fraction) const {
     return glm::dvec3(space_.octreeToPatient * glm::dvec4(fraction * space_.extent, 1.0));
@@ -38,18 +40,24 @@ std::optional<int> CropBoxHandles::faceAt(const core::CropBox& box, QPointF pos,
 core::CropBox CropBoxHandles::dragged(const core::CropBox& box, int face, QPointF from, QPointF to) const {
     const int a = face % 3;
     const bool low = face < 3;
-    // The axis as seen: where the face's centre goes when the face moves by the whole volume.
+    // The face's axis as a line through its centre: P(t) = p0 + t * step, t in fractions of the
+    // volume; where a mouse ray passes nearest it gives the fraction under the mouse.
     glm::dvec3 f = (box.min + box.max) * 0.5;
     f[a] = low ? box.min[a] : box.max[a];
     glm::dvec3 g = f;
     g[a] += 1.0;
-    const auto s0 = project_(patient(f)), s1 = project_(patient(g));
-    if (!s0 || !s1) return box;
-    const QPointF u = *s1 - *s0;
-    const double len2 = u.x() * u.x() + u.y() * u.y();
-    if (len2 < 4.0) return box;  // the axis points at the eye: the mouse cannot say how far
-    const QPointF d = to - from;
-    const double delta = (d.x() * u.x() + d.y() * u.y()) / len2;
+    const glm::dvec3 p0 = patient(f), step = patient(g) - p0;
+    const auto along = [&](QPointF pos) -> std::optional<double> {
+        const auto [o, d] = unproject_(pos);
+        const glm::dvec3 w = p0 - o;
+        const double aa = glm::dot(step, step), b = glm::dot(step, d), c = glm::dot(d, d);
+        const double denom = aa * c - b * b;
+        if (denom < 1e-6 * aa * c) return std::nullopt;  // the axis points at the eye: the mouse cannot say how far
+        return (b * glm::dot(d, w) - c * glm::dot(step, w)) / denom;
+    };
+    const auto t0 = along(from), t1 = along(to);
+    if (!t0 || !t1) return box;
+    const double delta = *t1 - *t0;
     // Faces on voxel boundaries (the box keeps whole voxels), at least one voxel apart.
     const double n = double(std::max<std::uint32_t>(1, dims_[std::size_t(a)]));
     const auto snap = [n](double x) { return std::round(x * n) / n; };

@@ -521,22 +521,35 @@ void VolumeView::setCropEditing(bool on) {
 
 std::optional<CropBoxHandles> VolumeView::cropHandlesNow() const {
     if (!cropEditing_ || !scene_) return std::nullopt;
-    return CropBoxHandles(scene_->space, scene_->reader->geometry().dims, [this](const glm::dvec3& x) -> std::optional<QPointF> {
-        QPointF at;
-        double depth = 0;
-        if (!project(x, at, depth)) return std::nullopt;
-        return at;
-    });
+    return CropBoxHandles(
+        scene_->space, scene_->reader->geometry().dims,
+        [this](const glm::dvec3& x) -> std::optional<QPointF> {
+            QPointF at;
+            double depth = 0;
+            if (!project(x, at, depth)) return std::nullopt;
+            return at;
+        },
+        [this](QPointF pos) {
+            glm::dvec3 o, d;
+            camera_.view(width(), height()).ray(pos.x() - 0.5, pos.y() - 0.5, o, d);  // (ray() takes pixel indices)
+            return std::make_pair(o, d);
+        });
+}
+
+std::vector<glm::dvec3> VolumeView::cropHandlePoints() const {
+    std::vector<glm::dvec3> out;
+    if (const auto crop = cropHandlesNow())
+        for (int face = 0; face < 6; ++face) out.push_back(crop->faceCentre(settings_.crop, face));
+    return out;
 }
 
 std::vector<QPointF> VolumeView::cropHandles() const {
     std::vector<QPointF> out;
-    if (const auto crop = cropHandlesNow())
-        for (int face = 0; face < 6; ++face) {
-            QPointF at;
-            double depth = 0;
-            if (project(crop->faceCentre(settings_.crop, face), at, depth)) out.push_back(at);
-        }
+    for (const auto& p : cropHandlePoints()) {
+        QPointF at;
+        double depth = 0;
+        if (project(p, at, depth)) out.push_back(at);
+    }
     return out;
 }
 

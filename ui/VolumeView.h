@@ -96,6 +96,8 @@ public:
     void setCropEditing(bool on);
     /// Widget positions of the crop box's face handles (low i, j, k, then high), when shown.
     std::vector<QPointF> cropHandles() const;
+    /// The same handles in patient coordinates (LPS mm): the middles of the box's faces.
+    std::vector<glm::dvec3> cropHandlePoints() const;
     /// The measurements to draw: those made in the 3D view, projected, with their labels.
     void setMeasurements(std::vector<core::Measurement> items);
     /// Widget position of a patient point in the current view, and its distance along the view

@@ -566,6 +566,12 @@ private slots:
         QCOMPARE(find(rectLabel).region->outline, kept.region->outline);
         QVERIFY2(axial->roiError().contains("no area"), qPrintable(axial->roiError()));
         axial->grab().save(kArtifacts + "/slice-edited-by-handles.png");
+        // Saved with the session: a new window (as after a restart) opening the volume has the
+        // list as edited, shapes and statistics included.
+        const std::string saved = panel->list().toJson({});
+        ui::MainWindow again(QString::fromStdString(dir_.file("db/studies.sqlite")), QString::fromStdString(dir_.file("pacs.json")));
+        QVERIFY(again.openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        QCOMPARE(again.measurements()->list().toJson({}), saved);
     }
 
     // Left is never right: a bone block on the patient's left (+x in LPS) shows on the image's
