@@ -47,6 +47,7 @@
 #include "ui/RenderControls.h"
 #include "ui/CropControls.h"
 #include "ui/MeasurementsPanel.h"
+#include "dicom/LibraryVersions.h"
 #include "ui/SliceScroller.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
@@ -65,6 +66,8 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     setObjectName("mainWindow");
     if (databasePath.isEmpty()) databasePath = QString::fromStdString(dicom::StudyDatabase::defaultPath());
     if (pacsSettingsPath.isEmpty()) pacsSettingsPath = QString::fromStdString(dicom::PacsSettings::defaultPath());
+    dbPath_ = databasePath;
+    pacsConfigPath_ = pacsSettingsPath;
     setCentralWidget(view_);
     setDockNestingEnabled(true);
 
@@ -270,11 +273,20 @@ void MainWindow::buildMenus() {
         dialog->resize(900, 500);
         dialog->open();
     });
-    help->addAction(tr("&About Holovox"), this, [this] {
-        QMessageBox::about(this, tr("About Holovox"),
-                           tr("Holovox \u2014 out-of-core volume ray casting for medical imaging.\n"
-                              "Not for diagnostic use unless validated for it at your site."));
-    });
+    help->addAction(tr("&About Holovox"), this, [this] { QMessageBox::about(this, tr("About Holovox"), aboutText()); });
+}
+
+QString MainWindow::aboutText() const {
+    QString libraries = QStringLiteral("Qt %1").arg(QString::fromLatin1(qVersion()));
+    for (const auto& [name, version] : dicom::LibraryVersions::all())
+        libraries += QStringLiteral(", %1 %2").arg(QString::fromStdString(name), QString::fromStdString(version));
+    const QString gl = view_->glRenderer().isEmpty() ? tr("(no OpenGL context yet)") : view_->glRenderer();
+    return tr("Holovox %1 \u2014 out-of-core volume ray casting for medical imaging.\n"
+              "Not for diagnostic use unless validated for it at your site.\n\n"
+              "Libraries: %2.\nOpenGL: %3.\n\n"
+              "Study database: %4\nPACS settings: %5\nSettings: %6")
+        .arg(QCoreApplication::applicationVersion(), libraries, gl, dbPath_, pacsConfigPath_,
+             QSettings().fileName());
 }
 
 bool MainWindow::openPath(const QString& path) {

@@ -78,6 +78,8 @@ public:
     ToolsPanel* toolsPanel(int i) const { return toolPanels_[i]; }
     /// The last error shown in the status bar.
     QString lastError() const { return lastError_; }
+    /// Help > About's text: the version, the libraries and OpenGL in use, and the data folders.
+    QString aboutText() const;
 
 protected:
     void closeEvent(QCloseEvent* e) override;
@@ -119,6 +121,7 @@ private:
     double referenceLength_ = 1.0;
     QString openLabel_, lastError_;
     QString openPath_;  // the open octree's key in the session: a hash of its absolute path
+    QString dbPath_, pacsConfigPath_;  // in use, for Help > About
     QList<QDockWidget*> docks_;
     ToolsPanel* toolPanels_[3] = {};
     core::ToolSet tools_;

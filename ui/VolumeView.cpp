@@ -156,6 +156,11 @@ QStringList VolumeView::orientationLabels() const {
 }
 
 void VolumeView::initializeGL() {
+    if (const auto* r = glGetString(GL_RENDERER)) {
+        const auto* v = glGetString(GL_VERSION);
+        glRenderer_ = QStringLiteral("%1, %2").arg(QString::fromLatin1(reinterpret_cast<const char*>(r)),
+                                                  v ? QString::fromLatin1(reinterpret_cast<const char*>(v)) : QString());
+    }
     try {
         gpu_ = std::make_unique<render::GpuRayCaster>();
     } catch (const std::exception& e) {

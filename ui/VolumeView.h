@@ -98,6 +98,9 @@ public:
     std::vector<QPointF> cropHandles() const;
     /// The same handles in patient coordinates (LPS mm): the middles of the box's faces.
     std::vector<glm::dvec3> cropHandlePoints() const;
+    /// "llvmpipe (LLVM 15.0.6, 256 bits), 4.5 (Core Profile) Mesa 22.3.6": the OpenGL renderer and
+    /// version of the view's context (empty before it is made).
+    const QString& glRenderer() const { return glRenderer_; }
     /// The measurements to draw: those made in the 3D view, projected, with their labels.
     void setMeasurements(std::vector<core::Measurement> items);
     /// Widget position of a patient point in the current view, and its distance along the view
@@ -151,6 +154,7 @@ private:
     std::vector<float> lastDepth_;  // of the last frame, at its own (maybe reduced) size
     enum class Picking { None, Distance, Sphere } picking_ = Picking::None;  // D or B: picking points
     bool cropEditing_ = false;
+    QString glRenderer_;
     std::optional<int> cropFace_;  // the crop box face being dragged
     core::CropBox cropPress_;      // the box when its drag began
     QPointF cropFrom_;             // where that drag began

@@ -1,6 +1,7 @@
 #include "core/image/ImageWriter.h"
 
 #include <ImfChannelList.h>
+#include <OpenEXRConfig.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfMultiPartOutputFile.h>
@@ -153,6 +154,10 @@ void ImageWriter::writeExrParts(const std::vector<RenderImage>& images, const st
         throw Error(path + ": cannot write multi-part EXR (" + e.what() + ")");
     }
     commit(tmp, path);
+}
+
+std::string ImageWriter::libraryVersions() {
+    return std::string("OpenEXR ") + OPENEXR_VERSION_STRING + ", libpng " + png_get_libpng_ver(nullptr);
 }
 
 }  // namespace hvx::core

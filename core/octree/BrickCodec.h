@@ -29,6 +29,8 @@ public:
     static hvo::Codec parse(std::string_view name);
     /// Name of a codec as parse() accepts it.
     static std::string_view name(hvo::Codec codec);
+    /// "zstd 1.5.4, LZ4 1.9.4, xxHash 0.8.1": the codecs' libraries as linked.
+    static std::string libraryVersions();
 };
 
 }  // namespace hvx::core

@@ -1,5 +1,6 @@
 #include "core/volume/VtkImageSource.h"
 
+#include <vtkVersion.h>
 #include <vtkAlgorithm.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
@@ -207,5 +208,7 @@ void VtkImageSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, v
         out += sliceVoxels * outWidth;
     }
 }
+
+std::string VtkImageSource::libraryVersion() { return std::string("VTK ") + vtkVersion::GetVTKVersion(); }
 
 }  // namespace hvx::core

@@ -16,6 +16,8 @@ class VtkImageSource final : public VoxelSource {
 public:
     /// Opens the file and reads its information; throws core::Error naming it.
     explicit VtkImageSource(std::string path);
+    /// "VTK 9.1.0": the library as linked.
+    static std::string libraryVersion();
     ~VtkImageSource() override;
 
     const VolumeGeometry& geometry() const override { return geometry_; }

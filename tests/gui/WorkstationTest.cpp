@@ -369,6 +369,17 @@ private slots:
         window_->setTools({});
     }
 
+    // Help > About names the version, the libraries as linked, the OpenGL renderer in use and the
+    // data folders (the study database and PACS settings this window was given).
+    void aboutNamesTheLibrariesAndTheFoldersInUse() {
+        const QString about = window_->aboutText();
+        for (const char* part : {"Qt 6.", "DCMTK 3.", "SQLite 3.", "VTK 9.", "OpenEXR ", "OpenGL: "})
+            QVERIFY2(about.contains(part), qPrintable(part + QString(" missing from:\n") + about));
+        QVERIFY2(about.contains(QString::fromStdString(dir_.file("db/studies.sqlite"))), qPrintable(about));
+        QVERIFY2(about.contains(QString::fromStdString(dir_.file("pacs.json"))), qPrintable(about));
+        QVERIFY2(!about.contains("no OpenGL context"), "the shown view has a context");
+    }
+
     void takesScreenshotsAtTheViewsSizeOrLarger() {
         const QString png = QString::fromStdString(dir_.file("capture.png"));
         const QString exr = QString::fromStdString(dir_.file("capture.exr"));

@@ -168,3 +168,20 @@ TEST(CliCommands, SliceAndSlabAgreeWithNumpyOnTheSameVoxels) {
     EXPECT_NE(r.output.find("does not cross the volume"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("out.png")));
 }
+
+// version: every library with its version as linked; DCMTK's is the one DCMTK's own dcmdump
+// reports, SQLite's the one Python's sqlite3 module (the same shared library) reports.
+TEST(CliCommands, VersionListsTheLibrariesAsLinked) {
+    const auto r = test::runCommand(cli + " version");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char* lib : {"DCMTK", "libcurl", "OpenSSL", "SQLite", "OpenJPEG", "VTK", "zstd", "LZ4", "xxHash", "OpenEXR",
+                            "libpng", "GLM"})
+        EXPECT_NE(r.output.find(std::string("  ") + lib + " "), std::string::npos) << lib << "\n" << r.output;
+    const auto dcmdump = test::runCommand("dcmdump --version");
+    const auto v = dcmdump.output.find(" v");
+    ASSERT_NE(v, std::string::npos) << dcmdump.output;
+    const std::string dcmtk = dcmdump.output.substr(v + 2, dcmdump.output.find(' ', v + 2) - v - 2);
+    EXPECT_NE(r.output.find("DCMTK     " + dcmtk + "\n"), std::string::npos) << dcmtk << "\n" << r.output;
+    const auto py = test::runCommand("/usr/bin/python3 -c \"import sqlite3; print(sqlite3.sqlite_version)\"");
+    EXPECT_NE(r.output.find("SQLite    " + py.output), std::string::npos) << py.output << r.output;
+}
