@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
 
 namespace hvx::render {
 
@@ -10,11 +11,13 @@ std::vector<core::RenderImage> LightFieldRenderer::render(const core::OctreeRead
                                                           const core::RenderSettings& settings,
                                                           const std::vector<core::View>& views,
                                                           const core::AccuracyFunction& accuracy, GpuRayCaster* gpu,
-                                                          bool converge, Stats* stats) {
+                                                          bool converge, Stats* stats, core::JobContext* job) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
+    if (job) job->report(0.0, "refining the cut for all views");
     const int frames = ws.converge(views, tf, accuracy, converge ? 64 : 1);
     const auto t1 = Clock::now();
+    if (job) job->throwIfCancelled();
     std::vector<core::RenderImage> out;
     out.reserve(views.size());
     if (gpu) {
@@ -24,6 +27,12 @@ std::vector<core::RenderImage> LightFieldRenderer::render(const core::OctreeRead
         for (std::size_t first = 0; first < views.size(); first += batch) {
             const std::vector<core::View> some(views.begin() + std::ptrdiff_t(first),
                                                views.begin() + std::ptrdiff_t(std::min(views.size(), first + batch)));
+            if (job) {
+                job->report(0.2 + 0.8 * double(first) / double(views.size()),
+                            "views " + std::to_string(first + 1) + " to " + std::to_string(first + some.size()) + " of " +
+                                std::to_string(views.size()));
+                job->throwIfCancelled();
+            }
             auto images = gpu->renderViews(reader, ws.index(), ws.slotBricks(), tf, settings, some);
             for (auto& im : images) out.push_back(std::move(im));
         }

@@ -1,6 +1,7 @@
 #pragma once
 #include <vector>
 
+#include "core/base/JobContext.h"
 #include "core/streaming/BrickLoader.h"
 #include "core/reference/CpuRayCaster.h"
 #include "core/camera/DisplayModel.h"
@@ -23,12 +24,13 @@ public:
         int refineFrames = 0;
         double refineMs = 0, renderMs = 0;
     };
-    /// `converge`: load until the cut is final (synchronous mode) before drawing.
+    /// `converge`: load until the cut is final (synchronous mode) before drawing. `job`, when
+    /// given, hears the progress (the cut, then each batch of views) and may cancel between them.
     static std::vector<core::RenderImage> render(const core::OctreeReader& reader, core::WorkingSet& ws,
                                                  core::BrickLoader& loader, const core::TransferFunction& tf,
                                                  const core::RenderSettings& settings, const std::vector<core::View>& views,
                                                  const core::AccuracyFunction& accuracy, GpuRayCaster* gpu,
-                                                 bool converge, Stats* stats = nullptr);
+                                                 bool converge, Stats* stats = nullptr, core::JobContext* job = nullptr);
 };
 
 }  // namespace hvx::render

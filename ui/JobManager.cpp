@@ -84,6 +84,27 @@ int JobManager::start(const QString& title, Work work, Done done) {
     return id;
 }
 
+QString JobManager::runHere(const QString& title, const Work& work) {
+    const int id = nextId_++;
+    core::JobContext context([this, id](const core::JobProgress& p) {
+        emit progressed(id, p.fraction, p.etaSeconds, QString::fromStdString(p.stage));
+        QCoreApplication::processEvents(QEventLoop::ExcludeUserInputEvents);  // the panel shows it now
+    });
+    emit started(id, title);
+    try {
+        const QString message = work(context);
+        emit progressed(id, 1.0, 0.0, {});
+        emit finished(id, "done", message);
+        return message;
+    } catch (const core::Cancelled&) {
+        emit finished(id, "cancelled", QObject::tr("cancelled"));
+        throw;
+    } catch (const std::exception& e) {
+        emit finished(id, "failed", QString::fromStdString(e.what()));
+        throw;
+    }
+}
+
 void JobManager::cancel(int id) {
     if (auto it = jobs_.find(id); it != jobs_.end()) it->second->context->cancel();
 }

@@ -38,6 +38,11 @@ public:
 
     /// Starts a job; returns its id.
     int start(const QString& title, Work work, Done done = {});
+    /// Runs `work` here, on the GUI thread, now (work that needs this thread's OpenGL context, as
+    /// a light-field frame), shown in the Jobs panel as any job: its progress reports are shown
+    /// as they come (the window repaints; user input waits until it ends) and it ends "done",
+    /// "failed" or "cancelled" like the others. Returns the work's message, or throws what it threw.
+    QString runHere(const QString& title, const Work& work);
     /// Asks a job to stop.
     void cancel(int id);
     /// Jobs still running.

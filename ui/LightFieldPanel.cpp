@@ -10,6 +10,7 @@
 #include <QPainter>
 #include <QPushButton>
 #include <QScreen>
+#include <QSignalBlocker>
 #include <QSlider>
 #include <QVBoxLayout>
 
@@ -23,6 +24,8 @@
 #include "core/image/QuiltLayout.h"
 #include "core/image/StereoComposer.h"
 #include "ui/ImageConversion.h"
+#include "ui/JobManager.h"
+#include "ui/LightFieldPreviewWindow.h"
 #include "ui/LightFieldWindow.h"
 #include "ui/VolumeView.h"
 
@@ -75,7 +78,7 @@ LightFieldPanel::LightFieldPanel(VolumeView& view, QWidget* parent)
     connect(follow_, &QCheckBox::toggled, this, &LightFieldPanel::setFollowView);
     layout->addWidget(previewLabel_, 1);
     layout->addWidget(status_);
-    connect(render, &QPushButton::clicked, this, &LightFieldPanel::renderFrame);
+    connect(render, &QPushButton::clicked, this, [this] { renderFrame(false, true); });
     connect(output, &QPushButton::clicked, this, &LightFieldPanel::openOutputWindow);
     connect(observer_, &QSlider::valueChanged, this, &LightFieldPanel::updatePreview);
     connect(profiles_, &QComboBox::currentTextChanged, this, &LightFieldPanel::updateDepthRange);
@@ -107,11 +110,20 @@ void LightFieldPanel::setFollowView(bool follow) {
     renderFrame(false);
 }
 
-bool LightFieldPanel::renderFrame(bool interactive) {
+bool LightFieldPanel::renderFrame(bool interactive, bool asked) {
     lastInteractive_ = interactive;
     try {
         display_ = core::DisplayModel::load(profiles_->currentText().toStdString());
-        views_ = view_.renderViews(display_, eta_->value() / 100.0, zoom_->value(), 8e6, interactive);
+        const auto renderAll = [&](core::JobContext* job) {
+            views_ = view_.renderViews(display_, eta_->value() / 100.0, zoom_->value(), 8e6, interactive, job);
+        };
+        if (asked && jobs_)
+            jobs_->runHere(tr("Light-field frame (%1)").arg(profiles_->currentText()), [&](core::JobContext& job) {
+                renderAll(&job);
+                return tr("%n views", nullptr, int(views_.size()));
+            });
+        else
+            renderAll(nullptr);
         const auto& v = views_.front();
         if (display_.kind == core::DisplayModel::Kind::Lenticular) {
             core::QuiltLayout q{display_.quiltColumns, display_.quiltRows, v.width, v.height, display_.aspect};
@@ -127,10 +139,23 @@ bool LightFieldPanel::renderFrame(bool interactive) {
         }
         status_->setText(tr("%1: %2 views of %3x%4%5").arg(QString::fromStdString(display_.name)).arg(views_.size()).arg(v.width)
                              .arg(v.height).arg(interactive ? tr(" (interactive: lowered sampling)") : QString()));
+        if (asked) {
+            if (!previewWindow_) {
+                previewWindow_ = std::make_unique<LightFieldPreviewWindow>();
+                previewWindow_->observer()->setValue(observer_->value());
+                connect(previewWindow_->observer(), &QSlider::valueChanged, observer_, &QSlider::setValue);
+                connect(observer_, &QSlider::valueChanged, previewWindow_->observer(), [this](int position) {
+                    const QSignalBlocker block(previewWindow_->observer());
+                    previewWindow_->observer()->setValue(position);
+                });
+            }
+            previewWindow_->show();
+            previewWindow_->raise();
+        }
         updatePreview();
         if (window_ && window_->isVisible()) window_->setFrame(frame_);
         return true;
-    } catch (const core::Error& e) {
+    } catch (const std::exception& e) {  // core::Error, or core::Cancelled from the Jobs panel
         status_->setText(QString::fromStdString(e.what()));
         return false;
     }
@@ -147,6 +172,7 @@ void LightFieldPanel::updatePreview() {
         preview_ = frame_;
     }
     previewLabel_->setPixmap(QPixmap::fromImage(preview_).scaled(previewLabel_->size(), Qt::KeepAspectRatio, Qt::SmoothTransformation));
+    if (previewWindow_) previewWindow_->setImage(preview_, status_->text());
 }
 
 void LightFieldPanel::openOutputWindow() {

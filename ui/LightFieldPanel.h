@@ -18,6 +18,8 @@ namespace hvx::ui {
 
 class VolumeView;
 class LightFieldWindow;
+class LightFieldPreviewWindow;
+class JobManager;
 
 /// The light-field dock: choose a display profile, eta (MCOP blend), the scale (depth range
 /// follows: where s(z) stays within twice the pixel size), render a frame of all views from
@@ -32,8 +34,13 @@ public:
     LightFieldPanel(VolumeView& view, QWidget* parent = nullptr);
     ~LightFieldPanel() override;
     /// Renders all views of the chosen display for the current 3D view; returns false (with
-    /// the reason shown) when no volume is open or the profile is bad.
-    bool renderFrame(bool interactive = false);
+    /// the reason shown) when no volume is open or the profile is bad. `asked` (the Render frame
+    /// button): as a job in the Jobs panel, and the preview shown in its own window.
+    bool renderFrame(bool interactive = false, bool asked = false);
+    /// The Jobs panel's manager, for renders the user asks for.
+    void setJobs(JobManager* jobs) { jobs_ = jobs; }
+    /// The preview's own window (none before the first asked render).
+    LightFieldPreviewWindow* previewWindow() const { return previewWindow_.get(); }
     /// Follow the 3D view: re-render on each of its frames, at the lowered sampling rate while
     /// the camera moves and at full quality once it stops.
     void setFollowView(bool follow);
@@ -63,6 +70,8 @@ private:
     std::unique_ptr<LightFieldWindow> window_;
     QCheckBox* follow_;
     bool lastInteractive_ = false;
+    JobManager* jobs_ = nullptr;
+    std::unique_ptr<LightFieldPreviewWindow> previewWindow_;
 };
 
 }  // namespace hvx::ui

@@ -105,6 +105,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     auto* band = addDock(tr("Band picker"), "bandDock", toolPanels_[2], Qt::RightDockWidgetArea, true);
     auto* cropDock = addDock(tr("Crop"), "cropDock", crop_, Qt::RightDockWidgetArea, true);
     lightField_ = new LightFieldPanel(*view_);
+    lightField_->setJobs(jobs_.get());
     auto* lf = addDock(tr("Light field"), "lightFieldDock", lightField_, Qt::RightDockWidgetArea, true);
     tabifyDockWidget(renderDock, probes);
     tabifyDockWidget(probes, clip);

@@ -349,7 +349,7 @@ void VolumeView::capture(const QString& path, int width, int height) {
 }
 
 std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel& display, double eta, double zoom,
-                                                       double maxBeams, bool interactive) {
+                                                       double maxBeams, bool interactive, core::JobContext* job) {
     if (!scene_ || !tf_ || !gpu_) throw core::Error("open a volume first");
     const auto& s = scene_->space;
     const glm::dvec3 centre = s.centre();
@@ -372,7 +372,7 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
         options.cpuMirror = false;
         core::WorkingSet ws(*scene_->reader, scene_->cache, scene_->loader, options);
         auto images = render::LightFieldRenderer::render(*scene_->reader, ws, scene_->loader, *tf_, rs, views,
-                                                         display.accuracyFunction(scale), gpu_.get(), true);
+                                                         display.accuracyFunction(scale), gpu_.get(), true, nullptr, job);
         glUseProgram(0);
         glBindTextureUnit(0, 0);
         doneCurrent();

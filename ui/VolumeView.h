@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/reference/CpuRayCaster.h"
+#include "core/base/JobContext.h"
 #include "core/reference/MeasurementList.h"
 #include "ui/CropBoxHandles.h"
 #include "core/camera/DisplayModel.h"
@@ -76,7 +77,8 @@ public:
     /// 2.5 mm on the screen (at least twice the display's own) and a doubled step. Throws
     /// core::Error when no volume is open.
     std::vector<core::RenderImage> renderViews(const core::DisplayModel& display, double eta, double zoom,
-                                               double maxBeams = 8e6, bool interactive = false);
+                                               double maxBeams = 8e6, bool interactive = false,
+                                               core::JobContext* job = nullptr);
     /// The last image shown (the ray-cast frame, without overlays), at the widget's size.
     QImage lastFrame() const { return frame_; }
     int frameCount() const { return frames_; }

@@ -46,6 +46,7 @@
 #include "ui/JobManager.h"
 #include "ui/JobsPanel.h"
 #include "ui/LightFieldPanel.h"
+#include "ui/LightFieldPreviewWindow.h"
 #include "ui/LightFieldWindow.h"
 #include "ui/MainWindow.h"
 #include "ui/CropControls.h"
@@ -417,6 +418,29 @@ private slots:
         QTRY_VERIFY(lf->outputWindow()->isVisible());
         QCOMPARE(lf->outputWindow()->frame().size(), lf->frame().size());
         lf->outputWindow()->close();
+        // The Render frame button: a job in the Jobs panel (its progress reported, done), and the
+        // preview in a window of its own, where it can be seen, with the observer slider beside it.
+        lf->profiles()->setCurrentText("holovizio-96");
+        QSignalSpy started(window_->jobs(), &ui::JobManager::started), progressed(window_->jobs(), &ui::JobManager::progressed),
+            ended(window_->jobs(), &ui::JobManager::finished);
+        QTest::mouseClick(lf->findChild<QPushButton*>("lightFieldRender"), Qt::LeftButton);
+        QCOMPARE(started.size(), 1);
+        QCOMPARE(started[0][1].toString(), QString("Light-field frame (holovizio-96)"));
+        const int job = started[0][0].toInt();
+        QVERIFY2(progressed.size() >= 3, qPrintable(QString::number(progressed.size())));  // the cut, the batches, the end
+        QCOMPARE(ended.last()[0].toInt(), job);
+        QCOMPARE(ended.last()[1].toString(), QString("done"));
+        QCOMPARE(window_->jobsPanel()->cellText(job, 2), QString("done"));
+        auto* preview = lf->previewWindow();
+        QVERIFY(preview);
+        QTRY_VERIFY(preview->isVisible());
+        QVERIFY2(preview->shown().width() >= 300, "the preview is shown large");
+        QVERIFY2(coverage(preview->shown()) > 0.02, "the preview window shows the volume");
+        const QImage seen = preview->shown();
+        preview->observer()->setValue(70);  // its own observer slider moves the observer
+        QTRY_VERIFY(difference(seen, preview->shown()) > 0.5);
+        preview->grab().save(kArtifacts + "/lightfield-preview-window.png");
+        preview->close();
     }
 
     void jobsPanelCancelsARunningBuild() {
