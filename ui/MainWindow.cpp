@@ -21,6 +21,8 @@
 #include <QMessageBox>
 #include <QPointer>
 #include <QScrollArea>
+#include <QGuiApplication>
+#include <QScreen>
 #include <QSettings>
 #include <QStatusBar>
 #include <QTimer>
@@ -114,7 +116,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     tabifyDockWidget(band, lf);
     renderDock->raise();
     (void)tfDock;
-    addDock(tr("Slices"), "slicesDock", slicesWidget, Qt::BottomDockWidgetArea);
+    auto* slicesDock = addDock(tr("Slices"), "slicesDock", slicesWidget, Qt::BottomDockWidgetArea);
     auto* jobsDock = addDock(tr("Jobs"), "jobsDock", jobsPanel_, Qt::BottomDockWidgetArea);
     auto* measurementsDock = addDock(tr("Measurements"), "measurementsDock", measurements_, Qt::BottomDockWidgetArea);
     tabifyDockWidget(jobsDock, measurementsDock);
@@ -208,7 +210,17 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
         });
     }
 
-    resize(1400, 900);
+    // A first run takes the screen's available size (a saved geometry replaces it), the slice
+    // views two fifths of its height and three fifths of its width beside the jobs, the side
+    // docks a fifth of its width each (340 px at least: the browser's columns and date fields).
+    const QScreen* screen = QGuiApplication::primaryScreen();
+    const QRect available = screen ? screen->availableGeometry() : QRect(0, 0, 1400, 900);
+    resize(available.size());
+    move(available.topLeft());
+    resizeDocks({slicesDock}, {available.height() * 2 / 5}, Qt::Vertical);
+    resizeDocks({slicesDock, jobsDock}, {available.width() * 3 / 5, available.width() * 2 / 5}, Qt::Horizontal);
+    const int side = std::max(340, available.width() / 5);
+    resizeDocks({studies, tfDock}, {side, side}, Qt::Horizontal);
     for (const QString& message : WindowSession::restore(*this)) showError(message);
     statusBar()->showMessage(tr("Ready"));
 }

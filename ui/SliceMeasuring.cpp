@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -278,6 +279,12 @@ std::vector<QPointF> SliceMeasuring::handles() const {
     for (const auto& m : items_)
         for (const auto& p : handlePoints(m)) out.push_back(view_.widgetAt(p));
     return out;
+}
+
+double SliceMeasuring::nearestHandlePx(QPointF pos) const {
+    double best = std::numeric_limits<double>::infinity();
+    for (const QPointF& h : handles()) best = std::min(best, std::hypot(h.x() - pos.x(), h.y() - pos.y()));
+    return best;
 }
 
 std::optional<SliceMeasuring::Handle> SliceMeasuring::handleAt(QPointF pos) const {

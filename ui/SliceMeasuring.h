@@ -53,12 +53,16 @@ public:
     RegionShape regionShape() const { return shape_; }
     std::optional<double> rulerMm() const;
     const std::vector<glm::dvec3>& anglePoints() const { return anglePoints_; }
+    /// Whether the next clicks place an angle (A was pressed).
+    bool placingAngle() const { return placingAngle_; }
     const std::optional<core::MeasureRegion>& roi() const { return roi_; }
     const std::optional<core::RegionStatistics>& roiStatistics() const { return roiStats_; }
     /// Why the last region could not be measured (empty when it was).
     const QString& roiError() const { return roiError_; }
     /// Widget positions of the handles of the measurements drawn on this slice.
     std::vector<QPointF> handles() const;
+    /// How far (px) the nearest of those handles lies from `pos` (infinity when there is none).
+    double nearestHandlePx(QPointF pos) const;
 
 private:
     enum class Gesture { None, Ruler, Region, Outline, Handle };

@@ -193,7 +193,7 @@ void SliceView::paintEvent(QPaintEvent*) {
     QString slab = slabMm_ > 0 ? tr("\nslab %1 mm %2").arg(slabMm_, 0, 'g', 4).arg(modes[int(slabMode_)]) : QString();
     if (followsView_) slab += tr("\nalong the 3D view");
     else if (const double t = tiltDegrees(); t > 0.05) slab += tr("\ntilted %1\u00b0").arg(t, 0, 'f', 1);
-    const QString text = QStringLiteral("%1\n%2 \u2022 %3%4\nW %5\nL %6%7")
+    const QString text = QStringLiteral("%1\n%2\n%3%4\nW %5\nL %6%7")
                              .arg(QString::fromLatin1(names[int(orientation_)]), slicePosition(), levelReadout(), slab)
                              .arg(width_, 0, 'f', 0)
                              .arg(centre_, 0, 'f', 0)
@@ -216,8 +216,15 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
     pressCentre_ = centre_;
     pressWidth_ = width_;
     rotating_ = false;
-    if (measuring_.press(e)) return;  // a measurement's handle, one being drawn, an angle's click
-    if (e->button() == Qt::LeftButton && reader_ && e->modifiers() == Qt::NoModifier && crosshair().handleAt(e->position())) {
+    // A crosshair handle, unless a measurement's handle lies nearer the mouse (or an angle is
+    // being placed, or a measurement drawn: those take the press).
+    const auto rotation = reader_ && e->button() == Qt::LeftButton && e->modifiers() == Qt::NoModifier && !measuring_.placingAngle()
+                              ? crosshair().handleAt(e->position())
+                              : std::nullopt;
+    const bool rotate = rotation && std::hypot(rotation->x() - e->position().x(), rotation->y() - e->position().y()) <=
+                                        measuring_.nearestHandlePx(e->position());
+    if (!rotate && measuring_.press(e)) return;  // a measurement's handle, one being drawn, an angle's click
+    if (rotate) {
         const QPointF v = e->position() - widgetAt(point_);
         rotating_ = true;
         rotateAngle_ = std::atan2(v.y(), v.x());

@@ -309,8 +309,11 @@ private slots:
                  qPrintable(QString("%1 for %2").arg(coronal->tiltDegrees()).arg(turned)));
         QVERIFY(std::abs(sagittal->tiltDegrees() - std::abs(turned)) < 1e-6);
         QCOMPARE(axial->tiltDegrees(), 0.0);
-        // The axial crosshair now runs through where the mouse let go.
-        const double mouse = std::atan2(last.y() - c.y(), last.x() - c.x());
+        // The axial crosshair now runs through where the mouse let go (the handle turned by as much
+        // as the mouse did about the cursor, from where it was grabbed: the press was rounded to
+        // a whole pixel off the handle's centre).
+        const double grabbed = std::atan2(right->y() - c.y(), right->x() - c.x()) - std::atan2(press.y() - c.y(), press.x() - c.x());
+        const double mouse = std::atan2(last.y() - c.y(), last.x() - c.x()) + grabbed;
         bool follows = false;
         for (const QPointF& h : axial->rotationHandles())
             follows |= std::abs(std::remainder(std::atan2(h.y() - c.y(), h.x() - c.x()) - mouse, 2 * M_PI)) < 1e-6;
