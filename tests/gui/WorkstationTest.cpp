@@ -9,6 +9,7 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QDir>
+#include <QDockWidget>
 #include <QElapsedTimer>
 #include <QLineEdit>
 #include <QMouseEvent>
@@ -503,6 +504,11 @@ private slots:
         QTRY_COMPARE_WITH_TIMEOUT(pacs->results()->topLevelItemCount(), 1, 30000);
         QVERIFY(pacs->results()->topLevelItem(0)->text(0).contains("PACS ROUNDTRIP"));
         pacs->results()->topLevelItem(0)->setSelected(true);
+        auto* pacsDock = window_->findChild<QDockWidget*>("pacsDock");
+        QVERIFY(pacsDock);
+        pacsDock->raise();
+        saveArtifact("pacs-search.png");  // the README's first steps: find a study
+        window_->findChild<QDockWidget*>("studiesDock")->raise();
         QSignalSpy retrieved(pacs, &ui::PacsPanel::retrieved);
         QTest::mouseClick(pacs->findChild<QPushButton*>("pacsRetrieve"), Qt::LeftButton);
         QTRY_COMPARE_WITH_TIMEOUT(retrieved.count(), 1, 120000);
