@@ -61,7 +61,9 @@ PacsPanel::PacsPanel(JobManager& jobs, QString settingsPath, QString databasePat
     retrieveButton->setObjectName("pacsRetrieve");
     retrieveButton->setToolTip(tr("Retrieve the selected studies or series into the local database"));
     results_->setHeaderLabels({tr("Patient / study / series"), tr("ID"), tr("Date"), tr("Modality"), tr("Accession")});
-    results_->header()->setSectionResizeMode(0, QHeaderView::Stretch);
+    // Columns fit their contents (a narrow dock scrolls rather than cutting names short).
+    results_->header()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    results_->header()->setStretchLastSection(true);
     results_->setSelectionMode(QAbstractItemView::ExtendedSelection);
     status_->setWordWrap(true);
     status_->setTextInteractionFlags(Qt::TextSelectableByMouse);

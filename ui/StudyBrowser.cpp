@@ -108,9 +108,9 @@ StudyBrowser::StudyBrowser(JobManager& jobs, QString databasePath, QWidget* pare
     modality_->addItems({tr("Any"), "CT", "MR", "PT", "NM", "US", "XA", "CR", "DX", "MG", "RTDOSE"});
     modality_->setToolTip(tr("Studies with at least one series of this modality"));
     tree_->setHeaderLabels({tr("Patient / study / series"), tr("ID / date"), tr("Modality"), tr("Images"), tr("Notes")});
-    tree_->header()->setStretchLastSection(false);
-    tree_->header()->setSectionResizeMode(0, QHeaderView::Stretch);
-    for (int c = 1; c < 5; ++c) tree_->header()->setSectionResizeMode(c, QHeaderView::ResizeToContents);
+    // Columns fit their contents (a narrow dock scrolls rather than cutting names short).
+    tree_->header()->setSectionResizeMode(QHeaderView::ResizeToContents);
+    tree_->header()->setStretchLastSection(true);
     tree_->setIconSize(QSize(40, 40));
     tree_->setAlternatingRowColors(true);
     tree_->setToolTip(tr("Double-click a series to open it"));
