@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "core/appearance/TransferFunction.h"
@@ -19,4 +21,35 @@ TEST(TransferFunction, SegmentExtinctionIsTheSegmentsOpacityComponentExactly) {
     }
     EXPECT_EQ(tf.segmentExtinction(-1024.0, -1000.0), 0.0);  // air is transparent in this preset
     EXPECT_GT(tf.segmentExtinction(200.0, 400.0), 0.0);
+}
+
+// Every entry of every preset's table is its control points' piecewise-linear colour and
+// opacity at that entry's value, turned into extinction as the header defines it (tau =
+// -ln(1 - a) / d_ref, k = tau * colour): an entry moved, swapped or shifted by one fails here.
+TEST(TransferFunction, EveryEntryIsTheControlPointsInterpolatedAtItsValue) {
+    for (const auto& name : core::TransferFunction::presetNames()) {
+        const double lo = -1024, hi = 3071, ref = 2.5;
+        const auto tf = core::TransferFunction::preset(name, lo, hi, 1.0, 0.0, ref);
+        auto points = tf.points();
+        std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.value < b.value; });
+        int wrong = 0;
+        for (int i = 0; i < core::TransferFunction::kEntries; ++i) {
+            const double v = lo + (hi - lo) * (i + 0.5) / core::TransferFunction::kEntries;
+            glm::dvec4 c = points.front().rgba;
+            for (std::size_t p = 1; p < points.size(); ++p)
+                if (v >= points[p - 1].value && v <= points[p].value && points[p].value > points[p - 1].value) {
+                    const double t = (v - points[p - 1].value) / (points[p].value - points[p - 1].value);
+                    c = points[p - 1].rgba + (points[p].rgba - points[p - 1].rgba) * t;
+                    break;
+                }
+            if (v > points.back().value) c = points.back().rgba;
+            const double tau = -std::log(1.0 - std::clamp(c.a, 0.0, 0.999999)) / ref;
+            const glm::dvec4 want(glm::dvec3(c) * tau, tau), got = tf.sample(v);
+            for (int k = 0; k < 4; ++k)
+                if (std::abs(got[k] - want[k]) > 1e-9 * (1.0 + std::abs(want[k])) && wrong++ < 3)
+                    ADD_FAILURE() << name << " entry " << i << " (value " << v << ") component " << k << ": " << got[k]
+                                  << ", the control points give " << want[k];
+        }
+        EXPECT_EQ(wrong, 0) << name;
+    }
 }
