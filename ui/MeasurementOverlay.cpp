@@ -44,6 +44,13 @@ bool MeasurementOverlay::drawnOnSlice(const core::Measurement& m, const std::fun
 
 void MeasurementOverlay::list(const std::vector<core::Measurement>& items) {
     for (const auto& m : items) {
+        if (planePoint_ && m.region && m.region->kind == core::MeasureRegion::Kind::Sphere) {
+            // The circle this slice cuts from the sphere (none when the slice misses it).
+            const auto& r = *m.region;
+            const double d = glm::dot(r.centre - *planePoint_, normal_);
+            if (std::abs(d) < r.radius) circle(r.centre - d * normal_, std::sqrt(r.radius * r.radius - d * d), regionLabel(m));
+            continue;
+        }
         if (!drawnOnSlice(m, onSlice_, normal_)) continue;
         const QString name = QString::fromStdString(m.label);
         if (m.kind == core::Measurement::Kind::Distance)

@@ -6,6 +6,7 @@
 #include <QString>
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -27,8 +28,10 @@ public:
     MeasurementOverlay(QPainter& painter, QSize size, std::function<QPointF(const glm::dvec3&)> toWidget,
                        std::function<bool(const glm::dvec3&)> onSlice, const glm::dvec3& normal, double pixelMm);
     /// Every measurement of the list that lies in this slice (all its points), with its label
-    /// (M1 70.0 mm …).
+    /// (M1 70.0 mm …); with a plane point set, a sphere as the circle the slice cuts from it.
     void list(const std::vector<core::Measurement>& items);
+    /// A point of the slice's plane (slice views): list() then draws the cut of each sphere.
+    void setPlanePoint(const glm::dvec3& p) { planePoint_ = p; }
     /// Whether list() draws `m` on the slice of `normal`: all its points on the slice, and a
     /// region drawn on a slice parallel to it.
     static bool drawnOnSlice(const core::Measurement& m, const std::function<bool(const glm::dvec3&)>& onSlice,
@@ -64,7 +67,8 @@ private:
     std::function<bool(const glm::dvec3&)> onSlice_;
     glm::dvec3 normal_;
     double pixelMm_;
-    std::vector<QRectF> labels_;  // drawn so far, so that labels do not cover each other
+    std::vector<QRectF> labels_;
+    std::optional<glm::dvec3> planePoint_;  // drawn so far, so that labels do not cover each other
 };
 
 }  // namespace hvx::ui

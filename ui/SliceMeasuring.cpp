@@ -335,6 +335,7 @@ void SliceMeasuring::paint(QPainter& p) {
     const auto pl = view_.plane();
     MeasurementOverlay overlay(p, view_.size(), [this](const glm::dvec3& x) { return view_.widgetAt(x); },
                                [this](const glm::dvec3& x) { return view_.onThisSlice(x); }, pl.normal(), pl.pixelMm);
+    overlay.setPlanePoint(pl.centre);
     // The statistics of the last region (or why it has none) at the top left, clear of the
     // letters and the window.
     QString text;

@@ -439,15 +439,33 @@ private slots:
         double depth = 0;
         QVERIFY(v->project(m.region->centre, c, depth));
         QVERIFY(v->project(m.region->centre + m.region->radius * v->camera().right(), r, depth));
-        const QImage shot = v->grab().toImage();
-        bool drawn = false;
-        for (int dy = -2; dy <= 2; ++dy)
-            for (int dx = -2; dx <= 2; ++dx) {
-                const QColor px = shot.pixelColor(r.toPoint() + QPoint(dx, dy));
-                drawn = drawn || (px.green() > 200 && px.red() < 170 && px.blue() < 190);
-            }
-        QVERIFY2(drawn, "no sphere outline at its rim");
+        const auto greenNear = [](const QImage& shot, QPointF at) {
+            bool drawn = false;
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx) {
+                    const QColor px = shot.pixelColor(at.toPoint() + QPoint(dx, dy));
+                    drawn = drawn || (px.green() > 200 && px.red() < 170 && px.blue() < 190);
+                }
+            return drawn;
+        };
+        QVERIFY2(greenNear(v->grab().toImage(), r), "no sphere outline at its rim");
         saveArtifact("volume-sphere.png");
+        // In a slice view: the circle the slice cuts from it, of the sphere's radius through its
+        // centre, smaller off it, none beyond it.
+        auto* axial = window_->slice(0);
+        const glm::dvec3 centre3 = m.region->centre;
+        const double radius = m.region->radius;
+        axial->setPoint(centre3);
+        QVERIFY2(greenNear(axial->grab().toImage(), axial->widgetAt(centre3 + glm::dvec3(radius, 0, 0))),
+                 "no circle where the axial slice through the centre cuts the sphere");
+        axial->grab().save(kArtifacts + "/slice-sphere-cut.png");
+        axial->setPoint(centre3 + glm::dvec3(0, 0, 0.6 * radius));  // cut radius 0.8 r
+        QVERIFY(greenNear(axial->grab().toImage(), axial->widgetAt(centre3 + glm::dvec3(0.8 * radius, 0, 0))));
+        QVERIFY(!greenNear(axial->grab().toImage(), axial->widgetAt(centre3 + glm::dvec3(radius, 0, 0))));
+        axial->setPoint(centre3 + glm::dvec3(0, 0, radius * 1.2));
+        for (const double f : {0.5, 0.8, 1.0})
+            QVERIFY2(!greenNear(axial->grab().toImage(), axial->widgetAt(centre3 + glm::dvec3(f * radius, 0, 0))),
+                     "a circle on a slice beyond the sphere");
     }
 
     // Ctrl+Shift-drag draws a freehand outline: its statistics come from level 0 for the slice
