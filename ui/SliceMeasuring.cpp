@@ -23,6 +23,13 @@ constexpr double kHandlePx = 6.0;  // how near the mouse must be to take a handl
 SliceMeasuring::SliceMeasuring(SliceView& view) : view_(view) {}
 
 void SliceMeasuring::reset() {
+    cancel();
+    items_.clear();
+}
+
+void SliceMeasuring::cancel() {
+    if (handle_) items_[handle_->item] = dragFrom_;  // a drag cut short puts the measurement back
+    handle_.reset();
     gesture_ = Gesture::None;
     ruler_.reset();
     roi_.reset();
@@ -31,8 +38,6 @@ void SliceMeasuring::reset() {
     outline_.clear();
     anglePoints_.clear();
     placingAngle_ = false;
-    items_.clear();
-    handle_.reset();
     view_.setMouseTracking(false);
 }
 
@@ -66,17 +71,7 @@ bool SliceMeasuring::key(QKeyEvent* e) {
                     break;
                 }
         }
-        if (handle_) items_[handle_->item] = dragFrom_;  // Esc during a drag puts it back
-        handle_.reset();
-        gesture_ = Gesture::None;
-        ruler_.reset();
-        roi_.reset();
-        roiStats_.reset();
-        roiError_.clear();
-        outline_.clear();
-        anglePoints_.clear();
-        placingAngle_ = false;
-        view_.setMouseTracking(false);
+        cancel();
         view_.update();
         return true;
     }

@@ -83,6 +83,8 @@ private:
     /// saying why, when it cannot be.
     std::optional<core::RegionStatistics> measure(core::MeasureRegion& r);
     void finishHandle();
+    /// Ends whatever is in progress (a drag puts its measurement back) and hides the statistics.
+    void cancel();
 
     SliceView& view_;
     RegionShape shape_ = RegionShape::Circle;

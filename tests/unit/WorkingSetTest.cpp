@@ -15,6 +15,7 @@
 #include "core/volume/PhantomVoxelSource.h"
 #include "core/streaming/SpatialIndexTraversal.h"
 #include "core/streaming/WorkingSet.h"
+#include "tests/support/DenseMarcher.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/RandomCut.h"
 #include "tests/support/TempDir.h"
@@ -162,42 +163,23 @@ TEST(CpuRayCaster, FullResolutionCutMatchesDenseRayMarching) {
     rs.shading = false;
     const core::CpuRayCaster caster(*r, ws.index(), ws.slotData(), tf, rs);
     const auto img = caster.render(view);
-    // Brute force on the dense volume: trilinear sampling in voxel index space.
-    auto value = [&](glm::dvec3 idx) {
-        idx = glm::clamp(idx, glm::dvec3(0), glm::dvec3(47, 39, 35));
-        const glm::ivec3 i0 = glm::min(glm::ivec3(idx), glm::ivec3(46, 38, 34));
-        const glm::dvec3 f = idx - glm::dvec3(i0);
-        double acc = 0;
-        for (int c = 0; c < 8; ++c) {
-            const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
-            const double w = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
-            acc += w * dense.voxel(std::uint32_t(i0.x + dx), std::uint32_t(i0.y + dy), std::uint32_t(i0.z + dz));
-        }
-        return acc;
-    };
-    const glm::dmat4 toIndex = glm::inverse(r->geometry().indexToPatient());
+    // Brute force on the dense volume: the test's own trilinear sampling in voxel index space.
+    const test::DenseMarcher marcher(dense, r->geometry());
     double maxDiff = 0, sumDiff = 0;
     int covered = 0, large = 0;
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x) {
-            glm::dvec3 o, d;
+            glm::dvec3 o, d, oi, di;
             view.ray(x, y, o, d);
-            const glm::dvec3 oi(toIndex * glm::dvec4(o, 1)), di(glm::dmat3(toIndex) * d);
-            double t0 = 0, t1 = 1e300;
-            for (int a = 0; a < 3; ++a) {
-                const double hiEdge = double(std::array<int, 3>{48, 40, 36}[std::size_t(a)]) - 0.5;
-                double ta = (-0.5 - oi[a]) / di[a], tb = (hiEdge - oi[a]) / di[a];
-                if (ta > tb) std::swap(ta, tb);
-                t0 = std::max(t0, ta);
-                t1 = std::min(t1, tb);
-            }
+            double t0 = 0, t1 = 0;
+            marcher.clip(o, d, oi, di, t0, t1);
             glm::dvec3 c(0);
             double alpha = 0;
             if (t1 > t0) {
                 const double dt = 1.0 / glm::length(di) * 1.0;  // one voxel
-                double sPrev = value(oi + t0 * di);
+                double sPrev = marcher.value(oi + t0 * di);
                 for (double t = t0 + dt; t <= t1 && alpha < 0.99; t += dt) {
-                    const double s = value(oi + t * di);
+                    const double s = marcher.value(oi + t * di);
                     const glm::dvec4 f = tf.segment(sPrev, s);
                     const double a = 1 - std::exp(-f.w * dt);
                     if (a > 1e-6) {
