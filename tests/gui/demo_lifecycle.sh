@@ -41,4 +41,26 @@ demo "$art/demo-found.png"  # found running: not this session's to stop
 [ "$(studies)" = "HOLOVOX^BRAIN:1" ] || { echo "a second start imported another study: '$(studies)'"; exit 1; }
 "$cli" demo --stop
 if "$cli" demo --status; then echo "demo --stop left it running"; exit 1; fi
+
+# The archive's port taken by another program: Orthanc is started again, a little later each
+# time, and then refused in words that name the port; nothing is left running.
+# (On every address and without SO_REUSEADDR, so that Orthanc cannot bind beside it.)
+/usr/bin/python3 -c "
+import socket, time
+for attempt in range(50):  # a port left in TIME_WAIT by the runs above frees within seconds
+    try:
+        s = socket.socket(); s.bind(('0.0.0.0', 4243)); break
+    except OSError:
+        s.close(); time.sleep(0.2)
+s.listen(1); open('$work/squatting', 'w').close()
+time.sleep(90)" &
+squatter=$!
+for _ in $(seq 100); do [ -e "$work/squatting" ] && break; sleep 0.1; done
+[ -e "$work/squatting" ] || { kill $squatter; echo "could not take port 4243 for the test"; exit 1; }
+if "$cli" demo >"$work/taken.log" 2>&1; then kill $squatter; cat "$work/taken.log"; echo "the demo started on a taken port"; exit 1; fi
+kill $squatter
+grep -q "port 4243 or 8043 taken by another program" "$work/taken.log" || { cat "$work/taken.log"; echo "the refusal does not name the port"; exit 1; }
+if "$cli" demo --status; then echo "an Orthanc was left running after the refusal"; exit 1; fi
+echo "a taken port is refused in words, after three tries"
+
 echo "the demo study is in the browser's database; the archive stops with the GUI unless kept, and is found again"
