@@ -168,9 +168,14 @@ void PixelDecoder::decodeFrame(const DicomInstance& in, std::uint32_t frame, std
                 }
             }
         } else {
+            // Big-endian 32-bit data comes as OW: DCMTK puts each 16-bit word in this machine's
+            // order, which leaves a value's two words the wrong way round (pydicom's decode of
+            // rtdose_expb_1frame.dcm found it).
+            const bool wordsSwapped = DcmXfer(xfer).isBigEndian() && element->getVR() == EVR_OW;
             for (std::size_t i = 0; i < pixels; ++i) {
                 std::uint32_t v;
                 std::memcpy(&v, buf.data() + 4 * i, 4);
+                if (wordsSwapped) v = (v << 16) | (v >> 16);
                 out[i] = std::int32_t(v);
             }
         }
