@@ -110,7 +110,7 @@ TEST(DicomCorpus, TruncatedAndForeignFilesAreReportedNotCrashed) {
     EXPECT_EQ(scan.instances.size() + scan.notDicom + scan.broken, 4u);
 }
 
-// pydicom as the oracle for pixels: every single-frame grey image of its corpus that pydicom
+// pydicom as the oracle for pixels: every grey image of its corpus that pydicom
 // itself decodes (uncompressed in each byte order and VR encoding, deflated, RLE; CT, MR, CR,
 // RT dose) is imported by Holovox to the same physical values (pydicom's modality LUT, and an
 // RT dose's DoseGridScaling, which pydicom leaves to its caller), pixel
@@ -129,23 +129,24 @@ TEST(DicomCorpus, EveryImagePydicomDecodesImportsToPydicomsValues) {
         "    try:\n"
         "        ds = pydicom.dcmread(path)\n"
         "        if 'PixelData' not in ds or int(ds.get('SamplesPerPixel', 1)) != 1: continue\n"
-        "        if int(ds.get('NumberOfFrames', 1) or 1) != 1: continue\n"
+        "        frames = int(ds.get('NumberOfFrames', 1) or 1)\n"
         "        a = apply_modality_lut(ds.pixel_array, ds).astype(np.float64)\n"
         "        if 'DoseGridScaling' in ds: a *= float(ds.DoseGridScaling)  # RT dose: in Gy\n"
         "    except Exception:\n"
         "        continue\n"
-        "    if a.ndim != 2: continue\n"
+        "    if a.ndim != (2 if frames == 1 else 3): continue\n"
         "    w = np.arange(a.size, dtype=np.float64).reshape(a.shape) % 7\n"
-        "    print(path, a.shape[1], a.shape[0], repr(float(a.sum())), repr(float((a * a).sum())), repr(float((a * w).sum())))\n";
+        "    print(path, a.shape[-1], a.shape[-2], frames, repr(float(a.sum())), repr(float((a * a).sum())),\n"
+        "          repr(float((a * w).sum())))\n";
     std::ofstream(dir.file("oracle.py")) << script;
     const auto py = test::runCommand("/usr/bin/python3 " + dir.file("oracle.py") + " " + corpus);
     ASSERT_EQ(py.exitCode, 0) << py.output;
     std::istringstream lines(py.output);
     int files = 0, refused = 0;
     for (std::string path; lines >> path;) {
-        std::uint32_t cols = 0, rows = 0;
+        std::uint32_t cols = 0, rows = 0, frames = 0;
         double sum = 0, squares = 0, weighted = 0;
-        lines >> cols >> rows >> sum >> squares >> weighted;
+        lines >> cols >> rows >> frames >> sum >> squares >> weighted;
         ++files;
         core::JobContext job;
         const auto scan = dicom::DicomScanner::scan({path}, job);
@@ -155,15 +156,17 @@ TEST(DicomCorpus, EveryImagePydicomDecodesImportsToPydicomsValues) {
         const auto& g = volumes[0].geometry;
         ASSERT_EQ(g.dims[0], cols) << path;
         ASSERT_EQ(g.dims[1], rows) << path;
-        ASSERT_EQ(g.dims[2], 1u) << path;
-        const std::size_t n = std::size_t(cols) * rows;
+        ASSERT_EQ(g.dims[2], frames) << path;
+        // (A multi-frame object's frames are stacked by position, not in file order: its
+        // position-weighted sum is pydicom's only for one frame.)
+        const std::size_t n = std::size_t(cols) * rows * frames;
         std::vector<double> values(n);
         try {
             dicom::DicomSeriesSource src(volumes[0]);
             core::dispatchScalar(g.scalarType, [&](auto tag) {
                 using T = decltype(tag);
                 std::vector<T> raw(n);
-                src.readSlices(0, 1, raw.data());
+                src.readSlices(0, frames, raw.data());
                 for (std::size_t i = 0; i < n; ++i) values[i] = double(raw[i]) * g.rescaleSlope + g.rescaleIntercept;
             });
         } catch (const core::Error& e) {
@@ -178,11 +181,11 @@ TEST(DicomCorpus, EveryImagePydicomDecodesImportsToPydicomsValues) {
         double s = 0, q = 0, w = 0;
         for (std::size_t i = 0; i < n; ++i) s += values[i], q += values[i] * values[i], w += values[i] * double(i % 7);
         const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-6 * (1.0 + std::abs(b)); };
-        EXPECT_TRUE(near(s, sum) && near(q, squares) && near(w, weighted))
+        EXPECT_TRUE(near(s, sum) && near(q, squares) && (frames > 1 || near(w, weighted)))
             << path << ": Holovox sum " << s << ", squares " << q << ", weighted " << w << "; pydicom " << sum << ", "
             << squares << ", " << weighted;
     }
     std::printf("%d corpus images compared with pydicom's decode, %d refused (1-bit segmentations)\n", files - refused,
-                refused);
+                refused);  // 45 and 2 on Debian 12 (pydicom 2.3: no JPEG handler for its JPEG files)
     EXPECT_GE(files, 40) << "pydicom decoded fewer of its corpus images than it does on Debian 12";
 }
