@@ -19,11 +19,16 @@ glm::dvec3 CropBoxHandles::patient(const glm::dvec3& fraction) const {
     return glm::dvec3(space_.octreeToPatient * glm::dvec4(fraction * space_.extent, 1.0));
 }
 
-glm::dvec3 CropBoxHandles::faceCentre(const core::CropBox& box, int face) const {
+namespace {
+/// The middle of a face of the box, in fractions of the volume's extent.
+glm::dvec3 faceFraction(const core::CropBox& box, int face) {
     glm::dvec3 f = (box.min + box.max) * 0.5;
     f[face % 3] = face < 3 ? box.min[face % 3] : box.max[face % 3];
-    return patient(f);
+    return f;
 }
+}  // namespace
+
+glm::dvec3 CropBoxHandles::faceCentre(const core::CropBox& box, int face) const { return patient(faceFraction(box, face)); }
 
 std::optional<int> CropBoxHandles::faceAt(const core::CropBox& box, QPointF pos, double px) const {
     std::optional<int> best;
@@ -42,11 +47,10 @@ core::CropBox CropBoxHandles::dragged(const core::CropBox& box, int face, QPoint
     const bool low = face < 3;
     // The face's axis as a line through its centre: P(t) = p0 + t * step, t in fractions of the
     // volume; where a mouse ray passes nearest it gives the fraction under the mouse.
-    glm::dvec3 f = (box.min + box.max) * 0.5;
-    f[a] = low ? box.min[a] : box.max[a];
-    glm::dvec3 g = f;
+    glm::dvec3 g = faceFraction(box, face);
+    const glm::dvec3 p0 = patient(g);
     g[a] += 1.0;
-    const glm::dvec3 p0 = patient(f), step = patient(g) - p0;
+    const glm::dvec3 step = patient(g) - p0;
     const auto along = [&](QPointF pos) -> std::optional<double> {
         const auto [o, d] = unproject_(pos);
         const glm::dvec3 w = p0 - o;

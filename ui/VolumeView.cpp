@@ -310,11 +310,7 @@ void VolumeView::paintOverlays(QPainter& p) {
     // Distances measured in this view, and the end picked of the one being measured.
     MeasurementOverlay overlay(
         p, size(),
-        [this](const glm::dvec3& x) {
-            QPointF at;
-            double depth = 0;
-            return project(x, at, depth) ? at : QPointF(-1e6, -1e6);
-        },
+        [this](const glm::dvec3& x) { return projected(x).value_or(QPointF(-1e6, -1e6)); },
         [](const glm::dvec3&) { return true; }, -camera_.back(), 1.0);
     overlay.list(measurements_);
     for (const auto& x : picked_) overlay.distance(x, x, {});
@@ -322,12 +318,11 @@ void VolumeView::paintOverlays(QPainter& p) {
     // Spheres: their outline as seen (a circle of their radius about the projected centre).
     for (const auto& m : measurements_) {
         if (!m.region || m.region->kind != core::MeasureRegion::Kind::Sphere) continue;
-        QPointF centre, rim;
-        double depth = 0;
-        if (!project(m.region->centre, centre, depth) ||
-            !project(m.region->centre + m.region->radius * camera_.right(), rim, depth))
-            continue;
-        overlay.sphere(centre, std::hypot(rim.x() - centre.x(), rim.y() - centre.y()), MeasurementOverlay::regionLabel(m));
+        const auto centre = projected(m.region->centre);
+        const auto rim = projected(m.region->centre + m.region->radius * camera_.right());
+        if (centre && rim)
+            overlay.sphere(*centre, std::hypot(rim->x() - centre->x(), rim->y() - centre->y()),
+                           MeasurementOverlay::regionLabel(m));
     }
 }
 
@@ -462,6 +457,13 @@ bool VolumeView::project(const glm::dvec3& p, QPointF& out, double& depth) const
     return true;
 }
 
+std::optional<QPointF> VolumeView::projected(const glm::dvec3& p) const {
+    QPointF at;
+    double depth = 0;
+    if (!project(p, at, depth)) return std::nullopt;
+    return at;
+}
+
 void VolumeView::mouseMoveEvent(QMouseEvent* e) {
     const QPoint pos = e->position().toPoint();
     const QPoint d = pos - lastPos_;
@@ -528,12 +530,7 @@ std::optional<CropBoxHandles> VolumeView::cropHandlesNow() const {
     if (!cropEditing_ || !scene_) return std::nullopt;
     return CropBoxHandles(
         scene_->space, scene_->reader->geometry().dims,
-        [this](const glm::dvec3& x) -> std::optional<QPointF> {
-            QPointF at;
-            double depth = 0;
-            if (!project(x, at, depth)) return std::nullopt;
-            return at;
-        },
+        [this](const glm::dvec3& x) { return projected(x); },
         [this](QPointF pos) {
             glm::dvec3 o, d;
             camera_.view(width(), height()).ray(pos.x() - 0.5, pos.y() - 0.5, o, d);  // (ray() takes pixel indices)
@@ -550,11 +547,8 @@ std::vector<glm::dvec3> VolumeView::cropHandlePoints() const {
 
 std::vector<QPointF> VolumeView::cropHandles() const {
     std::vector<QPointF> out;
-    for (const auto& p : cropHandlePoints()) {
-        QPointF at;
-        double depth = 0;
-        if (project(p, at, depth)) out.push_back(at);
-    }
+    for (const auto& p : cropHandlePoints())
+        if (const auto at = projected(p)) out.push_back(*at);
     return out;
 }
 

@@ -108,6 +108,8 @@ public:
     /// Widget position of a patient point in the current view, and its distance along the view
     /// (mm); false when behind the eye.
     bool project(const glm::dvec3& p, QPointF& out, double& depth) const;
+    /// The same without the depth: none when the point lies behind the eye.
+    std::optional<QPointF> projected(const glm::dvec3& p) const;
     /// The labels drawn at the left, right, top and bottom edges (e.g. "R", "L", "S", "I").
     QStringList orientationLabels() const;
     /// What the last frame drew: "full resolution", "levels 1-3 of 5, as fine as the pixels

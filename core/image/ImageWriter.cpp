@@ -156,8 +156,8 @@ void ImageWriter::writeExrParts(const std::vector<RenderImage>& images, const st
     commit(tmp, path);
 }
 
-std::string ImageWriter::libraryVersions() {
-    return std::string("OpenEXR ") + OPENEXR_VERSION_STRING + ", libpng " + png_get_libpng_ver(nullptr);
+std::vector<std::pair<std::string, std::string>> ImageWriter::libraryVersions() {
+    return {{"OpenEXR", OPENEXR_VERSION_STRING}, {"libpng", png_get_libpng_ver(nullptr)}};
 }
 
 }  // namespace hvx::core

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/image/RenderImage.h"
@@ -15,8 +16,8 @@ public:
     /// Picks the format from the extension (.png or .exr).
     static void write(const RenderImage& image, const std::string& path);
     static void writePng(const RenderImage& image, const std::string& path);
-    /// "OpenEXR 3.1.5, libpng 1.6.39": the image libraries as linked.
-    static std::string libraryVersions();
+    /// The image libraries as linked: {"OpenEXR", "3.1.5"}, {"libpng", "1.6.39"}.
+    static std::vector<std::pair<std::string, std::string>> libraryVersions();
     /// An 8-bit grey PNG of display values as they are (no sRGB encoding: a windowed slice).
     static void writeGreyPng(int width, int height, const std::vector<std::uint8_t>& grey, const std::string& path);
     static void writeExr(const RenderImage& image, const std::string& path);

@@ -136,10 +136,11 @@ std::string_view BrickCodec::name(hvo::Codec codec) {
     return "unknown";
 }
 
-std::string BrickCodec::libraryVersions() {
+std::vector<std::pair<std::string, std::string>> BrickCodec::libraryVersions() {
     const unsigned xxh = XXH_versionNumber();
-    return std::string("zstd ") + ZSTD_versionString() + ", LZ4 " + LZ4_versionString() + ", xxHash " +
-           std::to_string(xxh / 10000) + "." + std::to_string(xxh / 100 % 100) + "." + std::to_string(xxh % 100);
+    return {{"zstd", ZSTD_versionString()},
+            {"LZ4", LZ4_versionString()},
+            {"xxHash", std::to_string(xxh / 10000) + "." + std::to_string(xxh / 100 % 100) + "." + std::to_string(xxh % 100)}};
 }
 
 }  // namespace hvx::core

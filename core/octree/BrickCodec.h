@@ -2,6 +2,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <string_view>
 #include <vector>
 
@@ -29,8 +30,8 @@ public:
     static hvo::Codec parse(std::string_view name);
     /// Name of a codec as parse() accepts it.
     static std::string_view name(hvo::Codec codec);
-    /// "zstd 1.5.4, LZ4 1.9.4, xxHash 0.8.1": the codecs' libraries as linked.
-    static std::string libraryVersions();
+    /// The codecs' libraries as linked: {"zstd", "1.5.4"}, {"LZ4", "1.9.4"}, {"xxHash", "0.8.1"}.
+    static std::vector<std::pair<std::string, std::string>> libraryVersions();
 };
 
 }  // namespace hvx::core

@@ -209,6 +209,6 @@ void VtkImageSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, v
     }
 }
 
-std::string VtkImageSource::libraryVersion() { return std::string("VTK ") + vtkVersion::GetVTKVersion(); }
+std::string VtkImageSource::libraryVersion() { return vtkVersion::GetVTKVersion(); }
 
 }  // namespace hvx::core

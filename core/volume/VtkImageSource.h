@@ -16,7 +16,7 @@ class VtkImageSource final : public VoxelSource {
 public:
     /// Opens the file and reads its information; throws core::Error naming it.
     explicit VtkImageSource(std::string path);
-    /// "VTK 9.1.0": the library as linked.
+    /// VTK's version as linked ("9.1.0").
     static std::string libraryVersion();
     ~VtkImageSource() override;
 

@@ -72,6 +72,14 @@ using test::difference;
 class ReadingToolsTest : public QObject, test::GuiFixture {
     Q_OBJECT
 
+    /// The CT phantom open, seen from the front, its frame settled (the 3D picking cases).
+    bool openAnteriorCt() {
+        if (!window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo")))) return false;
+        window_->view()->setStandardView(core::OrbitCamera::Standard::Anterior);
+        settledFrame();
+        return true;
+    }
+
 private slots:
     void initTestCase() { open(); }
 
@@ -357,10 +365,8 @@ private slots:
     // surface (the ray caster's depth): each end projects back under its click and lies inside
     // the volume; the list says "3D"; a click on nothing picks nothing and says so.
     void threeDViewMeasuresADistanceOnTheSurface() {
-        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        QVERIFY(openAnteriorCt());
         auto* v = window_->view();
-        v->setStandardView(core::OrbitCamera::Standard::Anterior);
-        settledFrame();
         auto* panel = window_->measurements();
         const std::size_t before = panel->list().items().size();
         const QPoint a(v->width() / 2, v->height() / 2), b(v->width() / 2, v->height() / 2 - 60);
@@ -401,10 +407,8 @@ private slots:
     // second, its statistics from level 0 (as computing that sphere gives), listed as a sphere
     // and drawn as its outline; a click on nothing is refused with a sentence.
     void threeDViewMeasuresASphere() {
-        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        QVERIFY(openAnteriorCt());
         auto* v = window_->view();
-        v->setStandardView(core::OrbitCamera::Standard::Anterior);
-        settledFrame();
         auto* panel = window_->measurements();
         const std::size_t before = panel->list().items().size();
         const QPoint a(v->width() / 2, v->height() / 2), b(v->width() / 2, v->height() / 2 - 30);  // on the spine
