@@ -17,12 +17,13 @@ namespace hvx::dicom {
 namespace {
 struct GroupKey {
     std::string series;
+    std::string frame;  ///< Frame of Reference UID: two frames are two coordinate systems, never one stack
     std::uint16_t rows, columns, bits, signedness, samples;
     std::array<long, 6> iop;
     std::array<long, 2> spacing;
     bool operator<(const GroupKey& o) const {
-        return std::tie(series, rows, columns, bits, signedness, samples, iop, spacing) <
-               std::tie(o.series, o.rows, o.columns, o.bits, o.signedness, o.samples, o.iop, o.spacing);
+        return std::tie(series, frame, rows, columns, bits, signedness, samples, iop, spacing) <
+               std::tie(o.series, o.frame, o.rows, o.columns, o.bits, o.signedness, o.samples, o.iop, o.spacing);
     }
 };
 
@@ -126,6 +127,7 @@ void finishGeometry(SeriesVolume& v) {
     g.spacingAssumed = !fg.hasSpacing;
     g.orientationAssumed = !fg.hasOrientation;
     g.windows = first.windows;
+    g.frameOfReferenceUid = first.frameOfReferenceUid;
     // One rescale for every slice keeps stored values; otherwise convert to physical floats.
     bool sameRescale = true;
     for (const auto& s : v.slices)
@@ -168,7 +170,7 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
         }
         for (std::uint32_t f = 0; f < in.frames; ++f) {
             const auto& fg = in.frameGeometry[std::min<std::size_t>(f, in.frameGeometry.size() - 1)];
-            GroupKey k{in.seriesInstanceUid, in.rows, in.columns, in.bitsAllocated, in.pixelRepresentation,
+            GroupKey k{in.seriesInstanceUid, in.frameOfReferenceUid, in.rows, in.columns, in.bitsAllocated, in.pixelRepresentation,
                        in.samplesPerPixel, {}, {}};
             const double iop[6] = {fg.rowDirection.x, fg.rowDirection.y, fg.rowDirection.z,
                                    fg.columnDirection.x, fg.columnDirection.y, fg.columnDirection.z};

@@ -3,13 +3,18 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
+#include <memory>
+#include <optional>
 
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
 #include "core/base/Error.h"
 #include "core/image/ImageWriter.h"
 #include "core/octree/OctreeReader.h"
+#include "core/reference/SliceComposer.h"
 #include "core/reference/SliceSampler.h"
+#include "core/volume/FramePairing.h"
 #include "core/streaming/BrickCache.h"
 #include "core/volume/DisplayWindow.h"
 
@@ -17,13 +22,54 @@
 
 namespace hvx::app {
 
+namespace {
+/// A volume laid over the base: its reader, cache and sampler.
+struct Layer {
+    std::unique_ptr<core::OctreeReader> reader;
+    core::BrickCache cache{std::size_t(256) << 20};
+    std::unique_ptr<core::SliceSampler> sampler;
+    explicit Layer(const std::string& path) : reader(core::OctreeReader::open(path)) {
+        sampler = std::make_unique<core::SliceSampler>(*reader, cache);
+    }
+};
+
+/// "B.hvo[:lut=hot,opacity=0.5,window=W/L]": the path and its options.
+std::pair<std::string, std::map<std::string, std::string>> overlaySpec(const std::string& text) {
+    std::map<std::string, std::string> opts;
+    const auto colon = text.rfind(':');
+    if (colon == std::string::npos || text.find('=', colon) == std::string::npos) return {text, opts};
+    std::string rest = text.substr(colon + 1);
+    for (std::size_t at = 0; at <= rest.size();) {
+        const auto comma = std::min(rest.find(',', at), rest.size());
+        const std::string kv = rest.substr(at, comma - at);
+        const auto eq = kv.find('=');
+        if (eq == std::string::npos || (kv.substr(0, eq) != "lut" && kv.substr(0, eq) != "opacity" && kv.substr(0, eq) != "window"))
+            throw core::Error("--overlay options are lut=NAME|FILE, opacity=0..1 and window=W/L (\"" + kv + "\" given)");
+        opts[kv.substr(0, eq)] = kv.substr(eq + 1);
+        at = comma + 1;
+    }
+    return {text.substr(0, colon), opts};
+}
+
+/// Refuses a partner in another frame of reference unless forced; prints the note otherwise.
+void pairFrames(const core::VolumeGeometry& base, const std::string& baseName, const core::VolumeGeometry& partner,
+                const std::string& partnerName, bool force) {
+    const auto pairing = core::FramePairing::of(base, baseName, partner, partnerName);
+    if (pairing.refused && !force) throw core::Error(pairing.sentence + " (--force-frame lays it over anyway)");
+    if (!pairing.sentence.empty()) std::printf("note: %s%s\n", pairing.sentence.c_str(), pairing.refused ? " (forced)" : "");
+}
+}  // namespace
+
 int sliceCommand(int argc, char** argv) {
-    const CliArgs args(argc, argv, 2, {"plane", "at", "size", "pixel", "slab", "slab-mode", "window", "level", "scroll", "o", "output"}, {});
+    const CliArgs args(argc, argv, 2, {"plane", "at", "size", "pixel", "slab", "slab-mode", "window", "level", "scroll", "o", "output",
+                                                  "overlay", "labels", "lut", "label-opacity"},
+                        {"force-frame", "no-outline", "outline-only"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli slice FILE.hvo --plane axial|coronal|sagittal|NX,NY,NZ [--at X,Y,Z] "
                           "[--size WxH] [--pixel MM] [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--scroll N] "
-                          "-o OUT.png");
+                          "[--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L]] [--labels L.hvo [--lut FILE] "
+                          "[--label-opacity A] [--no-outline|--outline-only]] [--force-frame] -o OUT.png");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
     core::BrickCache cache(std::size_t(512) << 20);
@@ -82,18 +128,66 @@ int sliceCommand(int argc, char** argv) {
         if (!(v[0] > 0)) throw core::Error("--window W,L needs a width above 0");
         w = {"", v[1], v[0]};
     }
-    std::vector<std::uint8_t> grey(img.values.size(), 0);
-    std::size_t inside = 0;
-    for (std::size_t i = 0; i < grey.size(); ++i) {
-        const float v = img.values[i];
-        if (std::isnan(v)) continue;  // outside the volume: black
-        ++inside;
-        double t = std::clamp((v * g.rescaleSlope + g.rescaleIntercept - (w.centre - w.width / 2)) / w.width, 0.0, 1.0);
-        if (g.monochrome1) t = 1.0 - t;
-        grey[i] = std::uint8_t(std::lround(t * 255.0));
+    if (std::all_of(img.values.begin(), img.values.end(), [](float v) { return std::isnan(v); }))
+        throw core::Error("the plane does not cross the volume: nothing to show (check --at)");
+    const std::string baseName = args.positional()[0];
+    std::unique_ptr<Layer> overlayLayer, labelLayer;
+    core::SliceImage overlayImage, labelImage;
+    std::optional<core::SliceOverlay> overlay;
+    std::optional<core::SliceLabels> labelLayerSettings;
+    core::LabelTable table;
+    if (const auto spec = args.value("overlay")) {
+        const auto [path, opts] = overlaySpec(*spec);
+        overlayLayer = std::make_unique<Layer>(path);
+        const auto& og = overlayLayer->reader->geometry();
+        pairFrames(g, baseName, og, path, args.flag("force-frame"));
+        overlayImage = overlayLayer->sampler->sample(plane);
+        overlay = core::SliceOverlay{&overlayImage, &og, core::ColorMap::namedOrFile(opts.count("lut") ? opts.at("lut") : "hot"),
+                                     core::DisplayWindow::initial(og), 0.5};
+        if (opts.count("opacity")) {
+            overlay->opacity = CliArgs::numbers(opts.at("opacity"), 1, "opacity")[0];
+            if (!(overlay->opacity >= 0 && overlay->opacity <= 1)) throw core::Error("--overlay opacity must be 0 to 1");
+        }
+        if (opts.count("window")) {
+            double ww = 0, wl = 0;
+            if (std::sscanf(opts.at("window").c_str(), "%lf/%lf", &ww, &wl) != 2 || !(ww > 0))
+                throw core::Error("--overlay window=W/L needs a width above 0 and a level");
+            overlay->window = {"", wl, ww};
+        }
+        std::printf("overlay %s: %s map, window W %.6g / L %.6g, opacity %.2g\n", path.c_str(), overlay->map.name().c_str(),
+                    overlay->window.width, overlay->window.centre, overlay->opacity);
     }
-    if (inside == 0) throw core::Error("the plane does not cross the volume: nothing to show (check --at)");
-    core::ImageWriter::writeGreyPng(img.width, img.height, grey, *out);
+    if (const auto path = args.value("labels")) {
+        labelLayer = std::make_unique<Layer>(*path);
+        const auto& lg = labelLayer->reader->geometry();
+        if (!lg.isLabel) throw core::Error(*path + " is not a label map (build it with --labels)");
+        pairFrames(g, baseName, lg, *path, args.flag("force-frame"));
+        labelImage = labelLayer->sampler->sample(plane);
+        const auto present = core::SliceComposer::labelsIn(labelImage);
+        table = args.value("lut") ? core::LabelTable::load(*args.value("lut")) : core::LabelTable::generated(present);
+        if (const auto missing = table.addMissing(present); !missing.empty() && args.value("lut")) {
+            std::string list;
+            for (const int l : missing) list += (list.empty() ? "" : ", ") + std::to_string(l);
+            std::printf("note: label(s) %s are not in %s: drawn in generated colours\n", list.c_str(),
+                        args.value("lut")->c_str());
+        }
+        const double opacity = args.value("label-opacity") ? *args.number("label-opacity") : 0.5;
+        if (!(opacity >= 0 && opacity <= 1)) throw core::Error("--label-opacity must be 0 to 1");
+        labelLayerSettings = core::SliceLabels{&labelImage, &table, opacity, !args.flag("outline-only"), !args.flag("no-outline")};
+        std::printf("labels %s (%s):", path->c_str(), table.format().c_str());
+        for (const int l : present) {
+            const auto* e = table.find(l);
+            std::printf(" %d %s #%02x%02x%02x;", l, e->name.c_str(), e->rgba[0], e->rgba[1], e->rgba[2]);
+        }
+        std::printf("%s\n", present.empty() ? " none in this slice" : "");
+    }
+    if (overlay || labelLayerSettings)
+        core::ImageWriter::writeRgbPng(img.width, img.height,
+                                       core::SliceComposer::compose(img, g, w, overlay ? &*overlay : nullptr,
+                                                                    labelLayerSettings ? &*labelLayerSettings : nullptr),
+                                       *out);
+    else
+        core::ImageWriter::writeGreyPng(img.width, img.height, core::SliceComposer::grey(img, g, w), *out);
     // Without a known orientation the letters would be a guess (left is never right).
     const auto labels = g.orientationAssumed ? std::array<std::string, 4>{"?", "?", "?", "?"} : plane.edgeLabels();
     std::printf("%s plane through (%.4g, %.4g, %.4g) LPS mm, normal (%.4f, %.4f, %.4f); level %d of %d (%s); "

@@ -47,7 +47,10 @@ const char* const kUsage =
         "        (LPS mm), from the full-resolution level, in HU for CT\n"
         "  slice FILE.hvo --plane axial|coronal|sagittal|NX,NY,NZ [--at X,Y,Z] [--size WxH] [--pixel MM]\n"
         "        [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--level N] [--scroll N] -o OUT.png\n"
-        "        a windowed slice (--scroll: N slices a slice apart, timed, the last written)\n"
+        "        [--overlay B.hvo[:lut=hot|rainbow|pet|cool|grey|FILE,opacity=A,window=W/L]]\n"
+        "        [--labels L.hvo [--lut FILE] [--label-opacity A] [--no-outline|--outline-only]] [--force-frame]\n"
+        "        a windowed slice (--scroll: N slices a slice apart, timed, the last written); a second\n"
+        "        volume laid over it in colour and/or a label map's fill and outlines (same frame of reference)\n"
         "  gl-info                       create a headless OpenGL 4.5 context and describe it\n"
         "  version                       versions of Holovox and its libraries";
 

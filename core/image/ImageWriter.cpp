@@ -55,7 +55,7 @@ void writePngRows(int width, int height, int channels, const std::function<void(
     }
     png_init_io(png, f);
     png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8,
-                 channels == 1 ? PNG_COLOR_TYPE_GRAY : PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
+                 channels == 1 ? PNG_COLOR_TYPE_GRAY : channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGBA, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_write_info(png, info);
     std::vector<png_byte> row(std::size_t(width) * std::size_t(channels));
@@ -95,6 +95,13 @@ void ImageWriter::writeGreyPng(int width, int height, const std::vector<std::uin
     if (grey.size() != std::size_t(width) * std::size_t(height)) throw Error(path + ": grey image of the wrong size");
     writePngRows(width, height, 1, [&](int y, png_byte* row) {
         std::copy_n(grey.data() + std::size_t(y) * std::size_t(width), std::size_t(width), row);
+    }, path);
+}
+
+void ImageWriter::writeRgbPng(int width, int height, const std::vector<std::uint8_t>& rgb, const std::string& path) {
+    if (rgb.size() != 3 * std::size_t(width) * std::size_t(height)) throw Error(path + ": RGB image of the wrong size");
+    writePngRows(width, height, 3, [&](int y, png_byte* row) {
+        std::copy_n(rgb.data() + 3 * std::size_t(y) * std::size_t(width), 3 * std::size_t(width), row);
     }, path);
 }
 

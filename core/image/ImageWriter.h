@@ -20,6 +20,8 @@ public:
     static std::vector<std::pair<std::string, std::string>> libraryVersions();
     /// An 8-bit grey PNG of display values as they are (no sRGB encoding: a windowed slice).
     static void writeGreyPng(int width, int height, const std::vector<std::uint8_t>& grey, const std::string& path);
+    /// An 8-bit RGB PNG of display colours as they are (a slice with an overlay or labels).
+    static void writeRgbPng(int width, int height, const std::vector<std::uint8_t>& rgb, const std::string& path);
     static void writeExr(const RenderImage& image, const std::string& path);
     /// One OpenEXR file with one part per image (light-field views), each part named.
     static void writeExrParts(const std::vector<RenderImage>& images, const std::vector<std::string>& names,

@@ -73,7 +73,10 @@ struct FileHeader {
         double width;
         char name[16];
     } windows[4];
-    std::uint8_t reserved[512 - 296 - 4 * 32 - 8];
+    /// The DICOM Frame of Reference UID (up to 64 characters, zero padded; all zeros when the
+    /// source had none). Written in what older versions kept as reserved zeros.
+    char frameOfReferenceUid[64];
+    std::uint8_t reserved[512 - 296 - 4 * 32 - 64 - 8];
     std::uint64_t headerChecksum;  ///< XXH3-64 of the first 504 bytes
 };
 static_assert(sizeof(FileHeader) == 512);

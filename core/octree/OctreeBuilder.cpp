@@ -245,6 +245,8 @@ void fillHeader(hvo::FileHeader& h, const VolumeGeometry& g, const BuildOptions&
     h.rescaleIntercept = g.rescaleIntercept;
     h.emptyBelow = opt.emptyBelow ? *opt.emptyBelow : 0.0;
     std::strncpy(h.modality, g.modality.c_str(), sizeof h.modality - 1);
+    std::memcpy(h.frameOfReferenceUid, g.frameOfReferenceUid.data(),
+                std::min(g.frameOfReferenceUid.size(), sizeof h.frameOfReferenceUid));
     for (std::size_t i = 0; i < std::min<std::size_t>(4, g.windows.size()); ++i) {
         h.windows[i].centre = g.windows[i].centre;
         h.windows[i].width = g.windows[i].width;

@@ -77,6 +77,7 @@ void OctreeReader::load() {
     g.valueMin = h.valueMin;
     g.valueMax = h.valueMax;
     g.modality.assign(h.modality, strnlen(h.modality, sizeof h.modality));
+    g.frameOfReferenceUid.assign(h.frameOfReferenceUid, strnlen(h.frameOfReferenceUid, sizeof h.frameOfReferenceUid));
     g.isLabel = (h.flags & hvo::FileLabels) != 0;
     g.monochrome1 = (h.flags & hvo::FileMonochrome1) != 0;
     g.spacingAssumed = (h.flags & hvo::FileSpacingAssumed) != 0;

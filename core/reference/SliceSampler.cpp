@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "core/base/Error.h"
@@ -99,6 +100,7 @@ SliceImage SliceSampler::sample(const SlicePlane& plane, int level) const {
     const auto bs = double(reader_.brickSize());
     const int edge = int(reader_.brickEdge());
     const double border = reader_.border();
+    const bool labels = reader_.geometry().isLabel;
     std::uint32_t lastNode = UINT32_MAX;
     std::shared_ptr<const Brick> b;
     for (int j = 0; j < plane.height; ++j)
@@ -123,6 +125,12 @@ SliceImage SliceSampler::sample(const SlicePlane& plane, int level) const {
             // neighbours (replicated at the volume's edges), so trilinear never leaves it.
             glm::dvec3 u;
             for (int a = 0; a < 3; ++a) u[a] = std::clamp(c[a] - n[a] * bs + border, 0.0, double(edge - 1));
+            if (labels) {  // a label is a class: the nearest voxel's, never a blend of two classes
+                const glm::ivec3 n0 = glm::min(glm::ivec3(glm::round(u)), glm::ivec3(edge - 1));
+                out.values[std::size_t(j) * std::size_t(plane.width) + std::size_t(i)] =
+                    float(b->value(std::uint32_t(n0.x), std::uint32_t(n0.y), std::uint32_t(n0.z)));
+                continue;
+            }
             const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(edge - 2));
             const glm::dvec3 f = u - glm::dvec3(i0);
             double v = 0;
@@ -139,6 +147,8 @@ SliceImage SliceSampler::sample(const SlicePlane& plane, int level) const {
 SliceImage SliceSampler::sampleSlab(const SlicePlane& plane, double thicknessMm, SlabMode mode, int level) const {
     if (!(thicknessMm > 0) || !std::isfinite(thicknessMm))
         throw Error("a slab needs a thickness above 0 mm (" + std::to_string(thicknessMm) + " given)");
+    if (reader_.geometry().isLabel)
+        throw Error("a label map has no slab: its MIP, MinIP or mean would make up classes that are not there");
     const int lvl = level >= 0 ? std::min(level, reader_.levelCount() - 1) : levelFor(plane.pixelMm);
     const auto& g = reader_.geometry();
     const glm::dvec3 extent = glm::dvec3(g.dims[0], g.dims[1], g.dims[2]) * g.spacing;

@@ -53,7 +53,8 @@ struct SliceImage {
 
 /// Samples planes through an octree at the level whose voxels match the plane's pixels, reading
 /// bricks through a brick cache (synchronously: a slice touches few bricks). Trilinear inside
-/// each brick, border included.
+/// each brick, border included; a label map's slices take the nearest voxel (a class is never
+/// interpolated into its neighbour's).
 ///
 /// Threading: one thread at a time per object (the cache itself is thread-safe).
 class SliceSampler {
@@ -66,7 +67,8 @@ public:
     /// A thick slab centred on `plane`: an odd number of samples, the plane itself among them,
     /// one level voxel apart along the normal within `thicknessMm`, combined by `mode` (NaN
     /// where no sample lies in the volume). A slab
-    /// thicker than the volume's diagonal is clamped to it; a thickness <= 0 throws core::Error.
+    /// thicker than the volume's diagonal is clamped to it; a thickness <= 0, or a label map,
+    /// throws core::Error.
     SliceImage sampleSlab(const SlicePlane& plane, double thicknessMm, SlabMode mode, int level = -1) const;
     const OctreeSpace& space() const { return space_; }
 

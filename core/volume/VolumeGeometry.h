@@ -27,6 +27,9 @@ struct VolumeGeometry {
     double valueMin = 0.0;  ///< smallest stored value in the volume (0 when unknown)
     double valueMax = 0.0;  ///< largest stored value in the volume (0 when unknown)
     std::string modality = "OT";  ///< DICOM modality code (CT, MR, ...), "OT" when unknown
+    /// DICOM Frame of Reference UID: volumes sharing one share patient coordinates; empty when
+    /// the source has none (NIfTI, NRRD, raw: their LPS is all there is to align them by).
+    std::string frameOfReferenceUid;
     bool isLabel = false;         ///< label map: values are classes, filtered by mode not mean
     bool monochrome1 = false;     ///< DICOM MONOCHROME1: display with inverted grey scale
     bool spacingAssumed = false;      ///< the source gave no pixel spacing: 1 mm assumed, lengths are not mm

@@ -3,6 +3,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <random>
+#include <set>
 
 #include "core/octree/OctreeBuilder.h"
 #include "core/octree/OctreeReader.h"
@@ -227,6 +228,33 @@ TEST(DicomImport, TwoStacksInOneSeriesBecomeTwoVolumes) {
     }
     const auto& big = volumes[0].slices.size() == 5 ? volumes[0] : volumes[1];
     expectSameVolumeInPatientSpace(big, axial);
+}
+
+TEST(DicomImport, TwoFramesOfReferenceInOneSeriesAreNeverOneStack) {
+    // Same series, same image size and orientation, slices that would continue each other, but
+    // two frames of reference: two coordinate systems, so two volumes, each keeping its frame.
+    test::TempDir dir;
+    auto lower = knownVolume({10, 10, 5}, kAxial, {1, 1, 2});
+    dicom::DicomWriteOptions o;
+    o.seriesUid = "1.2.826.0.1.3680043.9.7777.11";
+    o.studyUid = "1.2.826.0.1.3680043.9.7777.12";
+    o.frameOfReferenceUid = "1.2.826.0.1.3680043.9.7777.13";
+    core::JobContext job;
+    dicom::DicomSeriesWriter::write(lower, dir.file("a"), o, job);
+    core::VolumeGeometry g = lower.geometry();
+    g.origin.z += 10.0;
+    test::MemoryVoxelSource upper(g, lower.values());
+    o.frameOfReferenceUid = "1.2.826.0.1.3680043.9.7777.14";
+    dicom::DicomSeriesWriter::write(upper, dir.file("b"), o, job);
+    const auto volumes = importFolder(dir.path().string());
+    ASSERT_EQ(volumes.size(), 2u);
+    std::set<std::string> frames;
+    for (const auto& v : volumes) {
+        EXPECT_EQ(v.slices.size(), 5u);
+        dicom::DicomSeriesSource src(v);
+        frames.insert(src.geometry().frameOfReferenceUid);
+    }
+    EXPECT_EQ(frames, (std::set<std::string>{"1.2.826.0.1.3680043.9.7777.13", "1.2.826.0.1.3680043.9.7777.14"}));
 }
 
 TEST(DicomImport, HounsfieldRescaleAndMonochrome1GoIntoTheOctree) {
