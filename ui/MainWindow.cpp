@@ -52,6 +52,8 @@
 #include "dicom/LibraryVersions.h"
 #include "ui/SliceScroller.h"
 #include "ui/SliceView.h"
+#include "ui/SliceLayers.h"
+#include "ui/LayersPanel.h"
 #include "ui/StudyBrowser.h"
 #include "ui/TransferFunctionEditor.h"
 #include "ui/ToolsPanel.h"
@@ -92,6 +94,10 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
         column->addWidget(scrollers_[i]);
         slicesLayout->addLayout(column);
     }
+    layers_ = new SliceLayers(this);
+    for (auto* s : slices_) s->setLayers(layers_);
+    layersPanel_ = new LayersPanel(*layers_);
+    layersPanel_->setJobs(jobs_.get(), browser_->databasePath());
     auto* studies = addDock(tr("Studies"), "studiesDock", browser_, Qt::LeftDockWidgetArea);
     auto* pacsDock = addDock(tr("PACS"), "pacsDock", pacs_, Qt::LeftDockWidgetArea);
     tabifyDockWidget(studies, pacsDock);
@@ -114,6 +120,8 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     tabifyDockWidget(clip, cropDock);
     tabifyDockWidget(cropDock, band);
     tabifyDockWidget(band, lf);
+    auto* layersDock = addDock(tr("Layers"), "layersDock", layersPanel_, Qt::RightDockWidgetArea, true);
+    tabifyDockWidget(lf, layersDock);
     renderDock->raise();
     (void)tfDock;
     auto* slicesDock = addDock(tr("Slices"), "slicesDock", slicesWidget, Qt::BottomDockWidgetArea);
@@ -126,6 +134,12 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     buildMenus();
 
     connect(browser_, &StudyBrowser::openSeries, this, &MainWindow::openSeries);
+    connect(browser_, &StudyBrowser::overlaySeries, this, [this, layersDock](const QString& uid, const QString& octree,
+                                                                            const QString& label, int volume) {
+        layersDock->show();
+        layersDock->raise();
+        layersPanel_->overlaySeries(uid, octree, label, volume);
+    });
     connect(browser_, &StudyBrowser::imported, this, [this](const QString& s) { statusBar()->showMessage(tr("Imported: %1").arg(s), 8000); });
     connect(browser_, &StudyBrowser::failed, this, &MainWindow::showError);
     connect(pacs_, &PacsPanel::retrieved, browser_, &StudyBrowser::refresh);
@@ -344,6 +358,7 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
         crop_->setVolume(g.dims, g.spacing, g.direction);
         view_->setRenderSettings(renderSettings());
         applyTransferFunction();
+        layers_->setBase(reader, openLabel_);
         for (auto* s : slices_) s->setVolume(reader);
         openPath_ = QString::fromLatin1(
             QCryptographicHash::hash(QFileInfo(path).absoluteFilePath().toUtf8(), QCryptographicHash::Sha1).toHex());

@@ -22,6 +22,8 @@ class RenderControls;
 class CropControls;
 class MeasurementsPanel;
 class SliceView;
+class SliceLayers;
+class LayersPanel;
 class SliceScroller;
 class StudyBrowser;
 class ToolsPanel;
@@ -68,6 +70,9 @@ public:
     MeasurementsPanel* measurements() const { return measurements_; }
     LightFieldPanel* lightField() const { return lightField_; }
     SliceView* slice(int i) const { return slices_[i]; }
+    /// The volumes laid over the open one in the slices, and their dock.
+    SliceLayers* layers() const { return layers_; }
+    LayersPanel* layersPanel() const { return layersPanel_; }
     /// The slider and cine bar under slice view i.
     SliceScroller* scroller(int i) const { return scrollers_[i]; }
     const QString& openLabel() const { return openLabel_; }
@@ -115,6 +120,8 @@ private:
     QHash<QString, QString> seriesOfOctree_;  // octree path -> the series it was built from
     LightFieldPanel* lightField_;
     SliceView* slices_[3];
+    SliceLayers* layers_;
+    LayersPanel* layersPanel_;
     SliceScroller* scrollers_[3];
     QLabel* readouts_;
     std::shared_ptr<const core::OctreeReader> reader_;

@@ -1,5 +1,8 @@
 #include "ui/SliceView.h"
 
+#include "core/reference/SliceComposer.h"
+#include "ui/SliceLayers.h"
+
 #include "ui/EdgeLabels.h"
 #include "ui/MeasurementOverlay.h"
 #include "ui/SliceCrosshair.h"
@@ -30,6 +33,13 @@ SliceView::SliceView(core::SlicePlane::Orientation orientation, QWidget* parent)
                   "Drag a crosshair handle: turn the other planes \u2022 V: slice along the 3D view \u2022 O: reset\n"
                   "1-9: window presets (the DICOM's, then for CT: brain, subdural, stroke, bone, lung, "
                   "mediastinum, abdomen, liver)"));
+}
+
+void SliceView::setLayers(SliceLayers* layers) {
+    if (layers_) disconnect(layers_, nullptr, this, nullptr);
+    layers_ = layers;
+    if (layers_) connect(layers_, &SliceLayers::changed, this, &SliceView::resample);
+    resample();
 }
 
 void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
@@ -156,21 +166,14 @@ void SliceView::resample() {
     const auto plane = this->plane();
     const auto img = slabMm_ > 0 ? sampler_->sampleSlab(plane, slabMm_, slabMode_) : sampler_->sample(plane);
     level_ = img.level;
-    image_ = QImage(img.width, img.height, QImage::Format_Grayscale8);
-    const double lo = centre_ - width_ / 2;
-    const bool invert = g.monochrome1;
-    for (int y = 0; y < img.height; ++y) {
-        auto* row = image_.scanLine(y);
-        for (int x = 0; x < img.width; ++x) {
-            const float v = img.values[std::size_t(y) * std::size_t(img.width) + std::size_t(x)];
-            if (std::isnan(v)) {
-                row[x] = 0;
-                continue;
-            }
-            double t = std::clamp((v * g.rescaleSlope + g.rescaleIntercept - lo) / width_, 0.0, 1.0);
-            if (invert) t = 1.0 - t;
-            row[x] = std::uint8_t(std::lround(t * 255.0));
-        }
+    const core::DisplayWindow w{"", centre_, width_};
+    if (layers_ && (layers_->hasOverlay() || layers_->hasLabels())) {
+        image_ = layers_->compose(img, g, plane, w);
+    } else {
+        image_ = QImage(img.width, img.height, QImage::Format_Grayscale8);
+        const auto grey = core::SliceComposer::grey(img, g, w);
+        for (int y = 0; y < img.height; ++y)
+            std::copy_n(grey.data() + std::size_t(y) * std::size_t(img.width), std::size_t(img.width), image_.scanLine(y));
     }
     update();
     emit resampled();
@@ -191,6 +194,10 @@ void SliceView::paintEvent(QPaintEvent*) {
     p.setFont(info);
     static const char* modes[] = {"MIP", "MinIP", "mean"};
     QString slab = slabMm_ > 0 ? tr("\nslab %1 mm %2").arg(slabMm_, 0, 'g', 4).arg(modes[int(slabMode_)]) : QString();
+    if (layers_ && layers_->hasOverlay())
+        slab += tr("\n+ %1 (%2, %3 %)").arg(layers_->overlayName(), QString::fromStdString(layers_->overlayMap().name()))
+                    .arg(std::lround(layers_->overlayOpacity() * 100));
+    if (layers_ && layers_->hasLabels()) slab += tr("\n+ labels %1").arg(layers_->labelsName());
     if (followsView_) slab += tr("\nalong the 3D view");
     else if (const double t = tiltDegrees(); t > 0.05) slab += tr("\ntilted %1\u00b0").arg(t, 0, 'f', 1);
     const QString text = QStringLiteral("%1\n%2\n%3%4\nW %5\nL %6%7")

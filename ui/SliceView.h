@@ -21,6 +21,7 @@ class QPainter;
 namespace hvx::ui {
 
 class SliceCrosshair;
+class SliceLayers;
 
 /// One 2D slice view (axial, coronal or sagittal) through the current point, read from the
 /// octree at the level matching its pixels, with window/level (right drag), a cursor linked to
@@ -57,7 +58,9 @@ public:
     const std::vector<core::DisplayWindow>& presets() const { return presets_; }
     void setPoint(const glm::dvec3& patient);
     const glm::dvec3& point() const { return point_; }
-    /// The last sampled image (grey, without overlays) and its octree level.
+    /// The volumes laid over the open one (not owned; null: none); their changes redraw the slice.
+    void setLayers(SliceLayers* layers);
+    /// The last sampled image (grey; RGB with layers laid over it) and its octree level.
     const QImage& image() const { return image_; }
     int level() const { return level_; }
     /// Patient position under a widget position.
@@ -190,6 +193,7 @@ private:
     SliceCrosshair crosshair() const;
     bool followsView_ = false;
     SliceMeasuring measuring_{*this};
+    SliceLayers* layers_ = nullptr;
 };
 
 }  // namespace hvx::ui

@@ -10,6 +10,7 @@
 #include <QHeaderView>
 #include <QImage>
 #include <QLabel>
+#include <QMenu>
 #include <QLineEdit>
 #include <QPixmap>
 #include <QPushButton>
@@ -130,6 +131,15 @@ StudyBrowser::StudyBrowser(JobManager& jobs, QString databasePath, QWidget* pare
     connect(text_, &QLineEdit::returnPressed, this, &StudyBrowser::refresh);
     connect(modality_, &QComboBox::activated, this, &StudyBrowser::refresh);
     connect(tree_, &QTreeWidget::itemActivated, this, &StudyBrowser::activated);
+    tree_->setContextMenuPolicy(Qt::CustomContextMenu);
+    connect(tree_, &QTreeWidget::customContextMenuRequested, this, [this](const QPoint& at) {
+        QTreeWidgetItem* item = tree_->itemAt(at);
+        if (!item || item->data(0, SeriesUidRole).toString().isEmpty()) return;
+        QMenu menu(this);
+        menu.addAction(tr("Open"), this, [this, item] { activated(item); });
+        menu.addAction(tr("Lay over the open volume (fusion)"), this, [this, item] { requestOverlay(item); });
+        menu.exec(tree_->viewport()->mapToGlobal(at));
+    });
     refresh();
 }
 
@@ -227,12 +237,24 @@ QTreeWidgetItem* StudyBrowser::seriesItem(const QString& seriesUid) const {
     return nullptr;
 }
 
-void StudyBrowser::activated(QTreeWidgetItem* item) {
-    const QString uid = item->data(0, SeriesUidRole).toString();
-    if (uid.isEmpty()) return;
-    QString octree = item->data(0, OctreeRole).toString();
+bool StudyBrowser::seriesOf(QTreeWidgetItem* item, QString& uid, QString& octree) const {
+    uid = item ? item->data(0, SeriesUidRole).toString() : QString();
+    if (uid.isEmpty()) return false;
+    octree = item->data(0, OctreeRole).toString();
     if (!octree.isEmpty() && !QFileInfo::exists(octree)) octree.clear();
-    emit openSeries(uid, octree, item->data(0, LabelRole).toString(), item->data(0, VolumeRole).toInt());
+    return true;
+}
+
+void StudyBrowser::activated(QTreeWidgetItem* item) {
+    QString uid, octree;
+    if (seriesOf(item, uid, octree))
+        emit openSeries(uid, octree, item->data(0, LabelRole).toString(), item->data(0, VolumeRole).toInt());
+}
+
+void StudyBrowser::requestOverlay(QTreeWidgetItem* item) {
+    QString uid, octree;
+    if (seriesOf(item, uid, octree))
+        emit overlaySeries(uid, octree, item->data(0, LabelRole).toString(), item->data(0, VolumeRole).toInt());
 }
 
 int StudyBrowser::importPaths(const QStringList& paths) {

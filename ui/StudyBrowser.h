@@ -31,11 +31,15 @@ public:
     QTreeWidget* tree() const { return tree_; }
     /// The series item of a UID (tests), nullptr when not listed.
     QTreeWidgetItem* seriesItem(const QString& seriesUid) const;
+    /// Asks for `item`'s series to be laid over the open volume (its context menu's action).
+    void requestOverlay(QTreeWidgetItem* item);
 
 signals:
     /// octreePath is empty when the series has no octree yet.
     /// `volume` 0 opens the series (its largest volume); N opens volume N of a 4D series.
     void openSeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume);
+    /// "Lay over the open volume" from a series' context menu (arguments as openSeries).
+    void overlaySeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume);
     void imported(const QString& summary);
     /// Import job `jobId` is done: the series it found (SeriesInstanceUIDs), in the order first met.
     void importedSeries(int jobId, const QStringList& seriesUids);
@@ -43,6 +47,8 @@ signals:
 
 private:
     void activated(QTreeWidgetItem* item);
+    /// openSeries' or overlaySeries' arguments of a series item, false for a study item.
+    bool seriesOf(QTreeWidgetItem* item, QString& uid, QString& octree) const;
 
     JobManager& jobs_;
     QString dbPath_;

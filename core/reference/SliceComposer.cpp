@@ -54,7 +54,9 @@ std::vector<std::uint8_t> SliceComposer::compose(const SliceImage& base, const V
             const float v = overlay->image->values[i];
             if (std::isnan(v)) continue;
             const double t = (v * og.rescaleSlope + og.rescaleIntercept - lo) / overlay->window.width;
-            if (t < 0) continue;
+            // The map's first entry is not drawn (as mricron does): at or near the window's low
+            // end the overlay shows nothing and the anatomy stays as it is.
+            if (!(t >= 0.5 / 255)) continue;
             const auto c = overlay->map.at(t);
             for (std::size_t a = 0; a < 3; ++a) rgb[3 * i + a] = blend(rgb[3 * i + a], c[a], opacity);
         }

@@ -11,8 +11,9 @@
 namespace hvx::core {
 
 /// A second volume laid over a slice (PET over CT): sampled on the base's plane, coloured by
-/// its own map through its own window, blended with `opacity`. Values below the window's low
-/// end are not drawn, so that the anatomy stays readable where the overlay has nothing.
+/// its own map through its own window, blended with `opacity`. Values that take the map's first
+/// entry (at or near the window's low end) are not drawn, as in mricron, so that the anatomy
+/// stays readable where the overlay has nothing.
 struct SliceOverlay {
     const SliceImage* image = nullptr;
     const VolumeGeometry* geometry = nullptr;  ///< the overlay's, for its rescale

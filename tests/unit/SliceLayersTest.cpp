@@ -113,7 +113,7 @@ TEST(SliceLayers, FusedSliceShowsTheOverlayOnlyWhereItRisesAboveItsWindow) {
     for (std::size_t i = 0; i < grey.size(); ++i) {
         const double t = (oi.values[i] - 200.0) / 800.0;
         const std::array<std::uint8_t, 3> got{rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]};
-        if (t < 0) {  // below the overlay's window: the base untouched
+        if (std::lround(std::min(t, 1.0) * 255) <= 0) {  // the map's first entry: the base untouched
             EXPECT_EQ(got, (std::array<std::uint8_t, 3>{grey[i], grey[i], grey[i]})) << i;
             ++plain;
         } else {  // opacity 1: the map's colour itself

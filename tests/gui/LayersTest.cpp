@@ -1,0 +1,219 @@
+// GUI tests of the Layers dock under Xvfb (Qt Test): a second volume on a rotated, anisotropic
+// grid laid over the open one in colour, its marker where the patient point is; a label map with
+// a Slicer colour table, its legend and per-label visibility; a partner from another frame of
+// reference refused until forced; a series laid over from the Studies browser's menu, its octree
+// built first. Screenshot under <build>/test-artifacts/gui/layers.png.
+#include <QCheckBox>
+#include <QLabel>
+#include <QSignalSpy>
+#include <QTest>
+#include <QTreeWidget>
+#include <QTreeWidgetItemIterator>
+
+#include <cmath>
+#include <fstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/octree/OctreeBuilder.h"
+#include "dicom/DicomSeriesWriter.h"
+#include "tests/gui/GuiTestSupport.h"
+#include "tests/support/MemoryVoxelSource.h"
+#include "ui/LayersPanel.h"
+#include "ui/SliceLayers.h"
+#include "ui/SliceView.h"
+#include "ui/StudyBrowser.h"
+
+using namespace hvx;
+
+namespace {
+const std::string kFrame = "1.2.826.0.1.3680043.9.7777.50";
+const glm::dvec3 kHotSpot(10, -20, 6);    // the overlay's marker (LPS mm)
+const glm::dvec3 kLiver(-30, 10, 0);      // label 1's centre
+
+/// A volume centred on the LPS origin, value f(patient point) at each voxel.
+template <class F>
+test::MemoryVoxelSource volume(std::array<std::uint32_t, 3> dims, glm::dvec3 spacing, glm::dmat3 direction,
+                               core::ScalarType type, const std::string& modality, std::string frame, F f) {
+    core::VolumeGeometry g;
+    g.scalarType = type;
+    g.spacing = spacing;
+    g.direction = direction;
+    g.origin = -(direction * ((glm::dvec3(dims[0], dims[1], dims[2]) - 1.0) * spacing / 2.0));
+    g.modality = modality;
+    g.frameOfReferenceUid = std::move(frame);
+    g.dims = dims;
+    test::DenseVolume v;
+    v.dims = dims;
+    for (std::uint32_t k = 0; k < dims[2]; ++k)
+        for (std::uint32_t j = 0; j < dims[1]; ++j)
+            for (std::uint32_t i = 0; i < dims[0]; ++i) v.values.push_back(f(glm::dvec3(g.indexToPatient() * glm::dvec4(i, j, k, 1.0))));
+    return test::MemoryVoxelSource(g, v);
+}
+
+void build(core::VoxelSource& s, const std::string& path, bool labels = false) {
+    core::BuildOptions o;
+    o.brickSize = 16;
+    o.labels = labels;
+    core::JobContext job;
+    core::OctreeBuilder(o).build(s, path, job);
+}
+
+double hot(const glm::dvec3& p) { return 10 * std::exp(-glm::dot(p - kHotSpot, p - kHotSpot) / (2 * 36.0)); }
+
+std::array<int, 3> rgbAt(const QImage& img, QPointF at) {
+    const QColor c = img.pixelColor(at.toPoint());
+    return {c.red(), c.green(), c.blue()};
+}
+}  // namespace
+
+class LayersTest : public QObject, test::GuiFixture {
+    Q_OBJECT
+
+    ui::SliceView* axial() const { return window_->slice(0); }
+    /// 12 mm beside the marker the overlay is in hot's red part: red over the base's grey.
+    void expectRedAround(const glm::dvec3& marker, const QImage& base) {
+        const QPointF at = axial()->widgetAt(marker + glm::dvec3(12, 0, 0));
+        const auto c = rgbAt(axial()->image(), at);
+        QVERIFY2(c[0] > c[2] + 20 && c[0] != qRed(base.pixel(at.toPoint())),
+                 qPrintable(QString("%1 %2 %3").arg(c[0]).arg(c[1]).arg(c[2])));
+    }
+    void pointAt(const glm::dvec3& p) {
+        for (int i = 0; i < 3; ++i) window_->slice(i)->setPoint(p);
+    }
+
+private slots:
+    void initTestCase() {
+        open();
+        auto ct = volume({96, 96, 64}, {2, 2, 2}, glm::dmat3(1.0), core::ScalarType::Int16, "CT", kFrame,
+                         [](const glm::dvec3&) { return 40.0; });
+        build(ct, dir_.file("ct.hvo"));
+        const glm::dmat3 rot(glm::rotate(glm::dmat4(1.0), glm::radians(25.0), glm::normalize(glm::dvec3(0.3, 1, 2))));
+        auto pet = volume({50, 40, 24}, {2.5, 3.1, 4.0}, rot, core::ScalarType::Float32, "PT", kFrame, hot);
+        build(pet, dir_.file("pet.hvo"));
+        auto elsewhere = volume({50, 40, 24}, {2.5, 3.1, 4.0}, rot, core::ScalarType::Float32, "PT", kFrame + ".9", hot);
+        build(elsewhere, dir_.file("elsewhere.hvo"));
+        auto labels = volume({48, 48, 32}, {4, 4, 4}, glm::dmat3(1.0), core::ScalarType::UInt8, "SEG", kFrame,
+                             [](const glm::dvec3& p) {
+                                 if (glm::length(p - kLiver) < 14) return 1.0;
+                                 if (std::abs(p.x - 40) < 8 && std::abs(p.y) < 8 && std::abs(p.z) < 8) return 2.0;
+                                 return 0.0;
+                             });
+        build(labels, dir_.file("labels.hvo"), true);
+        std::ofstream(dir_.file("organs.ctbl")) << "# Color table file organs.ctbl\n0 Background 0 0 0 0\n"
+                                                   "1 liver 200 60 60 255\n2 spleen 60 60 200 255\n";
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("ct.hvo"))));
+    }
+
+    void overlayMarkerLandsOnItsPatientPoint() {
+        auto* panel = window_->layersPanel();
+        pointAt(kHotSpot);
+        const QImage before = axial()->image();
+        QVERIFY2(panel->chooseOverlay(QString::fromStdString(dir_.file("pet.hvo")), "PET"), qPrintable(panel->message()));
+        QVERIFY(window_->layers()->hasOverlay());
+        const QImage img = axial()->image();
+        QCOMPARE(img.size(), before.size());
+        // The overlay's brightest part (hot: white at the top) is centred on the marker's point.
+        int best = 0;
+        for (int y = 0; y < img.height(); ++y)
+            for (int x = 0; x < img.width(); ++x) best = std::max(best, img.pixelColor(x, y).blue());
+        double sx = 0, sy = 0, n = 0;
+        for (int y = 0; y < img.height(); ++y)
+            for (int x = 0; x < img.width(); ++x)
+                if (img.pixelColor(x, y).blue() >= best - 10) sx += x + 0.5, sy += y + 0.5, ++n;
+        const QPointF want = axial()->widgetAt(kHotSpot);
+        QVERIFY2(std::hypot(sx / n - want.x(), sy / n - want.y()) < 1.0,
+                 qPrintable(QString("peak at %1,%2, marker at %3,%4").arg(sx / n).arg(sy / n).arg(want.x()).arg(want.y())));
+        expectRedAround(kHotSpot, before);
+        // Far from the marker the overlay has nothing: the base's grey, untouched.
+        const QPointF far = axial()->widgetAt(kHotSpot + glm::dvec3(-60, 30, 0));
+        QCOMPARE(img.pixelColor(far.toPoint()), before.pixelColor(far.toPoint()));
+        // Opacity 0: the slice is the base again.
+        window_->layers()->setOverlayOpacity(0.0);
+        QCOMPARE(axial()->image().convertToFormat(QImage::Format_RGB888), before.convertToFormat(QImage::Format_RGB888));
+        window_->layers()->setOverlayOpacity(0.5);
+    }
+
+    void labelsTakeTheirTablesColoursAndHideByLegend() {
+        auto* panel = window_->layersPanel();
+        pointAt(kLiver);
+        QVERIFY2(panel->chooseLabels(QString::fromStdString(dir_.file("labels.hvo")), "organs"), qPrintable(panel->message()));
+        QVERIFY2(panel->chooseLabelTable(QString::fromStdString(dir_.file("organs.ctbl"))), qPrintable(panel->message()));
+        const QPointF at = axial()->widgetAt(kLiver);
+        // Fill at 50 % over the base's grey (40 HU in W 400 / L 40: 128): (164, 94, 94).
+        const auto c = rgbAt(axial()->image(), at);
+        QVERIFY2(std::abs(c[0] - 164) <= 2 && std::abs(c[1] - 94) <= 2 && std::abs(c[2] - 94) <= 2,
+                 qPrintable(QString("%1 %2 %3").arg(c[0]).arg(c[1]).arg(c[2])));
+        auto* legend = panel->findChild<QTreeWidget*>("labelLegend");
+        QVERIFY(legend);
+        QCOMPARE(legend->topLevelItemCount(), 2);
+        QCOMPARE(legend->topLevelItem(0)->text(1), QString("liver"));
+        QCOMPARE(legend->topLevelItem(1)->text(1), QString("spleen"));
+        saveArtifact("layers.png");
+        window_->slice(0)->grab().save(test::guiArtifacts() + "/layers-axial.png");
+        legend->topLevelItem(0)->setCheckState(0, Qt::Unchecked);  // liver hidden
+        const auto hidden = rgbAt(axial()->image(), at);
+        QCOMPARE(hidden[0], hidden[1]);
+        QCOMPARE(hidden[1], hidden[2]);
+        legend->topLevelItem(0)->setCheckState(0, Qt::Checked);
+        // A broken table is refused and the colours stay.
+        std::ofstream(dir_.file("broken.ctbl")) << "1 liver 200 60 60 255\n1 again 1 2 3 255\n";
+        QVERIFY(!panel->chooseLabelTable(QString::fromStdString(dir_.file("broken.ctbl"))));
+        QVERIFY2(panel->message().contains("already given on line 1"), qPrintable(panel->message()));
+        QCOMPARE(rgbAt(axial()->image(), at), c);
+        // An intensity volume is not a label map.
+        QVERIFY(!panel->chooseLabels(QString::fromStdString(dir_.file("pet.hvo"))));
+        QVERIFY(panel->message().contains("not a label map"));
+        window_->layers()->clearLabels();
+    }
+
+    void anotherFrameIsRefusedUntilForced() {
+        auto* panel = window_->layersPanel();
+        window_->layers()->clearOverlay();
+        pointAt(kHotSpot);
+        const QImage before = axial()->image();
+        QVERIFY(!panel->chooseOverlay(QString::fromStdString(dir_.file("elsewhere.hvo"))));
+        QVERIFY2(panel->message().contains("different frames of reference"), qPrintable(panel->message()));
+        QVERIFY(!window_->layers()->hasOverlay());
+        QCOMPARE(axial()->image(), before);
+        auto* force = panel->findChild<QCheckBox*>();
+        QVERIFY(force && force->text().contains("another frame"));
+        force->setChecked(true);
+        QVERIFY(panel->chooseOverlay(QString::fromStdString(dir_.file("elsewhere.hvo"))));
+        force->setChecked(false);
+        window_->layers()->clearOverlay();
+    }
+
+    void aSeriesIsLaidOverFromTheStudiesBrowser() {
+        // The PET written as DICOM in the CT's frame, imported, then laid over from the menu:
+        // its octree is built first, then it is laid over.
+        const glm::dmat3 rot(glm::rotate(glm::dmat4(1.0), glm::radians(25.0), glm::normalize(glm::dvec3(0.3, 1, 2))));
+        auto pet = volume({50, 40, 24}, {2.5, 3.1, 4.0}, rot, core::ScalarType::Int16, "PT", kFrame,
+                          [](const glm::dvec3& p) { return std::round(100 * hot(p)); });
+        dicom::DicomWriteOptions o;
+        o.frameOfReferenceUid = kFrame;
+        o.modality = "PT";
+        core::JobContext job;
+        dicom::DicomSeriesWriter::write(pet, dir_.file("pet-dicom"), o, job);
+        QSignalSpy imported(window_->browser(), &ui::StudyBrowser::imported);
+        window_->browser()->importPaths({QString::fromStdString(dir_.file("pet-dicom"))});
+        QTRY_COMPARE_WITH_TIMEOUT(imported.count(), 1, 60000);
+        QTreeWidgetItem* series = nullptr;
+        for (QTreeWidgetItemIterator it(window_->browser()->tree()); *it; ++it)
+            if (!(*it)->data(0, Qt::UserRole + 1).toString().isEmpty()) series = *it;
+        QVERIFY(series);
+        pointAt(kHotSpot);
+        const QImage base = axial()->image();
+        window_->browser()->requestOverlay(series);
+        QTRY_VERIFY2_WITH_TIMEOUT(window_->layers()->hasOverlay(), qPrintable(window_->layersPanel()->message()), 60000);
+        QVERIFY(window_->jobs()->waitIdle(60000));
+        expectRedAround(kHotSpot, base);
+        QVERIFY(window_->layers()->note().isEmpty());  // the same frame: nothing to say
+    }
+
+    void cleanupTestCase() { close(); }
+};
+
+int main(int argc, char** argv) { return test::runGuiTests<LayersTest>(argc, argv); }
+
+#include "LayersTest.moc"

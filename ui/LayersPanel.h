@@ -1,0 +1,71 @@
+#pragma once
+#include <QWidget>
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QPushButton;
+class QSlider;
+class QTreeWidget;
+
+namespace hvx::ui {
+
+class JobManager;
+class SliceLayers;
+
+/// The Layers dock: what is laid over the open volume in the slice views and how. Overlay: an
+/// octree chosen from disk (or from the Studies browser), its colour map (built in or a .lut /
+/// .ctbl file), window and opacity. Labels: a label-map octree, its colour table (ITK-SNAP,
+/// FreeSurfer, Slicer, mricron; generated colours otherwise), fill opacity, fill and outline,
+/// and a legend whose check boxes hide or show each label. Refusals and notes (another frame
+/// of reference, labels missing from the table) are shown under the groups; "in another frame"
+/// lays a refused partner over anyway.
+///
+/// Threading: GUI thread only.
+class LayersPanel : public QWidget {
+    Q_OBJECT
+public:
+    explicit LayersPanel(SliceLayers& layers, QWidget* parent = nullptr);
+    /// Lays `path` over the open volume (as the "Overlay..." button does, without its dialog);
+    /// false with the reason shown when refused.
+    bool chooseOverlay(const QString& path, const QString& name = {});
+    /// Lays a label map over the open volume (the "Labels..." button without its dialog).
+    bool chooseLabels(const QString& path, const QString& name = {});
+    /// Loads a colour table for the labels (the "Colour table..." button without its dialog).
+    bool chooseLabelTable(const QString& path);
+    /// Where series' octrees are built when a series without one is laid over (overlaySeries).
+    void setJobs(JobManager* jobs, const QString& databasePath);
+    /// Lays an imported series over the open volume (the Studies browser's "Lay over the open
+    /// volume"): its octree when it has one, else after building it in the background (a job).
+    void overlaySeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume);
+    /// The sentence under the groups: the last refusal or note (empty when none).
+    QString message() const;
+
+private:
+    void refresh();
+    void refreshLegend();
+    void applyOverlayWindow();
+    void show(const QString& text, bool error);
+
+    SliceLayers& layers_;
+    JobManager* jobs_ = nullptr;
+    QString databasePath_;
+    QLabel* overlayName_;
+    QComboBox* map_;
+    QDoubleSpinBox* overlayWidth_;
+    QDoubleSpinBox* overlayLevel_;
+    QSlider* overlayOpacity_;
+    QPushButton* removeOverlay_;
+    QLabel* labelsName_;
+    QSlider* labelOpacity_;
+    QCheckBox* fill_;
+    QCheckBox* outline_;
+    QTreeWidget* legend_;
+    QPushButton* removeLabels_;
+    QCheckBox* force_;
+    QLabel* message_;
+    bool updating_ = false;
+};
+
+}  // namespace hvx::ui
