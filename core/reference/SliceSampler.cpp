@@ -88,58 +88,55 @@ std::shared_ptr<const Brick> SliceSampler::brick(std::uint32_t node) const {
     return b;
 }
 
+double SliceSampler::valueAt(const glm::dvec3& patient, int level) const {
+    const auto& dims = layout_.levelDims(level);
+    const auto& grid = layout_.levelNodes(level);
+    const glm::dvec3 o(space_.patientToOctree * glm::dvec4(patient, 1.0));
+    // Level voxel coordinates, integers at voxel centres.
+    const glm::dvec3 c = o * (space_.rootVoxels / double(1u << level)) - 0.5;
+    for (int a = 0; a < 3; ++a)
+        if (!(c[a] >= -0.5 && c[a] <= double(dims[std::size_t(a)]) - 0.5)) return std::numeric_limits<double>::quiet_NaN();
+    const auto bs = double(reader_.brickSize());
+    std::uint32_t n[3];
+    for (int a = 0; a < 3; ++a)
+        n[a] = std::min(grid[std::size_t(a)] - 1, std::uint32_t(std::max(0.0, std::floor(c[a] / bs))));
+    const std::uint32_t node = layout_.nodeId(level, n[0], n[1], n[2]);
+    if (node != lastNode_) {
+        lastBrick_ = brick(node);
+        lastNode_ = node;
+    }
+    const Brick& b = *lastBrick_;
+    const int edge = int(reader_.brickEdge());
+    // Sample coordinates inside the brick (border included); the border holds the neighbours
+    // (replicated at the volume's edges), so trilinear never leaves it.
+    glm::dvec3 u;
+    for (int a = 0; a < 3; ++a) u[a] = std::clamp(c[a] - n[a] * bs + reader_.border(), 0.0, double(edge - 1));
+    if (reader_.geometry().isLabel) {  // a label is a class: the nearest voxel's, never a blend of two classes
+        const glm::ivec3 n0 = glm::min(glm::ivec3(glm::round(u)), glm::ivec3(edge - 1));
+        return b.value(std::uint32_t(n0.x), std::uint32_t(n0.y), std::uint32_t(n0.z));
+    }
+    const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(edge - 2));
+    const glm::dvec3 f = u - glm::dvec3(i0);
+    double v = 0;
+    for (int k = 0; k < 8; ++k) {
+        const int dx = k & 1, dy = (k >> 1) & 1, dz = (k >> 2) & 1;
+        const double w = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
+        if (w > 0) v += w * b.value(std::uint32_t(i0.x + dx), std::uint32_t(i0.y + dy), std::uint32_t(i0.z + dz));
+    }
+    return v;
+}
+
 SliceImage SliceSampler::sample(const SlicePlane& plane, int level) const {
     SliceImage out;
     out.width = plane.width;
     out.height = plane.height;
     out.level = level >= 0 ? std::min(level, reader_.levelCount() - 1) : levelFor(plane.pixelMm);
-    out.values.assign(std::size_t(plane.width) * std::size_t(plane.height), std::numeric_limits<float>::quiet_NaN());
-    const auto& dims = layout_.levelDims(out.level);
-    const auto& grid = layout_.levelNodes(out.level);
-    const double toLevel = space_.rootVoxels / double(1u << out.level);
-    const auto bs = double(reader_.brickSize());
-    const int edge = int(reader_.brickEdge());
-    const double border = reader_.border();
-    const bool labels = reader_.geometry().isLabel;
-    std::uint32_t lastNode = UINT32_MAX;
-    std::shared_ptr<const Brick> b;
+    out.values.resize(std::size_t(plane.width) * std::size_t(plane.height));
     for (int j = 0; j < plane.height; ++j)
         for (int i = 0; i < plane.width; ++i) {
             const glm::dvec3 p = plane.centre + (i + 0.5 - plane.width / 2.0) * plane.pixelMm * plane.right +
                                  (j + 0.5 - plane.height / 2.0) * plane.pixelMm * plane.down;
-            const glm::dvec3 o(space_.patientToOctree * glm::dvec4(p, 1.0));
-            // Level voxel coordinates, integers at voxel centres.
-            const glm::dvec3 c = o * toLevel - 0.5;
-            bool inside = true;
-            for (int a = 0; a < 3; ++a) inside = inside && c[a] >= -0.5 && c[a] <= double(dims[std::size_t(a)]) - 0.5;
-            if (!inside) continue;
-            std::uint32_t n[3];
-            for (int a = 0; a < 3; ++a)
-                n[a] = std::min(grid[std::size_t(a)] - 1, std::uint32_t(std::max(0.0, std::floor(c[a] / bs))));
-            const std::uint32_t node = layout_.nodeId(out.level, n[0], n[1], n[2]);
-            if (node != lastNode) {
-                b = brick(node);
-                lastNode = node;
-            }
-            // Sample coordinates inside the brick (border included); the border holds the
-            // neighbours (replicated at the volume's edges), so trilinear never leaves it.
-            glm::dvec3 u;
-            for (int a = 0; a < 3; ++a) u[a] = std::clamp(c[a] - n[a] * bs + border, 0.0, double(edge - 1));
-            if (labels) {  // a label is a class: the nearest voxel's, never a blend of two classes
-                const glm::ivec3 n0 = glm::min(glm::ivec3(glm::round(u)), glm::ivec3(edge - 1));
-                out.values[std::size_t(j) * std::size_t(plane.width) + std::size_t(i)] =
-                    float(b->value(std::uint32_t(n0.x), std::uint32_t(n0.y), std::uint32_t(n0.z)));
-                continue;
-            }
-            const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(edge - 2));
-            const glm::dvec3 f = u - glm::dvec3(i0);
-            double v = 0;
-            for (int k = 0; k < 8; ++k) {
-                const int dx = k & 1, dy = (k >> 1) & 1, dz = (k >> 2) & 1;
-                const double w = (dx ? f.x : 1 - f.x) * (dy ? f.y : 1 - f.y) * (dz ? f.z : 1 - f.z);
-                if (w > 0) v += w * b->value(std::uint32_t(i0.x + dx), std::uint32_t(i0.y + dy), std::uint32_t(i0.z + dz));
-            }
-            out.values[std::size_t(j) * std::size_t(plane.width) + std::size_t(i)] = float(v);
+            out.values[std::size_t(j) * std::size_t(plane.width) + std::size_t(i)] = float(valueAt(p, out.level));
         }
     return out;
 }

@@ -62,6 +62,9 @@ public:
     SliceSampler(const OctreeReader& reader, BrickCache& cache);
     /// The level whose voxel is closest to, and not larger than twice, `pixelMm`.
     int levelFor(double pixelMm) const;
+    /// The value at a patient point (LPS mm) at `level` (trilinear; a label map's nearest
+    /// voxel), NaN outside the volume.
+    double valueAt(const glm::dvec3& patient, int level) const;
     /// Samples `plane` at levelFor(plane.pixelMm), or at `level` when given (>= 0).
     SliceImage sample(const SlicePlane& plane, int level = -1) const;
     /// A thick slab centred on `plane`: an odd number of samples, the plane itself among them,
@@ -79,6 +82,8 @@ private:
     BrickCache& cache_;
     OctreeSpace space_;
     OctreeLayout layout_;
+    mutable std::uint32_t lastNode_ = UINT32_MAX;  // the brick read last (neighbouring samples share it)
+    mutable std::shared_ptr<const Brick> lastBrick_;
 };
 
 }  // namespace hvx::core
