@@ -20,5 +20,6 @@ int listenCommand(int argc, char** argv);
 int renderCommand(int argc, char** argv);
 int lightFieldCommand(int argc, char** argv);
 int measureCommand(int argc, char** argv);
+int labelStatsCommand(int argc, char** argv);
 int sliceCommand(int argc, char** argv);
 }  // namespace hvx::app

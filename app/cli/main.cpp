@@ -45,6 +45,8 @@ const char* const kUsage =
         "  measure FILE.hvo --roi sphere:X,Y,Z,R | box:X0,Y0,Z0,X1,Y1,Z1 | disc:X,Y,Z,NX,NY,NZ,R,T |\n"
         "        ellipse:X,Y,Z,NX,NY,NZ,AX,AY,AZ,A,B,T   voxels, mean, SD, min, max and volume of a region\n"
         "        (LPS mm), from the full-resolution level, in HU for CT\n"
+        "  label-stats IMAGE.hvo LABELS.hvo [--lut FILE] [--force-frame] [-o OUT.csv]\n"
+        "        each label's volume (mL) and the image's mean, SD, min, max at its voxels, as CSV\n"
         "  slice FILE.hvo --plane axial|coronal|sagittal|NX,NY,NZ [--at X,Y,Z] [--size WxH] [--pixel MM]\n"
         "        [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--level N] [--scroll N] -o OUT.png\n"
         "        [--overlay B.hvo[:lut=hot|rainbow|pet|cool|grey|FILE,opacity=A,window=W/L]]\n"
@@ -112,6 +114,7 @@ int main(int argc, char** argv) {
         if (cmd == "render") return hvx::app::renderCommand(argc, argv);
         if (cmd == "lightfield") return hvx::app::lightFieldCommand(argc, argv);
         if (cmd == "measure") return hvx::app::measureCommand(argc, argv);
+        if (cmd == "label-stats") return hvx::app::labelStatsCommand(argc, argv);
         if (cmd == "slice") return hvx::app::sliceCommand(argc, argv);
         if (cmd == "version" || cmd == "--version") return hvx::app::versionCommand(argc, argv);
         std::fprintf(stderr, "holovox-cli: unknown command '%s' (try --help)\n", cmd.c_str());

@@ -70,7 +70,8 @@ ColorMap ColorMap::named(const std::string& name) {
 ColorMap ColorMap::namedOrFile(const std::string& nameOrPath) {
     const auto& names = builtinNames();
     const std::string n = lower(nameOrPath) == "gray" ? "grey" : lower(nameOrPath);
-    if (std::find(names.begin(), names.end(), n) != names.end()) return named(n);
+    // Neither a built-in name nor a file: the names are the better answer.
+    if (std::find(names.begin(), names.end(), n) != names.end() || !std::ifstream(nameOrPath)) return named(n);
     return load(nameOrPath);
 }
 

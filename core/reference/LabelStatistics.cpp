@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "core/base/Error.h"
@@ -84,6 +85,26 @@ LabelStatistics LabelStatistics::compute(const OctreeReader& image, const Octree
     if (approximate)
         out.note += std::string(out.note.empty() ? "" : "; ") +
                     "the image stores some bricks without their values (empty or 8-bit): means there are approximate";
+    return out;
+}
+
+std::string LabelStatistics::csv(const LabelTable* table) const {
+    std::string out = "label,name,voxels,volume_ml,voxels_in_image,mean,sd,min,max,units\n";
+    char buf[256];
+    for (const auto& [label, r] : rows) {
+        std::string name = "label " + std::to_string(label);
+        if (const auto* e = table ? table->find(label) : nullptr) name = e->name;
+        std::string quoted = "\"";
+        for (const char c : name) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+        quoted += '"';
+        if (r.sampled > 0)
+            std::snprintf(buf, sizeof buf, ",%llu,%.6f,%llu,%.6g,%.6g,%.6g,%.6g,%s\n", static_cast<unsigned long long>(r.voxels),
+                          r.volumeMl, static_cast<unsigned long long>(r.sampled), r.mean, r.sd, r.min, r.max, units.c_str());
+        else
+            std::snprintf(buf, sizeof buf, ",%llu,%.6f,0,,,,,%s\n", static_cast<unsigned long long>(r.voxels), r.volumeMl,
+                          units.c_str());
+        out += std::to_string(label) + "," + quoted + buf;
+    }
     return out;
 }
 

@@ -3,6 +3,7 @@
 #include <map>
 #include <string>
 
+#include "core/appearance/LabelTable.h"
 #include "core/octree/OctreeReader.h"
 
 namespace hvx::core {
@@ -30,6 +31,9 @@ struct LabelStatistics {
     /// Throws core::Error when `labels` is not a label map, CorruptBrickError for a brick that
     /// cannot be read; honours `job`'s cancellation and reports progress.
     static LabelStatistics compute(const OctreeReader& image, const OctreeReader& labels, JobContext& job);
+    /// CSV, one row per label: label,name,voxels,volume_ml,voxels_in_image,mean,sd,min,max,units
+    /// (names from `table` when given, quoted as RFC 4180 says).
+    std::string csv(const LabelTable* table) const;
 };
 
 }  // namespace hvx::core

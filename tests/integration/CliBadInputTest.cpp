@@ -98,7 +98,7 @@ TEST(CliBadInput, EveryCommandHasItsOwnHelp) {
     test::TempDir dir;
     for (const std::string cmd : {"build", "info", "phantom", "demo", "import", "studies", "prune", "build-series",
                                   "export-dicom", "pacs", "listen", "dicom-info", "render", "lightfield", "measure",
-                                  "slice", "gl-info", "version"})
+                                  "label-stats", "slice", "gl-info", "version"})
         for (const char* help : {"--help", "-h"}) {
             const auto r = test::runCommand("cd " + dir.path().string() + " && " + cli + " " + cmd + " " + help + " 2>&1");
             EXPECT_EQ(r.exitCode, 0) << cmd << " " << help << ": " << r.output;

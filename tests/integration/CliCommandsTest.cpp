@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
@@ -184,4 +185,64 @@ TEST(CliCommands, VersionListsTheLibrariesAsLinked) {
     EXPECT_NE(r.output.find("DCMTK     " + dcmtk + "\n"), std::string::npos) << dcmtk << "\n" << r.output;
     const auto py = test::runCommand("/usr/bin/python3 -c \"import sqlite3; print(sqlite3.sqlite_version)\"");
     EXPECT_NE(r.output.find("SQLite    " + py.output), std::string::npos) << py.output << r.output;
+}
+
+// label-stats against numpy over nibabel's reading of the same NIfTI files (a label map on its
+// own rotated, coarser grid), and slice --labels / --overlay drawing and refusing.
+TEST(CliCommands, LabelStatsAgreeWithNumpyAndSlicesDrawLabels) {
+    test::TempDir dir;
+    const auto oracle = test::runCommand("/usr/bin/python3 " + std::string(HVX_SOURCE_DIR) +
+                                         "/tests/support/label_stats_oracle.py " + dir.path().string());
+    ASSERT_EQ(oracle.exitCode, 0) << oracle.output;
+    ASSERT_EQ(test::runCommand(cli + " build " + dir.file("image.nii.gz") + " -o " + dir.file("image.hvo")).exitCode, 0);
+    auto r = test::runCommand(cli + " build " + dir.file("labels.nii.gz") + " --labels -o " + dir.file("labels.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " label-stats " + dir.file("image.hvo") + " " + dir.file("labels.hvo") + " -o " +
+                         dir.file("stats.csv") + " 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("label(s) 9 reach outside the image"), std::string::npos) << r.output;
+    std::ifstream csv(dir.file("stats.csv"));
+    std::string header, line;
+    std::getline(csv, header);
+    EXPECT_EQ(header, "label,name,voxels,volume_ml,voxels_in_image,mean,sd,min,max,units");
+    std::istringstream want(oracle.output);
+    int rows = 0;
+    while (std::getline(csv, line)) {
+        std::string wantLine;
+        ASSERT_TRUE(std::getline(want, wantLine)) << "an extra row: " << line;
+        int label = 0, wl = 0;
+        char name[64];
+        unsigned long long voxels = 0, inside = 0, wv = 0, wi = 0;
+        double ml = 0, mean = 0, sd = 0, wml = 0, wmean = 0, wsd = 0;
+        ASSERT_EQ(std::sscanf(line.c_str(), "%d,\"%63[^\"]\",%llu,%lf,%llu,%lf,%lf", &label, name, &voxels, &ml, &inside,
+                              &mean, &sd), 7) << line;
+        ASSERT_EQ(std::sscanf(wantLine.c_str(), "%d,%llu,%lf,%llu,%lf,%lf", &wl, &wv, &wml, &wi, &wmean, &wsd), 6);
+        EXPECT_EQ(label, wl);
+        EXPECT_EQ(voxels, wv) << label;
+        EXPECT_NEAR(ml, wml, 1e-6) << label;
+        EXPECT_EQ(inside, wi) << label;
+        EXPECT_NEAR(mean, wmean, 1e-3 * std::max(1.0, std::abs(wmean))) << label;
+        EXPECT_NEAR(sd, wsd, 1e-3 * std::max(1.0, wsd)) << label;
+        ++rows;
+    }
+    EXPECT_EQ(rows, 2);
+    // The label map over the image in a slice: an RGB PNG, the legend printed.
+    r = test::runCommand(cli + " slice " + dir.file("image.hvo") + " --plane axial --at 5,2,0 --labels " +
+                         dir.file("labels.hvo") + " -o " + dir.file("l.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("labels " + dir.file("labels.hvo") + " (generated colours): 3 label 3"), std::string::npos)
+        << r.output;
+    const auto png = test::runCommand("/usr/bin/python3 -c \"import sys; b=open(sys.argv[1],'rb').read(); print(b[25])\" " +
+                                      dir.file("l.png"));
+    EXPECT_EQ(png.output, "2\n");  // PNG colour type 2: RGB
+    // Refusals: an intensity volume as labels, an unknown colour map.
+    r = test::runCommand(cli + " slice " + dir.file("image.hvo") + " --labels " + dir.file("image.hvo") + " -o " +
+                         dir.file("x.png") + " 2>&1");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("is not a label map"), std::string::npos) << r.output;
+    r = test::runCommand(cli + " slice " + dir.file("image.hvo") + " --overlay " + dir.file("image.hvo") +
+                         ":lut=viridian -o " + dir.file("x.png") + " 2>&1");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("no colour map named \"viridian\""), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x.png")));
 }
