@@ -17,6 +17,7 @@
 
 #include <QPointer>
 
+#include "core/base/AtomicFileWriter.h"
 #include "core/base/Error.h"
 #include "dicom/SeriesOctree.h"
 #include "dicom/StudyDatabase.h"
@@ -95,11 +96,18 @@ LayersPanel::LayersPanel(SliceLayers& layers, QWidget* parent) : QWidget(parent)
     lf->addRow(drawRow);
     legend_ = new QTreeWidget;
     legend_->setObjectName(QStringLiteral("labelLegend"));
-    legend_->setHeaderLabels({tr("Label"), tr("Name")});
+    legend_->setHeaderLabels({tr("Label"), tr("Name"), tr("Volume (mL)"), tr("Mean \u00b1 SD")});
     legend_->setRootIsDecorated(false);
     legend_->header()->setSectionResizeMode(QHeaderView::ResizeToContents);
     legend_->setMinimumHeight(90);
     lf->addRow(legend_);
+    statisticsButton_ = new QPushButton(tr("Statistics"));
+    statisticsButton_->setToolTip(tr("Each label's volume and the open volume's mean and SD over it, from the finest level"));
+    exportButton_ = new QPushButton(tr("Export CSV\u2026"));
+    auto* statsRow = new QHBoxLayout;
+    statsRow->addWidget(statisticsButton_);
+    statsRow->addWidget(exportButton_);
+    lf->addRow(statsRow);
     top->addWidget(labelBox);
 
     force_ = new QCheckBox(tr("Lay over even in another frame of reference"));
@@ -123,6 +131,12 @@ LayersPanel::LayersPanel(SliceLayers& layers, QWidget* parent) : QWidget(parent)
         const QString path = QFileDialog::getOpenFileName(this, tr("Colour table"), {},
                                                           tr("Colour tables (*.txt *.ctbl *.lut *.label);;All files (*)"));
         if (!path.isEmpty()) chooseLabelTable(path);
+    });
+    connect(statisticsButton_, &QPushButton::clicked, this, &LayersPanel::computeStatistics);
+    connect(exportButton_, &QPushButton::clicked, this, [this] {
+        const QString path = QFileDialog::getSaveFileName(this, tr("Label statistics"), tr("label-statistics.csv"),
+                                                          tr("CSV (*.csv)"));
+        if (!path.isEmpty()) exportStatistics(path);
     });
     connect(removeOverlay_, &QPushButton::clicked, &layers_, &SliceLayers::clearOverlay);
     connect(removeLabels_, &QPushButton::clicked, &layers_, &SliceLayers::clearLabels);
@@ -185,6 +199,47 @@ void LayersPanel::overlaySeries(const QString& seriesUid, const QString& octreeP
         });
 }
 
+int LayersPanel::computeStatistics() {
+    const auto image = layers_.base();
+    const auto labels = layers_.labelsReader();
+    if (!image || !labels || !jobs_) return -1;
+    auto result = std::make_shared<core::LabelStatistics>();
+    QPointer<LayersPanel> self(this);
+    return jobs_->start(
+        tr("Label statistics: %1").arg(layers_.labelsName()),
+        [image, labels, result](core::JobContext& job) {
+            *result = core::LabelStatistics::compute(*image, *labels, job);
+            return QString::number(result->rows.size()) + " labels";
+        },
+        [self, result, image, labels](const QString&) {
+            if (!self || self->layers_.labelsReader() != labels || self->layers_.base() != image) return;  // changed since
+            self->statistics_ = result;
+            self->statisticsImage_ = image;
+            self->statisticsLabels_ = labels;
+            self->show(QString::fromStdString(result->note), false);
+            self->refreshLegend();
+            self->refresh();
+        });
+}
+
+bool LayersPanel::exportStatistics(const QString& path) {
+    if (statistics_->rows.empty()) {
+        show(tr("No statistics yet: press Statistics first."), true);
+        return false;
+    }
+    try {
+        const std::string csv = statistics_->csv(&layers_.labelTable());
+        core::AtomicFileWriter w(path.toStdString());
+        w.append(csv.data(), csv.size());
+        w.commit();
+    } catch (const core::Error& e) {
+        show(QString::fromStdString(e.what()), true);
+        return false;
+    }
+    show(tr("Saved %1.").arg(path), false);
+    return true;
+}
+
 bool LayersPanel::chooseOverlay(const QString& path, const QString& name) {
     const QString error = layers_.setOverlay(path, name, force_->isChecked());
     show(error.isEmpty() ? layers_.note() : error, !error.isEmpty());
@@ -215,8 +270,9 @@ void LayersPanel::refresh() {
     labelsName_->setText(layers_.hasLabels() ? layers_.labelsName() : tr("No label map."));
     for (QWidget* w : std::initializer_list<QWidget*>{map_, overlayWidth_, overlayLevel_, overlayOpacity_, removeOverlay_})
         w->setEnabled(layers_.hasOverlay());
-    for (QWidget* w : std::initializer_list<QWidget*>{labelOpacity_, fill_, outline_, legend_, removeLabels_})
+    for (QWidget* w : std::initializer_list<QWidget*>{labelOpacity_, fill_, outline_, legend_, removeLabels_, statisticsButton_})
         w->setEnabled(layers_.hasLabels());
+    exportButton_->setEnabled(layers_.hasLabels() && !statistics_->rows.empty());
     overlayWidth_->setValue(layers_.overlayWindow().width);
     overlayLevel_->setValue(layers_.overlayWindow().centre);
     overlayOpacity_->setValue(int(std::lround(layers_.overlayOpacity() * 100)));
@@ -227,12 +283,22 @@ void LayersPanel::refresh() {
 
 void LayersPanel::refreshLegend() {
     updating_ = true;
+    if (statisticsImage_.lock() != layers_.base() || statisticsLabels_.lock() != layers_.labelsReader())
+        statistics_ = std::make_shared<core::LabelStatistics>();
     legend_->clear();
     const auto& table = layers_.labelTable();
     if (layers_.hasLabels())
         for (const auto& [label, e] : table.entries()) {
             if (table.entries().size() > 64 && !layers_.labelsSeen().count(label)) continue;
             auto* item = new QTreeWidgetItem(legend_, {QString::number(label), QString::fromStdString(e.name)});
+            if (const auto row = statistics_->rows.find(label); row != statistics_->rows.end()) {
+                item->setText(2, QString::number(row->second.volumeMl, 'f', 2));
+                if (row->second.sampled > 0)
+                    item->setText(3, QStringLiteral("%1 \u00b1 %2 %3")
+                                         .arg(row->second.mean, 0, 'f', 1)
+                                         .arg(row->second.sd, 0, 'f', 1)
+                                         .arg(QString::fromStdString(statistics_->units)));
+            }
             QPixmap swatch(12, 12);
             swatch.fill(QColor(e.rgba[0], e.rgba[1], e.rgba[2]));
             item->setIcon(0, QIcon(swatch));

@@ -1,6 +1,10 @@
 #pragma once
 #include <QWidget>
 
+#include <memory>
+
+#include "core/reference/LabelStatistics.h"
+
 class QCheckBox;
 class QComboBox;
 class QDoubleSpinBox;
@@ -39,6 +43,13 @@ public:
     /// Lays an imported series over the open volume (the Studies browser's "Lay over the open
     /// volume"): its octree when it has one, else after building it in the background (a job).
     void overlaySeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume);
+    /// Computes each label's volume and the open volume's mean and SD over it (a job); the
+    /// legend shows them and "Export CSV..." saves them. Returns the job id (-1 without labels).
+    int computeStatistics();
+    /// Writes the last statistics as CSV (core::LabelStatistics::csv); false with the reason shown.
+    bool exportStatistics(const QString& path);
+    /// The last statistics (empty rows before any).
+    const core::LabelStatistics& statistics() const { return *statistics_; }
     /// The sentence under the groups: the last refusal or note (empty when none).
     QString message() const;
 
@@ -63,6 +74,11 @@ private:
     QCheckBox* outline_;
     QTreeWidget* legend_;
     QPushButton* removeLabels_;
+    QPushButton* statisticsButton_;
+    QPushButton* exportButton_;
+    std::shared_ptr<core::LabelStatistics> statistics_ = std::make_shared<core::LabelStatistics>();
+    // The volumes the statistics were computed on: dropped when either changes.
+    std::weak_ptr<const core::OctreeReader> statisticsImage_, statisticsLabels_;
     QCheckBox* force_;
     QLabel* message_;
     bool updating_ = false;

@@ -9,7 +9,7 @@
 namespace hvx::ui {
 
 struct SliceLayers::Layer {
-    std::unique_ptr<core::OctreeReader> reader;
+    std::shared_ptr<const core::OctreeReader> reader;
     core::BrickCache cache{std::size_t(128) << 20};
     std::unique_ptr<core::SliceSampler> sampler;
     QString name;
@@ -120,6 +120,10 @@ void SliceLayers::clearLabels() {
     seen_.clear();
     emit changed();
     emit legendChanged();
+}
+
+std::shared_ptr<const core::OctreeReader> SliceLayers::labelsReader() const {
+    return labels_ ? labels_->reader : nullptr;
 }
 
 QString SliceLayers::overlayName() const { return overlay_ ? overlay_->name : QString(); }

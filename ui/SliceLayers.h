@@ -43,6 +43,9 @@ public:
     void clearOverlay();
     void clearLabels();
 
+    /// The open volume and the label map's reader (null when none), for work on other threads.
+    std::shared_ptr<const core::OctreeReader> base() const { return base_; }
+    std::shared_ptr<const core::OctreeReader> labelsReader() const;
     bool hasOverlay() const { return overlay_ != nullptr; }
     bool hasLabels() const { return labels_ != nullptr; }
     QString overlayName() const;

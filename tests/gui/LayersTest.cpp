@@ -4,6 +4,8 @@
 // reference refused until forced; a series laid over from the Studies browser's menu, its octree
 // built first. Screenshot under <build>/test-artifacts/gui/layers.png.
 #include <QCheckBox>
+#include <QDockWidget>
+#include <QFile>
 #include <QLabel>
 #include <QSignalSpy>
 #include <QTest>
@@ -70,6 +72,7 @@ std::array<int, 3> rgbAt(const QImage& img, QPointF at) {
 class LayersTest : public QObject, test::GuiFixture {
     Q_OBJECT
 
+    std::unique_ptr<test::MemoryVoxelSource> labels_;
     ui::SliceView* axial() const { return window_->slice(0); }
     /// 12 mm beside the marker the overlay is in hot's red part: red over the base's grey.
     void expectRedAround(const glm::dvec3& marker, const QImage& base) {
@@ -93,13 +96,13 @@ private slots:
         build(pet, dir_.file("pet.hvo"));
         auto elsewhere = volume({50, 40, 24}, {2.5, 3.1, 4.0}, rot, core::ScalarType::Float32, "PT", kFrame + ".9", hot);
         build(elsewhere, dir_.file("elsewhere.hvo"));
-        auto labels = volume({48, 48, 32}, {4, 4, 4}, glm::dmat3(1.0), core::ScalarType::UInt8, "SEG", kFrame,
+        labels_ = std::make_unique<test::MemoryVoxelSource>(volume({48, 48, 32}, {4, 4, 4}, glm::dmat3(1.0), core::ScalarType::UInt8, "SEG", kFrame,
                              [](const glm::dvec3& p) {
                                  if (glm::length(p - kLiver) < 14) return 1.0;
                                  if (std::abs(p.x - 40) < 8 && std::abs(p.y) < 8 && std::abs(p.z) < 8) return 2.0;
                                  return 0.0;
-                             });
-        build(labels, dir_.file("labels.hvo"), true);
+                             }));
+        build(*labels_, dir_.file("labels.hvo"), true);
         std::ofstream(dir_.file("organs.ctbl")) << "# Color table file organs.ctbl\n0 Background 0 0 0 0\n"
                                                    "1 liver 200 60 60 255\n2 spleen 60 60 200 255\n";
         QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("ct.hvo"))));
@@ -149,6 +152,22 @@ private slots:
         QCOMPARE(legend->topLevelItemCount(), 2);
         QCOMPARE(legend->topLevelItem(0)->text(1), QString("liver"));
         QCOMPARE(legend->topLevelItem(1)->text(1), QString("spleen"));
+        // Statistics per label: the liver sphere's voxels of the 4 mm grid, over a CT of 40 HU.
+        std::size_t liverVoxels = 0;
+        for (const double v : labels_->values().values) liverVoxels += v == 1.0;
+        const int id = panel->computeStatistics();
+        QVERIFY(id >= 0);
+        QVERIFY(window_->jobs()->waitIdle(60000));
+        QTRY_COMPARE(legend->topLevelItem(0)->text(2), QString::number(double(liverVoxels) * 64 / 1000.0, 'f', 2));
+        QCOMPARE(legend->topLevelItem(0)->text(3), QString("40.0 \u00b1 0.0 HU"));
+        QVERIFY(panel->exportStatistics(QString::fromStdString(dir_.file("stats.csv"))));
+        QFile csv(QString::fromStdString(dir_.file("stats.csv")));
+        QVERIFY(csv.open(QIODevice::ReadOnly));
+        const QString text = QString::fromUtf8(csv.readAll());
+        QVERIFY2(text.startsWith("label,name,voxels,volume_ml") && text.contains(QString("1,\"liver\",%1,").arg(liverVoxels)),
+                 qPrintable(text));
+        if (auto* dock = window_->findChild<QDockWidget*>("layersDock")) dock->raise();
+        QTest::qWait(50);
         saveArtifact("layers.png");
         window_->slice(0)->grab().save(test::guiArtifacts() + "/layers-axial.png");
         legend->topLevelItem(0)->setCheckState(0, Qt::Unchecked);  // liver hidden
