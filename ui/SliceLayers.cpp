@@ -84,7 +84,22 @@ QString SliceLayers::setLabels(const QString& path, const QString& name, bool fo
     note_ = QString::fromStdString(
         core::FramePairing::of(base_->geometry(), baseName_.toStdString(), g, layer->name.toStdString()).sentence);
     labels_ = std::move(layer);
-    if (tablePath_.isEmpty()) table_ = {};
+    // Its own table (an octree built from a DICOM SEG keeps its segments' names and colours
+    // beside it), unless the user chose one.
+    const QString sidecar = QString::fromStdString(core::LabelTable::sidecarPath(path.toStdString()));
+    if (tablePath_.isEmpty() || tablePath_ == sidecarTable_) {
+        table_ = {};
+        tablePath_.clear();
+        sidecarTable_.clear();
+        if (QFileInfo::exists(sidecar)) {
+            try {
+                table_ = core::LabelTable::load(sidecar.toStdString());
+                tablePath_ = sidecarTable_ = sidecar;
+            } catch (const core::Error& e) {
+                note_ = QString::fromStdString(e.what());
+            }
+        }
+    }
     notInTable_.clear();
     seen_.clear();
     emit changed();

@@ -97,6 +97,7 @@ private:
     double overlayOpacity_ = 0.5;
     core::LabelTable table_;
     QString tablePath_;
+    QString sidecarTable_;  // tablePath_ when it is the label map's own table
     std::vector<int> notInTable_;
     std::set<int> seen_;
     double labelOpacity_ = 0.5;

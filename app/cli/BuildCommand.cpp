@@ -6,7 +6,9 @@
 #include "app/cli/OctreeBuildRunner.h"
 #include "core/octree/BrickCodec.h"
 #include "core/base/Error.h"
+#include "core/base/AtomicFileWriter.h"
 #include "core/volume/VoxelSourceFactory.h"
+#include "dicom/SegmentationSource.h"
 
 namespace hvx::app {
 
@@ -50,9 +52,24 @@ int buildCommand(int argc, char** argv) {
     opt.codecLevel = int(args.integer("level", 0, -7, 19));
 
     const auto volume = std::uint32_t(args.integer("volume", 1, 1, 1 << 20) - 1);  // 1-based on the command line
-    auto source = core::VoxelSourceFactory::open(args.positional()[0], raw, volume);
+    // A DICOM Segmentation object is a label map, with its segments' names and colours kept
+    // beside the octree as a colour table.
+    std::unique_ptr<dicom::SegmentationSource> seg;
+    if (dicom::SegmentationSource::isSegmentation(args.positional()[0])) {
+        seg = std::make_unique<dicom::SegmentationSource>(args.positional()[0]);
+        opt.labels = true;
+    }
+    std::unique_ptr<core::VoxelSource> source =
+        seg ? std::move(seg) : core::VoxelSourceFactory::open(args.positional()[0], raw, volume);
     for (const auto& w : source->warnings()) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
     OctreeBuildRunner::run(*source, *out, opt, !args.flag("quiet"));
+    if (const auto* segmentation = dynamic_cast<const dicom::SegmentationSource*>(source.get())) {
+        const std::string table = segmentation->table().toSlicerTable(), path = core::LabelTable::sidecarPath(*out);
+        core::AtomicFileWriter w(path);
+        w.append(table.data(), table.size());
+        w.commit();
+        std::fprintf(stderr, "segments' names and colours: %s\n", path.c_str());
+    }
     return 0;
 }
 

@@ -1,4 +1,5 @@
 #include <cstdio>
+#include <fstream>
 #include <optional>
 
 #include "app/cli/CliArgs.h"
@@ -24,7 +25,9 @@ int labelStatsCommand(int argc, char** argv) {
         throw core::Error(pairing.sentence + " (--force-frame measures anyway)");
     if (!pairing.sentence.empty()) std::fprintf(stderr, "note: %s\n", pairing.sentence.c_str());
     std::optional<core::LabelTable> table;
+    const std::string sidecar = core::LabelTable::sidecarPath(args.positional()[1]);
     if (const auto lut = args.value("lut")) table = core::LabelTable::load(*lut);
+    else if (std::ifstream(sidecar)) table = core::LabelTable::load(sidecar);
     core::JobContext job;
     const auto stats = core::LabelStatistics::compute(*image, *labels, job);
     const std::string csv = stats.csv(table ? &*table : nullptr);

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <optional>
@@ -164,12 +165,15 @@ int sliceCommand(int argc, char** argv) {
         pairFrames(g, baseName, lg, *path, args.flag("force-frame"));
         labelImage = labelLayer->sampler->sample(plane);
         const auto present = core::SliceComposer::labelsIn(labelImage);
-        table = args.value("lut") ? core::LabelTable::load(*args.value("lut")) : core::LabelTable::generated(present);
-        if (const auto missing = table.addMissing(present); !missing.empty() && args.value("lut")) {
+        const std::string sidecar = core::LabelTable::sidecarPath(*path);
+        const auto lut = args.value("lut") ? args.value("lut")
+                         : std::ifstream(sidecar) ? std::optional<std::string>(sidecar)
+                                                  : std::nullopt;
+        table = lut ? core::LabelTable::load(*lut) : core::LabelTable::generated(present);
+        if (const auto missing = table.addMissing(present); !missing.empty() && lut) {
             std::string list;
             for (const int l : missing) list += (list.empty() ? "" : ", ") + std::to_string(l);
-            std::printf("note: label(s) %s are not in %s: drawn in generated colours\n", list.c_str(),
-                        args.value("lut")->c_str());
+            std::printf("note: label(s) %s are not in %s: drawn in generated colours\n", list.c_str(), lut->c_str());
         }
         const double opacity = args.value("label-opacity") ? *args.number("label-opacity") : 0.5;
         if (!(opacity >= 0 && opacity <= 1)) throw core::Error("--label-opacity must be 0 to 1");

@@ -144,6 +144,25 @@ std::vector<int> LabelTable::addMissing(const std::vector<int>& labels) {
     return added;
 }
 
+void LabelTable::set(int label, Entry entry) {
+    if (label == 0) return;
+    entries_[label] = std::move(entry);
+    if (format_.empty()) format_ = "set by Holovox";
+}
+
+std::string LabelTable::toSlicerTable() const {
+    std::string out = "# Color table file written by Holovox\n# " + std::to_string(entries_.size() + 1) +
+                      " values\n0 Background 0 0 0 0\n";
+    for (const auto& [label, e] : entries_) {
+        std::string name = e.name.empty() ? "label_" + std::to_string(label) : e.name;
+        for (auto& c : name)
+            if (std::isspace(static_cast<unsigned char>(c))) c = '_';
+        out += std::to_string(label) + " " + name + " " + std::to_string(e.rgba[0]) + " " + std::to_string(e.rgba[1]) +
+               " " + std::to_string(e.rgba[2]) + " " + std::to_string(e.rgba[3]) + "\n";
+    }
+    return out;
+}
+
 void LabelTable::setVisible(int label, bool visible) {
     if (auto it = entries_.find(label); it != entries_.end()) it->second.visible = visible;
 }

@@ -24,6 +24,9 @@ public:
     /// core::Error naming the file and the line: unreadable lines, colours outside 0-255, an
     /// opacity outside its range, a label given twice, a table with no label.
     static LabelTable load(const std::string& path);
+    /// Where a label map's own table is kept beside its octree (written when the octree is
+    /// built from a DICOM SEG): "<octree>.ctbl".
+    static std::string sidecarPath(const std::string& octreePath) { return octreePath + ".ctbl"; }
     /// Distinct colours for `labels` (hues a golden angle apart), named "label N".
     static LabelTable generated(const std::vector<int>& labels);
 
@@ -33,6 +36,11 @@ public:
     /// says so: a colour the user did not choose must not pass unremarked.
     std::vector<int> addMissing(const std::vector<int>& labels);
     void setVisible(int label, bool visible);
+    /// Sets a label's entry (a table made from a DICOM SEG's segments); label 0 is ignored.
+    void set(int label, Entry entry);
+    /// The table in 3D Slicer's colour-table format ("index name R G B A", names with their
+    /// spaces as underscores), which load() reads back.
+    std::string toSlicerTable() const;
     const std::map<int, Entry>& entries() const { return entries_; }
     /// The format read, for messages ("ITK-SNAP label descriptions").
     const std::string& format() const { return format_; }

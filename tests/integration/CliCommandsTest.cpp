@@ -246,3 +246,33 @@ TEST(CliCommands, LabelStatsAgreeWithNumpyAndSlicesDrawLabels) {
     EXPECT_NE(r.output.find("no colour map named \"viridian\""), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("x.png")));
 }
+
+// A DICOM SEG written by pydicom built into a label map: its segments' names and colours kept
+// beside the octree, and used by slice --labels and label-stats without being asked for.
+TEST(CliCommands, SegmentationBuildsALabelMapWithItsOwnTable) {
+    test::TempDir dir;
+    auto r = test::runCommand("/usr/bin/python3 " + std::string(HVX_SOURCE_DIR) + "/tests/support/seg_cases.py " +
+                              dir.path().string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " build " + dir.file("binary.dcm") + " -o " + dir.file("seg.hvo") + " --quiet 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream table(dir.file("seg.hvo.ctbl"));
+    const std::string text((std::istreambuf_iterator<char>(table)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("\n1 liver "), std::string::npos) << text;
+    EXPECT_NE(text.find("\n2 spleen "), std::string::npos) << text;
+    r = test::runCommand(cli + " info " + dir.file("seg.hvo"));
+    EXPECT_NE(r.output.find("label"), std::string::npos) << r.output;
+    r = test::runCommand(cli + " slice " + dir.file("seg.hvo") + " --plane axial --labels " + dir.file("seg.hvo") +
+                         " -o " + dir.file("s.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("(3D Slicer colour table): 1 liver"), std::string::npos) << r.output;
+    r = test::runCommand(cli + " label-stats " + dir.file("seg.hvo") + " " + dir.file("seg.hvo") + " 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("1,\"liver\","), std::string::npos) << r.output;
+    // Without frame positions: refused, nothing written.
+    r = test::runCommand(cli + " build " + dir.file("noposition.dcm") + " -o " + dir.file("bad.hvo") + " 2>&1");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("has no position"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("bad.hvo")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("bad.hvo.ctbl")));
+}

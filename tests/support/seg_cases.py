@@ -1,0 +1,182 @@
+#!/usr/bin/python3
+"""Writes DICOM Segmentation objects with pydicom (an independent writer), on a rotated grid of
+30 x 26 pixels (not a multiple of 8: binary frames are not byte-aligned) and 14 slice positions:
+
+  binary.dcm      BINARY, segments 1 "liver" (a ball) and 2 "spleen" (a box), frames only where
+                  a segment has pixels, in shuffled order, bits packed across frame boundaries
+  fractional.dcm  FRACTIONAL (PROBABILITY, max 200): segment 1 as the ball's probability, so
+                  that the 50 % threshold gives back the ball
+  noposition.dcm  the binary object without its frames' PlanePositionSequence
+  labels.txt      "x y z label" (LPS mm) at every voxel centre of the grid: what a reader must
+                  find there (0: no segment)
+
+usage: seg_cases.py OUT_DIR"""
+import copy
+import math
+import random
+import sys
+
+import numpy as np
+from pydicom.dataset import Dataset, FileDataset, FileMetaDataset
+from pydicom.sequence import Sequence
+from pydicom.uid import ExplicitVRLittleEndian, generate_uid
+
+SEG = '1.2.840.10008.5.1.4.1.1.66.4'
+COLS, ROWS, SLICES = 30, 26, 14
+SPACING = (0.9, 0.8)  # PixelSpacing: between rows, between columns
+STEP = 2.5
+a = math.radians(20)
+ROW_DIR = np.array([math.cos(a), math.sin(a), 0.0])
+COL_DIR = np.array([-math.sin(a) * math.cos(0.3), math.cos(a) * math.cos(0.3), -math.sin(0.3)])
+NORMAL = np.cross(ROW_DIR, COL_DIR)
+ORIGIN = np.array([-12.0, -9.5, 20.0])
+FOR_UID = '1.2.826.0.1.3680043.9.7777.60'
+
+
+def position(i, j, k):
+    return ORIGIN + i * SPACING[1] * ROW_DIR + j * SPACING[0] * COL_DIR + k * STEP * NORMAL
+
+
+i, j, k = np.meshgrid(np.arange(COLS), np.arange(ROWS), np.arange(SLICES), indexing='ij')
+P = ORIGIN + (i[..., None] * SPACING[1] * ROW_DIR + j[..., None] * SPACING[0] * COL_DIR +
+              k[..., None] * STEP * NORMAL)
+centre = position(10.3, 12.1, 6.2)
+dist = np.linalg.norm(P - centre, axis=-1)
+ball = dist < 7.0
+box = (i >= 20) & (i < 27) & (j >= 3) & (j < 9) & (k >= 2) & (k < 5)
+labels = np.zeros(i.shape, np.uint8)
+labels[ball] = 1
+labels[box] = 2
+
+
+def dataset(kind):
+    meta = FileMetaDataset()
+    meta.MediaStorageSOPClassUID = SEG
+    meta.MediaStorageSOPInstanceUID = generate_uid()
+    meta.TransferSyntaxUID = ExplicitVRLittleEndian
+    ds = FileDataset(None, {}, file_meta=meta, preamble=b'\0' * 128)
+    ds.SOPClassUID = SEG
+    ds.SOPInstanceUID = meta.MediaStorageSOPInstanceUID
+    ds.PatientName, ds.PatientID, ds.PatientBirthDate, ds.PatientSex = 'SEG^PHANTOM', 'SEG1', '19700101', 'O'
+    ds.StudyInstanceUID = '1.2.826.0.1.3680043.9.7777.61'
+    ds.StudyDate, ds.StudyTime, ds.StudyID, ds.AccessionNumber, ds.ReferringPhysicianName = '20240301', '120000', '1', '', ''
+    ds.SeriesInstanceUID = generate_uid()
+    ds.SeriesNumber, ds.Modality = 300, 'SEG'
+    ds.FrameOfReferenceUID, ds.PositionReferenceIndicator = FOR_UID, ''
+    ds.Manufacturer, ds.ManufacturerModelName, ds.DeviceSerialNumber, ds.SoftwareVersions = 'pydicom', 'seg_cases', '1', '1'
+    ds.InstanceNumber = 1
+    ds.ImageType = ['DERIVED', 'PRIMARY']
+    ds.ContentLabel, ds.ContentDescription, ds.ContentCreatorName = 'SEGMENTATION', 'test', 'TEST^WRITER'
+    ds.ContentDate, ds.ContentTime = '20240301', '120000'
+    ds.SamplesPerPixel, ds.PhotometricInterpretation = 1, 'MONOCHROME2'
+    ds.Rows, ds.Columns = ROWS, COLS
+    ds.PixelRepresentation = 0
+    ds.LossyImageCompression = '00'
+    if kind == 'binary':
+        ds.BitsAllocated, ds.BitsStored, ds.HighBit = 1, 1, 0
+        ds.SegmentationType = 'BINARY'
+    else:
+        ds.BitsAllocated, ds.BitsStored, ds.HighBit = 8, 8, 7
+        ds.SegmentationType = 'FRACTIONAL'
+        ds.SegmentationFractionalType = 'PROBABILITY'
+        ds.MaximumFractionalValue = 200
+    segments = []
+    for number, name, lab in [(1, 'liver', [21000, 45000, 40000]), (2, 'spleen', [30000, 30000, 20000])]:
+        s = Dataset()
+        s.SegmentNumber, s.SegmentLabel, s.SegmentAlgorithmType = number, name, 'MANUAL'
+        code = Dataset()
+        code.CodeValue, code.CodingSchemeDesignator, code.CodeMeaning = '123037004', 'SCT', 'Anatomical Structure'
+        s.SegmentedPropertyCategoryCodeSequence = Sequence([code])
+        t = Dataset()
+        t.CodeValue, t.CodingSchemeDesignator, t.CodeMeaning = ('10200004', 'SCT', 'Liver') if number == 1 else (
+            '78961009', 'SCT', 'Spleen')
+        s.SegmentedPropertyTypeCodeSequence = Sequence([t])
+        s.RecommendedDisplayCIELabValue = lab
+        segments.append(s)
+    ds.SegmentSequence = Sequence(segments)
+    shared = Dataset()
+    pm = Dataset()
+    pm.PixelSpacing = [f'{v}' for v in SPACING]
+    pm.SliceThickness = f'{STEP}'
+    pm.SpacingBetweenSlices = f'{STEP}'
+    shared.PixelMeasuresSequence = Sequence([pm])
+    po = Dataset()
+    po.ImageOrientationPatient = [f'{v:.8f}' for v in list(ROW_DIR) + list(COL_DIR)]
+    shared.PlaneOrientationSequence = Sequence([po])
+    ds.SharedFunctionalGroupsSequence = Sequence([shared])
+    dim = Dataset()
+    dim.DimensionOrganizationUID = generate_uid()
+    ds.DimensionOrganizationSequence = Sequence([dim])
+    ds.DimensionOrganizationType = '3D'
+    ids = []
+    for pointer, group in [(0x0062000B, 0x0062000A), (0x00200032, 0x00209113)]:
+        d = Dataset()
+        d.DimensionOrganizationUID = dim.DimensionOrganizationUID
+        d.DimensionIndexPointer, d.FunctionalGroupPointer = pointer, group
+        ids.append(d)
+    ds.DimensionIndexSequence = Sequence(ids)
+    return ds
+
+
+def frames(kind):
+    """(segment, slice, 2D array rows x cols) for each frame that has something."""
+    out = []
+    for seg in (1, 2):
+        for s in range(SLICES):
+            if kind == 'binary':
+                plane = (labels[:, :, s] == seg).T.astype(np.uint8)
+            else:
+                if seg == 2:
+                    continue
+                # Probability from the distance: above 0.5 exactly inside the ball.
+                p = np.clip(0.5 + (7.0 - dist[:, :, s]) / 4.0, 0, 1)
+                plane = np.round(p * 200).astype(np.uint8).T
+                plane[(plane >= 100) & (~ball[:, :, s].T)] = 99
+                plane[(plane < 100) & ball[:, :, s].T] = 100
+            if plane.any():
+                out.append((seg, s, plane))
+    random.Random(3).shuffle(out)
+    return out
+
+
+def write(path, kind, positions=True):
+    ds = dataset(kind)
+    fr = frames(kind)
+    per = []
+    for n, (seg, s, _) in enumerate(fr):
+        f = Dataset()
+        fc = Dataset()
+        fc.DimensionIndexValues = [seg, s + 1]
+        f.FrameContentSequence = Sequence([fc])
+        if positions:
+            pp = Dataset()
+            pp.ImagePositionPatient = [f'{v:.6f}' for v in position(0, 0, s)]
+            f.PlanePositionSequence = Sequence([pp])
+        si = Dataset()
+        si.ReferencedSegmentNumber = seg
+        f.SegmentIdentificationSequence = Sequence([si])
+        per.append(f)
+    ds.PerFrameFunctionalGroupsSequence = Sequence(per)
+    ds.NumberOfFrames = len(fr)
+    if kind == 'binary':
+        bits = np.concatenate([p.reshape(-1) for _, _, p in fr])
+        data = np.packbits(bits, bitorder='little').tobytes()
+    else:
+        data = b''.join(p.tobytes() for _, _, p in fr)
+    if len(data) % 2:
+        data += b'\0'
+    ds.PixelData = data
+    ds['PixelData'].VR = 'OB'
+    ds.save_as(path, write_like_original=False)
+
+
+out = sys.argv[1]
+write(f'{out}/binary.dcm', 'binary')
+write(f'{out}/fractional.dcm', 'fractional')
+write(f'{out}/noposition.dcm', 'binary', positions=False)
+with open(f'{out}/labels.txt', 'w') as f:
+    for kk in range(SLICES):
+        for jj in range(ROWS):
+            for ii in range(COLS):
+                p = P[ii, jj, kk]
+                f.write(f'{p[0]:.6f} {p[1]:.6f} {p[2]:.6f} {labels[ii, jj, kk]}\n')

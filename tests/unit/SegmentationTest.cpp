@@ -1,0 +1,140 @@
+// DICOM Segmentation objects written by pydicom (tests/support/seg_cases.py: a rotated grid whose
+// binary frames are not byte-aligned, frames in shuffled order, only where a segment has
+// pixels) read onto the voxels pydicom's own arrays say, binary and fractional; a frame
+// without its position is refused; the segments' names and colours make a colour table.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/octree/OctreeBuilder.h"
+#include "core/reference/SliceSampler.h"
+#include "dicom/SegmentationSource.h"
+#include "tests/support/ProcessRunner.h"
+#include "tests/support/TempDir.h"
+
+using namespace hvx;
+
+namespace {
+struct Cases {
+    test::TempDir dir;
+    Cases() {
+        const auto r = test::runCommand("/usr/bin/python3 " + std::string(HVX_SOURCE_DIR) + "/tests/support/seg_cases.py " +
+                                        dir.path().string());
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+    }
+};
+
+/// Every voxel centre of the writer's grid: the label found there equals the writer's.
+void expectLabelsWhereTheWriterPutThem(const Cases& cases, const std::string& file) {
+    dicom::SegmentationSource source(cases.dir.file(file));
+    EXPECT_EQ(source.geometry().frameOfReferenceUid, "1.2.826.0.1.3680043.9.7777.60");
+    EXPECT_TRUE(source.geometry().isLabel);
+    core::BuildOptions o;
+    o.brickSize = 16;
+    o.labels = true;
+    core::JobContext job;
+    core::OctreeBuilder(o).build(source, cases.dir.file(file + ".hvo"), job);
+    const auto reader = core::OctreeReader::open(cases.dir.file(file + ".hvo"));
+    core::BrickCache cache(16u << 20);
+    const core::SliceSampler sampler(*reader, cache);
+    std::ifstream in(cases.dir.file("labels.txt"));
+    double x, y, z;
+    int label;
+    std::size_t checked = 0, labelled = 0, wrong = 0, outside = 0;
+    while (in >> x >> y >> z >> label) {
+        const double v = sampler.valueAt({x, y, z}, 0);
+        ++checked;
+        labelled += label != 0;
+        if (std::isnan(v)) {
+            // The SEG's grid spans only its frames' slices: outside it there is no label.
+            outside += 1;
+            EXPECT_EQ(label, 0) << x << "," << y << "," << z;
+            continue;
+        }
+        if (int(v) != label && ++wrong < 5) ADD_FAILURE() << file << " at " << x << "," << y << "," << z << ": " << v << ", not " << label;
+    }
+    EXPECT_EQ(checked, 30u * 26u * 14u);
+    EXPECT_GT(labelled, 500u);
+    EXPECT_EQ(wrong, 0u) << file;
+    EXPECT_LT(outside, checked);
+}
+}  // namespace
+
+TEST(Segmentation, BinaryFramesLandOnTheWritersVoxels) {
+    Cases cases;
+    ASSERT_TRUE(dicom::SegmentationSource::isSegmentation(cases.dir.file("binary.dcm")));
+    expectLabelsWhereTheWriterPutThem(cases, "binary.dcm");
+    dicom::SegmentationSource source(cases.dir.file("binary.dcm"));
+    const auto& t = source.table();
+    ASSERT_EQ(t.entries().size(), 2u);
+    EXPECT_EQ(t.find(1)->name, "liver");
+    EXPECT_EQ(t.find(2)->name, "spleen");
+    // CIELab (21000, 45000, 40000) is a light red-brown; (30000, 30000, 20000) a blue.
+    EXPECT_GT(t.find(1)->rgba[0], t.find(1)->rgba[2]);
+    EXPECT_GT(t.find(2)->rgba[2], t.find(2)->rgba[0]);
+    EXPECT_TRUE(source.warnings().empty());
+}
+
+TEST(Segmentation, FractionalSegmentsAreTheirVoxelsAboveHalf) {
+    Cases cases;
+    dicom::SegmentationSource source(cases.dir.file("fractional.dcm"));
+    ASSERT_EQ(source.warnings().size(), 1u);
+    EXPECT_NE(source.warnings()[0].find("half its maximum (200)"), std::string::npos);
+    // The fractional object holds the ball only (segment 1): the box's voxels read as 0 there.
+    core::BuildOptions o;
+    o.brickSize = 16;
+    o.labels = true;
+    core::JobContext job;
+    core::OctreeBuilder(o).build(source, cases.dir.file("f.hvo"), job);
+    const auto reader = core::OctreeReader::open(cases.dir.file("f.hvo"));
+    core::BrickCache cache(16u << 20);
+    const core::SliceSampler sampler(*reader, cache);
+    std::ifstream in(cases.dir.file("labels.txt"));
+    double x, y, z;
+    int label;
+    std::size_t wrong = 0, ball = 0;
+    while (in >> x >> y >> z >> label) {
+        const double v = sampler.valueAt({x, y, z}, 0);
+        const int want = label == 1 ? 1 : 0;
+        ball += want;
+        if (!std::isnan(v) && int(v) != want) ++wrong;
+        if (std::isnan(v)) EXPECT_EQ(want, 0);
+    }
+    EXPECT_GT(ball, 500u);
+    EXPECT_EQ(wrong, 0u);
+}
+
+TEST(Segmentation, BadObjectsAreRefusedWithASentence) {
+    Cases cases;
+    try {
+        dicom::SegmentationSource source(cases.dir.file("noposition.dcm"));
+        ADD_FAILURE() << "a SEG without frame positions was read";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("has no position (PlanePositionSequence)"), std::string::npos) << e.what();
+    }
+    std::ofstream(cases.dir.file("junk.dcm")) << "not dicom at all";
+    EXPECT_FALSE(dicom::SegmentationSource::isSegmentation(cases.dir.file("junk.dcm")));
+    EXPECT_THROW(dicom::SegmentationSource(cases.dir.file("junk.dcm")), core::Error);
+    EXPECT_FALSE(dicom::SegmentationSource::isSegmentation(cases.dir.file("absent.dcm")));
+    // Truncated: the pixel data cut off.
+    std::ifstream full(cases.dir.file("binary.dcm"), std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(full)), std::istreambuf_iterator<char>());
+    std::ofstream(cases.dir.file("cut.dcm"), std::ios::binary) << bytes.substr(0, bytes.size() - 200);
+    EXPECT_THROW(
+        {
+            dicom::SegmentationSource source(cases.dir.file("cut.dcm"));
+            std::vector<std::uint8_t> slab(std::size_t(source.geometry().voxelCount()));
+            source.readSlices(0, source.geometry().dims[2], slab.data());
+        },
+        core::Error);
+}
+
+TEST(Segmentation, TheColourTableRoundTripsThroughSlicersFormat) {
+    Cases cases;
+    dicom::SegmentationSource source(cases.dir.file("binary.dcm"));
+    std::ofstream(cases.dir.file("t.ctbl")) << source.table().toSlicerTable();
+    const auto back = core::LabelTable::load(cases.dir.file("t.ctbl"));
+    EXPECT_EQ(back.format(), "3D Slicer colour table");
+    EXPECT_EQ(back.find(1)->name, "liver");
+    EXPECT_EQ(back.find(2)->rgba, source.table().find(2)->rgba);
+}
