@@ -140,8 +140,9 @@ constexpr std::uint64_t kMaxFrames = 1u << 18;
 void checkFrameCount(DcmDataset* ds, const DicomInstance& p) {
     if (p.frames <= 1) return;
     const DcmXfer xfer(ds->getOriginalXfer());
-    const std::uint64_t frameBytes = std::uint64_t(p.rows) * p.columns * std::max<std::uint16_t>(1, p.samplesPerPixel) *
-                                     std::max<std::uint16_t>(8, p.bitsAllocated) / 8;
+    // In bits first: 1-bit frames (a binary segmentation) are packed, not one byte a pixel.
+    const std::uint64_t frameBytes = (std::uint64_t(p.rows) * p.columns * std::max<std::uint16_t>(1, p.samplesPerPixel) *
+                                          std::max<std::uint16_t>(1, p.bitsAllocated) + 7) / 8;
     std::uint64_t least = frameBytes;
     if (xfer.isEncapsulated()) least = 8;
     else if (xfer.getStreamCompression() != ESC_none) least = std::max<std::uint64_t>(1, frameBytes / 1032);

@@ -164,6 +164,10 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
         }
         // NM multi-frame objects are placed by their Detector Information Sequence (and, for
         // tomography, by rotation), which Holovox does not read: refused rather than stacked.
+        if (in.sopClassUid == "1.2.840.10008.5.1.4.1.1.66.4") {  // Segmentation Storage: not an image
+            ++skipped["segmentation objects (SEG; laid over their image as labels, not stacked as one)"];
+            continue;
+        }
         if (in.modality == "NM" && in.frames > 1) {
             ++skipped["NM multi-frame objects (placed by a Detector Information Sequence Holovox does not read yet)"];
             continue;

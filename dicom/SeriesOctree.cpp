@@ -1,5 +1,8 @@
 #include "dicom/SeriesOctree.h"
 
+#include "core/base/AtomicFileWriter.h"
+#include "dicom/SegmentationSource.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <map>
@@ -59,6 +62,27 @@ std::string defaultPath(StudyDatabase& db, const std::string& seriesUid, const s
 
 std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
                                 std::vector<std::string>* warnings, std::string outPath, int volume) {
+    // A segmentation series is a label map, with its segments' names and colours beside it.
+    const auto files = db.filesOfSeries(seriesUid);
+    if (!files.empty() && SegmentationSource::isSegmentation(files.front())) {
+        SegmentationSource seg(files.front());
+        if (warnings) {
+            for (const auto& w : seg.warnings()) warnings->push_back(w);
+            if (files.size() > 1)
+                warnings->push_back("the series holds " + std::to_string(files.size()) +
+                                    " segmentation objects: the first is shown (" + files.front() + ")");
+        }
+        if (outPath.empty()) outPath = defaultPath(db, seriesUid, ".hvo");
+        core::BuildOptions o;
+        o.labels = true;
+        core::OctreeBuilder(o).build(seg, outPath, job);
+        const std::string table = seg.table().toSlicerTable();
+        core::AtomicFileWriter w(core::LabelTable::sidecarPath(outPath));
+        w.append(table.data(), table.size());
+        w.commit();
+        db.setSeriesOctree(seriesUid, outPath);
+        return outPath;
+    }
     DicomSeriesSource source(assembleSeries(db, seriesUid, job, warnings, volume));
     const std::string suffix = volume > 0 ? "-v" + std::to_string(volume) : std::string();
     if (outPath.empty()) outPath = defaultPath(db, seriesUid, suffix + ".hvo");

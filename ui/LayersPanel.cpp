@@ -19,6 +19,7 @@
 
 #include "core/base/AtomicFileWriter.h"
 #include "core/base/Error.h"
+#include "core/octree/OctreeReader.h"
 #include "dicom/SeriesOctree.h"
 #include "dicom/StudyDatabase.h"
 #include "ui/JobManager.h"
@@ -181,7 +182,11 @@ void LayersPanel::setJobs(JobManager* jobs, const QString& databasePath) {
 
 void LayersPanel::overlaySeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume) {
     if (!octreePath.isEmpty() || !jobs_) {
-        chooseOverlay(octreePath, label);
+        layOver(octreePath, label);
+        return;
+    }
+    if (!layers_.base()) {
+        show(tr("Open a volume first: %1 is laid over the open volume.").arg(label), true);
         return;
     }
     show(tr("Building the octree of %1 to lay it over the open volume\u2026").arg(label), false);
@@ -195,8 +200,19 @@ void LayersPanel::overlaySeries(const QString& seriesUid, const QString& octreeP
             return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, &warnings, {}, volume));
         },
         [self, label](const QString& path) {
-            if (self) self->chooseOverlay(path, label);
+            if (self) self->layOver(path, label);
         });
+}
+
+bool LayersPanel::layOver(const QString& octreePath, const QString& label) {
+    bool labels = false;
+    try {
+        labels = core::OctreeReader::open(octreePath.toStdString())->geometry().isLabel;
+    } catch (const core::Error& e) {
+        show(QString::fromStdString(e.what()), true);
+        return false;
+    }
+    return labels ? chooseLabels(octreePath, label) : chooseOverlay(octreePath, label);
 }
 
 int LayersPanel::computeStatistics() {

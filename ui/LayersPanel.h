@@ -41,8 +41,11 @@ public:
     /// Where series' octrees are built when a series without one is laid over (overlaySeries).
     void setJobs(JobManager* jobs, const QString& databasePath);
     /// Lays an imported series over the open volume (the Studies browser's "Lay over the open
-    /// volume"): its octree when it has one, else after building it in the background (a job).
+    /// volume", or a segmentation series opened): its octree when it has one, else after
+    /// building it in the background (a job); a label map (a SEG's) as labels, else in colour.
     void overlaySeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume);
+    /// Lays an octree over the open volume: as labels when it is a label map, else in colour.
+    bool layOver(const QString& octreePath, const QString& label = {});
     /// Computes each label's volume and the open volume's mean and SD over it (a job); the
     /// legend shows them and "Export CSV..." saves them. Returns the job id (-1 without labels).
     int computeStatistics();

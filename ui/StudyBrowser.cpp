@@ -195,6 +195,8 @@ void StudyBrowser::refresh() {
                 item->setIcon(0, *cached);
                 QString tip = se.octreePath.empty() ? tr("No octree yet: opening builds it in the background")
                                                     : tr("Octree: %1").arg(QString::fromStdString(se.octreePath));
+                if (se.modality == "SEG")
+                    tip = tr("A segmentation: opening lays it over the open volume as labels (Layers dock)\n") + tip;
                 if (!se.warnings.empty()) {  // assumed spacing or orientation, gaps...: said in the row itself
                     QStringList lines;
                     for (const auto& w : se.warnings) lines << QString::fromStdString(w);
@@ -247,8 +249,10 @@ bool StudyBrowser::seriesOf(QTreeWidgetItem* item, QString& uid, QString& octree
 
 void StudyBrowser::activated(QTreeWidgetItem* item) {
     QString uid, octree;
-    if (seriesOf(item, uid, octree))
-        emit openSeries(uid, octree, item->data(0, LabelRole).toString(), item->data(0, VolumeRole).toInt());
+    if (!seriesOf(item, uid, octree)) return;
+    // A segmentation is not a volume of its own: it is laid over the open image as labels.
+    if (item->text(2) == QLatin1String("SEG")) emit overlaySeries(uid, octree, item->data(0, LabelRole).toString(), 0);
+    else emit openSeries(uid, octree, item->data(0, LabelRole).toString(), item->data(0, VolumeRole).toInt());
 }
 
 void StudyBrowser::requestOverlay(QTreeWidgetItem* item) {

@@ -17,6 +17,7 @@
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/DicomSeriesWriter.h"
 #include "dicom/SeriesAssembler.h"
+#include "dicom/SegmentationSource.h"
 #include "dicom/SeriesOctree.h"
 #include "dicom/StudyDatabase.h"
 #include "dicom/UidPath.h"
@@ -158,6 +159,15 @@ int buildSeriesCommand(int argc, char** argv) {
     dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
     const auto files = db.filesOfSeries(uid);
     if (files.empty()) throw core::Error("series " + uid + " is not in the database (import it first)");
+    if (dicom::SegmentationSource::isSegmentation(files.front())) {  // a label map, with its colour table
+        core::JobContext job;
+        std::vector<std::string> warnings;
+        const auto path = dicom::SeriesOctree::build(db, uid, job, &warnings, *out);
+        for (const auto& w : warnings) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
+        std::printf("segmentation %s: label map %s, segments' names and colours in %s\n", uid.c_str(), path.c_str(),
+                    core::LabelTable::sidecarPath(path).c_str());
+        return 0;
+    }
     dicom::DicomScanner::Result scan;
     std::vector<std::string> notes;
     auto volumes = scanAndAssemble(files, scan, notes);

@@ -13,6 +13,7 @@
 #include <QTreeWidgetItemIterator>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -21,6 +22,7 @@
 #include "dicom/DicomSeriesWriter.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/support/MemoryVoxelSource.h"
+#include "tests/support/ProcessRunner.h"
 #include "ui/LayersPanel.h"
 #include "ui/SliceLayers.h"
 #include "ui/SliceView.h"
@@ -228,6 +230,50 @@ private slots:
         QVERIFY(window_->jobs()->waitIdle(60000));
         expectRedAround(kHotSpot, base);
         QVERIFY(window_->layers()->note().isEmpty());  // the same frame: nothing to say
+    }
+
+    void aSegmentationSeriesIsLaidOverItsImage() {
+        // A CT and its DICOM SEG written by pydicom, imported together: the CT opened, then
+        // the SEG series opened lays its segments over it with their own names and colours.
+        const auto seg = dir_.file("seg");
+        std::filesystem::create_directories(seg);
+        QCOMPARE(test::runCommand("/usr/bin/python3 " HVX_SOURCE_DIR "/tests/support/seg_cases.py " + seg).exitCode, 0);
+        window_->layers()->clearLabels();
+        window_->layers()->clearOverlay();
+        QSignalSpy imported(window_->browser(), &ui::StudyBrowser::imported);
+        window_->browser()->importPaths({QString::fromStdString(seg)});
+        QTRY_COMPARE_WITH_TIMEOUT(imported.count(), 1, 60000);
+        QTreeWidgetItem *ct = nullptr, *binary = nullptr;
+        for (QTreeWidgetItemIterator it(window_->browser()->tree()); *it; ++it) {
+            if ((*it)->data(0, Qt::UserRole + 1).toString().isEmpty()) continue;
+            if ((*it)->text(2) == "CT" && (*it)->text(0).contains("CT")) ct = *it;
+            if ((*it)->text(2) == "SEG" && (*it)->text(0).startsWith("300 ")) binary = *it;
+        }
+        QVERIFY(ct && binary);
+        QVERIFY(binary->toolTip(0).contains("segmentation"));
+        window_->openSeries(ct->data(0, Qt::UserRole + 1).toString(), {}, "seg CT");
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        QTRY_VERIFY_WITH_TIMEOUT(window_->openLabel() == "seg CT", 10000);
+        std::ifstream ballFile(seg + "/ball.txt");
+        glm::dvec3 ball;
+        ballFile >> ball.x >> ball.y >> ball.z;
+        pointAt(ball);
+        auto* tree = window_->browser()->tree();
+        tree->scrollToItem(binary);
+        const QRect r = tree->visualItemRect(binary);
+        QTest::mouseClick(tree->viewport(), Qt::LeftButton, {}, r.center());
+        QTest::mouseDClick(tree->viewport(), Qt::LeftButton, {}, r.center());
+        QTRY_VERIFY2_WITH_TIMEOUT(window_->layers()->hasLabels(), qPrintable(window_->layersPanel()->message()), 60000);
+        QVERIFY(window_->jobs()->waitIdle(60000));
+        const auto& table = window_->layers()->labelTable();
+        QVERIFY(table.find(1) && table.find(2));
+        QCOMPARE(QString::fromStdString(table.find(1)->name), QString("liver"));
+        const auto& liver = table.find(1)->rgba;
+        const auto c = rgbAt(axial()->image(), axial()->widgetAt(ball));
+        for (int a = 0; a < 3; ++a)  // half the liver's colour over 40 HU's grey (128)
+            QVERIFY2(std::abs(c[std::size_t(a)] - (128 + (liver[std::size_t(a)] - 128) / 2.0)) <= 2.0,
+                     qPrintable(QString("%1 %2 %3").arg(c[0]).arg(c[1]).arg(c[2])));
+        window_->slice(0)->grab().save(test::guiArtifacts() + "/layers-seg-axial.png");
     }
 
     void cleanupTestCase() { close(); }

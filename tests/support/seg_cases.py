@@ -9,6 +9,9 @@
   noposition.dcm  the binary object without its frames' PlanePositionSequence
   labels.txt      "x y z label" (LPS mm) at every voxel centre of the grid: what a reader must
                   find there (0: no segment)
+  image/          the CT the segmentation was drawn on: 14 slices of the same grid and frame of
+                  reference (40 HU everywhere)
+  ball.txt        the ball's centre, "x y z" (LPS mm)
 
 usage: seg_cases.py OUT_DIR"""
 import copy
@@ -49,7 +52,7 @@ labels[ball] = 1
 labels[box] = 2
 
 
-def dataset(kind):
+def dataset(kind, number=300):
     meta = FileMetaDataset()
     meta.MediaStorageSOPClassUID = SEG
     meta.MediaStorageSOPInstanceUID = generate_uid()
@@ -61,7 +64,8 @@ def dataset(kind):
     ds.StudyInstanceUID = '1.2.826.0.1.3680043.9.7777.61'
     ds.StudyDate, ds.StudyTime, ds.StudyID, ds.AccessionNumber, ds.ReferringPhysicianName = '20240301', '120000', '1', '', ''
     ds.SeriesInstanceUID = generate_uid()
-    ds.SeriesNumber, ds.Modality = 300, 'SEG'
+    ds.SeriesNumber, ds.Modality = number, 'SEG'
+    ds.SeriesDescription = f'{kind} segmentation'
     ds.FrameOfReferenceUID, ds.PositionReferenceIndicator = FOR_UID, ''
     ds.Manufacturer, ds.ManufacturerModelName, ds.DeviceSerialNumber, ds.SoftwareVersions = 'pydicom', 'seg_cases', '1', '1'
     ds.InstanceNumber = 1
@@ -139,8 +143,8 @@ def frames(kind):
     return out
 
 
-def write(path, kind, positions=True):
-    ds = dataset(kind)
+def write(path, kind, number, positions=True):
+    ds = dataset(kind, number)
     fr = frames(kind)
     per = []
     for n, (seg, s, _) in enumerate(fr):
@@ -170,10 +174,38 @@ def write(path, kind, positions=True):
     ds.save_as(path, write_like_original=False)
 
 
+def image_series(folder):
+    import os
+    os.makedirs(folder, exist_ok=True)
+    series = generate_uid()
+    for s in range(SLICES):
+        ds = dataset('binary')
+        for tag in ['SegmentationType', 'SegmentSequence', 'SharedFunctionalGroupsSequence', 'DimensionOrganizationSequence',
+                    'DimensionOrganizationType', 'DimensionIndexSequence', 'ContentLabel', 'ContentDescription',
+                    'ContentCreatorName', 'LossyImageCompression']:
+            delattr(ds, tag)
+        ds.SOPClassUID = ds.file_meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.2'
+        ds.Modality, ds.SeriesInstanceUID, ds.SeriesNumber, ds.InstanceNumber = 'CT', series, 2, s + 1
+        ds.SeriesDescription = 'CT'
+        ds.ImageType = ['ORIGINAL', 'PRIMARY', 'AXIAL']
+        ds.ImageOrientationPatient = [f'{v:.8f}' for v in list(ROW_DIR) + list(COL_DIR)]
+        ds.ImagePositionPatient = [f'{v:.6f}' for v in position(0, 0, s)]
+        ds.PixelSpacing = [f'{v}' for v in SPACING]
+        ds.SliceThickness = f'{STEP}'
+        ds.BitsAllocated, ds.BitsStored, ds.HighBit, ds.PixelRepresentation = 16, 16, 15, 1
+        ds.RescaleIntercept, ds.RescaleSlope = '-1024', '1'
+        ds.PixelData = np.full((ROWS, COLS), 1064, np.int16).tobytes()
+        ds['PixelData'].VR = 'OW'
+        ds.save_as(f'{folder}/ct{s:02d}.dcm', write_like_original=False)
+
+
 out = sys.argv[1]
-write(f'{out}/binary.dcm', 'binary')
-write(f'{out}/fractional.dcm', 'fractional')
-write(f'{out}/noposition.dcm', 'binary', positions=False)
+image_series(f'{out}/image')
+with open(f'{out}/ball.txt', 'w') as f:
+    f.write(' '.join(f'{v:.6f}' for v in centre) + '\n')
+write(f'{out}/binary.dcm', 'binary', 300)
+write(f'{out}/fractional.dcm', 'fractional', 301)
+write(f'{out}/noposition.dcm', 'binary', 302, positions=False)
 with open(f'{out}/labels.txt', 'w') as f:
     for kk in range(SLICES):
         for jj in range(ROWS):
