@@ -103,7 +103,8 @@ SegmentationSource::SegmentationSource(const std::string& path) : impl_(std::mak
     OFString sopClass;
     ds.findAndGetOFString(DCM_SOPClassUID, sopClass);
     if (sopClass != UID_SegmentationStorage) m.fail("not a DICOM Segmentation object (SOP class " + std::string(sopClass.c_str()) + ")");
-    if (DcmSegmentation::loadDataset(ds, m.seg).bad() || !m.seg) m.fail("the segmentation does not load (dcmseg)");
+    if (const OFCondition loaded = DcmSegmentation::loadDataset(ds, m.seg); loaded.bad() || !m.seg)
+        m.fail("the segmentation does not load (dcmseg: " + std::string(loaded.text()) + ")");
     m.fractional = m.seg->getSegmentationType() == DcmSegTypes::ST_FRACTIONAL;
     if (m.fractional) {
         Uint16 maxValue = 0;

@@ -212,3 +212,108 @@ with open(f'{out}/labels.txt', 'w') as f:
             for ii in range(COLS):
                 p = P[ii, jj, kk]
                 f.write(f'{p[0]:.6f} {p[1]:.6f} {p[2]:.6f} {labels[ii, jj, kk]}\n')
+
+
+# --- An RT Structure Set on the same grid -------------------------------------------------------
+# rtstruct.dcm   ROI 1 "GTV": a 40-gon of radius 6 mm on slices 4-8; ROI 2 "ring": a 20 x 20 mm
+#                square with an 8 x 8 mm square hole (two contours, even-odd) on slices 2-3;
+#                ROI 3 "beyond": one contour on a plane past the image's last slice
+# rt_labels.txt  "x y z label" at every voxel centre (even-odd point-in-polygon, numpy)
+# grid.txt       the grid: dims, spacing (columns, rows, slices), origin, row, column, normal
+def rt_contours():
+    out = []  # (roi, slice, [(i, j) fractional pixel coordinates])
+    ci, cj = 14.2, 11.7
+    for s in range(4, 9):
+        pts = [(ci + 6.0 / SPACING[1] * math.cos(t), cj + 6.0 / SPACING[0] * math.sin(t))
+               for t in np.linspace(0, 2 * math.pi, 40, endpoint=False)]
+        out.append((1, s, pts))
+    for s in (2, 3):
+        for half in (10.0, 4.0):
+            out.append((2, s, [(ci + dx * half / SPACING[1], cj + dy * half / SPACING[0])
+                               for dx, dy in [(-1, -1), (1, -1), (1, 1), (-1, 1)]]))
+    out.append((3, SLICES + 6, [(5, 5), (9, 5), (9, 9)]))
+    return out
+
+
+def inside(px, py, poly):
+    """Crossing number of a ray from (px, py) towards +x (the classic point-in-polygon test)."""
+    c = np.zeros(px.shape, bool)
+    n = len(poly)
+    for e in range(n):
+        (x0, y0), (x1, y1) = poly[e], poly[(e + 1) % n]
+        crosses = (y0 > py) != (y1 > py)
+        with np.errstate(divide='ignore', invalid='ignore'):
+            xc = x0 + (py - y0) * (x1 - x0) / (y1 - y0)
+        c ^= crosses & (px < xc)
+    return c
+
+
+def rtstruct(path):
+    ds = dataset('binary')
+    for tag in ['SegmentationType', 'SegmentSequence', 'SharedFunctionalGroupsSequence', 'DimensionOrganizationSequence',
+                'DimensionOrganizationType', 'DimensionIndexSequence', 'ContentLabel', 'ContentDescription',
+                'ContentCreatorName', 'LossyImageCompression', 'SamplesPerPixel', 'PhotometricInterpretation', 'Rows',
+                'Columns', 'PixelRepresentation', 'BitsAllocated', 'BitsStored', 'HighBit', 'ImageType',
+                ]:
+        delattr(ds, tag)
+    ds.OperatorsName = ''
+    ds.SOPClassUID = ds.file_meta.MediaStorageSOPClassUID = '1.2.840.10008.5.1.4.1.1.481.3'
+    ds.Modality, ds.SeriesNumber, ds.SeriesDescription = 'RTSTRUCT', 400, 'structures'
+    ds.StructureSetLabel, ds.StructureSetDate, ds.StructureSetTime = 'phantom', '20240301', '120000'
+    ref = Dataset()
+    ref.FrameOfReferenceUID = FOR_UID
+    ds.ReferencedFrameOfReferenceSequence = Sequence([ref])
+    rois, roic = [], []
+    colours = {1: [255, 0, 0], 2: [0, 200, 255], 3: [0, 255, 0]}
+    names = {1: 'GTV', 2: 'ring', 3: 'beyond'}
+    for number in (1, 2, 3):
+        r = Dataset()
+        r.ROINumber, r.ReferencedFrameOfReferenceUID, r.ROIName, r.ROIGenerationAlgorithm = number, FOR_UID, names[number], 'MANUAL'
+        rois.append(r)
+        c = Dataset()
+        c.ReferencedROINumber, c.ROIDisplayColor = number, colours[number]
+        seq = []
+        for roi, s, pts in rt_contours():
+            if roi != number:
+                continue
+            ct = Dataset()
+            ct.ContourGeometricType = 'CLOSED_PLANAR'
+            ct.NumberOfContourPoints = len(pts)
+            ct.ContourData = [f'{v:.5f}' for (pi, pj) in pts for v in position(pi, pj, s)]
+            seq.append(ct)
+        c.ContourSequence = Sequence(seq)
+        roic.append(c)
+    ds.StructureSetROISequence = Sequence(rois)
+    ds.ROIContourSequence = Sequence(roic)
+    obs = []
+    for number in (1, 2, 3):
+        o = Dataset()
+        o.ObservationNumber, o.ReferencedROINumber, o.RTROIInterpretedType, o.ROIInterpreter = number, number, 'ORGAN', ''
+        obs.append(o)
+    ds.RTROIObservationsSequence = Sequence(obs)
+    ds.save_as(path, write_like_original=False)
+    # The expected label of every voxel centre: ROIs in number order, a later one over an earlier.
+    rt = np.zeros(labels.shape, np.uint8)
+    ii, jj = np.meshgrid(np.arange(COLS), np.arange(ROWS), indexing='ij')
+    for number in (1, 2):
+        for s in range(SLICES):
+            polys = [pts for roi, sl, pts in rt_contours() if roi == number and sl == s]
+            if not polys:
+                continue
+            m = np.zeros(ii.shape, bool)
+            for poly in polys:
+                m ^= inside(ii.astype(float), jj.astype(float), poly)
+            rt[:, :, s][m] = number
+    with open(path.replace('rtstruct.dcm', 'rt_labels.txt'), 'w') as f:
+        for kk in range(SLICES):
+            for jj2 in range(ROWS):
+                for ii2 in range(COLS):
+                    p = P[ii2, jj2, kk]
+                    f.write(f'{p[0]:.6f} {p[1]:.6f} {p[2]:.6f} {rt[ii2, jj2, kk]}\n')
+    with open(path.replace('rtstruct.dcm', 'grid.txt'), 'w') as f:
+        f.write(f'{COLS} {ROWS} {SLICES}\n{SPACING[1]} {SPACING[0]} {STEP}\n')
+        for v in (ORIGIN, ROW_DIR, COL_DIR, NORMAL):
+            f.write(' '.join(f'{x:.10f}' for x in v) + '\n')
+
+
+rtstruct(f'{out}/rtstruct.dcm')

@@ -8,6 +8,7 @@
 #include "core/base/Error.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/DicomScanner.h"
+#include "dicom/SegmentationSource.h"
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/PixelDecoder.h"
 #include "dicom/SeriesAssembler.h"
@@ -129,6 +130,7 @@ TEST(DicomCorpus, EveryImagePydicomDecodesImportsToPydicomsValues) {
         "    try:\n"
         "        ds = pydicom.dcmread(path)\n"
         "        if 'PixelData' not in ds or int(ds.get('SamplesPerPixel', 1)) != 1: continue\n"
+        "        if ds.SOPClassUID == '1.2.840.10008.5.1.4.1.1.66.4': continue  # SEG: not an image\n"
         "        frames = int(ds.get('NumberOfFrames', 1) or 1)\n"
         "        a = apply_modality_lut(ds.pixel_array, ds).astype(np.float64)\n"
         "        if 'DoseGridScaling' in ds: a *= float(ds.DoseGridScaling)  # RT dose: in Gy\n"
@@ -188,4 +190,27 @@ TEST(DicomCorpus, EveryImagePydicomDecodesImportsToPydicomsValues) {
     std::printf("%d corpus images compared with pydicom's decode, %d refused (1-bit segmentations)\n", files - refused,
                 refused);  // 45 and 2 on Debian 12 (pydicom 2.3: no JPEG handler for its JPEG files)
     EXPECT_GE(files, 40) << "pydicom decoded fewer of its corpus images than it does on Debian 12";
+}
+
+// The corpus' two segmentation objects (1-bit, 512 x 512, no functional groups dcmseg accepts):
+// never stacked as images by import, and refused with a sentence naming the file, not read as
+// something else.
+TEST(DicomCorpus, SegmentationObjectsAreNotImagesAndBrokenOnesAreRefused) {
+    for (const char* name : {"liver_1frame.dcm", "liver_expb_1frame.dcm"}) {
+        const std::string path = corpus + name;
+        core::JobContext job;
+        const auto scan = dicom::DicomScanner::scan({path}, job);
+        std::vector<std::string> notes;
+        EXPECT_TRUE(dicom::SeriesAssembler::assemble(scan.instances, notes).empty()) << name;
+        bool said = false;
+        for (const auto& n : notes) said = said || n.find("segmentation objects (SEG") != std::string::npos;
+        EXPECT_TRUE(said) << name;
+        EXPECT_TRUE(dicom::SegmentationSource::isSegmentation(path));
+        try {
+            dicom::SegmentationSource source(path);
+            ADD_FAILURE() << name << " was read";
+        } catch (const core::Error& e) {
+            EXPECT_NE(std::string(e.what()).find(path + ": "), std::string::npos) << e.what();
+        }
+    }
 }

@@ -5,10 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
+
+#include <glm/mat3x3.hpp>
 
 #include "core/octree/OctreeBuilder.h"
 #include "core/reference/SliceSampler.h"
 #include "dicom/SegmentationSource.h"
+#include "dicom/StructureSetSource.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
 
@@ -137,4 +141,73 @@ TEST(Segmentation, TheColourTableRoundTripsThroughSlicersFormat) {
     EXPECT_EQ(back.format(), "3D Slicer colour table");
     EXPECT_EQ(back.find(1)->name, "liver");
     EXPECT_EQ(back.find(2)->rgba, source.table().find(2)->rgba);
+}
+
+namespace {
+/// The grid seg_cases.py wrote its objects on (grid.txt), as a geometry.
+core::VolumeGeometry writersGrid(const Cases& cases) {
+    std::ifstream in(cases.dir.file("grid.txt"));
+    core::VolumeGeometry g;
+    in >> g.dims[0] >> g.dims[1] >> g.dims[2] >> g.spacing.x >> g.spacing.y >> g.spacing.z;
+    glm::dvec3 r, c, n;
+    in >> g.origin.x >> g.origin.y >> g.origin.z >> r.x >> r.y >> r.z >> c.x >> c.y >> c.z >> n.x >> n.y >> n.z;
+    g.direction = glm::dmat3(r, c, n);
+    g.frameOfReferenceUid = "1.2.826.0.1.3680043.9.7777.60";
+    g.modality = "CT";
+    return g;
+}
+}  // namespace
+
+TEST(StructureSet, ContoursFillTheVoxelsPydicomsPolygonsEnclose) {
+    Cases cases;
+    ASSERT_TRUE(dicom::StructureSetSource::isStructureSet(cases.dir.file("rtstruct.dcm")));
+    EXPECT_FALSE(dicom::StructureSetSource::isStructureSet(cases.dir.file("binary.dcm")));
+    const auto grid = writersGrid(cases);
+    dicom::StructureSetSource source(cases.dir.file("rtstruct.dcm"), grid);
+    EXPECT_TRUE(source.geometry().isLabel);
+    EXPECT_EQ(source.geometry().dims, grid.dims);
+    std::vector<std::uint8_t> labels(std::size_t(grid.voxelCount()));
+    source.readSlices(0, grid.dims[2], labels.data());
+    std::ifstream in(cases.dir.file("rt_labels.txt"));
+    double x, y, z;
+    int want;
+    std::size_t n = 0, wrong = 0;
+    std::map<int, std::size_t> count;
+    while (in >> x >> y >> z >> want) {
+        ++count[want];
+        if (labels[n] != want && ++wrong < 5) ADD_FAILURE() << "voxel " << n << " at " << x << "," << y << "," << z << ": " << int(labels[n]) << ", not " << want;
+        ++n;
+    }
+    EXPECT_EQ(n, labels.size());
+    EXPECT_EQ(wrong, 0u);
+    EXPECT_GT(count[1], 300u);
+    EXPECT_GT(count[2], 300u);  // the ring, its hole left empty
+    const auto& t = source.table();
+    EXPECT_EQ(t.find(1)->name, "GTV");
+    EXPECT_EQ(t.find(2)->rgba, (std::array<std::uint8_t, 4>{0, 200, 255, 255}));
+    ASSERT_EQ(source.warnings().size(), 1u);
+    EXPECT_NE(source.warnings()[0].find("1 contour(s) of beyond lie past the image's slices: left out"), std::string::npos)
+        << source.warnings()[0];
+}
+
+TEST(StructureSet, AnotherFrameOrAnotherGridIsRefused) {
+    Cases cases;
+    auto grid = writersGrid(cases);
+    grid.frameOfReferenceUid = "1.2.3.4";
+    try {
+        dicom::StructureSetSource source(cases.dir.file("rtstruct.dcm"), grid);
+        ADD_FAILURE() << "read in another frame of reference";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("the image is in 1.2.3.4"), std::string::npos) << e.what();
+    }
+    // A grid whose slices lie between the contours' planes: refused, never rounded onto one.
+    grid = writersGrid(cases);
+    grid.origin += grid.direction[2] * (grid.spacing.z * 0.5);
+    try {
+        dicom::StructureSetSource source(cases.dir.file("rtstruct.dcm"), grid);
+        ADD_FAILURE() << "contours between slices were read";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("lies between two slices"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(dicom::StructureSetSource(cases.dir.file("binary.dcm"), writersGrid(cases)), core::Error);
 }
