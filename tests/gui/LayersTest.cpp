@@ -251,6 +251,7 @@ private slots:
         }
         QVERIFY(ct && binary);
         QVERIFY(binary->toolTip(0).contains("segmentation"));
+        const QString binaryUid = binary->data(0, Qt::UserRole + 1).toString();
         window_->openSeries(ct->data(0, Qt::UserRole + 1).toString(), {}, "seg CT");
         QVERIFY(window_->jobs()->waitIdle(120000));
         QTRY_VERIFY_WITH_TIMEOUT(window_->openLabel() == "seg CT", 10000);
@@ -258,11 +259,13 @@ private slots:
         glm::dvec3 ball;
         ballFile >> ball.x >> ball.y >> ball.z;
         pointAt(ball);
+        // The browser's rows are made again when the CT's octree is recorded: find the SEG's anew.
+        binary = window_->browser()->seriesItem(binaryUid);
+        QVERIFY(binary);
         auto* tree = window_->browser()->tree();
-        tree->scrollToItem(binary);
-        const QRect r = tree->visualItemRect(binary);
-        QTest::mouseClick(tree->viewport(), Qt::LeftButton, {}, r.center());
-        QTest::mouseDClick(tree->viewport(), Qt::LeftButton, {}, r.center());
+        tree->setFocus();
+        tree->setCurrentItem(binary);
+        QTest::keyClick(tree, Qt::Key_Return);  // activates the row, as a double-click does
         QTRY_VERIFY2_WITH_TIMEOUT(window_->layers()->hasLabels(), qPrintable(window_->layersPanel()->message()), 60000);
         QVERIFY(window_->jobs()->waitIdle(60000));
         const auto& table = window_->layers()->labelTable();
