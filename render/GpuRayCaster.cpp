@@ -164,11 +164,13 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const int mode = int(settings.mode);
     const int tools = settings.mode == core::RenderSettings::Mode::Dvr ? settings.tools.variantBits() : 0;
     if (tools) settings.tools.validate();
-    auto& program = programs_[mode + 8 * tools];  // a static variant per mode and tool combination
+    const int labels = reader.geometry().isLabel ? 1 : 0;
+    auto& program = programs_[2 * (mode + 8 * tools) + labels];  // a static variant per mode, tools and labels
     if (!program)
         program = std::make_unique<ComputeProgram>(
             ShaderLibrary::embedded(), "raycast.comp.glsl",
-            std::vector<std::string>{"MODE " + std::to_string(mode), "HVX_TOOLS " + std::to_string(tools)});
+            std::vector<std::string>{"MODE " + std::to_string(mode), "HVX_TOOLS " + std::to_string(tools),
+                                     "HVX_LABELS " + std::to_string(labels)});
     const auto packed = core::packTools(settings.tools, {settings.ambient, settings.diffuse, settings.specular, settings.shininess});
     static_assert(sizeof(packed) == 16 * 16, "std140 layout of HvxTools");
     glNamedBufferData(buffers_[9], sizeof packed, &packed, GL_STREAM_DRAW);

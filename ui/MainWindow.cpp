@@ -1,5 +1,7 @@
 #include "ui/MainWindow.h"
 
+#include "core/appearance/LabelTable.h"
+
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <QAction>
@@ -509,7 +511,15 @@ void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath,
 void MainWindow::applyTransferFunction() {
     if (!reader_) return;
     try {
-        view_->setTransferFunction(tfEditor_->transferFunction(referenceLength_));
+        const auto& g = reader_->geometry();
+        // A label map is drawn in its table's colours, each label whole (no editor ramp that
+        // would blend two labels into a third's colour).
+        tfEditor_->setEnabled(!g.isLabel);
+        tfEditor_->setToolTip(g.isLabel ? tr("A label map is drawn with its label table, one colour per label.") : QString());
+        view_->setTransferFunction(
+            g.isLabel ? core::TransferFunction::forLabels(core::LabelTable::forLabelMap(reader_->path(), g.valueMin, g.valueMax),
+                                                          1.0, referenceLength_)
+                      : tfEditor_->transferFunction(referenceLength_));
     } catch (const core::Error& e) {
         showError(QString::fromStdString(e.what()));
     }

@@ -11,6 +11,7 @@
 #include "core/streaming/BrickCache.h"
 #include "core/streaming/BrickLoader.h"
 #include "core/reference/CpuRayCaster.h"
+#include "core/appearance/LabelTable.h"
 #include "core/base/Error.h"
 #include "core/image/ImageWriter.h"
 #include "core/octree/OctreeReader.h"
@@ -35,12 +36,12 @@ core::RenderSettings::Mode parseMode(const std::string& m) {
 int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
-                        "view-transparency", "tools", "crop"},
+                        "view-transparency", "tools", "crop", "lut", "label-opacity"},
                        {"cpu"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
-                          "[--tf PRESET] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
+                          "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
@@ -74,10 +75,23 @@ int renderCommand(int argc, char** argv) {
             throw core::Error(*tools + ": " + e.what());
         }
     }
-    const std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
+    std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
-    const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
-                                                   space.minSpacing);
+    if (g.isLabel && args.value("tf")) throw core::Error("a label map is drawn with its label table (--lut), not a --tf preset");
+    if (!g.isLabel && (args.value("lut") || args.value("label-opacity")))
+        throw core::Error(args.positional()[0] + " is not a label map: --lut and --label-opacity are for label maps");
+    const auto tf = [&] {
+        if (!g.isLabel)
+            return core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
+                                                  space.minSpacing);
+        // A label map: each label in its table's colour, never blended with a neighbour's.
+        const auto table = core::LabelTable::forLabelMap(args.positional()[0], g.valueMin, g.valueMax,
+                                                         args.value("lut").value_or(""));
+        const double opacity = args.number("label-opacity").value_or(1.0);
+        if (!(opacity >= 0 && opacity <= 1)) throw core::Error("--label-opacity must be 0 to 1");
+        preset = "labels (" + table.format() + ")";
+        return core::TransferFunction::forLabels(table, opacity, space.minSpacing);
+    }();
     core::WorkingSetOptions opt;
     opt.maxBricks = std::size_t(args.integer("budget", 4096, 1, 1 << 20));
     opt.voxelsPerPixel = args.number("accuracy").value_or(1.0);

@@ -39,6 +39,8 @@ const char* const kUsage =
         "  render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] [--tf PRESET]\n"
         "        [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json]\n"
         "        [--iso HU] [--size WxH] [--budget BRICKS] [--accuracy VOXELS_PER_PIXEL] -o OUT.png|OUT.exr\n"
+        "        [--lut FILE] [--label-opacity A]   a label map: each label in its table's colour, never\n"
+        "        blended (the table beside the octree, else generated colours)\n"
         "  lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] [--eta 0..1]\n"
         "        [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json]\n"
         "        [--cpu] | --list\n"

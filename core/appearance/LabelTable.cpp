@@ -120,6 +120,16 @@ LabelTable LabelTable::load(const std::string& path) {
     return t;
 }
 
+LabelTable LabelTable::forLabelMap(const std::string& octreePath, double valueMin, double valueMax,
+                                   const std::string& lut) {
+    if (!lut.empty()) return load(lut);
+    if (std::ifstream(sidecarPath(octreePath))) return load(sidecarPath(octreePath));
+    std::vector<int> values;
+    const long lo = long(std::ceil(valueMin)), hi = long(std::floor(valueMax));
+    for (long v = lo; v <= hi && values.size() < 65536; ++v) values.push_back(int(v));
+    return generated(values);
+}
+
 LabelTable LabelTable::generated(const std::vector<int>& labels) {
     LabelTable t;
     t.format_ = "generated colours";

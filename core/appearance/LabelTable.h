@@ -27,6 +27,11 @@ public:
     /// Where a label map's own table is kept beside its octree (written when the octree is
     /// built from a DICOM SEG): "<octree>.ctbl".
     static std::string sidecarPath(const std::string& octreePath) { return octreePath + ".ctbl"; }
+    /// The table a label map (octree at `octreePath`, values valueMin..valueMax) is drawn with:
+    /// `lut` when given, else the table kept beside the octree (sidecarPath), else generated
+    /// colours for every value of its range.
+    static LabelTable forLabelMap(const std::string& octreePath, double valueMin, double valueMax,
+                                  const std::string& lut = {});
     /// Distinct colours for `labels` (hues a golden angle apart), named "label N".
     static LabelTable generated(const std::vector<int>& labels);
 

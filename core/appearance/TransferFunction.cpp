@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/appearance/LabelTable.h"
 #include "core/base/Error.h"
 
 namespace hvx::core {
@@ -44,6 +45,34 @@ glm::dvec4 TransferFunction::sample(double value) const {
     const std::size_t j = std::min<std::size_t>(i + 1, kEntries - 1);
     const double t = p - double(i);
     return f_[i] * (1.0 - t) + f_[j] * t;
+}
+
+glm::dvec4 TransferFunction::entry(double value) const {
+    return f_[std::min<std::size_t>(std::size_t(position(value)), kEntries - 1)];
+}
+
+TransferFunction TransferFunction::forLabels(const LabelTable& table, double opacity, double referenceLength) {
+    const auto& entries = table.entries();
+    const int lo = entries.empty() ? 0 : std::min(0, entries.begin()->first);
+    const int hi = entries.empty() ? 0 : entries.rbegin()->first;
+    if (hi - lo >= kEntries)
+        throw Error("labels " + std::to_string(lo) + " to " + std::to_string(hi) + " span more than " +
+                    std::to_string(kEntries) + " values: the 3D view colours at most that many consecutive labels");
+    // Entry i is centred on value lo + i (the range starts half a value below lo), and a
+    // control point sits on every integer: each entry is its label's colour, with no ramp.
+    std::vector<Point> points;
+    points.reserve(std::size_t(hi - lo + 1));
+    for (int v = lo; v <= hi; ++v) {
+        const auto* e = table.find(v);
+        if (!e || !e->visible) {
+            points.push_back({double(v), glm::dvec4(0.0)});
+            continue;
+        }
+        points.push_back({double(v), glm::dvec4(e->rgba[0] / 255.0, e->rgba[1] / 255.0, e->rgba[2] / 255.0,
+                                                std::clamp(opacity, 0.0, 1.0) * e->rgba[3] / 255.0)});
+    }
+    points.push_back({double(hi + 1), glm::dvec4(0.0)});  // values above the last label show nothing
+    return TransferFunction(std::move(points), lo - 0.5, lo - 0.5 + kEntries, referenceLength);
 }
 
 glm::dvec4 TransferFunction::integral(double value) const {

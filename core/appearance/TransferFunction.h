@@ -8,6 +8,8 @@
 
 namespace hvx::core {
 
+class LabelTable;
+
 /// A 1D transfer function over stored values: piecewise-linear colour and opacity between
 /// control points, sampled into a 4096-entry table over [valueMin, valueMax]. Colours are
 /// extinction-weighted (thesis §3.2.2): opacity a per reference length d_ref becomes extinction
@@ -32,6 +34,11 @@ public:
     static TransferFunction preset(const std::string& name, double valueMin, double valueMax, double slope,
                                    double intercept, double referenceLength);
     static std::vector<std::string> presetNames();
+    /// A label map's colours: one table entry per label value, from the table's smallest label
+    /// on, so that entry(v) of label v is that label's colour and opacity exactly; labels the
+    /// table lacks, hidden ones and label 0 are transparent. `opacity` scales every label's
+    /// own. Throws core::Error when the labels span more than kEntries values.
+    static TransferFunction forLabels(const LabelTable& table, double opacity, double referenceLength);
 
     double valueMin() const { return min_; }
     double valueMax() const { return max_; }
@@ -42,6 +49,9 @@ public:
     glm::dvec4 segment(double a, double b) const;
     /// segment(a, b).w alone (the extinction), in the same operations.
     double segmentExtinction(double a, double b) const;
+    /// f at the table entry holding `value`, not interpolated: the classification of a label
+    /// map, where a value between two entries belongs to one of them, never to a blend.
+    glm::dvec4 entry(double value) const;
     /// True when no value in [lo, hi] has any opacity.
     bool isEmpty(double lo, double hi) const;
     const std::vector<Point>& points() const { return points_; }

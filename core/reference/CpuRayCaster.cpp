@@ -16,7 +16,7 @@ namespace hvx::core {
 CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index,
                            const std::vector<std::shared_ptr<const std::vector<float>>>& slots,
                            const TransferFunction& tf, RenderSettings settings)
-    : reader_(reader), index_(index), slots_(slots), tf_(tf), settings_(settings),
+    : reader_(reader), index_(index), slots_(slots), tf_(tf), settings_(settings), labels_(reader.geometry().isLabel),
       space_(OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount())) {
     normalToWorld_ = glm::transpose(glm::inverse(glm::dmat3(space_.octreeToPatient)));
     settings_.tools.validate();
@@ -110,7 +110,15 @@ CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafL
     return L;
 }
 
-float CpuRayCaster::sample(const Leaf& L, const glm::vec3& p) const {
+float CpuRayCaster::sample(const Leaf& L, const glm::vec3& p) const { return labels_ ? nearest(L, p) : linear(L, p); }
+
+float CpuRayCaster::nearest(const Leaf& L, const glm::vec3& p) const {
+    const int e = L.edge;
+    const glm::ivec3 i = glm::clamp(glm::ivec3(glm::floor(p * L.scale - L.origin)), glm::ivec3(0), glm::ivec3(e - 1));
+    return L.data[(std::size_t(i.z) * std::size_t(e) + std::size_t(i.y)) * std::size_t(e) + std::size_t(i.x)];
+}
+
+float CpuRayCaster::linear(const Leaf& L, const glm::vec3& p) const {
     const int e = L.edge;
     glm::vec3 u = p * L.scale - L.origin - 0.5f;
     u = glm::clamp(u, glm::vec3(0.0f), glm::vec3(float(e - 1)));
@@ -130,9 +138,9 @@ float CpuRayCaster::sample(const Leaf& L, const glm::vec3& p) const {
 
 glm::vec3 CpuRayCaster::gradient(const Leaf& L, const glm::vec3& p, float spread) const {
     const float h = spread / L.scale;
-    return glm::vec3(sample(L, p + glm::vec3(h, 0, 0)) - sample(L, p - glm::vec3(h, 0, 0)),
-                     sample(L, p + glm::vec3(0, h, 0)) - sample(L, p - glm::vec3(0, h, 0)),
-                     sample(L, p + glm::vec3(0, 0, h)) - sample(L, p - glm::vec3(0, 0, h))) /
+    return glm::vec3(linear(L, p + glm::vec3(h, 0, 0)) - linear(L, p - glm::vec3(h, 0, 0)),
+                     linear(L, p + glm::vec3(0, h, 0)) - linear(L, p - glm::vec3(0, h, 0)),
+                     linear(L, p + glm::vec3(0, 0, h)) - linear(L, p - glm::vec3(0, 0, h))) /
            (2.0f * h);
 }
 
@@ -213,8 +221,8 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                 if (havePrev) {
                     // Opacity first: most samples stop there, transparent.
                     const double seg = t - tPrev;
-                    double a = 1.0 - std::exp(-tf_.segmentExtinction(sPrev, s) * seg);
-                    const glm::dvec4 f = a > 1e-6 ? tf_.segment(sPrev, s) : glm::dvec4(0.0);
+                    double a = 1.0 - std::exp(-segmentExtinction(sPrev, s) * seg);
+                    const glm::dvec4 f = a > 1e-6 ? segment(sPrev, s) : glm::dvec4(0.0);
                     if (a > 1e-6 && toolBits) {
                         // Enhancers (core/appearance/Enhancers.glsl), then shading and MImDA
                         // compositing, in the shader's order and precision.

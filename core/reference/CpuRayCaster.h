@@ -23,7 +23,10 @@ namespace hvx::core {
 /// pre-integrated transfer function (thesis Eq. 3.1) and stops at 0.99 opacity. Like the
 /// shader, it steps over brick cells that cannot show (RenderSettings::skipEmptyCells); their
 /// ranges are taken once, on construction. It is the oracle of the GPU tests and the headless
-/// fallback of `holovox-cli render --cpu`.
+/// fallback of `holovox-cli render --cpu`. A label map (VolumeGeometry::isLabel) is sampled at
+/// the nearest voxel and each sample classified by its own table entry
+/// (TransferFunction::entry), so no label takes a neighbour's colour; gradients for shading
+/// stay trilinear.
 ///
 /// Threading: render() spreads rows over ThreadPool::shared(); the object is immutable.
 class CpuRayCaster {
@@ -54,7 +57,13 @@ private:
         int edge = 0;
     };
     Leaf leaf(std::uint32_t node, const glm::vec3& leafLo) const;
-    float sample(const Leaf& leaf, const glm::vec3& p) const;
+    float sample(const Leaf& leaf, const glm::vec3& p) const;  ///< trilinear, or nearest for labels
+    float linear(const Leaf& leaf, const glm::vec3& p) const;
+    float nearest(const Leaf& leaf, const glm::vec3& p) const;
+    /// The average f (k, tau) of the segment from value a to b: pre-integrated, or for labels
+    /// the entry of b; segmentExtinction: its tau alone.
+    glm::dvec4 segment(float a, float b) const { return labels_ ? tf_.entry(b) : tf_.segment(a, b); }
+    double segmentExtinction(float a, float b) const { return labels_ ? tf_.entry(b).w : tf_.segmentExtinction(a, b); }
     glm::vec3 gradient(const Leaf& leaf, const glm::vec3& p, float spread = 1.0f) const;
 
     /// Which cells of a slot's brick may show, for the skipping above (all bits when off).
@@ -67,6 +76,7 @@ private:
     const std::vector<std::shared_ptr<const std::vector<float>>>& slots_;
     const TransferFunction& tf_;
     RenderSettings settings_;
+    bool labels_;
     OctreeSpace space_;
     glm::dmat3 normalToWorld_;
     glsl::HvxTools packedTools;

@@ -57,16 +57,28 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
 
 // Hardware trilinear filtering inside the slot (the border replicates the neighbours). The
 // decode is linear, so it applies after filtering.
-float leafSample(LeafSampler L, vec3 p) {
+float leafSampleLinear(LeafSampler L, vec3 p) {
     return texture(brickPool, clamp(p * L.scale + L.offset, L.texLo, L.texHi)).r * L.decode.x + L.decode.y;
+}
+
+// A label map (HVX_LABELS) reads the nearest sample: the filtered fetch at a texel's centre
+// returns that texel alone, so no label is ever blended with its neighbour.
+float leafSample(LeafSampler L, vec3 p) {
+#if HVX_LABELS
+    vec3 size = vec3(textureSize(brickPool, 0));
+    vec3 centre = (floor((p * L.scale + L.offset) * size) + 0.5) / size;
+    return texture(brickPool, clamp(centre, L.texLo, L.texHi)).r * L.decode.x + L.decode.y;
+#else
+    return leafSampleLinear(L, p);
+#endif
 }
 
 // Central differences `spread` voxels apart (2: the smoothed normal of relief shading).
 vec3 leafGradientSpread(LeafSampler L, vec3 p, float spread) {
     float h = L.h * spread;
-    return vec3(leafSample(L, p + vec3(h, 0, 0)) - leafSample(L, p - vec3(h, 0, 0)),
-                leafSample(L, p + vec3(0, h, 0)) - leafSample(L, p - vec3(0, h, 0)),
-                leafSample(L, p + vec3(0, 0, h)) - leafSample(L, p - vec3(0, 0, h))) / (2.0 * h);
+    return vec3(leafSampleLinear(L, p + vec3(h, 0, 0)) - leafSampleLinear(L, p - vec3(h, 0, 0)),
+                leafSampleLinear(L, p + vec3(0, h, 0)) - leafSampleLinear(L, p - vec3(0, h, 0)),
+                leafSampleLinear(L, p + vec3(0, 0, h)) - leafSampleLinear(L, p - vec3(0, 0, h))) / (2.0 * h);
 }
 
 vec3 leafGradient(LeafSampler L, vec3 p) { return leafGradientSpread(L, p, 1.0); }

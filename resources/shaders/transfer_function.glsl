@@ -1,4 +1,8 @@
-// Pre-integrated transfer function (thesis Eq. 3.1) from the tables of core/TransferFunction.
+// Pre-integrated transfer function (thesis Eq. 3.1) from the tables of core/TransferFunction;
+// for a label map (HVX_LABELS) a segment takes its end sample's own entry (TransferFunction::entry).
+#ifndef HVX_LABELS
+#define HVX_LABELS 0
+#endif
 float tfPosition(float v) { return clamp((v - tfRange.x) / (tfRange.y - tfRange.x) * 4096.0, 0.0, 4096.0); }
 
 vec4 tfSample(float v) {
@@ -15,6 +19,9 @@ vec4 tfIntegralAt(float v) {
 }
 
 vec4 tfSegment(float a, float b) {
+#if HVX_LABELS
+    return tfF[min(int(tfPosition(b)), 4095)];
+#endif
     float pa = tfPosition(a), pb = tfPosition(b);
     if (abs(pb - pa) > 1e-3) return (tfIntegralAt(b) - tfIntegralAt(a)) / (pb - pa);
     return tfSample(0.5 * (a + b));
@@ -30,6 +37,9 @@ float tfOpacityIntegralAt(float p) {
 }
 
 float tfSegmentOpacity(float a, float b, float pa, float ia, float pb, float ib) {
+#if HVX_LABELS
+    return tfA[min(int(pb), 4095)].y;
+#endif
     if (abs(pb - pa) > 1e-3) return (ib - ia) / (pb - pa);
     float p = clamp(tfPosition(0.5 * (a + b)) - 0.5, 0.0, 4095.0);
     int i = int(p);

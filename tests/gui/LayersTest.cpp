@@ -27,6 +27,7 @@
 #include "ui/SliceLayers.h"
 #include "ui/SliceView.h"
 #include "ui/StudyBrowser.h"
+#include "ui/TransferFunctionEditor.h"
 
 using namespace hvx;
 
@@ -277,6 +278,32 @@ private slots:
             QVERIFY2(std::abs(c[std::size_t(a)] - (128 + (liver[std::size_t(a)] - 128) / 2.0)) <= 2.0,
                      qPrintable(QString("%1 %2 %3").arg(c[0]).arg(c[1]).arg(c[2])));
         window_->slice(0)->grab().save(test::guiArtifacts() + "/layers-seg-axial.png");
+    }
+
+    // A label map opened on its own: the 3D view draws each label in its table's colour (the
+    // table kept beside the octree), the transfer function editor stands aside, and no pixel
+    // takes a colour of neither label (a blend of the spleen's edge with the background would
+    // pass through the liver's red on an ordinary ramp).
+    void aLabelMapOpenedAloneIsDrawnIn3DInItsColours() {
+        const auto octree = dir_.file("labels.hvo");
+        std::filesystem::copy_file(dir_.file("organs.ctbl"), octree + ".ctbl", std::filesystem::copy_options::overwrite_existing);
+        QVERIFY(window_->openOctree(QString::fromStdString(octree)));
+        const QImage frame = settledFrame();
+        QVERIFY(!window_->tfEditor()->isEnabled());
+        int liver = 0, spleen = 0, other = 0;
+        for (int y = 0; y < frame.height(); ++y)
+            for (int x = 0; x < frame.width(); ++x) {
+                const QColor c = frame.pixelColor(x, y);
+                if (std::max({c.red(), c.green(), c.blue()}) < 24) continue;  // background
+                if (c.red() > c.blue() + 30 && std::abs(c.green() - c.blue()) <= 12) ++liver;
+                else if (c.blue() > c.red() + 30 && std::abs(c.green() - c.red()) <= 12) ++spleen;
+                else ++other;
+            }
+        frame.save(test::guiArtifacts() + "/layers-labels-3d.png");
+        QVERIFY2(liver > 500 && spleen > 100 && other <= (liver + spleen) / 200,
+                 qPrintable(QString("liver %1, spleen %2, other %3 pixels").arg(liver).arg(spleen).arg(other)));
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("ct.hvo"))));
+        QVERIFY(window_->tfEditor()->isEnabled());
     }
 
     void cleanupTestCase() { close(); }

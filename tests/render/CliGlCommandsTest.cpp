@@ -6,6 +6,7 @@
 // under ASan (Mesa's llvmpipe keeps allocations LeakSanitizer reports, as for every render test).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -96,3 +97,36 @@ TEST(CliGlCommands, LightFieldWritesEveryFormatAtTheDisplaysSize) {
     EXPECT_NE(r.output.find("needs a projector-array display"), std::string::npos) << r.output;
 }
 
+
+// `render` of a label map (a DICOM SEG written by pydicom): the segments in their own colours
+// (the table kept beside the octree), counted by VTK's PNG reader; a --tf preset on a label map
+// and --lut on an image are refused with a sentence.
+TEST(CliGlCommands, RenderDrawsALabelMapInItsSegmentsColours) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand("/usr/bin/python3 " HVX_SOURCE_DIR "/tests/support/seg_cases.py " + dir.path().string()).exitCode, 0);
+    auto r = test::runCommand(cli + " build " + dir.file("binary.dcm") + " -o " + dir.file("seg.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " render " + dir.file("seg.hvo") + " --view 30,20,1 --size 128x128 -o " + dir.file("seg.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("tf labels (3D Slicer colour table)"), std::string::npos) << r.output;
+    // Liver (145, 30, 35) and spleen (0, 119, 192), lit: red-dominant and blue-dominant pixels.
+    const auto counts = test::runCommand(
+        "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
+        "from vtkmodules.util.numpy_support import vtk_to_numpy; "
+        "r = vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update(); "
+        "a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(int); "
+        "print(int(((a[:, 0] > a[:, 2] + 40) & (a[:, 0] > a[:, 1] + 40)).sum()), int((a[:, 2] > a[:, 0] + 40).sum()))\" " +
+        dir.file("seg.png"));
+    ASSERT_EQ(counts.exitCode, 0) << counts.output;
+    int liver = 0, spleen = 0;
+    ASSERT_EQ(std::sscanf(counts.output.c_str(), "%d %d", &liver, &spleen), 2) << counts.output;
+    EXPECT_GT(liver, 300) << counts.output;
+    EXPECT_GT(spleen, 50) << counts.output;
+    r = test::runCommand(cli + " render " + dir.file("seg.hvo") + " --tf ct-bone -o " + dir.file("x.png"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("label table"), std::string::npos) << r.output;
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 16x16x16 -o " + dir.file("p.hvo")).exitCode, 0);
+    r = test::runCommand(cli + " render " + dir.file("p.hvo") + " --lut " + dir.file("seg.hvo.ctbl") + " -o " + dir.file("y.png"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("is not a label map"), std::string::npos) << r.output;
+}
