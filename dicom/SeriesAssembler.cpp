@@ -154,6 +154,10 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
     std::map<std::string, std::size_t> skipped;
     for (std::size_t i = 0; i < instances.size(); ++i) {
         const auto& in = instances[i];
+        if (in.sopClassUid == "1.2.840.10008.5.1.4.1.1.481.3") {  // RT Structure Set Storage
+            ++skipped["RT structure sets (contours; drawn over their image as labels, not stacked as one)"];
+            continue;
+        }
         if (!in.hasPixels() || in.frameGeometry.empty()) {
             ++skipped[in.modality.empty() ? "objects without image data" : in.modality + " objects without image data"];
             continue;

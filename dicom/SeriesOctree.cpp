@@ -2,6 +2,7 @@
 
 #include "core/base/AtomicFileWriter.h"
 #include "dicom/SegmentationSource.h"
+#include "dicom/StructureSetSource.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -58,6 +59,13 @@ std::string defaultPath(StudyDatabase& db, const std::string& seriesUid, const s
     std::filesystem::create_directories(SeriesOctree::folderFor(db.path()));
     return (std::filesystem::path(SeriesOctree::folderFor(db.path())) / (UidPath::component(seriesUid) + suffix)).string();
 }
+/// A label map's names and colours, kept beside its octree.
+void writeTable(const core::LabelTable& table, const std::string& octreePath) {
+    const std::string text = table.toSlicerTable();
+    core::AtomicFileWriter w(core::LabelTable::sidecarPath(octreePath));
+    w.append(text.data(), text.size());
+    w.commit();
+}
 }  // namespace
 
 std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
@@ -76,10 +84,7 @@ std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid,
         core::BuildOptions o;
         o.labels = true;
         core::OctreeBuilder(o).build(seg, outPath, job);
-        const std::string table = seg.table().toSlicerTable();
-        core::AtomicFileWriter w(core::LabelTable::sidecarPath(outPath));
-        w.append(table.data(), table.size());
-        w.commit();
+        writeTable(seg.table(), outPath);
         db.setSeriesOctree(seriesUid, outPath);
         return outPath;
     }
@@ -89,6 +94,32 @@ std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid,
     core::OctreeBuilder(core::BuildOptions{}).build(source, outPath, job);
     if (volume > 0) db.setVolumeOctree(seriesUid, volume, outPath);
     else db.setSeriesOctree(seriesUid, outPath);
+    return outPath;
+}
+
+bool SeriesOctree::isStructureSet(StudyDatabase& db, const std::string& seriesUid) {
+    const auto files = db.filesOfSeries(seriesUid);
+    return !files.empty() && StructureSetSource::isStructureSet(files.front());
+}
+
+std::string SeriesOctree::buildStructureSet(StudyDatabase& db, const std::string& seriesUid,
+                                            const core::VolumeGeometry& grid, core::JobContext& job,
+                                            std::vector<std::string>* warnings, std::string outPath) {
+    const auto files = db.filesOfSeries(seriesUid);
+    if (files.empty() || !StructureSetSource::isStructureSet(files.front()))
+        throw core::Error("series " + seriesUid + " is not an RT Structure Set");
+    StructureSetSource rt(files.front(), grid);
+    if (warnings) {
+        for (const auto& w : rt.warnings()) warnings->push_back(w);
+        if (files.size() > 1)
+            warnings->push_back("the series holds " + std::to_string(files.size()) +
+                                " structure sets: the first is shown (" + files.front() + ")");
+    }
+    if (outPath.empty()) outPath = defaultPath(db, seriesUid, ".rt.hvo");
+    core::BuildOptions o;
+    o.labels = true;
+    core::OctreeBuilder(o).build(rt, outPath, job);
+    writeTable(rt.table(), outPath);
     return outPath;
 }
 

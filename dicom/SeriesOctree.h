@@ -26,6 +26,16 @@ public:
     /// StudyDatabase::volumesOfSeries numbers them), kept at `<uid>-vN.hvo`.
     static std::string build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
                              std::vector<std::string>* warnings = nullptr, std::string outPath = {}, int volume = 0);
+    /// An RT Structure Set series drawn as a label map onto `grid` (the geometry of the image
+    /// it is shown over), with its ROIs' names and colours beside it; at `outPath` (default:
+    /// folderFor(db)/<uid>.rt.hvo, made again for each grid and not recorded, as it depends on
+    /// the grid). Throws core::Error when the series is not a structure set or does not fit
+    /// the grid (another frame of reference, contours between slices).
+    static std::string buildStructureSet(StudyDatabase& db, const std::string& seriesUid,
+                                         const core::VolumeGeometry& grid, core::JobContext& job,
+                                         std::vector<std::string>* warnings = nullptr, std::string outPath = {});
+    /// Whether the series' objects are RT Structure Sets (contours, drawn onto an image's grid).
+    static bool isStructureSet(StudyDatabase& db, const std::string& seriesUid);
     /// A quick preview octree of every `factor`-th voxel (reading one slice in `factor`), at
     /// `<folder>/<uid>.preview.hvo`, for showing a series while its full octree builds. Not
     /// recorded in the database.

@@ -191,17 +191,30 @@ void LayersPanel::overlaySeries(const QString& seriesUid, const QString& octreeP
     }
     show(tr("Building the octree of %1 to lay it over the open volume\u2026").arg(label), false);
     const std::string db = databasePath_.toStdString(), uid = seriesUid.toStdString();
+    const core::VolumeGeometry grid = layers_.base()->geometry();  // a structure set's contours are drawn onto it
     QPointer<LayersPanel> self(this);
-    jobs_->start(
+    auto warnings = std::make_shared<std::vector<std::string>>();  // said once the layer is shown
+    const int id = jobs_->start(
         tr("Build octree: %1").arg(label),
-        [db, uid, volume](core::JobContext& job) {
+        [db, uid, volume, grid, warnings](core::JobContext& job) {
             dicom::StudyDatabase database(db);
-            std::vector<std::string> warnings;
-            return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, &warnings, {}, volume));
+            if (dicom::SeriesOctree::isStructureSet(database, uid))
+                return QString::fromStdString(dicom::SeriesOctree::buildStructureSet(database, uid, grid, job, warnings.get()));
+            return QString::fromStdString(dicom::SeriesOctree::build(database, uid, job, warnings.get(), {}, volume));
         },
-        [self, label](const QString& path) {
-            if (self) self->layOver(path, label);
+        [self, label, warnings](const QString& path) {
+            if (!self || !self->layOver(path, label) || warnings->empty()) return;
+            QStringList lines;
+            for (const auto& w : *warnings) lines << QString::fromStdString(w);
+            self->show(self->message() + "\n" + lines.join("\n"), false);
         });
+    // A build that fails (a structure set of another frame, contours off the grid) says why here too.
+    auto once = std::make_shared<QMetaObject::Connection>();
+    *once = connect(jobs_, &JobManager::finished, this, [this, once, id](int done, const QString& state, const QString& message) {
+        if (done != id) return;
+        QObject::disconnect(*once);
+        if (state == "failed") show(message, true);
+    });
 }
 
 bool LayersPanel::layOver(const QString& octreePath, const QString& label) {

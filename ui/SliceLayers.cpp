@@ -84,10 +84,11 @@ QString SliceLayers::setLabels(const QString& path, const QString& name, bool fo
     note_ = QString::fromStdString(
         core::FramePairing::of(base_->geometry(), baseName_.toStdString(), g, layer->name.toStdString()).sentence);
     labels_ = std::move(layer);
-    // Its own table (an octree built from a DICOM SEG keeps its segments' names and colours
-    // beside it), unless the user chose one.
+    // Its own table when it has one (an octree built from a DICOM SEG or RTSTRUCT keeps its
+    // segments' names and colours beside it): another map's names would be wrong for it.
+    // Without one, a table the user chose is kept (atlases sharing one LUT).
     const QString sidecar = QString::fromStdString(core::LabelTable::sidecarPath(path.toStdString()));
-    if (tablePath_.isEmpty() || tablePath_ == sidecarTable_) {
+    if (QFileInfo::exists(sidecar) || tablePath_.isEmpty() || tablePath_ == sidecarTable_) {
         table_ = {};
         tablePath_.clear();
         sidecarTable_.clear();

@@ -197,6 +197,9 @@ void StudyBrowser::refresh() {
                                                     : tr("Octree: %1").arg(QString::fromStdString(se.octreePath));
                 if (se.modality == "SEG")
                     tip = tr("A segmentation: opening lays it over the open volume as labels (Layers dock)\n") + tip;
+                if (se.modality == "RTSTRUCT")
+                    tip = tr("A structure set: opening draws its contours onto the open volume's grid as labels "
+                             "(Layers dock)");
                 if (!se.warnings.empty()) {  // assumed spacing or orientation, gaps...: said in the row itself
                     QStringList lines;
                     for (const auto& w : se.warnings) lines << QString::fromStdString(w);
@@ -250,8 +253,9 @@ bool StudyBrowser::seriesOf(QTreeWidgetItem* item, QString& uid, QString& octree
 void StudyBrowser::activated(QTreeWidgetItem* item) {
     QString uid, octree;
     if (!seriesOf(item, uid, octree)) return;
-    // A segmentation is not a volume of its own: it is laid over the open image as labels.
-    if (item->text(2) == QLatin1String("SEG")) emit overlaySeries(uid, octree, item->data(0, LabelRole).toString(), 0);
+    // A segmentation or structure set is not a volume of its own: it is laid over the open
+    // image as labels.
+    if (item->text(2) == QLatin1String("SEG") || item->text(2) == QLatin1String("RTSTRUCT")) emit overlaySeries(uid, octree, item->data(0, LabelRole).toString(), 0);
     else emit openSeries(uid, octree, item->data(0, LabelRole).toString(), item->data(0, VolumeRole).toInt());
 }
 

@@ -8,7 +8,9 @@
 #include "core/base/Error.h"
 #include "core/base/AtomicFileWriter.h"
 #include "core/volume/VoxelSourceFactory.h"
+#include "core/octree/OctreeReader.h"
 #include "dicom/SegmentationSource.h"
+#include "dicom/StructureSetSource.h"
 
 namespace hvx::app {
 
@@ -26,7 +28,7 @@ glm::dvec3 parseSpacing(const std::string& text) {
 int buildCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"o", "output", "brick", "border", "empty-below", "codec", "level", "dims", "type", "endian",
-                        "header-bytes", "spacing", "volume"},
+                        "header-bytes", "spacing", "volume", "grid"},
                        {"labels", "lossy8", "quiet"});
     if (args.positional().size() != 1) throw core::Error("usage: holovox-cli build INPUT -o OUT.hvo [options]");
     const auto out = args.value("o") ? args.value("o") : args.value("output");
@@ -59,16 +61,32 @@ int buildCommand(int argc, char** argv) {
         seg = std::make_unique<dicom::SegmentationSource>(args.positional()[0]);
         opt.labels = true;
     }
-    std::unique_ptr<core::VoxelSource> source =
-        seg ? std::move(seg) : core::VoxelSourceFactory::open(args.positional()[0], raw, volume);
+    // An RT Structure Set is contours: drawn onto the grid of the image it is shown over.
+    std::unique_ptr<dicom::StructureSetSource> rt;
+    if (!seg && dicom::StructureSetSource::isStructureSet(args.positional()[0])) {
+        const auto grid = args.value("grid");
+        if (!grid)
+            throw core::Error(args.positional()[0] + " is an RT Structure Set (contours): give the image octree "
+                              "whose grid it is drawn onto, --grid IMAGE.hvo");
+        rt = std::make_unique<dicom::StructureSetSource>(args.positional()[0], core::OctreeReader::open(*grid)->geometry());
+        opt.labels = true;
+    } else if (args.value("grid")) {
+        throw core::Error("--grid is for RT Structure Sets, which are drawn onto an image's grid");
+    }
+    std::unique_ptr<core::VoxelSource> source = seg  ? std::unique_ptr<core::VoxelSource>(std::move(seg))
+                                                : rt ? std::unique_ptr<core::VoxelSource>(std::move(rt))
+                                                     : core::VoxelSourceFactory::open(args.positional()[0], raw, volume);
     for (const auto& w : source->warnings()) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
     OctreeBuildRunner::run(*source, *out, opt, !args.flag("quiet"));
-    if (const auto* segmentation = dynamic_cast<const dicom::SegmentationSource*>(source.get())) {
-        const std::string table = segmentation->table().toSlicerTable(), path = core::LabelTable::sidecarPath(*out);
+    const core::LabelTable* names = nullptr;
+    if (const auto* segmentation = dynamic_cast<const dicom::SegmentationSource*>(source.get())) names = &segmentation->table();
+    if (const auto* structures = dynamic_cast<const dicom::StructureSetSource*>(source.get())) names = &structures->table();
+    if (names) {
+        const std::string table = names->toSlicerTable(), path = core::LabelTable::sidecarPath(*out);
         core::AtomicFileWriter w(path);
         w.append(table.data(), table.size());
         w.commit();
-        std::fprintf(stderr, "segments' names and colours: %s\n", path.c_str());
+        std::fprintf(stderr, "labels' names and colours: %s\n", path.c_str());
     }
     return 0;
 }

@@ -7,6 +7,7 @@
 
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
+#include "core/octree/OctreeReader.h"
 #include "app/cli/OctreeBuildRunner.h"
 #include "app/cli/ProgressBar.h"
 #include "app/cli/SignalCancel.h"
@@ -151,10 +152,11 @@ int studiesCommand(int argc, char** argv) {
 }
 
 int buildSeriesCommand(int argc, char** argv) {
-    const CliArgs args(argc, argv, 2, {"db", "o", "output", "stack", "volume"}, {});
+    const CliArgs args(argc, argv, 2, {"db", "o", "output", "stack", "volume", "grid"}, {});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
-        throw core::Error("usage: holovox-cli build-series SERIES_UID -o OUT.hvo [--db FILE] [--volume N]");
+        throw core::Error("usage: holovox-cli build-series SERIES_UID -o OUT.hvo [--db FILE] [--volume N] "
+                          "[--grid IMAGE.hvo (RT Structure Sets)]");
     const std::string uid = args.positional()[0];
     dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
     const auto files = db.filesOfSeries(uid);
@@ -166,6 +168,20 @@ int buildSeriesCommand(int argc, char** argv) {
         for (const auto& w : warnings) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
         std::printf("segmentation %s: label map %s, segments' names and colours in %s\n", uid.c_str(), path.c_str(),
                     core::LabelTable::sidecarPath(path).c_str());
+        return 0;
+    }
+    if (dicom::SeriesOctree::isStructureSet(db, uid)) {  // contours, drawn onto an image's grid
+        const auto grid = args.value("grid");
+        if (!grid)
+            throw core::Error("series " + uid + " is an RT Structure Set (contours): give the image octree whose "
+                              "grid it is drawn onto, --grid IMAGE.hvo");
+        core::JobContext job;
+        std::vector<std::string> warnings;
+        const auto path = dicom::SeriesOctree::buildStructureSet(db, uid, core::OctreeReader::open(*grid)->geometry(),
+                                                                 job, &warnings, *out);
+        for (const auto& w : warnings) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
+        std::printf("structure set %s: label map %s on the grid of %s, ROIs' names and colours in %s\n", uid.c_str(),
+                    path.c_str(), grid->c_str(), core::LabelTable::sidecarPath(path).c_str());
         return 0;
     }
     dicom::DicomScanner::Result scan;

@@ -234,8 +234,8 @@ private slots:
     }
 
     void aSegmentationSeriesIsLaidOverItsImage() {
-        // A CT and its DICOM SEG written by pydicom, imported together: the CT opened, then
-        // the SEG series opened lays its segments over it with their own names and colours.
+        // A CT, its DICOM SEG and RTSTRUCT written by pydicom, imported together: the CT opened,
+        // then the SEG series opened lays its segments over it with their own names and colours.
         const auto seg = dir_.file("seg");
         std::filesystem::create_directories(seg);
         QCOMPARE(test::runCommand("/usr/bin/python3 " HVX_SOURCE_DIR "/tests/support/seg_cases.py " + seg).exitCode, 0);
@@ -278,6 +278,23 @@ private slots:
             QVERIFY2(std::abs(c[std::size_t(a)] - (128 + (liver[std::size_t(a)] - 128) / 2.0)) <= 2.0,
                      qPrintable(QString("%1 %2 %3").arg(c[0]).arg(c[1]).arg(c[2])));
         window_->slice(0)->grab().save(test::guiArtifacts() + "/layers-seg-axial.png");
+
+        // The structure set of the same import: its contours drawn onto the open CT's grid, its
+        // ROIs' names in the table, the contour past the image said in the dock.
+        window_->layers()->clearLabels();
+        QTreeWidgetItem* rt = nullptr;
+        for (QTreeWidgetItemIterator it(tree); *it; ++it)
+            if ((*it)->text(2) == "RTSTRUCT") rt = *it;
+        QVERIFY(rt);
+        QVERIFY(rt->toolTip(0).contains("structure set"));
+        tree->setCurrentItem(rt);
+        QTest::keyClick(tree, Qt::Key_Return);
+        QTRY_VERIFY2_WITH_TIMEOUT(window_->layers()->hasLabels(), qPrintable(window_->layersPanel()->message()), 60000);
+        QVERIFY(window_->jobs()->waitIdle(60000));
+        QCOMPARE(QString::fromStdString(window_->layers()->labelTable().find(1)->name), QString("GTV"));
+        QCOMPARE(QString::fromStdString(window_->layers()->labelTable().find(2)->name), QString("ring"));
+        QVERIFY2(window_->layersPanel()->message().contains("past the image's slices"),
+                 qPrintable(window_->layersPanel()->message()));
     }
 
     // A label map opened on its own: the 3D view draws each label in its table's colour (the

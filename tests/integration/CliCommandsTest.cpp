@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "tests/support/ProcessRunner.h"
@@ -275,4 +276,55 @@ TEST(CliCommands, SegmentationBuildsALabelMapWithItsOwnTable) {
     EXPECT_NE(r.output.find("has no position"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("bad.hvo")));
     EXPECT_FALSE(std::filesystem::exists(dir.file("bad.hvo.ctbl")));
+}
+
+// An RT Structure Set written by pydicom, imported with its CT: drawn onto the CT's grid (build
+// --grid, or build-series from the database), each ROI's voxel count equal to numpy's
+// point-in-polygon count over the same voxel centres (rt_labels.txt), its ROIs' names kept;
+// without a grid it is refused with a sentence, and a contour past the image is said.
+TEST(CliCommands, StructureSetIsDrawnOntoItsImagesGrid) {
+    test::TempDir dir;
+    auto r = test::runCommand("/usr/bin/python3 " + std::string(HVX_SOURCE_DIR) + "/tests/support/seg_cases.py " +
+                              dir.path().string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string db = " --db " + dir.file("s.db");
+    r = test::runCommand(cli + " import " + dir.path().string() + db + " 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("RT structure sets"), std::string::npos) << r.output;
+    r = test::runCommand(cli + " studies" + db);
+    auto uidOf = [&](const std::string& modality) {
+        const auto at = r.output.find(" " + modality + " ");
+        if (at == std::string::npos) return std::string();
+        const auto end = r.output.find('\n', at);
+        const auto line = r.output.substr(at, end - at);
+        return line.substr(line.rfind(' ') + 1);
+    };
+    const std::string ctUid = uidOf("CT  "), rtUid = uidOf("RTSTRUCT");
+    ASSERT_FALSE(ctUid.empty() || rtUid.empty()) << r.output;
+    ASSERT_EQ(test::runCommand(cli + " build-series " + ctUid + db + " -o " + dir.file("ct.hvo")).exitCode, 0);
+    r = test::runCommand(cli + " build " + dir.file("rtstruct.dcm") + " -o " + dir.file("rt.hvo") + " 2>&1");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("--grid IMAGE.hvo"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("rt.hvo")));
+    r = test::runCommand(cli + " build " + dir.file("rtstruct.dcm") + " --grid " + dir.file("ct.hvo") + " -o " +
+                         dir.file("rt.hvo") + " --quiet 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("of beyond lie past the image's slices"), std::string::npos) << r.output;
+    std::map<int, int> expected;  // numpy's label per voxel centre
+    std::ifstream oracle(dir.file("rt_labels.txt"));
+    for (double x, y, z; oracle >> x >> y >> z;) {
+        int label = 0;
+        oracle >> label;
+        ++expected[label];
+    }
+    ASSERT_GT(expected[1], 100);
+    ASSERT_GT(expected[2], 100);
+    r = test::runCommand(cli + " label-stats " + dir.file("ct.hvo") + " " + dir.file("rt.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("1,\"GTV\"," + std::to_string(expected[1]) + ","), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("2,\"ring\"," + std::to_string(expected[2]) + ","), std::string::npos) << r.output;
+    r = test::runCommand(cli + " build-series " + rtUid + db + " --grid " + dir.file("ct.hvo") + " -o " + dir.file("rt2.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto a = test::runCommand("cmp " + dir.file("rt.hvo") + " " + dir.file("rt2.hvo"));
+    EXPECT_EQ(a.exitCode, 0) << "the same structure set drawn twice differs: " << a.output;
 }
