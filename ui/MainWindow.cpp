@@ -1,4 +1,6 @@
 #include "ui/MainWindow.h"
+#include "ui/CinePanel.h"
+#include "ui/TimeSeriesLoader.h"
 
 #include "core/appearance/LabelTable.h"
 
@@ -124,6 +126,10 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     tabifyDockWidget(band, lf);
     auto* layersDock = addDock(tr("Layers"), "layersDock", layersPanel_, Qt::RightDockWidgetArea, true);
     tabifyDockWidget(lf, layersDock);
+    cine_ = new CinePanel;
+    auto* cineDock = addDock(tr("Cine"), "cineDock", cine_, Qt::RightDockWidgetArea, true);
+    tabifyDockWidget(layersDock, cineDock);
+    connect(cine_, &CinePanel::timePointChosen, this, &MainWindow::showTimePoint);
     renderDock->raise();
     (void)tfDock;
     auto* slicesDock = addDock(tr("Slices"), "slicesDock", slicesWidget, Qt::BottomDockWidgetArea);
@@ -404,11 +410,68 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
                          }
                      });
         statusBar()->showMessage(tr("Opened %1").arg(openLabel_), 5000);
+        setUpTimePoints(path);
         return true;
     } catch (const core::Error& e) {
         showError(QString::fromStdString(e.what()));
         return false;
     }
+}
+
+void MainWindow::setUpTimePoints(const QString& path) {
+    delete timeLoader_;  // the previous series' builds are no longer wanted
+    timeLoader_ = nullptr;
+    timeReaders_.clear();
+    timeNames_.clear();
+    std::vector<dicom::VolumeRow> volumes;
+    if (!seriesUid_.isEmpty()) {
+        try {
+            volumes = dicom::StudyDatabase(browser_->databasePath().toStdString()).volumesOfSeries(seriesUid_.toStdString());
+        } catch (const core::Error&) {
+            volumes.clear();
+        }
+    }
+    const QString opened = QFileInfo(path).absoluteFilePath();
+    int current = -1;
+    for (std::size_t i = 0; i < volumes.size(); ++i) {
+        timeNames_ << QStringLiteral("#%1 %2").arg(volumes[i].number).arg(QString::fromStdString(volumes[i].varying));
+        if (!volumes[i].octreePath.empty() && QFileInfo(QString::fromStdString(volumes[i].octreePath)).absoluteFilePath() == opened)
+            current = int(i);
+    }
+    if (volumes.size() < 2 || current < 0) {  // not one volume of a 4D series (or its preview)
+        timeNames_.clear();
+        cine_->clear();
+        return;
+    }
+    // The series' label without its volume ("... #2 echo 2 (TE 20 ms)" as the browser names it).
+    timeBaseLabel_ = openLabel_.endsWith(timeNames_[current]) ? openLabel_.chopped(timeNames_[current].size()).trimmed()
+                                                               : openLabel_;
+    timeReaders_.assign(volumes.size(), nullptr);
+    timeReaders_[std::size_t(current)] = reader_;
+    view_->setTimePoints(timeReaders_, current);
+    cine_->setTimePoints(timeNames_, current);
+    timeLoader_ = new TimeSeriesLoader(*jobs_, browser_->databasePath(), seriesUid_, volumes, current, reader_, this);
+    connect(timeLoader_, &TimeSeriesLoader::ready, this,
+            [this](int index, std::shared_ptr<const core::OctreeReader> reader) {
+                timeReaders_[std::size_t(index)] = reader;
+                view_->setTimePoint(index, std::move(reader));
+                cine_->setReady(index, true);
+            });
+    connect(timeLoader_, &TimeSeriesLoader::refused, this,
+            [this](int index, const QString& why) { cine_->setReady(index, false, why); });
+    timeLoader_->start();
+}
+
+bool MainWindow::showTimePoint(int index) {
+    if (index < 0 || index >= int(timeReaders_.size()) || !timeReaders_[std::size_t(index)]) return false;
+    if (reader_ == timeReaders_[std::size_t(index)]) return true;
+    if (!view_->showTimePoint(index)) return false;
+    reader_ = timeReaders_[std::size_t(index)];
+    for (auto* s : slices_) s->showTimePoint(reader_);
+    openLabel_ = timeBaseLabel_ + " " + timeNames_[index];
+    setWindowTitle(tr("Holovox \u2014 %1").arg(openLabel_));
+    if (cine_->current() != index) cine_->setCurrent(index);
+    return true;
 }
 
 void MainWindow::restoreMeasurements(const QString& path) {

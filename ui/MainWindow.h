@@ -20,6 +20,8 @@ class LightFieldPanel;
 class PacsPanel;
 class RenderControls;
 class CropControls;
+class CinePanel;
+class TimeSeriesLoader;
 class MeasurementsPanel;
 class SliceView;
 class SliceLayers;
@@ -73,6 +75,11 @@ public:
     /// The volumes laid over the open one in the slices, and their dock.
     SliceLayers* layers() const { return layers_; }
     LayersPanel* layersPanel() const { return layersPanel_; }
+    /// The Cine dock: the time points of the open 4D series.
+    CinePanel* cine() const { return cine_; }
+    /// Shows time point `index` of the open 4D series in the 3D and slice views (camera, plane,
+    /// window and transfer function kept); false while its octree is not ready.
+    bool showTimePoint(int index);
     /// The slider and cine bar under slice view i.
     SliceScroller* scroller(int i) const { return scrollers_[i]; }
     const QString& openLabel() const { return openLabel_; }
@@ -105,6 +112,8 @@ private:
     void saveScreenshot();
     void chooseImport();
     void chooseOpen();
+    /// After opening `path`: when it is one volume of a 4D series, its time points for cine.
+    void setUpTimePoints(const QString& path);
 
     std::unique_ptr<JobManager> jobs_;
     VolumeView* view_;
@@ -122,6 +131,11 @@ private:
     SliceView* slices_[3];
     SliceLayers* layers_;
     LayersPanel* layersPanel_;
+    CinePanel* cine_;
+    TimeSeriesLoader* timeLoader_ = nullptr;
+    std::vector<std::shared_ptr<const core::OctreeReader>> timeReaders_;  // null: not ready
+    QStringList timeNames_;
+    QString timeBaseLabel_;  // the series' label, without the time point
     SliceScroller* scrollers_[3];
     QLabel* readouts_;
     std::shared_ptr<const core::OctreeReader> reader_;

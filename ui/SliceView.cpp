@@ -42,6 +42,21 @@ void SliceView::setLayers(SliceLayers* layers) {
     resample();
 }
 
+void SliceView::showTimePoint(std::shared_ptr<const core::OctreeReader> reader) {
+    if (!reader_ || !reader) return setVolume(std::move(reader));
+    reader_ = std::move(reader);
+    sampler_.reset();
+    cache_ = std::make_unique<core::BrickCache>(std::size_t(256) << 20);
+    sampler_ = std::make_unique<core::SliceSampler>(*reader_, *cache_);
+    resample();
+}
+
+double SliceView::valueAtPoint() const {
+    if (!sampler_) return std::nan("");
+    const auto& g = reader_->geometry();
+    return sampler_->valueAt(point_, 0) * g.rescaleSlope + g.rescaleIntercept;
+}
+
 void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
     reader_ = std::move(reader);
     normal_ = glm::dvec3(0.0);  // a tilt belongs to the anatomy it followed: the standard plane again

@@ -45,6 +45,11 @@ class SliceView : public QWidget {
 public:
     SliceView(core::SlicePlane::Orientation orientation, QWidget* parent = nullptr);
     void setVolume(std::shared_ptr<const core::OctreeReader> reader);
+    /// Another time point of the same 4D series (the same grid): the plane, point, window and
+    /// measurements stay; only the voxels change.
+    void showTimePoint(std::shared_ptr<const core::OctreeReader> reader);
+    /// The physical value (HU for CT) at the crosshair's point, from level 0; NaN outside.
+    double valueAtPoint() const;
     /// Window centre and width in physical units (HU for CT); `name` is shown with it (a
     /// preset's), empty for a window dragged by hand.
     void setWindow(double centre, double width, const QString& name = {});

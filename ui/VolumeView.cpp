@@ -43,8 +43,8 @@ struct VolumeView::Scene {
     core::BrickLoader loader;
     core::WorkingSet ws;
     core::OctreeSpace space;
-    Scene(std::shared_ptr<const core::OctreeReader> r, core::WorkingSetOptions options)
-        : reader(std::move(r)), cache(std::size_t(2) << 30), loader(*reader, cache), ws(*reader, cache, loader, options),
+    Scene(std::shared_ptr<const core::OctreeReader> r, core::WorkingSetOptions options, std::size_t cacheBytes)
+        : reader(std::move(r)), cache(cacheBytes), loader(*reader, cache), ws(*reader, cache, loader, options),
           space(core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount())) {}
 };
 
@@ -73,19 +73,92 @@ VolumeView::~VolumeView() {
     scene_.reset();
 }
 
+namespace {
+constexpr std::size_t kCacheBytes = std::size_t(2) << 30;  // the view's brick cache budget
+
+/// What the render mode asks of a working set: culling by the transfer function (DVR) or
+/// the iso value's bricks alone.
+void applyMode(core::WorkingSetOptions& o, const core::RenderSettings& settings) {
+    o.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
+    o.isosurface = settings.mode == core::RenderSettings::Mode::Iso;
+    o.isoValue = settings.isoValue;
+}
+}  // namespace
+
+std::unique_ptr<VolumeView::Scene> VolumeView::makeScene(std::shared_ptr<const core::OctreeReader> reader,
+                                                         std::size_t cacheBytes) const {
+    core::WorkingSetOptions options;
+    options.cpuMirror = false;
+    options.voxelsPerPixel = accuracy_;
+    return std::make_unique<Scene>(std::move(reader), options, cacheBytes);
+}
+
 void VolumeView::setVolume(std::shared_ptr<const core::OctreeReader> reader, bool keepCamera) {
     keepCamera = keepCamera && scene_ != nullptr;
     scene_.reset();
+    times_.clear();
+    timePoint_ = -1;
     error_.clear();
     if (reader) {
-        core::WorkingSetOptions options;
-        options.cpuMirror = false;
-        options.voxelsPerPixel = accuracy_;
-        scene_ = std::make_unique<Scene>(std::move(reader), options);
+        scene_ = makeScene(std::move(reader), kCacheBytes);
         setRenderSettings(settings_);
         if (!keepCamera) resetView();
     }
     update();
+}
+
+void VolumeView::setTimePoints(std::vector<std::shared_ptr<const core::OctreeReader>> readers, int current) {
+    if (readers.empty() || current < 0 || current >= int(readers.size()) || !readers[std::size_t(current)])
+        throw core::Error("the time point shown must have an octree");
+    const bool keepCamera = scene_ != nullptr;
+    scene_.reset();
+    times_.clear();
+    times_.resize(readers.size());
+    for (std::size_t i = 0; i < readers.size(); ++i) setTimePoint(int(i), std::move(readers[i]));
+    scene_ = std::move(times_[std::size_t(current)]);
+    timePoint_ = current;
+    setRenderSettings(settings_);
+    if (!keepCamera) resetView();
+    update();
+}
+
+void VolumeView::setTimePoint(int index, std::shared_ptr<const core::OctreeReader> reader) {
+    if (index < 0 || index >= int(times_.size()) || index == timePoint_ || !reader) return;
+    // Every time point keeps its bricks: the view's budget shared among them.
+    times_[std::size_t(index)] = makeScene(std::move(reader), std::max(kCacheBytes / times_.size(), std::size_t(64) << 20));
+    applyMode(times_[std::size_t(index)]->ws.options(), settings_);
+}
+
+bool VolumeView::showTimePoint(int index) {
+    if (index < 0 || index >= int(times_.size())) return false;
+    if (index == timePoint_) return true;
+    if (!times_[std::size_t(index)]) return false;
+    times_[std::size_t(timePoint_)] = std::move(scene_);
+    scene_ = std::move(times_[std::size_t(index)]);
+    timePoint_ = index;
+    setRenderSettings(settings_);
+    update();
+    return true;
+}
+
+void VolumeView::prefetchNeighbours() {
+    if (times_.empty() || !tf_) return;
+    const int n = int(times_.size());
+    for (const int next : {(timePoint_ + 1) % n, (timePoint_ + n - 1) % n}) {
+        auto& scene = times_[std::size_t(next)];
+        if (!scene) continue;
+        scene->ws.options().clip = scene_->ws.options().clip;
+        scene->ws.options().clipPlane = scene_->ws.options().clipPlane;
+        scene->ws.options().crop = scene_->ws.options().crop;
+        scene->ws.update({lastView_}, *tf_);  // requests what that frame will need; the loader reads it meanwhile
+    }
+}
+
+std::size_t VolumeView::bricksLoaded() const {
+    std::size_t n = scene_ ? scene_->loader.loadedCount() : 0;
+    for (const auto& t : times_)
+        if (t) n += t->loader.loadedCount();
+    return n;
 }
 
 bool VolumeView::hasVolume() const { return scene_ != nullptr; }
@@ -97,12 +170,9 @@ void VolumeView::setTransferFunction(const core::TransferFunction& tf) {
 
 void VolumeView::setRenderSettings(const core::RenderSettings& settings) {
     settings_ = settings;
-    if (scene_) {
-        auto& o = scene_->ws.options();
-        o.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
-        o.isosurface = settings.mode == core::RenderSettings::Mode::Iso;
-        o.isoValue = settings.isoValue;
-    }
+    if (scene_) applyMode(scene_->ws.options(), settings);
+    for (auto& scene : times_)
+        if (scene) applyMode(scene->ws.options(), settings);
     update();
 }
 
@@ -115,6 +185,8 @@ void VolumeView::setTools(const core::ToolSet& tools) {
 void VolumeView::setAccuracy(double voxelsPerPixel) {
     accuracy_ = std::clamp(voxelsPerPixel, 0.25, 16.0);
     if (scene_) scene_->ws.options().voxelsPerPixel = accuracy_;
+    for (auto& scene : times_)
+        if (scene) scene->ws.options().voxelsPerPixel = accuracy_;
     update();
 }
 
@@ -202,6 +274,7 @@ void VolumeView::paintGL() {
             lastDepth_ = img.depth;
             // The cut was refined for the reduced view; refine it for the full one next frame.
             scene_->ws.setRayCounts(img.rayCounts);
+            prefetchNeighbours();
             const double ms = double(t.nsecsElapsed()) / 1e6;
             quality_.frameDone(level, ms);
             frame_ = toQImage(img).scaled(w, h, Qt::IgnoreAspectRatio, Qt::SmoothTransformation);

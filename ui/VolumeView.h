@@ -55,6 +55,20 @@ public:
     /// replacing its preview); nullptr clears the view.
     void setVolume(std::shared_ptr<const core::OctreeReader> reader, bool keepCamera = false);
     bool hasVolume() const;
+    /// The time points of a 4D series, each its own warm working set (one brick cache each,
+    /// sharing the view's budget), `current` shown; a null reader is a time point whose octree
+    /// is not built yet (setTimePoint adds it). setVolume() ends them.
+    void setTimePoints(std::vector<std::shared_ptr<const core::OctreeReader>> readers, int current);
+    void setTimePoint(int index, std::shared_ptr<const core::OctreeReader> reader);
+    /// Shows time point `index` with the same camera, transfer function and settings; after
+    /// each frame the working sets of its neighbours (index ± 1) are refined for the same view,
+    /// so that cine never waits for the disk once warm. False when that time point has no octree yet.
+    bool showTimePoint(int index);
+    int timePoint() const { return timePoint_; }
+    int timePointCount() const { return int(times_.size()); }
+    /// Bricks read from disk so far by every time point's loader (the open volume's alone
+    /// without time points).
+    std::size_t bricksLoaded() const;
     void setTransferFunction(const core::TransferFunction& tf);
     void setRenderSettings(const core::RenderSettings& settings);
     const core::RenderSettings& renderSettings() const { return settings_; }
@@ -148,6 +162,11 @@ private:
     void interacted();
 
     std::unique_ptr<Scene> scene_;
+    /// The other time points' scenes (the shown one's entry is empty: it is scene_).
+    std::vector<std::unique_ptr<Scene>> times_;
+    int timePoint_ = -1;
+    std::unique_ptr<Scene> makeScene(std::shared_ptr<const core::OctreeReader> reader, std::size_t cacheBytes) const;
+    void prefetchNeighbours();
     std::unique_ptr<render::GpuRayCaster> gpu_;
     std::unique_ptr<core::TransferFunction> tf_;
     core::RenderSettings settings_;

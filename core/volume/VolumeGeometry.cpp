@@ -1,6 +1,9 @@
 #include "core/volume/VolumeGeometry.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include <glm/geometric.hpp>
 
 #include "core/base/Error.h"
 
@@ -27,6 +30,28 @@ void VolumeGeometry::validate(const std::string& what) const {
     }
     if (!std::isfinite(rescaleSlope) || rescaleSlope == 0.0 || !std::isfinite(rescaleIntercept))
         throw Error(what + ": invalid rescale slope/intercept");
+}
+
+}  // namespace hvx::core
+
+namespace hvx::core {
+
+std::string VolumeGeometry::gridDifference(const VolumeGeometry& o) const {
+    auto dimsText = [](const std::array<std::uint32_t, 3>& d) {
+        return std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]);
+    };
+    if (dims != o.dims) return "dimensions " + dimsText(o.dims) + ", not " + dimsText(dims);
+    const double tolerance = 1e-3 * std::min({spacing.x, spacing.y, spacing.z});
+    for (int a = 0; a < 3; ++a) {
+        if (std::abs(spacing[a] - o.spacing[a]) > tolerance) return "another voxel spacing";
+        if (glm::length(direction[a] - o.direction[a]) > 1e-5) return "another orientation";
+    }
+    if (glm::length(origin - o.origin) > tolerance) return "another position";
+    if (rescaleSlope != o.rescaleSlope || rescaleIntercept != o.rescaleIntercept)
+        return "another rescale (slope " + std::to_string(o.rescaleSlope) + ", intercept " +
+               std::to_string(o.rescaleIntercept) + ")";
+    if (scalarType != o.scalarType) return "another stored type";
+    return {};
 }
 
 }  // namespace hvx::core

@@ -48,6 +48,10 @@ struct VolumeGeometry {
     glm::dmat4 indexToPatient() const;
     /// Throws core::Error (prefixed by `what`) when dims, spacing or direction are unusable.
     void validate(const std::string& what) const;
+    /// What makes `other` not the same grid with the same rescale ("dimensions 64x64x6, not
+    /// 64x64x8"), empty when it is: voxels at the same patient points (within a thousandth of
+    /// a voxel) whose stored values mean the same (the time points of one 4D series).
+    std::string gridDifference(const VolumeGeometry& other) const;
 };
 
 }  // namespace hvx::core

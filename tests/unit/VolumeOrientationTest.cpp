@@ -129,3 +129,31 @@ TEST(VolumeOrientation, EveryNrrdPatientSpaceBecomesLps) {
     for (const char* space : {"3D-right-handed", "right-anterior-superior-time", "scanner-xyz-time"})
         EXPECT_NE(refusal(write("r.nrrd", space)).find("not a patient space"), std::string::npos) << space;
 }
+
+// The time points of a 4D series are shown in each other's place only on the same grid with
+// the same rescale: every difference is named, a thousandth of a voxel is the same place.
+TEST(VolumeGeometry, GridDifferenceNamesWhatDiffers) {
+    core::VolumeGeometry a;
+    a.dims = {64, 64, 8};
+    a.spacing = {0.8, 0.8, 3.0};
+    a.origin = {-25, -25, 10};
+    auto b = a;
+    EXPECT_EQ(a.gridDifference(b), "");
+    b.origin.x += 0.0001;
+    EXPECT_EQ(a.gridDifference(b), "") << "a ten-thousandth of a millimetre is the same place";
+    b = a;
+    b.dims[2] = 6;
+    EXPECT_EQ(a.gridDifference(b), "dimensions 64x64x6, not 64x64x8");
+    b = a;
+    b.origin.z += 1.5;
+    EXPECT_EQ(a.gridDifference(b), "another position");
+    b = a;
+    b.spacing.y = 0.81;
+    EXPECT_EQ(a.gridDifference(b), "another voxel spacing");
+    b = a;
+    b.direction = glm::dmat3(glm::dvec3(1, 0, 0), glm::dvec3(0, 0, 1), glm::dvec3(0, -1, 0));
+    EXPECT_EQ(a.gridDifference(b), "another orientation");
+    b = a;
+    b.rescaleSlope = 2.0;
+    EXPECT_NE(a.gridDifference(b).find("another rescale"), std::string::npos);
+}
