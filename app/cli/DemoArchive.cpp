@@ -103,9 +103,16 @@ std::vector<std::string> writeOnce(const fs::path& folder, core::VoxelSource& so
     return files;
 }
 
-void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dicom::PacsNode& node) {
+void seed(const DemoArchive::Config& c, const dicom::LocalNode& local, const dicom::PacsNode& node,
+          const std::function<void(double, const std::string&)>& stage) {
     core::JobContext job;
-    dicom::PacsClient(local, node).store(DemoArchive::series(c, job).files, {});
+    const auto files = DemoArchive::series(c, job).files;
+    const std::string total = std::to_string(files.size());
+    if (stage) stage(0.0, "seeding 0 of " + total + " images");
+    dicom::PacsClient(local, node).store(files, [&](std::size_t done) {
+        if (stage) stage(double(done) / double(std::max<std::size_t>(1, files.size())),
+                         "seeding " + std::to_string(done) + " of " + total + " images");
+    });
 }
 }  // namespace
 
@@ -144,7 +151,8 @@ DemoArchive::Series DemoArchive::series(const Config& c, core::JobContext& job) 
     return out;
 }
 
-std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath, bool* started) {
+std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath, bool* started,
+                                const std::function<void(double, const std::string&)>& stage) {
     if (started) *started = false;
     auto settings = dicom::PacsSettings::load(settingsPath);
     settings.local.port = c.localPort;
@@ -157,6 +165,7 @@ std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath
     if (!answers(settings.local, node)) {
         // One of ours that does not answer (stopping, or hung) goes first: it may hold the port.
         if (archivePid(c) != 0) stop(c);
+        if (stage) stage(0.0, "starting Orthanc");
         bool up = false, exited = false;
         for (int attempt = 0; attempt < 3 && !up; ++attempt) {
             if (attempt > 0) std::this_thread::sleep_for(std::chrono::seconds(attempt));  // the port may be freed by then
@@ -184,7 +193,7 @@ std::string DemoArchive::ensure(const Config& c, const std::string& settingsPath
     }
     std::size_t studies = dicom::PacsClient(settings.local, node).find(dicom::QueryLevel::Study, {}, {});
     if (studies == 0) {
-        seed(c, settings.local, node);
+        seed(c, settings.local, node, stage);
         studies = dicom::PacsClient(settings.local, node).find(dicom::QueryLevel::Study, {}, {});
     }
     // The same archive over DICOMweb, when its plugin answers.

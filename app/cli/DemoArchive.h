@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,10 @@ public:
     /// (its port still held by one stopping, or taken) is started again up to three times, a
     /// little later each time. Throws core::Error when Orthanc is missing or cannot start (the
     /// message names the port and the log file).
-    static std::string ensure(const Config& config, const std::string& settingsPath, bool* started = nullptr);
+    /// `stage` hears what it is doing and how far ("starting Orthanc", "seeding 12 of 480
+    /// images"), from this thread.
+    static std::string ensure(const Config& config, const std::string& settingsPath, bool* started = nullptr,
+                              const std::function<void(double, const std::string&)>& stage = {});
     /// "running (Orthanc, pid N, DICOM on …)" when this archive's Orthanc runs, else "stopped".
     static std::string status(const Config& config);
     /// Stops this archive's Orthanc (SIGTERM, then SIGKILL after 10 s) and says so; an archive

@@ -46,9 +46,11 @@ void startDemo(hvx::ui::MainWindow& window, const QString& pacsConfig, const std
         state->archiveJobRunning = true;
         const int id = w->jobs()->start(
             QObject::tr("Demo archive (Orthanc)"),
-            [state, settings](hvx::core::JobContext&) {
+            [state, settings](hvx::core::JobContext& job) {
                 bool started = false;
-                const std::string text = hvx::app::DemoArchive::ensure(state->archive, settings, &started);
+                const std::string text = hvx::app::DemoArchive::ensure(
+                    state->archive, settings, &started,
+                    [&job](double fraction, const std::string& stage) { job.report(fraction, stage); });
                 state->startedArchive = started;
                 return QString::fromStdString(text);
             },
@@ -57,6 +59,19 @@ void startDemo(hvx::ui::MainWindow& window, const QString& pacsConfig, const std
                 w->pacs()->reloadSettings();
                 w->pacs()->setDemoStatus(QObject::tr("ready: %1").arg(text));
             });
+        // What it is doing (starting, seeding n of N) in the PACS panel as it goes.
+        // The log says when each stage begins and when seeding ends, not every image.
+        auto said = std::make_shared<QString>();
+        QObject::connect(w->jobs(), &hvx::ui::JobManager::progressed, w,
+                         [w, id, said](int job, double fraction, double, const QString& stage) {
+                             if (!w || job != id || stage.isEmpty()) return;
+                             w->pacs()->setDemoStatus(stage + QStringLiteral("\u2026"));
+                             const QString first = stage.section(' ', 0, 0);
+                             if (first != *said || fraction >= 1.0) {
+                                 std::fprintf(stderr, "holovox: demo archive: %s\n", qPrintable(stage));
+                                 *said = fraction >= 1.0 ? QString() : first;
+                             }
+                         });
         QObject::connect(w->jobs(), &hvx::ui::JobManager::finished, w, [w, id, state](int done, const QString& st, const QString& why) {
             if (done != id) return;
             state->archiveJobRunning = false;

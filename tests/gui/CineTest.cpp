@@ -120,6 +120,18 @@ private slots:
         saveArtifact("cine.png");
     }
 
+    // Opening a DICOM folder (as `holovox --demo` opens the demo series, and File > Open does):
+    // imported, opened, and its series selected in the browser, the row the open volume is.
+    void anOpenedFolderIsSelectedInTheBrowser() {
+        QVERIFY(window_->openPath(QString::fromStdString(dir_.file("cases/windows"))));
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        QTRY_VERIFY_WITH_TIMEOUT(!window_->openLabel().endsWith("(preview)"), 10000);
+        auto* item = window_->browser()->tree()->currentItem();
+        QVERIFY(item);
+        QCOMPARE(item->data(0, Qt::UserRole + 3).toString(), window_->openLabel());  // the row's label
+        QCOMPARE(window_->cine()->count(), 0);  // one volume: nothing to play
+    }
+
     void cleanupTestCase() { close(); }
 };
 

@@ -27,6 +27,9 @@ studies() {  # the patients of the study database, read by Python's sqlite3, not
 demo "$art/demo-first-start.png"
 [ "$(studies)" = "HOLOVOX^BRAIN:1" ] || { echo "the demo study is not in the study database: '$(studies)'"; exit 1; }
 grep -q "stopped the demo archive" "$work/gui.log" || { cat "$work/gui.log"; echo "quitting did not stop the demo archive"; exit 1; }
+# The PACS panel said what the archive was doing: starting, then seeding up to the last image.
+grep -q "demo archive: starting Orthanc" "$work/gui.log" || { cat "$work/gui.log"; echo "no starting stage said"; exit 1; }
+grep -Eq "demo archive: seeding ([0-9]+) of \1 images" "$work/gui.log" || { cat "$work/gui.log"; echo "seeding was not said to its end"; exit 1; }
 if "$cli" demo --status; then echo "the demo archive still runs after quitting"; exit 1; fi
 
 mkdir -p "$XDG_CONFIG_HOME/Holovox"
