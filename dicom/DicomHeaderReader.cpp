@@ -5,6 +5,7 @@
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcmetinf.h>
 #include <dcmtk/dcmdata/dcsequen.h>
+#include <dcmtk/dcmdata/dcuid.h>
 #include <dcmtk/dcmdata/dcxfer.h>
 
 #include <algorithm>
@@ -27,6 +28,22 @@ std::string text(DcmItem* item, const DcmTagKey& key) {
         std::string s = v.c_str();
         while (!s.empty() && (s.back() == ' ' || s.back() == '\0')) s.pop_back();
         return s;
+    }
+    return {};
+}
+
+/// The image series a segmentation (SEG) or structure set (RTSTRUCT) was drawn on.
+std::string referencedSeries(DcmItem* ds, const std::string& sopClass) {
+    DcmItem* item = nullptr;
+    if (sopClass == UID_SegmentationStorage) {
+        if (ds->findAndGetSequenceItem(DCM_ReferencedSeriesSequence, item, 0).good() && item)
+            return text(item, DCM_SeriesInstanceUID);
+    } else if (sopClass == UID_RTStructureSetStorage) {
+        DcmItem *study = nullptr, *series = nullptr;
+        if (ds->findAndGetSequenceItem(DCM_ReferencedFrameOfReferenceSequence, item, 0).good() && item &&
+            item->findAndGetSequenceItem(DCM_RTReferencedStudySequence, study, 0).good() && study &&
+            study->findAndGetSequenceItem(DCM_RTReferencedSeriesSequence, series, 0).good() && series)
+            return text(series, DCM_SeriesInstanceUID);
     }
     return {};
 }
@@ -176,6 +193,7 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     p.seriesDescription = text(ds, DCM_SeriesDescription);
     p.bodyPartExamined = text(ds, DCM_BodyPartExamined);
     p.frameOfReferenceUid = text(ds, DCM_FrameOfReferenceUID);
+    p.referencedSeriesUid = referencedSeries(ds, p.sopClassUid);
     Sint32 i32 = 0;
     if (ds->findAndGetSint32(DCM_SeriesNumber, i32).good()) p.seriesNumber = i32;
     if (ds->findAndGetSint32(DCM_InstanceNumber, i32).good()) p.instanceNumber = i32;

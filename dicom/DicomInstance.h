@@ -36,6 +36,9 @@ struct DicomInstance {
     std::string studyInstanceUid, studyDate, studyTime, studyDescription, accessionNumber;
     std::string seriesInstanceUid, modality, seriesDescription, bodyPartExamined;
     std::string frameOfReferenceUid;
+    /// A segmentation or structure set: the image series it was drawn on (SEG's Referenced
+    /// Series Sequence, RTSTRUCT's RT Referenced Series Sequence); empty otherwise.
+    std::string referencedSeriesUid;
     int seriesNumber = 0;
     int instanceNumber = 0;
     std::uint16_t rows = 0, columns = 0, samplesPerPixel = 1;

@@ -15,8 +15,9 @@ namespace hvx::dicom {
 
 namespace {
 /// 1: the first schema; 2: instances.offline; 3: volumes (the volumes of a 4D series);
-/// 4: series.warnings (what assembling the series found: assumed spacing, gaps...).
-constexpr std::int64_t kSchemaVersion = 4;
+/// 4: series.warnings (what assembling the series found: assumed spacing, gaps...);
+/// 5: series.refers_to (a SEG's or RTSTRUCT's image series).
+constexpr std::int64_t kSchemaVersion = 5;
 const char* kSchema = R"sql(
 CREATE TABLE IF NOT EXISTS patients (
   id INTEGER PRIMARY KEY, patient_id TEXT NOT NULL, name TEXT NOT NULL,
@@ -29,7 +30,8 @@ CREATE TABLE IF NOT EXISTS series (
   id INTEGER PRIMARY KEY, uid TEXT NOT NULL UNIQUE,
   study INTEGER NOT NULL REFERENCES studies(id) ON DELETE CASCADE,
   number INTEGER, description TEXT, modality TEXT, body_part TEXT,
-  instance_count INTEGER NOT NULL DEFAULT 0, octree TEXT, warnings TEXT NOT NULL DEFAULT '');
+  instance_count INTEGER NOT NULL DEFAULT 0, octree TEXT, warnings TEXT NOT NULL DEFAULT '',
+  refers_to TEXT NOT NULL DEFAULT '');
 CREATE TABLE IF NOT EXISTS instances (
   id INTEGER PRIMARY KEY, sop_uid TEXT NOT NULL UNIQUE,
   series INTEGER NOT NULL REFERENCES series(id) ON DELETE CASCADE,
@@ -163,10 +165,12 @@ void StudyDatabase::migrate() {
         return false;
     };
     // Version 1 (no user_version): instances had no offline flag; before 4, series no warnings.
-    const bool hasOffline = hasColumn("instances", "offline"), hasWarnings = hasColumn("series", "warnings");
+    const bool hasOffline = hasColumn("instances", "offline"), hasWarnings = hasColumn("series", "warnings"),
+               hasRefersTo = hasColumn("series", "refers_to");
     transaction([&] {
         if (!hasOffline) exec("ALTER TABLE instances ADD COLUMN offline INTEGER NOT NULL DEFAULT 0;");
         if (!hasWarnings) exec("ALTER TABLE series ADD COLUMN warnings TEXT NOT NULL DEFAULT '';");
+        if (!hasRefersTo) exec("ALTER TABLE series ADD COLUMN refers_to TEXT NOT NULL DEFAULT '';");
         exec(("PRAGMA user_version = " + std::to_string(kSchemaVersion) + ";").c_str());
     });
 }
@@ -200,8 +204,9 @@ StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomIn
                           "sex = coalesce(nullif(?4, ''), sex) RETURNING id;");
         Stmt study(db_, "INSERT INTO studies(uid, patient, date, time, description, accession) VALUES(?1, ?2, ?3, ?4, ?5, ?6) "
                         "ON CONFLICT(uid) DO UPDATE SET date = coalesce(nullif(?3, ''), date) RETURNING id;");
-        Stmt series(db_, "INSERT INTO series(uid, study, number, description, modality, body_part) "
-                         "VALUES(?1, ?2, ?3, ?4, ?5, ?6) ON CONFLICT(uid) DO UPDATE SET modality = modality RETURNING id;");
+        Stmt series(db_, "INSERT INTO series(uid, study, number, description, modality, body_part, refers_to) "
+                         "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT(uid) DO UPDATE SET "
+                         "refers_to = CASE WHEN refers_to = '' THEN excluded.refers_to ELSE refers_to END RETURNING id;");
         Stmt find(db_, "SELECT path FROM instances WHERE sop_uid = ?1;");
         Stmt put(db_, "INSERT INTO instances(sop_uid, series, path, transfer_syntax, sop_class, instance_number, file_size) "
                       "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT(sop_uid) DO UPDATE SET path = ?3, series = ?2, "
@@ -222,7 +227,7 @@ StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomIn
             while (study.step()) {}
             series.reset();
             series.bind(1, in.seriesInstanceUid).bind(2, studyId).bind(3, std::int64_t(in.seriesNumber))
-                .bind(4, in.seriesDescription).bind(5, in.modality).bind(6, in.bodyPartExamined);
+                .bind(4, in.seriesDescription).bind(5, in.modality).bind(6, in.bodyPartExamined).bind(7, in.referencedSeriesUid);
             series.step();
             const auto seriesId = series.integer(0);
             while (series.step()) {}
@@ -363,7 +368,7 @@ std::vector<StudyRow> StudyDatabase::findStudies(const StudyQuery& q) const {
 namespace {
 const char* kSeriesColumns =
     "SELECT se.uid, st.uid, se.modality, se.description, se.body_part, coalesce(se.octree, ''), se.number, "
-    "se.instance_count, se.warnings FROM series se JOIN studies st ON st.id = se.study ";
+    "se.instance_count, se.warnings, se.refers_to FROM series se JOIN studies st ON st.id = se.study ";
 
 SeriesRow seriesRow(const Stmt& s) {
     SeriesRow r;
@@ -381,6 +386,7 @@ SeriesRow seriesRow(const Stmt& s) {
         at = end + 1;
     }
     r.instanceCount = int(s.integer(7));
+    r.refersTo = s.text(9);
     return r;
 }
 }  // namespace

@@ -41,10 +41,11 @@ struct SeriesRow {
     int number = 0;
     int instanceCount = 0;
     std::vector<std::string> warnings;  ///< what assembling the series found (assumed spacing, gaps...)
+    std::string refersTo;  ///< a SEG's or RTSTRUCT's image series (its UID), empty otherwise
 };
 
 /// The local index of imported DICOM: patients → studies → series → instances, in one SQLite
-/// file (schema version 4, WAL journal). Importing the same files again changes nothing; files
+/// file (schema version 5, WAL journal). Importing the same files again changes nothing; files
 /// that cannot be reached are marked offline by checkFiles(), and rows are deleted only by an
 /// explicit prune().
 ///

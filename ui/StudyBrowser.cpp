@@ -1,5 +1,7 @@
 #include "ui/StudyBrowser.h"
 
+#include <map>
+
 #include <QColor>
 #include <QComboBox>
 #include <QFileInfo>
@@ -177,6 +179,7 @@ void StudyBrowser::refresh() {
                                                         QString::number(images)});
             study->setToolTip(0, tr("Accession %1").arg(QString::fromStdString(s.accession)));
             study->setToolTip(3, tr("%n image(s)", nullptr, images) + tr(" in %n series", nullptr, s.seriesCount));
+            std::map<std::string, QTreeWidgetItem*> itemOfSeries;  // for the SEG and RTSTRUCT rows below
             for (const auto& se : seriesRows) {
                 const QString label = QStringLiteral("%1 %2").arg(se.number).arg(QString::fromStdString(se.description));
                 auto* item = new QTreeWidgetItem(study, {label, QString::fromStdString(se.bodyPart),
@@ -184,6 +187,7 @@ void StudyBrowser::refresh() {
                 item->setData(0, SeriesUidRole, QString::fromStdString(se.seriesUid));
                 item->setData(0, OctreeRole, QString::fromStdString(se.octreePath));
                 item->setData(0, LabelRole, QString::fromStdString(s.patientName) + " \u2014 " + label);
+                itemOfSeries[se.seriesUid] = item;
                 // Thumbnails are made once per series (and again once its octree exists), not at
                 // every refresh: they read bricks or decode a DICOM image on this thread.
                 const bool octree = !se.octreePath.empty() && QFileInfo::exists(QString::fromStdString(se.octreePath));
@@ -220,6 +224,20 @@ void StudyBrowser::refresh() {
                     vitem->setData(0, VolumeRole, v.number);
                     vitem->setToolTip(0, tr("Volume %1 of the series: %2").arg(v.number).arg(QString::fromStdString(v.varying)));
                 }
+            }
+            // A segmentation or structure set is listed under the image series it was drawn on
+            // (when that series is in the study; otherwise in the study, saying so).
+            for (const auto& se : seriesRows) {
+                if (se.refersTo.empty()) continue;
+                auto* item = itemOfSeries[se.seriesUid];
+                const auto image = itemOfSeries.find(se.refersTo);
+                if (image == itemOfSeries.end() || image->second == item) {
+                    item->setToolTip(0, item->toolTip(0) + tr("\nIts image series (%1) is not in the database.")
+                                                               .arg(QString::fromStdString(se.refersTo)));
+                    continue;
+                }
+                study->removeChild(item);
+                image->second->addChild(item);
             }
         }
         tree_->expandAll();

@@ -252,6 +252,7 @@ private slots:
         }
         QVERIFY(ct && binary);
         QVERIFY(binary->toolTip(0).contains("segmentation"));
+        QCOMPARE(binary->parent(), ct);  // listed under the image series it was drawn on
         const QString binaryUid = binary->data(0, Qt::UserRole + 1).toString();
         window_->openSeries(ct->data(0, Qt::UserRole + 1).toString(), {}, "seg CT");
         QVERIFY(window_->jobs()->waitIdle(120000));
@@ -287,6 +288,7 @@ private slots:
             if ((*it)->text(2) == "RTSTRUCT") rt = *it;
         QVERIFY(rt);
         QVERIFY(rt->toolTip(0).contains("structure set"));
+        QCOMPARE(rt->parent()->text(2), QString("CT"));
         tree->setCurrentItem(rt);
         QTest::keyClick(tree, Qt::Key_Return);
         QTRY_VERIFY2_WITH_TIMEOUT(window_->layers()->hasLabels(), qPrintable(window_->layersPanel()->message()), 60000);

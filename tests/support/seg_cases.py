@@ -143,8 +143,31 @@ def frames(kind):
     return out
 
 
+def code(value, scheme, meaning):
+    c = Dataset()
+    c.CodeValue, c.CodingSchemeDesignator, c.CodeMeaning = value, scheme, meaning
+    return c
+
+
+CT_SERIES, CT_INSTANCES = '', []  # the image series the SEG and RTSTRUCT refer to (image_series)
+
+
+def image_references(sequence_item):
+    """The CT's instances, as a Referenced Instance or Contour Image Sequence names them."""
+    refs = []
+    for uid in CT_INSTANCES:
+        r = Dataset()
+        r.ReferencedSOPClassUID, r.ReferencedSOPInstanceUID = '1.2.840.10008.5.1.4.1.1.2', uid
+        refs.append(r)
+    return Sequence(refs)
+
+
 def write(path, kind, number, positions=True):
     ds = dataset(kind, number)
+    ref = Dataset()
+    ref.SeriesInstanceUID = CT_SERIES
+    ref.ReferencedInstanceSequence = image_references(ref)
+    ds.ReferencedSeriesSequence = Sequence([ref])
     fr = frames(kind)
     per = []
     for n, (seg, s, _) in enumerate(fr):
@@ -159,6 +182,14 @@ def write(path, kind, number, positions=True):
         si = Dataset()
         si.ReferencedSegmentNumber = seg
         f.SegmentIdentificationSequence = Sequence([si])
+        # Derived from the CT slice at the same position, as segmentation tools write it.
+        src = Dataset()
+        src.ReferencedSOPClassUID, src.ReferencedSOPInstanceUID = '1.2.840.10008.5.1.4.1.1.2', CT_INSTANCES[s]
+        src.PurposeOfReferenceCodeSequence = Sequence([code('121322', 'DCM', 'Source image for image processing operation')])
+        der = Dataset()
+        der.SourceImageSequence = Sequence([src])
+        der.DerivationCodeSequence = Sequence([code('113076', 'DCM', 'Segmentation')])
+        f.DerivationImageSequence = Sequence([der])
         per.append(f)
     ds.PerFrameFunctionalGroupsSequence = Sequence(per)
     ds.NumberOfFrames = len(fr)
@@ -176,8 +207,9 @@ def write(path, kind, number, positions=True):
 
 def image_series(folder):
     import os
+    global CT_SERIES
     os.makedirs(folder, exist_ok=True)
-    series = generate_uid()
+    series = CT_SERIES = generate_uid()
     for s in range(SLICES):
         ds = dataset('binary')
         for tag in ['SegmentationType', 'SegmentSequence', 'SharedFunctionalGroupsSequence', 'DimensionOrganizationSequence',
@@ -196,6 +228,7 @@ def image_series(folder):
         ds.RescaleIntercept, ds.RescaleSlope = '-1024', '1'
         ds.PixelData = np.full((ROWS, COLS), 1064, np.int16).tobytes()
         ds['PixelData'].VR = 'OW'
+        CT_INSTANCES.append(ds.SOPInstanceUID)
         ds.save_as(f'{folder}/ct{s:02d}.dcm', write_like_original=False)
 
 
@@ -262,6 +295,13 @@ def rtstruct(path):
     ds.StructureSetLabel, ds.StructureSetDate, ds.StructureSetTime = 'phantom', '20240301', '120000'
     ref = Dataset()
     ref.FrameOfReferenceUID = FOR_UID
+    study = Dataset()  # the CT's study and series, its images as contour images
+    study.ReferencedSOPClassUID, study.ReferencedSOPInstanceUID = '1.2.840.10008.3.1.2.3.1', ds.StudyInstanceUID
+    series = Dataset()
+    series.SeriesInstanceUID = CT_SERIES
+    series.ContourImageSequence = image_references(series)
+    study.RTReferencedSeriesSequence = Sequence([series])
+    ref.RTReferencedStudySequence = Sequence([study])
     ds.ReferencedFrameOfReferenceSequence = Sequence([ref])
     rois, roic = [], []
     colours = {1: [255, 0, 0], 2: [0, 200, 255], 3: [0, 255, 0]}

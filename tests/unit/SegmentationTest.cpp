@@ -11,8 +11,10 @@
 
 #include "core/octree/OctreeBuilder.h"
 #include "core/reference/SliceSampler.h"
+#include "dicom/DicomScanner.h"
 #include "dicom/SegmentationSource.h"
 #include "dicom/StructureSetSource.h"
+#include "dicom/StudyDatabase.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
 
@@ -210,4 +212,25 @@ TEST(StructureSet, AnotherFrameOrAnotherGridIsRefused) {
         EXPECT_NE(std::string(e.what()).find("lies between two slices"), std::string::npos) << e.what();
     }
     EXPECT_THROW(dicom::StructureSetSource(cases.dir.file("binary.dcm"), writersGrid(cases)), core::Error);
+}
+
+// Import keeps the image series a SEG and an RTSTRUCT were drawn on (written by pydicom in
+// their Referenced Series and RT Referenced Series Sequences), so that the browser lists them
+// under it; an image series refers to nothing.
+TEST(Segmentation, ImportKnowsTheImageSeriesEachSegmentationRefersTo) {
+    Cases cases;
+    core::JobContext job;
+    const auto scan = dicom::DicomScanner::scan({cases.dir.path().string()}, job);
+    dicom::StudyDatabase db(cases.dir.file("s.sqlite"));
+    db.addInstances(scan.instances);
+    std::string ct;
+    std::map<std::string, std::vector<std::string>> refersTo;  // modality -> what each refers to
+    for (const auto& se : db.seriesOfStudy("1.2.826.0.1.3680043.9.7777.61")) {
+        if (se.modality == "CT") ct = se.seriesUid;
+        refersTo[se.modality].push_back(se.refersTo);
+    }
+    ASSERT_FALSE(ct.empty());
+    EXPECT_EQ(refersTo["CT"], std::vector<std::string>{""});
+    EXPECT_EQ(refersTo["SEG"], (std::vector<std::string>{ct, ct, ct}));
+    EXPECT_EQ(refersTo["RTSTRUCT"], std::vector<std::string>{ct});
 }
