@@ -1,5 +1,7 @@
 #include "ui/JobManager.h"
 
+#include <QEvent>
+
 #include <QCoreApplication>
 #include <QElapsedTimer>
 #include <QThread>
@@ -84,12 +86,48 @@ int JobManager::start(const QString& title, Work work, Done done) {
     return id;
 }
 
+namespace {
+/// While a job runs on the GUI thread: user input reaches the Jobs panel's Cancel buttons
+/// ("cancelJobN") and nothing else, so that the work is never re-entered.
+class OnlyCancelInput : public QObject {
+public:
+    bool eventFilter(QObject* receiver, QEvent* e) override {
+        switch (e->type()) {
+        case QEvent::MouseButtonPress:
+        case QEvent::MouseButtonRelease:
+        case QEvent::MouseButtonDblClick:
+        case QEvent::KeyPress:
+        case QEvent::KeyRelease:
+        case QEvent::Wheel:
+        case QEvent::Shortcut:
+        case QEvent::ShortcutOverride:
+            return !receiver->objectName().startsWith(QLatin1String("cancelJob"));
+        default:
+            return false;
+        }
+    }
+};
+}  // namespace
+
 QString JobManager::runHere(const QString& title, const Work& work) {
     const int id = nextId_++;
-    core::JobContext context([this, id](const core::JobProgress& p) {
+    OnlyCancelInput filter;
+    core::JobContext context([this, id, &filter](const core::JobProgress& p) {
         emit progressed(id, p.fraction, p.etaSeconds, QString::fromStdString(p.stage));
-        QCoreApplication::processEvents(QEventLoop::ExcludeUserInputEvents);  // the panel shows it now
+        // The panel shows it now, and its Cancel button can be pressed.
+        QCoreApplication::instance()->installEventFilter(&filter);
+        QCoreApplication::processEvents(QEventLoop::AllEvents);
+        QCoreApplication::instance()->removeEventFilter(&filter);
     });
+    here_ = &context;
+    hereId_ = id;
+    struct Forget {
+        JobManager* m;
+        ~Forget() {
+            m->here_ = nullptr;
+            m->hereId_ = -1;
+        }
+    } forget{this};
     emit started(id, title);
     try {
         const QString message = work(context);
@@ -106,6 +144,7 @@ QString JobManager::runHere(const QString& title, const Work& work) {
 }
 
 void JobManager::cancel(int id) {
+    if (id == hereId_ && here_) here_->cancel();
     if (auto it = jobs_.find(id); it != jobs_.end()) it->second->context->cancel();
 }
 

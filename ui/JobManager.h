@@ -40,8 +40,9 @@ public:
     int start(const QString& title, Work work, Done done = {});
     /// Runs `work` here, on the GUI thread, now (work that needs this thread's OpenGL context, as
     /// a light-field frame), shown in the Jobs panel as any job: its progress reports are shown
-    /// as they come (the window repaints; user input waits until it ends) and it ends "done",
-    /// "failed" or "cancelled" like the others. Returns the work's message, or throws what it threw.
+    /// as they come (the window repaints; user input waits until it ends, but for the Jobs
+    /// panel's Cancel buttons, so that cancel() reaches it) and it ends "done", "failed" or
+    /// "cancelled" like the others. Returns the work's message, or throws what it threw.
     QString runHere(const QString& title, const Work& work);
     /// Asks a job to stop.
     void cancel(int id);
@@ -67,6 +68,8 @@ private:
     std::shared_ptr<Mailbox> mailbox_;
     QTimer* drainTimer_ = nullptr;
     int nextId_ = 1;
+    core::JobContext* here_ = nullptr;  // the job runHere() runs, while it runs
+    int hereId_ = -1;
 };
 
 }  // namespace hvx::ui

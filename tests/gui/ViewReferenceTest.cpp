@@ -3,9 +3,14 @@
 // reference ray caster draws for the same camera, transfer function and settings (the GPU and
 // the CPU run separate code for sampling and compositing); MinIP and X-ray frames are grey; and
 // the standard-view keys A P L R S I turn the camera so that the edges say what the
-// radiological conventions say. Screenshots under <build>/test-artifacts/gui/view-mode-*.png.
+// radiological conventions say. A light-field frame rendered on the GUI thread is cancelled by
+// its Cancel button in the Jobs panel, while every other click waits. Screenshots under
+// <build>/test-artifacts/gui/view-mode-*.png.
 #include <QComboBox>
+#include <QPushButton>
+#include <QSignalSpy>
 #include <QTest>
+#include <QTimer>
 
 #include <cmath>
 
@@ -18,6 +23,9 @@
 #include "core/streaming/WorkingSet.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "tests/gui/GuiTestSupport.h"
+#include "ui/JobManager.h"
+#include "ui/JobsPanel.h"
+#include "ui/LightFieldPanel.h"
 #include "ui/ImageConversion.h"
 #include "ui/RenderControls.h"
 #include "ui/TransferFunctionEditor.h"
@@ -119,6 +127,39 @@ private slots:
             const QStringList want{opposite(e.right), e.right, e.up, opposite(e.up)};
             QCOMPARE(labels, want);
         }
+    }
+
+    void aLightFieldFrameIsCancelledFromTheJobsPanel() {
+        auto* lf = window_->lightField();
+        auto* render = lf->findChild<QPushButton*>("lightFieldRender");
+        QVERIFY(render);
+        int frameJob = -1, startedJobs = 0;
+        bool clicked = false;
+        QSignalSpy finished(window_->jobs(), &ui::JobManager::finished);
+        connect(window_->jobs(), &ui::JobManager::started, this, [&](int id, const QString& title) {
+            ++startedJobs;
+            if (title.startsWith("Light-field frame")) frameJob = id;
+        });
+        // At its first progress report, while it runs: the Render button again (must wait),
+        // then the job's own Cancel button in the Jobs panel.
+        connect(window_->jobs(), &ui::JobManager::progressed, this, [&](int id, double, double, const QString&) {
+            if (id != frameJob || clicked) return;
+            clicked = true;
+            QTimer::singleShot(0, this, [&, id] {
+                QTest::mouseClick(render, Qt::LeftButton);
+                auto* cancel = window_->jobsPanel()->findChild<QPushButton*>(QStringLiteral("cancelJob%1").arg(id));
+                QVERIFY(cancel);
+                QTest::mouseClick(cancel, Qt::LeftButton);
+            });
+        });
+        QTest::mouseClick(render, Qt::LeftButton);
+        QTRY_VERIFY_WITH_TIMEOUT(frameJob > 0 && clicked, 30000);
+        bool cancelled = false;
+        for (const auto& f : finished)
+            if (f.at(0).toInt() == frameJob) cancelled = f.at(1).toString() == "cancelled";
+        QVERIFY2(cancelled, "the light-field frame was not cancelled by its Cancel button");
+        QCOMPARE(startedJobs, 1);  // the click on Render while it ran did not start another
+        disconnect(window_->jobs(), nullptr, this, nullptr);
     }
 
     void cleanupTestCase() { close(); }
