@@ -4,11 +4,14 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 
 #include <dcmtk/config/osconfig.h>
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcfilefo.h>
 #include <dcmtk/dcmdata/dcuid.h>
+#include <dcmtk/dcmdata/dcxfer.h>
+#include <dcmtk/dcmiod/iodtypes.h>
 #include <dcmtk/dcmfg/fginterface.h>
 #include <dcmtk/dcmfg/fgpixmsr.h>
 #include <dcmtk/dcmfg/fgplanor.h>
@@ -48,10 +51,29 @@ struct FrameRef {
 };
 }  // namespace
 
+/// DCMTK 3.6.7's DcmSegmentation::loadDataset loses the object it made when reading fails (it
+/// deletes its null out-parameter instead of the object): the same steps here, with the object
+/// owned whatever the outcome.
+class OwnedSegmentation : public DcmSegmentation {
+public:
+    static OFCondition load(DcmDataset& ds, std::unique_ptr<DcmSegmentation>& out) {
+        // RLE-compressed frames are decompressed first, as loadDataset does (deflate is undone
+        // when the file is read).
+        if (DcmXfer(ds.getOriginalXfer()).isEncapsulated() &&
+            (ds.chooseRepresentation(EXS_LittleEndianExplicit, nullptr).bad() ||
+             !ds.canWriteXfer(EXS_LittleEndianExplicit)))
+            return IOD_EC_CannotDecompress;
+        std::unique_ptr<OwnedSegmentation> seg(new OwnedSegmentation());
+        const OFCondition result = seg->read(ds);
+        if (result.good()) out = std::move(seg);
+        return result;
+    }
+};
+
 struct SegmentationSource::Impl {
     std::string path;
     DcmFileFormat file;
-    DcmSegmentation* seg = nullptr;
+    std::unique_ptr<DcmSegmentation> seg;
     core::VolumeGeometry g;
     core::LabelTable table;
     bool fractional = false;
@@ -59,8 +81,6 @@ struct SegmentationSource::Impl {
     Uint16 rows = 0, cols = 0;
     std::map<std::uint32_t, std::vector<FrameRef>> slices;  // slice index -> its frames, segments ascending
     std::vector<std::string> warnings;
-
-    ~Impl() { delete seg; }
 
     [[noreturn]] void fail(const std::string& what) const { throw core::Error(path + ": " + what); }
 
@@ -103,7 +123,7 @@ SegmentationSource::SegmentationSource(const std::string& path) : impl_(std::mak
     OFString sopClass;
     ds.findAndGetOFString(DCM_SOPClassUID, sopClass);
     if (sopClass != UID_SegmentationStorage) m.fail("not a DICOM Segmentation object (SOP class " + std::string(sopClass.c_str()) + ")");
-    if (const OFCondition loaded = DcmSegmentation::loadDataset(ds, m.seg); loaded.bad() || !m.seg)
+    if (const OFCondition loaded = OwnedSegmentation::load(ds, m.seg); loaded.bad() || !m.seg)
         m.fail("the segmentation does not load (dcmseg: " + std::string(loaded.text()) + ")");
     m.fractional = m.seg->getSegmentationType() == DcmSegTypes::ST_FRACTIONAL;
     if (m.fractional) {
