@@ -66,6 +66,22 @@ void writeTable(const core::LabelTable& table, const std::string& octreePath) {
     w.append(text.data(), text.size());
     w.commit();
 }
+/// A SEG or RTSTRUCT series' first object built as a label map at `outPath`, its names and
+/// colours beside it; its warnings, and that only the first of several `what` is shown, said.
+void buildLabelMap(core::VoxelSource& source, const core::LabelTable& table, const std::vector<std::string>& files,
+                   const std::string& what, std::vector<std::string>* warnings, const std::string& outPath,
+                   core::JobContext& job) {
+    if (warnings) {
+        for (const auto& w : source.warnings()) warnings->push_back(w);
+        if (files.size() > 1)
+            warnings->push_back("the series holds " + std::to_string(files.size()) + " " + what +
+                                ": the first is shown (" + files.front() + ")");
+    }
+    core::BuildOptions o;
+    o.labels = true;
+    core::OctreeBuilder(o).build(source, outPath, job);
+    writeTable(table, outPath);
+}
 }  // namespace
 
 std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,
@@ -74,17 +90,8 @@ std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid,
     const auto files = db.filesOfSeries(seriesUid);
     if (!files.empty() && SegmentationSource::isSegmentation(files.front())) {
         SegmentationSource seg(files.front());
-        if (warnings) {
-            for (const auto& w : seg.warnings()) warnings->push_back(w);
-            if (files.size() > 1)
-                warnings->push_back("the series holds " + std::to_string(files.size()) +
-                                    " segmentation objects: the first is shown (" + files.front() + ")");
-        }
         if (outPath.empty()) outPath = defaultPath(db, seriesUid, ".hvo");
-        core::BuildOptions o;
-        o.labels = true;
-        core::OctreeBuilder(o).build(seg, outPath, job);
-        writeTable(seg.table(), outPath);
+        buildLabelMap(seg, seg.table(), files, "segmentation objects", warnings, outPath, job);
         db.setSeriesOctree(seriesUid, outPath);
         return outPath;
     }
@@ -109,17 +116,8 @@ std::string SeriesOctree::buildStructureSet(StudyDatabase& db, const std::string
     if (files.empty() || !StructureSetSource::isStructureSet(files.front()))
         throw core::Error("series " + seriesUid + " is not an RT Structure Set");
     StructureSetSource rt(files.front(), grid);
-    if (warnings) {
-        for (const auto& w : rt.warnings()) warnings->push_back(w);
-        if (files.size() > 1)
-            warnings->push_back("the series holds " + std::to_string(files.size()) +
-                                " structure sets: the first is shown (" + files.front() + ")");
-    }
     if (outPath.empty()) outPath = defaultPath(db, seriesUid, ".rt.hvo");
-    core::BuildOptions o;
-    o.labels = true;
-    core::OctreeBuilder(o).build(rt, outPath, job);
-    writeTable(rt.table(), outPath);
+    buildLabelMap(rt, rt.table(), files, "structure sets", warnings, outPath, job);
     return outPath;
 }
 
