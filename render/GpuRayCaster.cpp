@@ -20,8 +20,11 @@ struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
     glm::vec4 extent, tfRange, shading, extra, enhance;
     glm::uvec4 brick, image;
     glm::vec4 cropLo, cropHi;
+    glm::mat4 patientToOctreeB;
+    glm::vec4 extentB, tfRangeB;
+    glm::uvec4 brickB, fusionB;
 };
-static_assert(sizeof(FrameBlock) == 64 + 5 * 16 + 2 * 16 + 2 * 16, "std140 layout of Frame");
+static_assert(sizeof(FrameBlock) == 64 + 5 * 16 + 2 * 16 + 2 * 16 + 64 + 4 * 16, "std140 layout of Frame");
 struct ViewBlock {  // std430 mirror of raycast_inputs.glsl's ViewCamera
     glm::vec4 eye, forward, right, up, screenCentre, screenRight, screenUp, screenViewer, screenProjector;
 };
@@ -41,7 +44,8 @@ GpuRayCaster::GpuRayCaster(PoolPrecision precision) {
 
 GpuRayCaster::~GpuRayCaster() {
     glDeleteBuffers(kBuffers, buffers_);
-    if (pool_) glDeleteTextures(1, &pool_);
+    for (auto& pool : pools_)
+        if (pool.texture) glDeleteTextures(1, &pool.texture);
 }
 
 namespace {
@@ -72,41 +76,41 @@ std::uint64_t cellKey(const core::TransferFunction& tf, const core::RenderSettin
 }
 }  // namespace
 
-void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Brick>>& slots, std::uint32_t brickSize,
-                              std::uint32_t border, core::ScalarType type) {
+std::size_t GpuRayCaster::uploadPool(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
+                                     std::uint32_t brickSize, std::uint32_t border, core::ScalarType type) {
     const std::uint32_t edge = brickSize + 2 * border;
-    uploaded_ = 0;
+    std::size_t uploaded = 0;
     const auto count = std::uint32_t(std::max<std::size_t>(1, slots.size()));
     // A near-cubic grid of slots, rebuilt only when it must grow or the volume's type changes.
-    if (!pool_ || edge != poolEdge_ || type != poolType_ || count > poolRow_ * poolRow_ * poolLayers_) {
-        if (pool_) glDeleteTextures(1, &pool_);
+    if (!pool.texture || edge != pool.edge || type != pool.type || count > pool.row * pool.row * pool.layers) {
+        if (pool.texture) glDeleteTextures(1, &pool.texture);
         GLint maxSize = 2048;
         glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
         const auto perAxis = std::uint32_t(maxSize) / edge;
-        poolRow_ = std::min(perAxis, std::max(1u, std::uint32_t(std::ceil(std::cbrt(double(count) * 1.25)))));
-        poolLayers_ = (count + poolRow_ * poolRow_ - 1) / (poolRow_ * poolRow_);
-        if (poolLayers_ > perAxis) throw core::Error("the brick pool does not fit in a 3D texture");
-        poolLayer_ = poolRow_ * poolRow_;
-        poolEdge_ = edge;
-        poolType_ = type;
-        glCreateTextures(GL_TEXTURE_3D, 1, &pool_);
-        glTextureStorage3D(pool_, 1, poolFormat(type), GLsizei(poolRow_ * edge), GLsizei(poolRow_ * edge),
-                           GLsizei(poolLayers_ * edge));
-        glTextureParameteri(pool_, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(pool_, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(pool_, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(pool_, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(pool_, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-        poolContent_.assign(poolRow_ * poolRow_ * poolLayers_, nullptr);
-        slotRecords_.assign(poolContent_.size(), {});
-        slotCells_.assign(poolContent_.size(), {});
-        cellsStale_.assign(poolContent_.size(), true);
-        poolBytes_ = poolContent_.size() * std::size_t(edge) * edge * edge * core::scalarSize(type);
+        pool.row = std::min(perAxis, std::max(1u, std::uint32_t(std::ceil(std::cbrt(double(count) * 1.25)))));
+        pool.layers = (count + pool.row * pool.row - 1) / (pool.row * pool.row);
+        if (pool.layers > perAxis) throw core::Error("the brick pool does not fit in a 3D texture");
+        pool.layer = pool.row * pool.row;
+        pool.edge = edge;
+        pool.type = type;
+        glCreateTextures(GL_TEXTURE_3D, 1, &pool.texture);
+        glTextureStorage3D(pool.texture, 1, poolFormat(type), GLsizei(pool.row * edge), GLsizei(pool.row * edge),
+                           GLsizei(pool.layers * edge));
+        glTextureParameteri(pool.texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(pool.texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(pool.texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(pool.texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(pool.texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+        pool.content.assign(pool.row * pool.row * pool.layers, nullptr);
+        pool.records.assign(pool.content.size(), {});
+        pool.cells.assign(pool.content.size(), {});
+        pool.cellsStale.assign(pool.content.size(), true);
+        pool.bytes = pool.content.size() * std::size_t(edge) * edge * edge * core::scalarSize(type);
     }
     std::vector<std::uint16_t> biased;
     for (std::size_t s = 0; s < slots.size(); ++s) {
         const auto& brick = slots[s];
-        if (!brick || poolContent_[s] == brick) continue;  // unchanged since the last upload
+        if (!brick || pool.content[s] == brick) continue;  // unchanged since the last upload
         if (brick->edge != edge) throw core::Error("a brick does not match the pool's slot size");
         // The texel format converts to normalised floats; the slot's affine map gives stored values back.
         GLenum format = GL_FLOAT;
@@ -134,29 +138,67 @@ void GpuRayCaster::uploadPool(const std::vector<std::shared_ptr<const core::Bric
             offset = -32768.0f;
         }
         const auto slot = std::uint32_t(s);
-        glTextureSubImage3D(pool_, 0, GLint(slot % poolRow_ * edge), GLint(slot / poolRow_ % poolRow_ * edge),
-                            GLint(slot / poolLayer_ * edge), GLsizei(edge), GLsizei(edge), GLsizei(edge), GL_RED,
+        glTextureSubImage3D(pool.texture, 0, GLint(slot % pool.row * edge), GLint(slot / pool.row % pool.row * edge),
+                            GLint(slot / pool.layer * edge), GLsizei(edge), GLsizei(edge), GLsizei(edge), GL_RED,
                             format, data);
-        poolContent_[s] = brick;
-        slotCells_[s] = core::BrickCells::of(*brick, brickSize, border);
-        cellsStale_[s] = true;
-        slotRecords_[s].decode = glm::vec2(scale, offset);
-        uploaded_ += brick->data.size();
+        pool.content[s] = brick;
+        pool.cells[s] = core::BrickCells::of(*brick, brickSize, border);
+        pool.cellsStale[s] = true;
+        pool.records[s].decode = glm::vec2(scale, offset);
+        uploaded += brick->data.size();
+    }
+    return uploaded;
+}
+
+void GpuRayCaster::updateVisibleCells(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
+                                      const core::TransferFunction& tf, const core::RenderSettings& settings, bool skip) {
+    const bool dvr = settings.mode == core::RenderSettings::Mode::Dvr;
+    const std::uint64_t key = skip ? cellKey(tf, settings) : 0;
+    if (key != pool.cellKey) std::fill(pool.cellsStale.begin(), pool.cellsStale.end(), true);
+    pool.cellKey = key;
+    for (std::size_t s = 0; s < slots.size(); ++s) {
+        if (!slots[s] || !pool.cellsStale[s]) continue;
+        const std::uint64_t bits = !skip ? ~std::uint64_t(0)
+                                   : dvr ? pool.cells[s].visible(tf)
+                                         : pool.cells[s].straddling(settings.isoValue);
+        pool.records[s].visible = glm::uvec2(std::uint32_t(bits), std::uint32_t(bits >> 32));
+        pool.cellsStale[s] = false;
     }
 }
 
 core::RenderImage GpuRayCaster::render(const core::OctreeReader& reader, const core::SpatialIndex& index,
                                        const std::vector<std::shared_ptr<const core::Brick>>& slots,
                                        const core::TransferFunction& tf, const core::RenderSettings& settings,
-                                       const core::View& view) {
-    return std::move(renderViews(reader, index, slots, tf, settings, {view}).front());
+                                       const core::View& view, const Overlay* overlay) {
+    return std::move(renderViews(reader, index, slots, tf, settings, {view}, overlay).front());
 }
+
+namespace {
+/// Fills a buffer with the first volume's array followed by the second's (fusion), or the first's alone.
+template <class T>
+void uploadPair(unsigned buffer, const std::vector<T>& first, const std::vector<T>* second) {
+    const std::size_t a = first.size() * sizeof(T), b = second ? second->size() * sizeof(T) : 0;
+    glNamedBufferData(buffer, GLsizeiptr(std::max<std::size_t>(a + b, 16)), nullptr, GL_STREAM_DRAW);
+    if (a) glNamedBufferSubData(buffer, 0, GLsizeiptr(a), first.data());
+    if (b) glNamedBufferSubData(buffer, GLintptr(a), GLsizeiptr(b), second->data());
+}
+/// A transfer function's tables as the shader reads them: f, F, and (F.w, f.w) per entry.
+struct TfTables {
+    std::vector<glm::vec4> table, integral;
+    std::vector<glm::vec2> opacity;
+    explicit TfTables(const core::TransferFunction& tf)
+        : table(tf.table().begin(), tf.table().end()), integral(tf.integralTable().begin(), tf.integralTable().end()),
+          opacity(integral.size()) {
+        for (std::size_t i = 0; i < opacity.size(); ++i) opacity[i] = {integral[i].w, i < table.size() ? table[i].w : 0.0f};
+    }
+};
+}  // namespace
 
 std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReader& reader, const core::SpatialIndex& index,
                                                          const std::vector<std::shared_ptr<const core::Brick>>& slots,
                                                          const core::TransferFunction& tf,
                                                          const core::RenderSettings& settings,
-                                                         const std::vector<core::View>& views) {
+                                                         const std::vector<core::View>& views, const Overlay* overlay) {
     if (views.empty()) return {};
     const int width = views.front().width, height = views.front().height;
     for (const auto& v : views)
@@ -164,51 +206,64 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const int mode = int(settings.mode);
     const int tools = settings.mode == core::RenderSettings::Mode::Dvr ? settings.tools.variantBits() : 0;
     if (tools) settings.tools.validate();
+    if (overlay && settings.mode != core::RenderSettings::Mode::Dvr)
+        throw core::Error("two volumes are fused in 3D in DVR only");
+    if (overlay && tools) throw core::Error("the illustrative tools are not drawn over a fused volume");
     const int labels = reader.geometry().isLabel ? 1 : 0;
-    auto& program = programs_[2 * (mode + 8 * tools) + labels];  // a static variant per mode, tools and labels
+    const int fusion = overlay ? 1 + (overlay->reader.geometry().isLabel ? 1 : 0) : 0;  // 1 image, 2 label map
+    // A static variant per mode, tools, labels and fusion.
+    auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion];
     if (!program)
         program = std::make_unique<ComputeProgram>(
             ShaderLibrary::embedded(), "raycast.comp.glsl",
             std::vector<std::string>{"MODE " + std::to_string(mode), "HVX_TOOLS " + std::to_string(tools),
-                                     "HVX_LABELS " + std::to_string(labels)});
+                                     "HVX_LABELS " + std::to_string(labels),
+                                     "HVX_FUSION " + std::to_string(fusion ? 1 : 0),
+                                     "HVX_LABELS_B " + std::to_string(fusion == 2 ? 1 : 0)});
     const auto packed = core::packTools(settings.tools, {settings.ambient, settings.diffuse, settings.specular, settings.shininess});
     static_assert(sizeof(packed) == 16 * 16, "std140 layout of HvxTools");
     glNamedBufferData(buffers_[9], sizeof packed, &packed, GL_STREAM_DRAW);
-    uploadPool(slots, reader.brickSize(), reader.border(),
-               floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
+    uploaded_ = uploadPool(pools_[0], slots, reader.brickSize(), reader.border(),
+                           floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
     // Which cells of each slot's brick may show (64 bits per slot), kept from frame to frame.
+    // The fused march skips each volume's cells under its own transfer function.
     const bool dvr = settings.mode == core::RenderSettings::Mode::Dvr;
     const bool skip = settings.skipEmptyCells && (dvr || settings.mode == core::RenderSettings::Mode::Iso);
-    const std::uint64_t key = skip ? cellKey(tf, settings) : 0;
-    if (key != cellKey_) std::fill(cellsStale_.begin(), cellsStale_.end(), true);
-    cellKey_ = key;
-    for (std::size_t s = 0; s < slots.size(); ++s) {
-        if (!slots[s] || !cellsStale_[s]) continue;
-        const std::uint64_t bits = !skip ? ~std::uint64_t(0)
-                                   : dvr ? slotCells_[s].visible(tf)
-                                         : slotCells_[s].straddling(settings.isoValue);
-        slotRecords_[s].visible = glm::uvec2(std::uint32_t(bits), std::uint32_t(bits >> 32));
-        cellsStale_[s] = false;
+    updateVisibleCells(pools_[0], slots, tf, settings, skip);
+    if (overlay) {
+        const auto& og = overlay->reader.geometry();
+        uploaded_ += uploadPool(pools_[1], overlay->bricks, overlay->reader.brickSize(), overlay->reader.border(),
+                                floatPool_ ? core::ScalarType::Float32 : og.scalarType);
+        updateVisibleCells(pools_[1], overlay->bricks, overlay->tf, settings, skip);
     }
     static_assert(sizeof(SlotRecord) == 16, "std430 layout of SlotRecord");
-    glNamedBufferData(buffers_[8], GLsizeiptr(slotRecords_.size() * sizeof(SlotRecord)), slotRecords_.data(),
-                      GL_STREAM_DRAW);
-    glNamedBufferData(buffers_[0], GLsizeiptr(index.nodes.size() * sizeof(glm::uvec4)), index.nodes.data(), GL_STREAM_DRAW);
-    glNamedBufferData(buffers_[1], GLsizeiptr(index.ropes.size() * 4), index.ropes.data(), GL_STREAM_DRAW);
-    // The transfer function's own tables (128 KiB), uploaded every frame: cheap, and never stale.
-    const std::vector<glm::vec4> table(tf.table().begin(), tf.table().end());
-    const std::vector<glm::vec4> integral(tf.integralTable().begin(), tf.integralTable().end());
-    glNamedBufferData(buffers_[2], GLsizeiptr(table.size() * sizeof(glm::vec4)), table.data(), GL_STREAM_DRAW);
-    glNamedBufferData(buffers_[3], GLsizeiptr(integral.size() * sizeof(glm::vec4)), integral.data(), GL_STREAM_DRAW);
-    // Opacity alone, (F.w, f.w) per entry in one 8-byte read: most samples stop at the opacity test.
-    std::vector<glm::vec2> opacity(integral.size());
-    for (std::size_t i = 0; i < opacity.size(); ++i) opacity[i] = {integral[i].w, i < table.size() ? table[i].w : 0.0f};
-    glNamedBufferData(buffers_[11], GLsizeiptr(opacity.size() * sizeof(glm::vec2)), opacity.data(), GL_STREAM_DRAW);
+    uploadPair(buffers_[8], pools_[0].records, overlay ? &pools_[1].records : nullptr);
+    // A base volume with no cut yet is one empty leaf, so that the overlay's nodes keep their place.
+    static const core::SpatialIndex emptyLeaf = [] {
+        core::SpatialIndex e;
+        e.nodes.push_back({core::SpatialIndex::kNone, core::SpatialIndex::kLeafBit, core::SpatialIndex::kNone,
+                           core::SpatialIndex::kNone});
+        e.ropes.assign(6, core::SpatialIndex::kNone);
+        return e;
+    }();
+    const core::SpatialIndex& base = overlay && index.nodes.empty() ? emptyLeaf : index;
+    uploadPair(buffers_[0], base.nodes, overlay ? &overlay->index.nodes : nullptr);
+    uploadPair(buffers_[1], base.ropes, overlay ? &overlay->index.ropes : nullptr);
+    // The transfer functions' own tables (128 KiB each), uploaded every frame: cheap, and never
+    // stale. Opacity alone, (F.w, f.w) per entry in one 8-byte read: most samples stop at the
+    // opacity test.
+    const TfTables tables(tf);
+    const std::unique_ptr<TfTables> tablesB = overlay ? std::make_unique<TfTables>(overlay->tf) : nullptr;
+    uploadPair(buffers_[2], tables.table, tablesB ? &tablesB->table : nullptr);
+    uploadPair(buffers_[3], tables.integral, tablesB ? &tablesB->integral : nullptr);
+    uploadPair(buffers_[11], tables.opacity, tablesB ? &tablesB->opacity : nullptr);
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t all = pixels * views.size();
     glNamedBufferData(buffers_[4], GLsizeiptr(all * sizeof(glm::vec4)), nullptr, GL_STREAM_READ);
     glNamedBufferData(buffers_[5], GLsizeiptr(all * sizeof(float)), nullptr, GL_STREAM_READ);
-    std::vector<std::uint32_t> zeros(settings.countRays ? index.nodes.size() : 1, 0u);
+    const std::size_t baseNodes = overlay ? std::max<std::size_t>(1, index.nodes.size()) : index.nodes.size();
+    const std::size_t countedNodes = baseNodes + (overlay ? overlay->index.nodes.size() : 0);
+    std::vector<std::uint32_t> zeros(settings.countRays ? countedNodes : 1, 0u);
     glNamedBufferData(buffers_[6], GLsizeiptr(zeros.size() * 4), zeros.data(), GL_STREAM_READ);
 
     // Each view's camera: one entry per view, read by the invocations of dispatch layer z.
@@ -246,10 +301,20 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                          float(tf.referenceLength()));
     fb.enhance = glm::vec4(float(settings.boundary), float(settings.viewTransparency),
                            float(space.minSpacing / (tf.valueMax() - tf.valueMin()) / core::kBoundaryGradientFraction), 0.0f);
-    fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), poolRow_);
-    fb.image = glm::uvec4(std::uint32_t(width), std::uint32_t(height), poolLayer_, std::uint32_t(views.size()));
+    fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), pools_[0].row);
+    fb.image = glm::uvec4(std::uint32_t(width), std::uint32_t(height), pools_[0].layer, std::uint32_t(views.size()));
     fb.cropLo = glm::vec4(glm::vec3(settings.crop.min * space.extent), 0.0f);
     fb.cropHi = glm::vec4(glm::vec3(settings.crop.max * space.extent), 0.0f);
+    if (overlay) {
+        const auto& o = overlay->reader;
+        const auto spaceB = core::OctreeSpace::of(o.geometry(), o.brickSize(), o.levelCount());
+        fb.patientToOctreeB = glm::mat4(spaceB.patientToOctree);
+        fb.extentB = glm::vec4(glm::vec3(spaceB.extent), float(1.0 / spaceB.rootVoxels));
+        fb.tfRangeB = glm::vec4(float(overlay->tf.valueMin()), float(overlay->tf.valueMax()), 0.0f, 0.0f);
+        fb.brickB = glm::uvec4(o.brickSize(), o.border(), o.brickEdge(), pools_[1].row);
+        fb.fusionB = glm::uvec4(pools_[1].layer, std::uint32_t(pools_[0].records.size()),
+                                std::uint32_t(std::max<std::size_t>(1, index.nodes.size())), 0u);
+    }
     glNamedBufferData(buffers_[7], sizeof fb, &fb, GL_STREAM_DRAW);
 
     program->use();
@@ -259,7 +324,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, buffers_[11]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers_[9]);
-    glBindTextureUnit(0, pool_);
+    glBindTextureUnit(0, pools_[0].texture);
+    glBindTextureUnit(1, overlay ? pools_[1].texture : pools_[0].texture);
     glDispatchCompute(GLuint((width + 7) / 8), GLuint((height + 7) / 8), GLuint(views.size()));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
@@ -278,6 +344,11 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     if (settings.countRays) {  // rays of every view of the batch, per index node
         images.front().rayCounts.resize(index.nodes.size());
         glGetNamedBufferSubData(buffers_[6], 0, GLsizeiptr(index.nodes.size() * 4), images.front().rayCounts.data());
+        if (overlay) {
+            images.front().overlayRayCounts.resize(overlay->index.nodes.size());
+            glGetNamedBufferSubData(buffers_[6], GLintptr(baseNodes * 4), GLsizeiptr(overlay->index.nodes.size() * 4),
+                                    images.front().overlayRayCounts.data());
+        }
     }
     const GLenum err = glGetError();
     if (err != GL_NO_ERROR) throw core::Error("OpenGL error " + std::to_string(err) + " while ray casting");

@@ -35,49 +35,68 @@ public:
     GpuRayCaster(const GpuRayCaster&) = delete;
     GpuRayCaster& operator=(const GpuRayCaster&) = delete;
 
+    /// A second volume fused over the first in the same ray march (the HVX_FUSION variant;
+    /// core::FusedRayCaster is its CPU reference): its own index, bricks (in a pool of its own)
+    /// and transfer function. DVR only, without tools.
+    struct Overlay {
+        const core::OctreeReader& reader;
+        const core::SpatialIndex& index;
+        const std::vector<std::shared_ptr<const core::Brick>>& bricks;  // its working set's pool slots
+        const core::TransferFunction& tf;
+    };
+
     /// Renders one view and reads the image back (offscreen rendering, tests, CLI).
     core::RenderImage render(const core::OctreeReader& reader, const core::SpatialIndex& index,
                              const std::vector<std::shared_ptr<const core::Brick>>& slots,
                              const core::TransferFunction& tf, const core::RenderSettings& settings,
-                             const core::View& view);
+                             const core::View& view, const Overlay* overlay = nullptr);
     /// Renders several views of one size from the same index and pool in one dispatch (the
     /// layers of its z dimension): the views of a light-field frame. With countRays, the rays
-    /// of all views are counted in the first image.
+    /// of all views are counted in the first image (an overlay's in its overlayRayCounts).
     std::vector<core::RenderImage> renderViews(const core::OctreeReader& reader, const core::SpatialIndex& index,
                                                const std::vector<std::shared_ptr<const core::Brick>>& slots,
                                                const core::TransferFunction& tf, const core::RenderSettings& settings,
-                                               const std::vector<core::View>& views);
-    /// Bytes uploaded to the brick pool by the last render().
+                                               const std::vector<core::View>& views, const Overlay* overlay = nullptr);
+    /// Bytes uploaded to the brick pools by the last render().
     std::size_t lastUploadBytes() const { return uploaded_; }
-    /// Bytes the pool texture occupies on the GPU.
-    std::size_t poolBytes() const { return poolBytes_; }
+    /// Bytes the pool textures occupy on the GPU.
+    std::size_t poolBytes() const { return pools_[0].bytes + pools_[1].bytes; }
 
 private:
-    void uploadPool(const std::vector<std::shared_ptr<const core::Brick>>& slots, std::uint32_t brickSize,
-                    std::uint32_t border, core::ScalarType type);
+    struct SlotRecord {                // std430 mirror of raycast_inputs.glsl's SlotRecord
+        glm::vec2 decode{1.0f, 0.0f};  // stored value = texel * x + y
+        glm::uvec2 visible{~0u};       // the brick's cells that may show (64 bits)
+    };
+    /// One volume's brick pool: a 3D texture of edge^3 slots and what each slot holds.
+    struct Pool {
+        unsigned texture = 0;
+        std::uint32_t edge = 0, row = 0, layer = 0, layers = 0;
+        // What each slot holds; keeping the reference stops a freed brick's address from being
+        // reused by a new brick and mistaken for it.
+        std::vector<std::shared_ptr<const core::Brick>> content;
+        std::vector<SlotRecord> records;
+        std::vector<core::BrickCells> cells;  // per slot: value ranges of the brick's cells
+        // A slot's visible cells are recomputed when its brick changes, and all of them when the
+        // transfer function, mode or iso value changes (cellKey).
+        std::vector<bool> cellsStale;
+        std::uint64_t cellKey = 0;
+        core::ScalarType type = core::ScalarType::Float32;
+        std::size_t bytes = 0;
+    };
+    /// Brings a pool up to date with the working set's slots; returns the bytes uploaded.
+    std::size_t uploadPool(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
+                           std::uint32_t brickSize, std::uint32_t border, core::ScalarType type);
+    /// Which cells of each slot's brick may show (all of them when nothing is skipped).
+    static void updateVisibleCells(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
+                                   const core::TransferFunction& tf, const core::RenderSettings& settings, bool skip);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
     static constexpr int kBuffers = 12;
     unsigned buffers_[kBuffers] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot
                                        // records, tools, views, tf opacity (F.w, f.w)
-    unsigned pool_ = 0;
-    std::uint32_t poolEdge_ = 0, poolRow_ = 0, poolLayer_ = 0, poolLayers_ = 0;
-    // What each slot holds; keeping the reference stops a freed brick's address from being
-    // reused by a new brick and mistaken for it.
-    std::vector<std::shared_ptr<const core::Brick>> poolContent_;
-    struct SlotRecord {                // std430 mirror of raycast_inputs.glsl's SlotRecord
-        glm::vec2 decode{1.0f, 0.0f};  // stored value = texel * x + y
-        glm::uvec2 visible{~0u};       // the brick's cells that may show (64 bits)
-    };
-    std::vector<SlotRecord> slotRecords_;
-    std::vector<core::BrickCells> slotCells_;  // per slot: value ranges of the brick's cells
-    // A slot's visible cells are recomputed when its brick changes, and all of them when the
-    // transfer function, mode or iso value changes (cellKey_).
-    std::vector<bool> cellsStale_;
-    std::uint64_t cellKey_ = 0;
-    core::ScalarType poolType_ = core::ScalarType::Float32;
+    Pool pools_[2];                    // the volume's, and a fused volume's
     bool floatPool_ = false;
-    std::size_t uploaded_ = 0, poolBytes_ = 0;
+    std::size_t uploaded_ = 0;
 };
 
 }  // namespace hvx::render

@@ -1,4 +1,7 @@
 #include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -8,9 +11,11 @@
 
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
+#include "app/cli/OverlayOptions.h"
 #include "core/streaming/BrickCache.h"
 #include "core/streaming/BrickLoader.h"
 #include "core/reference/CpuRayCaster.h"
+#include "core/reference/FusedRayCaster.h"
 #include "core/appearance/LabelTable.h"
 #include "core/base/Error.h"
 #include "core/image/ImageWriter.h"
@@ -31,17 +36,71 @@ core::RenderSettings::Mode parseMode(const std::string& m) {
     if (m == "xray" || m == "average") return core::RenderSettings::Mode::Average;
     throw core::Error("--mode must be dvr, iso, mip, minip or xray");
 }
+/// The second volume of `render --overlay/--labels`: its reader, transfer function and working set.
+struct FusedLayer {
+    std::string path, description;
+    std::unique_ptr<core::OctreeReader> reader;
+    std::unique_ptr<core::TransferFunction> tf;
+    core::BrickCache cache;
+    core::BrickLoader loader;
+    core::WorkingSet ws;
+
+    FusedLayer(const std::string& spec, bool labels, const CliArgs& args, const core::VolumeGeometry& base,
+               std::size_t cacheBytes, const core::WorkingSetOptions& baseOptions)
+        : FusedLayer(labels ? std::make_pair(spec, std::map<std::string, std::string>{}) : overlaySpec(spec), labels, args,
+                     base, cacheBytes, baseOptions) {}
+
+private:
+    FusedLayer(std::pair<std::string, std::map<std::string, std::string>> parsed, bool labels, const CliArgs& args,
+               const core::VolumeGeometry& base, std::size_t cacheBytes, const core::WorkingSetOptions& baseOptions)
+        : path(parsed.first), reader(core::OctreeReader::open(path)), tf(makeTf(parsed.second, labels, args, base)),
+          cache(cacheBytes), loader(*reader, cache), ws(*reader, cache, loader, options(baseOptions)) {}
+
+    std::unique_ptr<core::TransferFunction> makeTf(const std::map<std::string, std::string>& opts, bool labels,
+                                                   const CliArgs& args, const core::VolumeGeometry& base) {
+        const auto& g = reader->geometry();
+        pairFrames(base, args.positional()[0], g, path, args.flag("force-frame"));
+        const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
+        if (labels) {
+            if (!g.isLabel) throw core::Error(path + " is not a label map (build it with --labels); --overlay lays an image over");
+            const auto table = core::LabelTable::forLabelMap(path, g.valueMin, g.valueMax, args.value("lut").value_or(""));
+            const double opacity = args.number("label-opacity").value_or(1.0);
+            if (!(opacity >= 0 && opacity <= 1)) throw core::Error("--label-opacity must be 0 to 1");
+            description = "labels, " + table.format();
+            return std::make_unique<core::TransferFunction>(core::TransferFunction::forLabels(table, opacity, space.minSpacing));
+        }
+        if (g.isLabel) throw core::Error(path + " is a label map: lay it over with --labels");
+        const auto look = overlayLook(opts, g);
+        // The window is in physical units; the transfer function runs over stored values.
+        double lo = (look.window.centre - look.window.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
+        double hi = (look.window.centre + look.window.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
+        if (lo > hi) std::swap(lo, hi);
+        char text[160];
+        std::snprintf(text, sizeof text, "%s map, window W %.6g / L %.6g, opacity %.2g", look.map.name().c_str(),
+                      look.window.width, look.window.centre, look.opacity);
+        description = text;
+        return std::make_unique<core::TransferFunction>(
+            core::TransferFunction::forColorMap(look.map, lo, hi, look.opacity, g.valueMin, g.valueMax, space.minSpacing));
+    }
+    static core::WorkingSetOptions options(core::WorkingSetOptions o) {
+        o.crop = {};  // the overlay is cut by the base volume's box, not by its crop
+        o.clip = false;
+        o.cullByTransferFunction = true;
+        return o;
+    }
+};
 }  // namespace
 
 int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
-                        "view-transparency", "tools", "crop", "lut", "label-opacity"},
-                       {"cpu"});
+                        "view-transparency", "tools", "crop", "lut", "label-opacity", "overlay", "labels"},
+                       {"cpu", "force-frame"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
-                          "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
+                          "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L] | "
+                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
@@ -77,9 +136,12 @@ int renderCommand(int argc, char** argv) {
     }
     std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
+    const bool fusedLabels = args.value("labels").has_value();
+    if (fusedLabels && args.value("overlay")) throw core::Error("one volume at a time is fused in 3D: --overlay or --labels");
     if (g.isLabel && args.value("tf")) throw core::Error("a label map is drawn with its label table (--lut), not a --tf preset");
-    if (!g.isLabel && (args.value("lut") || args.value("label-opacity")))
+    if (!g.isLabel && !fusedLabels && (args.value("lut") || args.value("label-opacity")))
         throw core::Error(args.positional()[0] + " is not a label map: --lut and --label-opacity are for label maps");
+    if (g.isLabel && fusedLabels) throw core::Error(args.positional()[0] + " is a label map: --labels lays one over an image");
     const auto tf = [&] {
         if (!g.isLabel)
             return core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
@@ -119,21 +181,41 @@ int renderCommand(int argc, char** argv) {
     }
     opt.crop = settings.crop;
     const auto t0 = std::chrono::steady_clock::now();
-    core::BrickCache cache(std::size_t(args.integer("cache-mb", 2048, 16, 1 << 20)) << 20);
+    const std::size_t cacheBytes = std::size_t(args.integer("cache-mb", 2048, 16, 1 << 20)) << 20;
+    core::BrickCache cache(cacheBytes);
     core::BrickLoader loader(*reader, cache);
     core::WorkingSet ws(*reader, cache, loader, opt);
     const int frames = ws.converge({view}, tf);  // synchronous: load what the cut asks for
+    // --overlay or --labels: a second volume fused in the same ray march, with its own working
+    // set (the same budget) and transfer function.
+    std::unique_ptr<FusedLayer> fused;
+    if (const auto spec = args.value("overlay") ? args.value("overlay") : args.value("labels")) {
+        if (settings.mode != core::RenderSettings::Mode::Dvr) throw core::Error("two volumes are fused in 3D in DVR only");
+        if (settings.tools.variantBits()) throw core::Error("the illustrative tools are not drawn over a fused volume");
+        fused = std::make_unique<FusedLayer>(*spec, fusedLabels, args, g, cacheBytes, opt);
+        fused->ws.converge({view}, *fused->tf);
+    }
     const double refineSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     for (const auto& e : loader.errors()) std::fprintf(stderr, "holovox-cli: warning: %s (drawn coarser)\n", e.c_str());
     const auto t1 = std::chrono::steady_clock::now();
     core::RenderImage image;
     std::string device = "the CPU";
     if (args.flag("cpu")) {
-        image = core::CpuRayCaster(*reader, ws.index(), ws.slotData(), tf, settings).render(view);
+        const core::CpuRayCaster base(*reader, ws.index(), ws.slotData(), tf, settings);
+        if (fused) {
+            core::RenderSettings plain = settings;
+            plain.crop = {};
+            const core::CpuRayCaster second(*fused->reader, fused->ws.index(), fused->ws.slotData(), *fused->tf, plain);
+            image = core::FusedRayCaster(base, second).render(view);
+        } else {
+            image = base.render(view);
+        }
     } else {
         render::EglOffscreenContext context;  // headless: EGL surfaceless (Mesa) or an EGL device
         render::GpuRayCaster gpu;
-        image = gpu.render(*reader, ws.index(), ws.slotBricks(), tf, settings, view);
+        std::optional<render::GpuRayCaster::Overlay> overlay;
+        if (fused) overlay.emplace(render::GpuRayCaster::Overlay{*fused->reader, fused->ws.index(), fused->ws.slotBricks(), *fused->tf});
+        image = gpu.render(*reader, ws.index(), ws.slotBricks(), tf, settings, view, overlay ? &*overlay : nullptr);
         device = "the GPU (" + context.info().renderer + ")";
     }
     const double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
@@ -143,6 +225,9 @@ int renderCommand(int argc, char** argv) {
         "%.2f s), ray casting %.2f s\n",
         out->c_str(), width, height, args.value("mode").value_or("dvr").c_str(), preset.c_str(), device.c_str(),
         ws.stats().cutNodes, loader.loadedCount(), std::size_t(frames), refineSeconds, renderSeconds);
+    if (fused)
+        std::printf("fused %s (%s): cut of %zu bricks (%zu loaded)\n", fused->path.c_str(), fused->description.c_str(),
+                    fused->ws.stats().cutNodes, fused->loader.loadedCount());
     return 0;
 }
 

@@ -10,6 +10,7 @@
 
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
+#include "app/cli/OverlayOptions.h"
 #include "core/base/Error.h"
 #include "core/image/ImageWriter.h"
 #include "core/octree/OctreeReader.h"
@@ -34,31 +35,6 @@ struct Layer {
     }
 };
 
-/// "B.hvo[:lut=hot,opacity=0.5,window=W/L]": the path and its options.
-std::pair<std::string, std::map<std::string, std::string>> overlaySpec(const std::string& text) {
-    std::map<std::string, std::string> opts;
-    const auto colon = text.rfind(':');
-    if (colon == std::string::npos || text.find('=', colon) == std::string::npos) return {text, opts};
-    std::string rest = text.substr(colon + 1);
-    for (std::size_t at = 0; at <= rest.size();) {
-        const auto comma = std::min(rest.find(',', at), rest.size());
-        const std::string kv = rest.substr(at, comma - at);
-        const auto eq = kv.find('=');
-        if (eq == std::string::npos || (kv.substr(0, eq) != "lut" && kv.substr(0, eq) != "opacity" && kv.substr(0, eq) != "window"))
-            throw core::Error("--overlay options are lut=NAME|FILE, opacity=0..1 and window=W/L (\"" + kv + "\" given)");
-        opts[kv.substr(0, eq)] = kv.substr(eq + 1);
-        at = comma + 1;
-    }
-    return {text.substr(0, colon), opts};
-}
-
-/// Refuses a partner in another frame of reference unless forced; prints the note otherwise.
-void pairFrames(const core::VolumeGeometry& base, const std::string& baseName, const core::VolumeGeometry& partner,
-                const std::string& partnerName, bool force) {
-    const auto pairing = core::FramePairing::of(base, baseName, partner, partnerName);
-    if (pairing.refused && !force) throw core::Error(pairing.sentence + " (--force-frame lays it over anyway)");
-    if (!pairing.sentence.empty()) std::printf("note: %s%s\n", pairing.sentence.c_str(), pairing.refused ? " (forced)" : "");
-}
 }  // namespace
 
 int sliceCommand(int argc, char** argv) {
@@ -143,18 +119,8 @@ int sliceCommand(int argc, char** argv) {
         const auto& og = overlayLayer->reader->geometry();
         pairFrames(g, baseName, og, path, args.flag("force-frame"));
         overlayImage = overlayLayer->sampler->sample(plane);
-        overlay = core::SliceOverlay{&overlayImage, &og, core::ColorMap::namedOrFile(opts.count("lut") ? opts.at("lut") : "hot"),
-                                     core::DisplayWindow::initial(og), 0.5};
-        if (opts.count("opacity")) {
-            overlay->opacity = CliArgs::numbers(opts.at("opacity"), 1, "opacity")[0];
-            if (!(overlay->opacity >= 0 && overlay->opacity <= 1)) throw core::Error("--overlay opacity must be 0 to 1");
-        }
-        if (opts.count("window")) {
-            double ww = 0, wl = 0;
-            if (std::sscanf(opts.at("window").c_str(), "%lf/%lf", &ww, &wl) != 2 || !(ww > 0))
-                throw core::Error("--overlay window=W/L needs a width above 0 and a level");
-            overlay->window = {"", wl, ww};
-        }
+        const auto look = overlayLook(opts, og);
+        overlay = core::SliceOverlay{&overlayImage, &og, look.map, look.window, look.opacity};
         std::printf("overlay %s: %s map, window W %.6g / L %.6g, opacity %.2g\n", path.c_str(), overlay->map.name().c_str(),
                     overlay->window.width, overlay->window.centre, overlay->opacity);
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/appearance/ColorMap.h"
 #include "core/appearance/LabelTable.h"
 #include "core/base/Error.h"
 
@@ -73,6 +74,25 @@ TransferFunction TransferFunction::forLabels(const LabelTable& table, double opa
     }
     points.push_back({double(hi + 1), glm::dvec4(0.0)});  // values above the last label show nothing
     return TransferFunction(std::move(points), lo - 0.5, lo - 0.5 + kEntries, referenceLength);
+}
+
+TransferFunction TransferFunction::forColorMap(const ColorMap& map, double low, double high, double opacity,
+                                               double valueMin, double valueMax, double referenceLength) {
+    if (!(high > low)) throw Error("a colour map's window needs a width above 0");
+    if (!(opacity >= 0 && opacity <= 1)) throw Error("an overlay's opacity must be 0 to 1");
+    // One control point per colour-map entry across the window, transparent just below it.
+    std::vector<Point> points;
+    const auto& entries = map.entries();
+    const double below = std::min(low, valueMin) - (high - low);
+    points.push_back({below, glm::dvec4(0.0)});
+    for (std::size_t i = 0; i < entries.size(); ++i) {
+        const double t = double(i) / double(entries.size() - 1);
+        const auto& c = entries[i];
+        points.push_back({low + t * (high - low), glm::dvec4(c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, t * opacity)});
+    }
+    const auto& last = entries.back();
+    points.push_back({std::max(high, valueMax) + (high - low), glm::dvec4(last[0] / 255.0, last[1] / 255.0, last[2] / 255.0, opacity)});
+    return TransferFunction(std::move(points), valueMin, valueMax, referenceLength);
 }
 
 glm::dvec4 TransferFunction::integral(double value) const {

@@ -9,6 +9,7 @@
 namespace hvx::core {
 
 class LabelTable;
+class ColorMap;
 
 /// A 1D transfer function over stored values: piecewise-linear colour and opacity between
 /// control points, sampled into a 4096-entry table over [valueMin, valueMax]. Colours are
@@ -39,6 +40,12 @@ public:
     /// table lacks, hidden ones and label 0 are transparent. `opacity` scales every label's
     /// own. Throws core::Error when the labels span more than kEntries values.
     static TransferFunction forLabels(const LabelTable& table, double opacity, double referenceLength);
+    /// A volume fused over another in 3D (PET over CT): below the window's low end (`low`,
+    /// stored units) transparent, across the window the colour map's entries with opacity
+    /// rising linearly to `opacity` at its high end, above it the last colour at `opacity`;
+    /// over the volume's stored range [valueMin, valueMax].
+    static TransferFunction forColorMap(const ColorMap& map, double low, double high, double opacity, double valueMin,
+                                        double valueMax, double referenceLength);
 
     double valueMin() const { return min_; }
     double valueMax() const { return max_; }

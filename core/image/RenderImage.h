@@ -13,6 +13,7 @@ struct RenderImage {
     std::vector<glm::vec4> rgba;
     std::vector<float> depth;
     std::vector<std::uint32_t> rayCounts;
+    std::vector<std::uint32_t> overlayRayCounts;  ///< a fused second volume's, per its index node
 };
 
 }  // namespace hvx::core

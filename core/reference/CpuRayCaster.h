@@ -45,6 +45,7 @@ public:
     std::vector<Visit> traverse(const glm::dvec3& origin, const glm::dvec3& direction) const;
 
 private:
+    friend class FusedRayCaster;  // samples, classifies and shades each of its two volumes
     glm::vec4 cast(const glm::dvec3& origin, const glm::dvec3& direction, float& depth,
                    std::vector<std::uint32_t>* counts) const;
     template <class Visitor>

@@ -1,6 +1,7 @@
 // Single-pass ray casting over the spatial index, one invocation per pixel (thesis ch. 2–3).
 // It mirrors core/reference/CpuRayCaster.cpp step for step; MODE selects a static variant
-// (0 DVR, 1 isosurface, 2 MIP, 3 MinIP, 4 average).
+// (0 DVR, 1 isosurface, 2 MIP, 3 MinIP, 4 average); HVX_FUSION 1 marches a second volume with
+// the first (DVR only).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "index_buffers.glsl"
@@ -9,6 +10,12 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #include "transfer_function.glsl"
 #include "brick_sampling.glsl"
 #include "raycast_march.glsl"
+#ifndef HVX_FUSION
+#define HVX_FUSION 0
+#endif
+#if HVX_FUSION
+#include "raycast_fusion.glsl"
+#endif
 
 void main() {
     ivec2 px = ivec2(gl_GlobalInvocationID.xy);
@@ -39,7 +46,11 @@ void main() {
         dw = forward.xyz;
     }
     float depth;
+#if HVX_FUSION
+    vec4 c = castRayFused(ow, dw, depth);
+#else
     vec4 c = castRay(ow, dw, depth);
+#endif
     uint i = (view * image.y + uint(px.y)) * image.x + uint(px.x);
     outColor[i] = c;
     outDepth[i] = depth;

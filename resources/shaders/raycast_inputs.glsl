@@ -10,6 +10,12 @@ layout(std140, binding = 0) uniform Frame {
     uvec4 image;     // width, height, slots per layer, views in the batch
     vec4 cropLo;     // xyz: the crop box in octree space (the whole volume: 0 and extent)
     vec4 cropHi;
+    // A second volume fused over the first (HVX_FUSION; raycast_fusion.glsl):
+    mat4 patientToOctreeB;
+    vec4 extentB;    // xyz: its box in its octree space; w: 1 / its rootVoxels
+    vec4 tfRangeB;   // its transfer function's valueMin, valueMax (table entries 4096 on)
+    uvec4 brickB;    // its brick size, border, edge, slots per row of its pool
+    uvec4 fusionB;   // its pool's slots per layer, its first slot record, its first index node
 };
 // One camera per view of the batch (dispatch layer z = view index).
 struct ViewCamera {
@@ -30,6 +36,7 @@ layout(std430, binding = 9) readonly buffer TfOpacity { vec2 tfA[]; };    // 409
 layout(std430, binding = 4) writeonly buffer OutColor { vec4 outColor[]; };
 layout(std430, binding = 5) writeonly buffer OutDepth { float outDepth[]; };
 layout(binding = 0) uniform sampler3D brickPool;  // R8/R16/R32F, slot s at cell (s % row, s / row % rows, s / layer)
+layout(binding = 1) uniform sampler3D brickPoolB;  // the fused volume's pool (HVX_FUSION)
 struct SlotRecord {  // per pool slot (render::GpuRayCaster's SlotRecord)
     vec2 decode;     // stored value = texel * x + y
     uvec2 visible;   // the brick's 4x4x4 cells that may show (core::BrickCells), cell x + 4y + 16z

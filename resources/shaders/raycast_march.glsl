@@ -47,7 +47,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     float nudge = 1e-3 * extent.w / max(1e-12, octPerMm);
     uint n = 0u;
     vec3 lo = vec3(0.0), hi = vec3(1.0);
-    hvxDescend(HVX_INDEX_ARG, n, lo, hi, o + (t0 + nudge) * d);
+    hvxDescend(0u, n, lo, hi, o + (t0 + nudge) * d);
 
     vec3 color = vec3(0.0);
     float alpha = 0.0, sum = 0.0, travelled = 0.0;
@@ -221,7 +221,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
             t += dt;
         }
         if (done || tExit >= t1) break;
-        if (!hvxNextLeaf(HVX_INDEX_ARG, o, d, face, tExit, nudge, n, lo, hi)) break;
+        if (!hvxNextLeaf(0u, o, d, face, tExit, nudge, n, lo, hi)) break;
         tIn = max(tIn, tExit);
     }
 #if MODE >= 2

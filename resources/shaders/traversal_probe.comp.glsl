@@ -26,7 +26,7 @@ void main() {
                     abs(d.z) > 1e-20 ? 1.0 / d.z : (d.z >= 0.0 ? 1e30 : -1e30));
     uint n = 0u;
     vec3 lo = vec3(0.0), hi = vec3(1.0);
-    hvxDescend(HVX_INDEX_ARG, n, lo, hi, o + (t0 + nudge) * d);
+    hvxDescend(0u, n, lo, hi, o + (t0 + nudge) * d);
     float tIn = t0;
     uint count = 0u;
     for (int guard = 0; guard < 4096 && count + 1u < MAX_VISITS; ++guard) {
@@ -35,7 +35,7 @@ void main() {
         float tOut = min(tExit, t1);
         if (tOut > tIn) visits[r * MAX_VISITS + count++] = n;
         if (tExit >= t1) break;
-        if (!hvxNextLeaf(HVX_INDEX_ARG, o, d, face, tExit, nudge, n, lo, hi)) break;
+        if (!hvxNextLeaf(0u, o, d, face, tExit, nudge, n, lo, hi)) break;
         tIn = max(tIn, tExit);
     }
     visits[r * MAX_VISITS + count] = HVX_NONE;

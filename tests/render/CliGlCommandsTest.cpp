@@ -130,3 +130,56 @@ TEST(CliGlCommands, RenderDrawsALabelMapInItsSegmentsColours) {
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.output.find("is not a label map"), std::string::npos) << r.output;
 }
+
+// render --labels: pydicom's SEG fused over its CT in one ray march (the CT, 40 HU throughout,
+// transparent under ct-bone): the segments' colours show, on the GPU and on the CPU alike;
+// --overlay lays an image with a colour map; what cannot be fused is refused with a sentence.
+TEST(CliGlCommands, RenderFusesASegmentationOverItsImage) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand("/usr/bin/python3 " HVX_SOURCE_DIR "/tests/support/seg_cases.py " + dir.path().string()).exitCode, 0);
+    auto r = test::runCommand(cli + " build " + dir.file("binary.dcm") + " -o " + dir.file("seg.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string db = " --db " + dir.file("s.db");
+    ASSERT_EQ(test::runCommand(cli + " import " + dir.file("image") + db).exitCode, 0);
+    r = test::runCommand(cli + " studies" + db);
+    const auto at = r.output.find("    series ");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+    r = test::runCommand(cli + " build-series " + line.substr(line.rfind(' ') + 1) + db + " -o " + dir.file("ct.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string count =
+        "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
+        "from vtkmodules.util.numpy_support import vtk_to_numpy; "
+        "r = vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update(); "
+        "a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(int); "
+        "print(int(((a[:, 0] > a[:, 2] + 40) & (a[:, 0] > a[:, 1] + 40)).sum()), int((a[:, 2] > a[:, 0] + 40).sum()))\" ";
+    for (const std::string device : {"", " --cpu"}) {
+        r = test::runCommand(cli + " render " + dir.file("ct.hvo") + " --labels " + dir.file("seg.hvo") + device +
+                             " --view 30,20,1 --size 128x128 -o " + dir.file("fused.png"));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("fused " + dir.file("seg.hvo") + " (labels, 3D Slicer colour table)"), std::string::npos)
+            << r.output;
+        const auto counts = test::runCommand(count + dir.file("fused.png"));
+        int liver = 0, spleen = 0;
+        ASSERT_EQ(std::sscanf(counts.output.c_str(), "%d %d", &liver, &spleen), 2) << counts.output;
+        EXPECT_GT(liver, 300) << device << counts.output;
+        EXPECT_GT(spleen, 50) << device << counts.output;
+    }
+    // The CT under a hot colour map over the segmentation's grid's image: shown, said.
+    r = test::runCommand(cli + " render " + dir.file("ct.hvo") + " --overlay " + dir.file("ct.hvo") +
+                         ":lut=hot,opacity=0.8,window=200/0 --size 64x64 -o " + dir.file("hot.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("(hot map, window W 200 / L 0, opacity 0.8)"), std::string::npos) << r.output;
+    for (const auto& [args, sentence] : std::vector<std::pair<std::string, std::string>>{
+             {" --labels " + dir.file("seg.hvo") + " --overlay " + dir.file("ct.hvo"), "one volume at a time"},
+             {" --labels " + dir.file("seg.hvo") + " --mode mip", "in DVR only"},
+             {" --labels " + dir.file("ct.hvo"), "is not a label map"},
+             {" --overlay " + dir.file("seg.hvo"), "is a label map: lay it over with --labels"},
+             {" --overlay " + dir.file("ct.hvo") + ":opacity=2", "opacity must be 0 to 1"},
+             {" --overlay " + dir.file("missing.hvo"), "missing.hvo"}}) {
+        r = test::runCommand(cli + " render " + dir.file("ct.hvo") + args + " -o " + dir.file("no.png") + " 2>&1");
+        EXPECT_NE(r.exitCode, 0) << args;
+        EXPECT_NE(r.output.find(sentence), std::string::npos) << args << ": " << r.output;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("no.png")));
+}
