@@ -114,6 +114,12 @@ LayersPanel::LayersPanel(SliceLayers& layers, QWidget* parent) : QWidget(parent)
     force_ = new QCheckBox(tr("Lay over even in another frame of reference"));
     force_->setToolTip(tr("Only for volumes known to be registered: their patient coordinates are taken as the same"));
     top->addWidget(force_);
+    show3D_ = new QCheckBox(tr("Show in the 3D view"));
+    show3D_->setChecked(true);
+    show3D_->setToolTip(tr("The label map (or else the overlay) is marched with the open volume in the 3D view, "
+                           "each from its own bricks; drawn in DVR without the illustrative tools"));
+    top->addWidget(show3D_);
+    connect(show3D_, &QCheckBox::toggled, this, &LayersPanel::show3DToggled);
     message_ = new QLabel;
     message_->setWordWrap(true);
     message_->setTextInteractionFlags(Qt::TextSelectableByMouse);

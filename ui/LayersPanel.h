@@ -56,6 +56,10 @@ public:
     /// The sentence under the groups: the last refusal or note (empty when none).
     QString message() const;
 
+signals:
+    /// "Show in the 3D view" was switched (ui::FusionLink follows it).
+    void show3DToggled(bool on);
+
 private:
     void refresh();
     void refreshLegend();
@@ -83,6 +87,7 @@ private:
     // The volumes the statistics were computed on: dropped when either changes.
     std::weak_ptr<const core::OctreeReader> statisticsImage_, statisticsLabels_;
     QCheckBox* force_;
+    QCheckBox* show3D_;
     QLabel* message_;
     bool updating_ = false;
 };

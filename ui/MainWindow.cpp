@@ -56,6 +56,7 @@
 #include "dicom/LibraryVersions.h"
 #include "ui/SliceScroller.h"
 #include "ui/SliceView.h"
+#include "ui/FusionLink.h"
 #include "ui/SliceLayers.h"
 #include "ui/LayersPanel.h"
 #include "ui/StudyBrowser.h"
@@ -101,6 +102,9 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     layers_ = new SliceLayers(this);
     for (auto* s : slices_) s->setLayers(layers_);
     layersPanel_ = new LayersPanel(*layers_);
+    auto* fusion = new FusionLink(*layers_, *view_, this);  // the layers' partner in the 3D view too
+    connect(layersPanel_, &LayersPanel::show3DToggled, fusion, &FusionLink::setEnabled);
+    connect(fusion, &FusionLink::failed, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     layersPanel_->setJobs(jobs_.get(), browser_->databasePath());
     auto* studies = addDock(tr("Studies"), "studiesDock", browser_, Qt::LeftDockWidgetArea);
     auto* pacsDock = addDock(tr("PACS"), "pacsDock", pacs_, Qt::LeftDockWidgetArea);

@@ -142,6 +142,10 @@ std::shared_ptr<const core::OctreeReader> SliceLayers::labelsReader() const {
     return labels_ ? labels_->reader : nullptr;
 }
 
+std::shared_ptr<const core::OctreeReader> SliceLayers::overlayReader() const {
+    return overlay_ ? overlay_->reader : nullptr;
+}
+
 QString SliceLayers::overlayName() const { return overlay_ ? overlay_->name : QString(); }
 QString SliceLayers::labelsName() const { return labels_ ? labels_->name : QString(); }
 

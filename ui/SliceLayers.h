@@ -43,9 +43,11 @@ public:
     void clearOverlay();
     void clearLabels();
 
-    /// The open volume and the label map's reader (null when none), for work on other threads.
+    /// The open volume, the label map's and the overlay's readers (null when none), for work on
+    /// other threads and the 3D view.
     std::shared_ptr<const core::OctreeReader> base() const { return base_; }
     std::shared_ptr<const core::OctreeReader> labelsReader() const;
+    std::shared_ptr<const core::OctreeReader> overlayReader() const;
     bool hasOverlay() const { return overlay_ != nullptr; }
     bool hasLabels() const { return labels_ != nullptr; }
     QString overlayName() const;

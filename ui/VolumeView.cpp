@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -70,6 +71,7 @@ VolumeView::~VolumeView() {
     makeCurrent();
     gpu_.reset();
     doneCurrent();
+    fused_.reset();
     scene_.reset();
 }
 
@@ -95,6 +97,7 @@ std::unique_ptr<VolumeView::Scene> VolumeView::makeScene(std::shared_ptr<const c
 
 void VolumeView::setVolume(std::shared_ptr<const core::OctreeReader> reader, bool keepCamera) {
     keepCamera = keepCamera && scene_ != nullptr;
+    fused_.reset();
     scene_.reset();
     times_.clear();
     timePoint_ = -1;
@@ -176,6 +179,20 @@ void VolumeView::setRenderSettings(const core::RenderSettings& settings) {
     update();
 }
 
+void VolumeView::setFusedVolume(std::shared_ptr<const core::OctreeReader> reader, const core::TransferFunction& tf) {
+    if (!reader) return clearFusedVolume();
+    if (!fused_ || fused_->reader != reader) fused_ = makeScene(std::move(reader), kCacheBytes);
+    fusedTf_ = std::make_unique<core::TransferFunction>(tf);
+    update();
+}
+
+void VolumeView::clearFusedVolume() {
+    if (!fused_) return;
+    fused_.reset();
+    fusedTf_.reset();
+    update();
+}
+
 void VolumeView::setTools(const core::ToolSet& tools) {
     tools.validate();
     settings_.tools = tools;
@@ -185,6 +202,7 @@ void VolumeView::setTools(const core::ToolSet& tools) {
 void VolumeView::setAccuracy(double voxelsPerPixel) {
     accuracy_ = std::clamp(voxelsPerPixel, 0.25, 16.0);
     if (scene_) scene_->ws.options().voxelsPerPixel = accuracy_;
+    if (fused_) fused_->ws.options().voxelsPerPixel = accuracy_;
     for (auto& scene : times_)
         if (scene) scene->ws.options().voxelsPerPixel = accuracy_;
     update();
@@ -243,10 +261,20 @@ void VolumeView::initializeGL() {
 core::RenderImage VolumeView::renderFrame(const core::View& view, const core::RenderSettings& rs, bool converge) {
     auto& ws = scene_->ws;
     ws.converge({view}, *tf_, {}, converge ? 64 : 1);
-    auto img = gpu_->render(*scene_->reader, ws.index(), ws.slotBricks(), *tf_, rs, view);
+    // A fused volume is marched with the open one in DVR without tools; otherwise the open volume alone.
+    fusedShown_ = fused_ && fusedTf_ && rs.mode == core::RenderSettings::Mode::Dvr && !rs.tools.variantBits();
+    std::optional<render::GpuRayCaster::Overlay> overlay;
+    if (fusedShown_) {
+        fused_->ws.options().crop = {};
+        fused_->ws.converge({view}, *fusedTf_, {}, converge ? 64 : 1);
+        overlay.emplace(render::GpuRayCaster::Overlay{*fused_->reader, fused_->ws.index(), fused_->ws.slotBricks(), *fusedTf_});
+    }
+    auto img = gpu_->render(*scene_->reader, ws.index(), ws.slotBricks(), *tf_, rs, view, overlay ? &*overlay : nullptr);
+    if (fusedShown_ && rs.countRays) fused_->ws.setRayCounts(img.overlayRayCounts);
     // Leave the GL state as QPainter's engine expects it.
     glUseProgram(0);
     glBindTextureUnit(0, 0);
+    glBindTextureUnit(1, 0);
     return img;
 }
 
@@ -294,8 +322,9 @@ void VolumeView::paintGL() {
             readouts_.levels = scene_->reader->levelCount();
             // Keep drawing while bricks arrive or the frame is not yet full quality, but never
             // forever: a cut that cannot settle (pool too small for the view) stops after a while.
-            unsettledFrames_ = st.settled() ? 0 : unsettledFrames_ + 1;
-            if ((!st.settled() && unsettledFrames_ < 400) || !level.full()) refine_.start();
+            const bool settled = st.settled() && (!fusedShown_ || fused_->ws.stats().settled());
+            unsettledFrames_ = settled ? 0 : unsettledFrames_ + 1;
+            if ((!settled && unsettledFrames_ < 400) || !level.full()) refine_.start();
         } catch (const std::exception& e) {
             error_ = QString::fromStdString(e.what());
             emit failed(error_);

@@ -69,6 +69,13 @@ public:
     /// Bricks read from disk so far by every time point's loader (the open volume's alone
     /// without time points).
     std::size_t bricksLoaded() const;
+    /// A second volume fused over the open one in the same ray march (an overlay under its
+    /// colour map, or a label map in its table's colours), with its own working set (the view's
+    /// cache budget again) and transfer function. Drawn in DVR without the
+    /// illustrative tools (fusedShown() says whether the last frame drew it); setVolume() ends it.
+    void setFusedVolume(std::shared_ptr<const core::OctreeReader> reader, const core::TransferFunction& tf);
+    void clearFusedVolume();
+    bool fusedShown() const { return fusedShown_; }
     void setTransferFunction(const core::TransferFunction& tf);
     void setRenderSettings(const core::RenderSettings& settings);
     const core::RenderSettings& renderSettings() const { return settings_; }
@@ -162,6 +169,9 @@ private:
     void interacted();
 
     std::unique_ptr<Scene> scene_;
+    std::unique_ptr<Scene> fused_;  // a volume fused over scene_'s (setFusedVolume)
+    std::unique_ptr<core::TransferFunction> fusedTf_;
+    bool fusedShown_ = false;
     /// The other time points' scenes (the shown one's entry is empty: it is scene_).
     std::vector<std::unique_ptr<Scene>> times_;
     int timePoint_ = -1;

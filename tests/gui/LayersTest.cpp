@@ -88,6 +88,43 @@ class LayersTest : public QObject, test::GuiFixture {
         for (int i = 0; i < 3; ++i) window_->slice(i)->setPoint(p);
     }
 
+    /// Liver-red and spleen-blue pixels of the 3D frame (hues, whatever the shading).
+    std::pair<int, int> organPixels(const QImage& frame) {
+        int liver = 0, spleen = 0;
+        for (int y = 0; y < frame.height(); ++y)
+            for (int x = 0; x < frame.width(); ++x) {
+                const QColor c = frame.pixelColor(x, y);
+                if (c.red() > c.blue() + 30 && std::abs(c.green() - c.blue()) <= 12) ++liver;
+                else if (c.blue() > c.red() + 30 && std::abs(c.green() - c.red()) <= 12) ++spleen;
+            }
+        return {liver, spleen};
+    }
+
+    // The labels laid over the CT are marched with it in the 3D view, in their table's colours;
+    // a label hidden in the legend leaves the 3D view too; "Show in the 3D view" off leaves the
+    // CT alone.
+    void labelsAreFusedIn3D() {
+        auto* show3D = window_->layersPanel()->findChild<QCheckBox*>();
+        for (auto* box : window_->layersPanel()->findChildren<QCheckBox*>())
+            if (box->text().contains("3D")) show3D = box;
+        QVERIFY(show3D && show3D->text().contains("3D") && show3D->isChecked());
+        const QImage fused = settledFrame();
+        fused.save(test::guiArtifacts() + "/layers-fused-3d.png");
+        const auto [liver, spleen] = organPixels(fused);
+        QVERIFY2(liver > 300 && spleen > 50, qPrintable(QString("liver %1, spleen %2 pixels").arg(liver).arg(spleen)));
+        auto* legend = window_->layersPanel()->findChild<QTreeWidget*>("labelLegend");
+        legend->topLevelItem(0)->setCheckState(0, Qt::Unchecked);  // liver hidden
+        const auto hidden = organPixels(settledFrame());
+        QVERIFY2(hidden.first < liver / 20 && hidden.second > spleen / 2,
+                 qPrintable(QString("liver hidden: liver %1, spleen %2 pixels").arg(hidden.first).arg(hidden.second)));
+        legend->topLevelItem(0)->setCheckState(0, Qt::Checked);
+        show3D->setChecked(false);
+        const auto alone = organPixels(settledFrame());
+        QVERIFY2(alone.first < liver / 20 && alone.second < spleen / 20,
+                 qPrintable(QString("not in 3D: liver %1, spleen %2 pixels").arg(alone.first).arg(alone.second)));
+        show3D->setChecked(true);
+    }
+
 private slots:
     void initTestCase() {
         open();
@@ -186,6 +223,7 @@ private slots:
         // An intensity volume is not a label map.
         QVERIFY(!panel->chooseLabels(QString::fromStdString(dir_.file("pet.hvo"))));
         QVERIFY(panel->message().contains("not a label map"));
+        labelsAreFusedIn3D();
         window_->layers()->clearLabels();
     }
 
