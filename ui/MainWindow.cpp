@@ -526,6 +526,20 @@ core::RenderSettings MainWindow::renderSettings() const {
 }
 
 void MainWindow::openSeries(const QString& seriesUid, const QString& octreePath, const QString& label, int volume) {
+    if (volume == 0) {  // a 4D series' own row: its first volume, so that cine has all of them
+        std::vector<dicom::VolumeRow> volumes;
+        try {
+            volumes = dicom::StudyDatabase(browser_->databasePath().toStdString()).volumesOfSeries(seriesUid.toStdString());
+        } catch (const core::Error&) {
+            volumes.clear();
+        }
+        if (volumes.size() >= 2) {
+            const auto& first = volumes.front();
+            return openSeries(seriesUid, QString::fromStdString(first.octreePath),
+                              QStringLiteral("%1 #%2 %3").arg(label).arg(first.number).arg(QString::fromStdString(first.varying)),
+                              first.number);
+        }
+    }
     if (!octreePath.isEmpty()) {
         seriesOfOctree_[QFileInfo(octreePath).absoluteFilePath()] = seriesUid;
         openOctree(octreePath, label);

@@ -44,6 +44,7 @@ struct VolumeView::Scene {
     core::BrickLoader loader;
     core::WorkingSet ws;
     core::OctreeSpace space;
+    std::optional<core::View> prefetchedFor;  // the view a neighbouring time point was last refined for
     Scene(std::shared_ptr<const core::OctreeReader> r, core::WorkingSetOptions options, std::size_t cacheBytes)
         : reader(std::move(r)), cache(cacheBytes), loader(*reader, cache), ws(*reader, cache, loader, options),
           space(core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount())) {}
@@ -150,6 +151,18 @@ void VolumeView::prefetchNeighbours() {
     for (const int next : {(timePoint_ + 1) % n, (timePoint_ + n - 1) % n}) {
         auto& scene = times_[std::size_t(next)];
         if (!scene) continue;
+        // Refined for this very view and settled: nothing more to ask of it (a still view does
+        // not refine its neighbours frame after frame).
+        const auto& before = scene->prefetchedFor;
+        const auto &mine = scene->ws.options(), &shown = scene_->ws.options();
+        const bool sameOptions = mine.clip == shown.clip && mine.clipPlane == shown.clipPlane &&
+                                 mine.crop.min == shown.crop.min && mine.crop.max == shown.crop.max;
+        if (before && sameOptions && scene->ws.stats().settled() && before->eye == lastView_.eye && before->target == lastView_.target &&
+            before->up == lastView_.up && before->width == lastView_.width && before->height == lastView_.height &&
+            before->fovYDegrees == lastView_.fovYDegrees && before->orthoHeight == lastView_.orthoHeight &&
+            before->model == lastView_.model)
+            continue;
+        scene->prefetchedFor = lastView_;
         scene->ws.options().clip = scene_->ws.options().clip;
         scene->ws.options().clipPlane = scene_->ws.options().clipPlane;
         scene->ws.options().crop = scene_->ws.options().crop;
@@ -168,12 +181,16 @@ bool VolumeView::hasVolume() const { return scene_ != nullptr; }
 
 void VolumeView::setTransferFunction(const core::TransferFunction& tf) {
     tf_ = std::make_unique<core::TransferFunction>(tf);
+    for (auto& scene : times_)  // what the neighbours need changes with what shows
+        if (scene) scene->prefetchedFor.reset();
     update();
 }
 
 void VolumeView::setRenderSettings(const core::RenderSettings& settings) {
     settings_ = settings;
     if (scene_) applyMode(scene_->ws.options(), settings);
+    for (auto& scene : times_)
+        if (scene) scene->prefetchedFor.reset();
     for (auto& scene : times_)
         if (scene) applyMode(scene->ws.options(), settings);
     update();
@@ -204,7 +221,10 @@ void VolumeView::setAccuracy(double voxelsPerPixel) {
     if (scene_) scene_->ws.options().voxelsPerPixel = accuracy_;
     if (fused_) fused_->ws.options().voxelsPerPixel = accuracy_;
     for (auto& scene : times_)
-        if (scene) scene->ws.options().voxelsPerPixel = accuracy_;
+        if (scene) {
+            scene->ws.options().voxelsPerPixel = accuracy_;
+            scene->prefetchedFor.reset();
+        }
     update();
 }
 

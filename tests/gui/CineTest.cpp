@@ -120,6 +120,25 @@ private slots:
         saveArtifact("cine.png");
     }
 
+    // The 4D series' own row opens its first time point, with every other one in cine (not one
+    // volume alone).
+    void theSeriesRowOpensItsFirstTimePointWithCine() {
+        auto* tree = window_->browser()->tree();
+        QTreeWidgetItem* series = nullptr;
+        for (QTreeWidgetItemIterator it(tree); *it; ++it)
+            if ((*it)->text(0) == "#3 time 3") series = (*it)->parent();
+        QVERIFY(series);
+        tree->setFocus();
+        tree->setCurrentItem(series);
+        QTest::keyClick(tree, Qt::Key_Return);
+        QVERIFY(window_->jobs()->waitIdle(180000));
+        QTRY_VERIFY_WITH_TIMEOUT(!window_->openLabel().endsWith("(preview)"), 10000);
+        auto* cine = window_->cine();
+        QCOMPARE(cine->count(), 10);
+        QCOMPARE(cine->current(), 0);
+        QVERIFY2(cine->status().startsWith("1 of 10: #1 time"), qPrintable(cine->status()));
+    }
+
     // Opening a DICOM folder (as `holovox --demo` opens the demo series, and File > Open does):
     // imported, opened, and its series selected in the browser, the row the open volume is.
     void anOpenedFolderIsSelectedInTheBrowser() {
