@@ -1,4 +1,5 @@
 #include <chrono>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
@@ -21,6 +22,8 @@
 #include "core/image/ImageWriter.h"
 #include "core/octree/OctreeReader.h"
 #include "core/volume/VoxelSourceFactory.h"
+#include "dicom/SeriesOctree.h"
+#include "dicom/StudyDatabase.h"
 #include "core/streaming/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/GpuRayCaster.h"
@@ -36,6 +39,31 @@ core::RenderSettings::Mode parseMode(const std::string& m) {
     if (m == "xray" || m == "average") return core::RenderSettings::Mode::Average;
     throw core::Error("--mode must be dvr, iso, mip, minip or xray");
 }
+/// The octree to render: the file given, or with --time N the N-th time point (volume) of the
+/// 4D series whose UID is given, from the study database (built there first when it has no
+/// octree yet, and recorded for the next time).
+std::string timePoint(const CliArgs& args) {
+    const std::string& given = args.positional()[0];
+    if (!args.value("time")) return given;
+    if (given.size() > 4 && given.substr(given.size() - 4) == ".hvo")
+        throw core::Error("--time picks a time point of a 4D series: give the series' UID (and --db), not an octree");
+    dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
+    const auto volumes = db.volumesOfSeries(given);
+    if (volumes.size() < 2)
+        throw core::Error("series " + given + (db.filesOfSeries(given).empty() ? " is not in the database (import it first)"
+                                                                              : " is not a 4D series: --time needs several volumes"));
+    const auto n = std::size_t(args.integer("time", 1, 1, long(volumes.size())));
+    const auto& row = volumes[n - 1];
+    std::printf("time point %zu of %zu: %s\n", n, volumes.size(), row.varying.c_str());
+    if (!row.octreePath.empty() && std::filesystem::exists(row.octreePath)) return row.octreePath;
+    core::JobContext job;
+    std::vector<std::string> warnings;
+    const auto path = dicom::SeriesOctree::build(db, given, job, &warnings, {}, row.number);
+    for (const auto& w : warnings) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
+    std::printf("built its octree: %s\n", path.c_str());
+    return path;
+}
+
 /// The second volume of `render --overlay/--labels`: its reader, transfer function and working set.
 struct FusedLayer {
     std::string path, description;
@@ -94,14 +122,14 @@ private:
 int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
-                        "view-transparency", "tools", "crop", "lut", "label-opacity", "overlay", "labels"},
+                        "view-transparency", "tools", "crop", "lut", "label-opacity", "overlay", "labels", "time", "db"},
                        {"cpu", "force-frame"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
-        throw core::Error("usage: holovox-cli render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
+        throw core::Error("usage: holovox-cli render FILE.hvo|SERIES_UID --time N [--db FILE] [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
                           "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L] | "
                           "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
-    const auto reader = core::OctreeReader::open(args.positional()[0]);
+    const auto reader = core::OctreeReader::open(timePoint(args));
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
     if (const auto v = args.value("view")) {

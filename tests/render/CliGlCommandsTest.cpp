@@ -183,3 +183,35 @@ TEST(CliGlCommands, RenderFusesASegmentationOverItsImage) {
     }
     EXPECT_FALSE(std::filesystem::exists(dir.file("no.png")));
 }
+
+// render --time N: the N-th time point of pydicom's ten-time-point series, from the database
+// (built on first use, then reused); time points and inputs that are not 4D are refused.
+TEST(CliGlCommands, RenderDrawsATimePointOfA4DSeries) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand("/usr/bin/python3 " HVX_SOURCE_DIR "/tests/support/dicom_cases.py " + dir.file("cases")).exitCode, 0);
+    const std::string db = " --db " + dir.file("s.db");
+    auto r = test::runCommand(cli + " import " + dir.file("cases/dynamic") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " studies" + db);
+    const auto at = r.output.find("    series ");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
+    const std::string uid = line.substr(line.rfind(' ') + 1);
+    r = test::runCommand(cli + " render " + uid + db + " --time 3 --size 64x64 -o " + dir.file("t3.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("time point 3 of 10: time 3"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("built its octree"), std::string::npos) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("t3.png")));
+    r = test::runCommand(cli + " render " + uid + db + " --time 3 --size 64x64 -o " + dir.file("again.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("built its octree"), std::string::npos) << "the recorded octree was not reused: " << r.output;
+    for (const auto& [args, sentence] : std::vector<std::pair<std::string, std::string>>{
+             {uid + db + " --time 11", "--time"},
+             {dir.file("t.hvo") + " --time 2", "give the series' UID"},
+             {"1.2.3.4" + db + " --time 2", "is not in the database"}}) {
+        r = test::runCommand(cli + " render " + args + " -o " + dir.file("no.png") + " 2>&1");
+        EXPECT_NE(r.exitCode, 0) << args;
+        EXPECT_NE(r.output.find(sentence), std::string::npos) << args << ": " << r.output;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("no.png")));
+}
