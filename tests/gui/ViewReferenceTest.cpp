@@ -3,7 +3,8 @@
 // reference ray caster draws for the same camera, transfer function and settings (the GPU and
 // the CPU run separate code for sampling and compositing); MinIP and X-ray frames are grey; and
 // the standard-view keys A P L R S I turn the camera so that the edges say what the
-// radiological conventions say. A light-field frame rendered on the GUI thread is cancelled by
+// radiological conventions say. The transfer-function editor's files (its own, Slicer's,
+// ParaView's, a broken one) go through the editor. A light-field frame rendered on the GUI thread is cancelled by
 // its Cancel button in the Jobs panel, while every other click waits. Screenshots under
 // <build>/test-artifacts/gui/view-mode-*.png.
 #include <QComboBox>
@@ -13,7 +14,9 @@
 #include <QTimer>
 
 #include <cmath>
+#include <fstream>
 
+#include "core/base/Error.h"
 #include "core/octree/OctreeBuilder.h"
 #include "core/octree/OctreeReader.h"
 #include "core/reference/CpuRayCaster.h"
@@ -23,6 +26,7 @@
 #include "core/streaming/WorkingSet.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "tests/gui/GuiTestSupport.h"
+#include "tests/support/MemoryVoxelSource.h"
 #include "ui/JobManager.h"
 #include "ui/JobsPanel.h"
 #include "ui/LightFieldPanel.h"
@@ -127,6 +131,80 @@ private slots:
             const QStringList want{opposite(e.right), e.right, e.up, opposite(e.up)};
             QCOMPARE(labels, want);
         }
+    }
+
+    // The editor's files on a CT with a rescale: a function saved (in HU) comes back as it was
+    // and draws the same frame; a 3D Slicer preset lands on the stored values its HU mean; a
+    // ParaView colour map spreads over the curve's range and keeps the opacity; a broken file
+    // is refused in words and changes nothing.
+    void transferFunctionFilesThroughTheEditor() {
+        // A ball of 400 HU in air, stored as (HU + 1000) / 2.
+        core::VolumeGeometry rescaled;
+        rescaled.scalarType = core::ScalarType::Int16;
+        rescaled.modality = "CT";
+        rescaled.rescaleSlope = 2.0;
+        rescaled.rescaleIntercept = -1000.0;
+        test::DenseVolume ball;
+        ball.dims = {48, 48, 48};
+        for (int k = 0; k < 48; ++k)
+            for (int j = 0; j < 48; ++j)
+                for (int i = 0; i < 48; ++i)
+                    ball.values.push_back((i - 23.5) * (i - 23.5) + (j - 23.5) * (j - 23.5) + (k - 23.5) * (k - 23.5) < 400 ? 700 : 0);
+        test::MemoryVoxelSource source(rescaled, ball);
+        core::JobContext job;
+        core::OctreeBuilder(core::BuildOptions{}).build(source, dir_.file("ball.hvo"), job);
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("ball.hvo"))));
+        auto* editor = window_->tfEditor();
+        const auto g = rescaled;
+        editor->applyPreset("ct-bone");
+        const QImage bone = settledFrame().convertToFormat(QImage::Format_RGB32);
+        const auto saved = editor->spec();
+        const QString path = QString::fromStdString(dir_.file("bone.json"));
+        editor->save(path);
+        editor->applyPreset("ct-lung");
+        QVERIFY(psnr(settledFrame().convertToFormat(QImage::Format_RGB32), bone) < 40.0);
+        editor->load(path);
+        QCOMPARE(editor->spec().opacity.size(), saved.opacity.size());
+        for (std::size_t i = 0; i < saved.opacity.size(); ++i) {
+            QVERIFY(std::abs(editor->spec().opacity[i].value - saved.opacity[i].value) < 1e-6);
+            QVERIFY(std::abs(editor->spec().opacity[i].alpha - saved.opacity[i].alpha) < 1e-9);
+        }
+        const double again = psnr(settledFrame().convertToFormat(QImage::Format_RGB32), bone);
+        QVERIFY2(again > 60.0, qPrintable(QString("the loaded function draws another frame: %1 dB").arg(again)));
+
+        const std::string slicer = dir_.file("presets.xml");
+        std::ofstream(slicer) << R"(<root><VolumeProperty name="CT-Bone" scalarOpacity="8 -3024 0 -16.4458 0 641.385 0.715686 3071 0.705882")"
+                                 R"( colorTransfer="16 -3024 0 0 0 -16.4458 0.729412 0.254902 0.301961 641.385 0.905882 0.815686 0.552941 3071 1 1 1"/></root>)";
+        editor->importSlicer(QString::fromStdString(slicer), "CT-Bone");
+        // Kept within the volume's stored range [0, 700] (400 HU at its top): -16.4458 HU lands on
+        // stored 491.777, and the curve is cut at 700 where it reaches 0.715686 * 416.4458 / 657.8308.
+        const auto& imported = editor->spec();
+        QCOMPARE(imported.opacity.size(), std::size_t(3));
+        QVERIFY(std::abs(imported.opacity[1].value - (-16.4458 - g.rescaleIntercept) / g.rescaleSlope) < 1e-6);
+        QCOMPARE(imported.opacity[1].alpha, 0.0);
+        QVERIFY(std::abs(imported.opacity[2].value - 700.0) < 1e-9);
+        QVERIFY2(std::abs(imported.opacity[2].alpha - 0.715686 * 416.4458 / 657.8308) < 1e-6,
+                 qPrintable(QString::number(imported.opacity[2].alpha, 'g', 9)));
+
+        const std::string paraview = dir_.file("cool.json");
+        std::ofstream(paraview) << R"([{"Name":"Cool to Warm","ColorSpace":"Diverging","RGBPoints":[-1, 0.23, 0.299, 0.754, 0, 0.865, 0.865, 0.865, 1, 0.706, 0.016, 0.150]}])";
+        const auto opacityBefore = editor->spec().opacity;
+        editor->importParaView(QString::fromStdString(paraview));
+        QCOMPARE(editor->spec().colours.size(), std::size_t(3));
+        QVERIFY(std::abs(editor->spec().colours[1].value - 0.5 * (opacityBefore.front().value + opacityBefore.back().value)) < 1e-6);
+        QCOMPARE(editor->spec().opacity.size(), opacityBefore.size());
+
+        const auto before = editor->spec();
+        std::ofstream(dir_.file("broken.json")) << "{\"opacity\": [";
+        try {
+            editor->load(QString::fromStdString(dir_.file("broken.json")));
+            QFAIL("a broken file was loaded");
+        } catch (const core::Error& e) {
+            QVERIFY2(QString(e.what()).contains("broken.json"), e.what());
+        }
+        QCOMPARE(editor->spec().opacity.size(), before.opacity.size());
+        QCOMPARE(editor->spec().colours.size(), before.colours.size());
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("phantom.hvo"))));
     }
 
     void aLightFieldFrameIsCancelledFromTheJobsPanel() {
