@@ -25,6 +25,7 @@
 
 #include "core/streaming/BrickCache.h"
 #include "core/streaming/BrickLoader.h"
+#include "core/streaming/ContentBox.h"
 #include "core/base/Error.h"
 #include "core/image/ImageWriter.h"
 #include "core/streaming/OctreeSpace.h"
@@ -468,10 +469,13 @@ void VolumeView::capture(const QString& path, int width, int height) {
 std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel& display, double eta, double zoom,
                                                        double maxBeams, bool interactive, core::JobContext* job) {
     if (!scene_ || !tf_ || !gpu_) throw core::Error("open a volume first");
-    const auto& s = scene_->space;
-    const glm::dvec3 centre = s.centre();
-    const glm::dvec3 corner(s.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
-    const double scale = zoom * 0.9 * std::min(display.screenWidthMm, display.screenHeightMm) / (2.0 * glm::length(centre - corner));
+    // What the transfer function shows fills the screen's width (or height) and the display's
+    // sharp depth range (core::DisplayModel::frame), about the camera's target.
+    const auto& g = scene_->reader->geometry();
+    const auto content = core::ContentBox::of(*scene_->reader, *tf_, settings_.mode != core::RenderSettings::Mode::Dvr);
+    const auto box = content ? *content : core::ContentBox{glm::dvec3(0.0), glm::dvec3(g.dims[0], g.dims[1], g.dims[2])};
+    const auto framing = display.frame(box.corners(g), camera_.right(), camera_.up());
+    const double scale = zoom * framing.scale, depthScale = zoom * framing.depthScale;
     const double beams = double(display.viewCount()) * display.viewWidthPx() * display.viewHeightPx();
     double shrink = beams > maxBeams ? std::sqrt(maxBeams / beams) : 1.0;
     core::RenderSettings rs = settings_;
@@ -482,14 +486,14 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
     }
     const auto views = display.views(camera_.target(), camera_.right(), camera_.up(), eta,
                                      std::max(1, int(display.viewWidthPx() * shrink)),
-                                     std::max(1, int(display.viewHeightPx() * shrink)), scale);
+                                     std::max(1, int(display.viewHeightPx() * shrink)), scale, depthScale);
     makeCurrent();
     try {
         core::WorkingSetOptions options = scene_->ws.options();
         options.cpuMirror = false;
         core::WorkingSet ws(*scene_->reader, scene_->cache, scene_->loader, options);
         auto images = render::LightFieldRenderer::render(*scene_->reader, ws, scene_->loader, *tf_, rs, views,
-                                                         display.accuracyFunction(scale), gpu_.get(), true, nullptr, job);
+                                                         display.accuracyFunction(scale, depthScale), gpu_.get(), true, nullptr, job);
         glUseProgram(0);
         glBindTextureUnit(0, 0);
         doneCurrent();

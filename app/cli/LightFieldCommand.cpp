@@ -6,6 +6,8 @@
 #include <optional>
 #include <sstream>
 
+#include <unistd.h>
+
 #include <glm/geometric.hpp>
 
 #include "app/cli/CliArgs.h"
@@ -21,6 +23,7 @@
 #include "core/image/DviPacker.h"
 #include "core/image/ProjectorCorrection.h"
 #include "core/image/QuiltLayout.h"
+#include "core/streaming/ContentBox.h"
 #include "core/image/StereoComposer.h"
 #include "core/volume/VoxelSourceFactory.h"
 #include "core/streaming/WorkingSet.h"
@@ -35,13 +38,37 @@ glm::dvec3 parseTriple(const std::string& text, const char* what) {
     return {v[0], v[1], v[2]};
 }
 
+/// Fails in words, before any rendering, when an output cannot be written: a folder output's
+/// folder is made now (and must take a file), a file output's folder must exist and take one.
+void checkOutputs(const std::string& format, const std::string& out, const std::optional<std::string>& simulate) {
+    namespace fs = std::filesystem;
+    auto probe = [](const fs::path& folder, const std::string& what) {
+        std::error_code ec;
+        if (!fs::is_directory(folder.empty() ? fs::path(".") : folder, ec))
+            throw core::Error(what + ": the folder " + folder.string() + " does not exist");
+        const fs::path test = (folder.empty() ? fs::path(".") : folder) / (".hvx-write-test-" + std::to_string(::getpid()));
+        std::ofstream f(test);
+        if (!f) throw core::Error(what + ": cannot write into " + (folder.empty() ? std::string(".") : folder.string()));
+        f.close();
+        fs::remove(test, ec);
+    };
+    if (format == "projectors" || format == "dvi") {
+        std::error_code ec;
+        fs::create_directories(out, ec);
+        if (ec) throw core::Error(out + ": cannot make the output folder (" + ec.message() + ")");
+        probe(fs::path(out), out);
+    } else {
+        probe(fs::path(out).parent_path(), out);
+    }
+    if (simulate) probe(fs::path(*simulate).parent_path(), *simulate);
+}
 }  // namespace
 
 int lightFieldCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"display", "o", "output", "format", "eta", "view", "zoom", "tf", "mode", "size", "observer",
                         "simulate", "budget", "cache-mb", "correction"},
-                       {"cpu", "list"});
+                       {"cpu", "list", "true-depth"});
     if (args.flag("list")) {
         for (const auto& n : core::DisplayModel::builtInNames()) {
             const auto d = core::DisplayModel::load(n);
@@ -53,7 +80,7 @@ int lightFieldCommand(int argc, char** argv) {
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out || !args.value("display"))
         throw core::Error("usage: holovox-cli lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] "
-                          "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json] [--cpu]");
+                          "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--true-depth] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json] [--cpu]");
     const auto display = core::DisplayModel::load(*args.value("display"));
     const std::string format = args.value("format").value_or(
         display.kind == core::DisplayModel::Kind::Lenticular ? "quilt"
@@ -84,18 +111,6 @@ int lightFieldCommand(int argc, char** argv) {
         width = int(d[0]);
         height = int(d[1]);
     }
-    // The volume's centre on the screen centre, seen from azimuth/elevation like `render`.
-    const glm::dvec3 centre = space.centre();
-    const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
-    const core::View orbit = core::View::orbit(centre, 1000.0, az, el, 8, 8);
-    const glm::dvec3 f = glm::normalize(orbit.target - orbit.eye);
-    const glm::dvec3 right = glm::normalize(glm::cross(f, orbit.up));
-    const glm::dvec3 up = glm::cross(right, f);
-    // Default scale: the volume's bounding sphere fills 90% of the screen's smaller side.
-    const double radius = glm::length(centre - corner);
-    const double scale = args.number("zoom").value_or(1.0) * 0.9 * std::min(display.screenWidthMm, display.screenHeightMm) / (2.0 * radius);
-    const auto views = display.views(centre, right, up, eta, width, height, scale);
-
     core::RenderSettings settings;
     const std::string mode = args.value("mode").value_or("dvr");
     if (mode == "mip") settings.mode = core::RenderSettings::Mode::Mip;
@@ -103,6 +118,26 @@ int lightFieldCommand(int argc, char** argv) {
     const std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
     const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
                                                    space.minSpacing);
+    checkOutputs(format, *out, args.value("simulate"));  // before the first ray: rendering can take minutes
+    // Seen from azimuth/elevation like `render`; what the transfer function shows (not the
+    // volume's air) framed on the display: its middle on the screen centre, as large as the
+    // screen's width and height and the display's sharp depth range allow (DisplayModel::frame).
+    const core::View orbit = core::View::orbit(space.centre(), 1000.0, az, el, 8, 8);
+    const glm::dvec3 f = glm::normalize(orbit.target - orbit.eye);
+    const glm::dvec3 right = glm::normalize(glm::cross(f, orbit.up));
+    const glm::dvec3 up = glm::cross(right, f);
+    const auto content = core::ContentBox::of(*reader, tf, settings.mode == core::RenderSettings::Mode::Mip);
+    const auto box = content ? *content : core::ContentBox{glm::dvec3(0.0), glm::dvec3(g.dims[0], g.dims[1], g.dims[2])};
+    const auto framing = display.frame(box.corners(g), right, up, args.flag("true-depth"));
+    const double zoom = args.number("zoom").value_or(1.0);
+    const double scale = zoom * framing.scale, depthScale = zoom * framing.depthScale;
+    std::printf("framed %s: %.4g display mm per patient mm across (the screen's %s), %.4g in depth (%s; sharp "
+                "depth range +/- %.3g mm)\n",
+                content ? "what the transfer function shows" : "the whole volume (the transfer function shows nothing)",
+                framing.scale, framing.limit, framing.depthScale,
+                framing.depthScale < framing.scale * 0.999 ? "compressed to fit it" : "true depth", display.depthRangeMm());
+    const auto views = display.views(framing.centre, right, up, eta, width, height, scale, depthScale);
+
     core::WorkingSetOptions opt;
     opt.maxBricks = std::size_t(args.integer("budget", 8192, 1, 1 << 20));
     opt.cpuMirror = args.flag("cpu");
@@ -120,7 +155,7 @@ int lightFieldCommand(int argc, char** argv) {
         gpu = std::make_unique<render::GpuRayCaster>();
         device = "the GPU (" + context->info().renderer + ")";
     }
-    images = render::LightFieldRenderer::render(*reader, ws, loader, tf, settings, views, display.accuracyFunction(scale),
+    images = render::LightFieldRenderer::render(*reader, ws, loader, tf, settings, views, display.accuracyFunction(scale, depthScale),
                                                 gpu.get(), true, &stats);
 
     if (correction)  // per-projector warp and colour LUTs

@@ -151,9 +151,11 @@ glm::dvec3 DisplayModel::projectorPosition(int i) const {
 }
 
 std::vector<View> DisplayModel::views(const glm::dvec3& centre, const glm::dvec3& right, const glm::dvec3& up, double eta,
-                                      int widthOverride, int heightOverride, double scale) const {
+                                      int widthOverride, int heightOverride, double scale, double depthScale) const {
     if (!(eta >= 0.0 && eta <= 1.0)) throw Error("eta must be between 0 and 1");
-    if (!(scale > 0.0 && std::isfinite(scale))) throw Error("the display scale must be positive");
+    if (depthScale == 0.0) depthScale = scale;
+    if (!(scale > 0.0 && std::isfinite(scale)) || !(depthScale > 0.0 && std::isfinite(depthScale)))
+        throw Error("the display scale must be positive");
     const int w = widthOverride > 0 ? widthOverride : viewWidthPx(), h = heightOverride > 0 ? heightOverride : viewHeightPx();
     if (w < 1 || h < 1 || std::int64_t(w) * h * viewCount() > (std::int64_t(1) << 31))
         throw Error("impossible view size " + std::to_string(w) + "x" + std::to_string(h) + " for " +
@@ -162,16 +164,19 @@ std::vector<View> DisplayModel::views(const glm::dvec3& centre, const glm::dvec3
     s.centre = centre;
     s.right = glm::normalize(right);
     s.up = glm::normalize(up - glm::dot(up, s.right) * s.right);
-    // Display lengths in patient mm: divided by the scale.
+    // Display lengths in patient mm: divided by the scale, across the screen and along its
+    // normal. Display space maps to patient space linearly, so its straight rays stay straight:
+    // viewers and projectors placed by the two scales give the rays of the compressed display.
+    const glm::dvec3 toPatient(1.0 / scale, 1.0 / scale, 1.0 / depthScale);
     s.widthMm = screenWidthMm / scale;
     s.heightMm = screenHeightMm / scale;
-    s.viewer = glm::dvec3(0.0, observerHeightMm, observerDistanceMm) / scale;
+    s.viewer = glm::dvec3(0.0, observerHeightMm, observerDistanceMm) * toPatient;
     std::vector<View> out;
     const int n = viewCount();
     for (int i = 0; i < n; ++i) {
         View::ScreenRays v = s;
         if (kind == Kind::ProjectorArray) {
-            v.projector = projectorPosition(i) / scale;
+            v.projector = projectorPosition(i) * toPatient;
             v.eta = eta;
         } else {
             // Off-axis cameras on the viewing line, leftmost first: a shifted frustum through
@@ -195,10 +200,40 @@ double DisplayModel::accuracy(double zMm) const {
     return s0 + 2.0 * std::abs(zMm) * std::tan(glm::radians(phi) / 2.0);
 }
 
-AccuracyFunction DisplayModel::accuracyFunction(double scale) const {
+double DisplayModel::depthRangeMm() const {
+    // s(z) = s0 + 2|z| tan(phi/2) is linear in |z|: twice s0 at s0 / (s'(z)).
+    const double s0 = accuracy(0.0), slope = accuracy(1000.0) - s0;  // per metre
+    return slope > 0 ? s0 / slope * 1000.0 : 1e9;
+}
+
+DisplayModel::Framing DisplayModel::frame(const std::vector<glm::dvec3>& points, const glm::dvec3& right,
+                                          const glm::dvec3& up, bool trueDepth) const {
+    Framing f;
+    if (points.empty()) return f;
+    const glm::dvec3 axes[3] = {glm::normalize(right), glm::normalize(up), glm::normalize(glm::cross(right, up))};
+    glm::dvec3 lo(1e300), hi(-1e300);
+    for (const auto& p : points)
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], glm::dot(p, axes[a]));
+            hi[a] = std::max(hi[a], glm::dot(p, axes[a]));
+        }
+    const glm::dvec3 mid = 0.5 * (lo + hi), extent = glm::max(hi - lo, glm::dvec3(1e-6));
+    f.centre = mid.x * axes[0] + mid.y * axes[1] + mid.z * axes[2];
+    constexpr double kMargin = 0.95;  // a rim of screen around the content
+    const double byWidth = kMargin * screenWidthMm / extent.x, byHeight = kMargin * screenHeightMm / extent.y;
+    const double byDepth = 2.0 * depthRangeMm() / extent.z;  // half the depth either side of the screen
+    f.scale = std::min(byWidth, byHeight);
+    f.limit = byHeight < byWidth ? "height" : "width";
+    f.depthScale = std::min(f.scale, byDepth);
+    if (trueDepth) f.scale = f.depthScale;
+    return f;
+}
+
+AccuracyFunction DisplayModel::accuracyFunction(double scale, double depthScale) const {
     const DisplayModel self = *this;
-    return [self, scale](const View& view, const glm::dvec3& point) {
-        const double z = glm::dot(point - view.screen.centre, view.screen.normal()) * scale;  // display mm
+    if (depthScale == 0.0) depthScale = scale;
+    return [self, scale, depthScale](const View& view, const glm::dvec3& point) {
+        const double z = glm::dot(point - view.screen.centre, view.screen.normal()) * depthScale;  // display mm
         return self.accuracy(z) / scale;
     };
 }

@@ -55,13 +55,30 @@ struct DisplayModel {
     /// The views of one frame, the screen placed at `centre` with axes `right` and `up` in
     /// patient space (one display mm per patient mm). `eta` blends MCOP (1) towards one
     /// perspective (0) on projector arrays; sizes override the profile's view size when > 0.
-    /// `scale`: display mm per patient mm (a 200 mm head on a 120 mm screen needs 0.5).
+    /// `scale`: display mm per patient mm (a 200 mm head on a 120 mm screen needs 0.5);
+    /// `depthScale` the same along the screen's normal (0: `scale`), see Framing.
     std::vector<View> views(const glm::dvec3& centre, const glm::dvec3& right, const glm::dvec3& up, double eta = 1.0,
-                            int widthOverride = 0, int heightOverride = 0, double scale = 1.0) const;
+                            int widthOverride = 0, int heightOverride = 0, double scale = 1.0, double depthScale = 0.0) const;
+    /// How a volume is placed on the display by default: its content's middle on the screen
+    /// centre, as wide as the screen (or as tall, whichever is reached first; `scale`, display mm
+    /// per patient mm across the screen), its depth within the range where s(z) stays within
+    /// twice s(0) (depthRangeMm): `depthScale`, display mm per patient mm along the screen's
+    /// normal, below `scale` where the depth had to be compressed, as a Looking Glass's
+    /// "depthiness" does. With `trueDepth` both are one scale, the smaller (no distortion; the
+    /// volume is then often much smaller than the screen). `points`: the content's corners (patient mm).
+    struct Framing {
+        glm::dvec3 centre{0.0};
+        double scale = 1.0, depthScale = 1.0;
+        const char* limit = "width";  ///< "width" or "height": what set `scale`
+    };
+    Framing frame(const std::vector<glm::dvec3>& points, const glm::dvec3& right, const glm::dvec3& up,
+                  bool trueDepth = false) const;
+    /// The depth range (display mm, either side of the screen) where s(z) <= 2 s(0).
+    double depthRangeMm() const;
     /// s(z): the largest feature (display mm) the display can show at distance z from the screen.
     double accuracy(double zMm) const;
     /// The working set's accuracy function for these views (patient mm, from the screen plane).
-    AccuracyFunction accuracyFunction(double scale = 1.0) const;
+    AccuracyFunction accuracyFunction(double scale = 1.0, double depthScale = 0.0) const;
 };
 
 }  // namespace hvx::core

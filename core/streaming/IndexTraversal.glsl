@@ -64,6 +64,23 @@ HVX_FN bool hvxNextLeaf(HVX_INDEX_PARAM, vec3 o, vec3 dir, int face, float tExit
     if (next == HVX_NONE) return false;
     vec3 p = o + (tExit + nudge) * dir;
     int axis = face / 2;
+    // Where the ray leaves through this face, it is inside the leaf's extent along the other two
+    // axes: float rounding can put the point just past a face it is parallel to, or crossed a
+    // moment ago, and the leaf found there lies behind the ray, which ended there (dark lines
+    // along brick faces where rays graze them, as the near-orthographic rays of a light-field
+    // display's compressed depth do). Likewise a grazing ray moves too little along the exit
+    // axis for the nudge to carry the point over. So the point is put across the exit face and
+    // kept within the leaf's extent along the others (a ray leaving through an edge then enters
+    // the face neighbour for no length, and the diagonal one next).
+    float across1 = (hi.x - lo.x) * 1e-4f;
+    for (int a = 0; a < 3; ++a) {
+        if (a == axis) {
+            if ((face & 1) != 0) p[a] = max(p[a], hi[a] + across1);
+            else p[a] = min(p[a], lo[a] - across1);
+        } else {
+            p[a] = clamp(p[a], lo[a] + across1, hi[a] - across1);
+        }
+    }
     // The leaf's centre moved across the exit face only: inside the rope's node, which spans
     // at least the leaf's extent along the other two axes.
     vec3 across = 0.5f * (lo + hi);

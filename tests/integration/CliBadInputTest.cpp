@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "tests/support/ProcessRunner.h"
@@ -124,6 +125,17 @@ TEST(CliBadInput, LightFieldAndToolInputsFailCleanlyBeforeRendering) {
                        dir, "quilt", {"p.hvo"}, "needs a lenticular display");
     expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display holovizio-96 --format gif -o " + dir.file("out"), dir,
                        "--format", {"p.hvo"});
+    // Outputs that cannot be written fail before the first ray (rendering can take minutes).
+    expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display looking-glass-portrait --size 8x10 --cpu -o " +
+                           dir.file("missing/q"),
+                       dir, "missing", {"p.hvo"}, "does not exist");
+    expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display holovizio-96 --size 8x6 --cpu --format projectors -o " +
+                           dir.file("p.hvo/views"),
+                       dir, "p.hvo/views", {"p.hvo"}, "cannot make the output folder");
+    expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display holovizio-96 --size 8x6 --cpu -o " + dir.file("v") +
+                           " --observer 0,0,1000 --simulate " + dir.file("gone/seen.png"),
+                       dir, "gone", {"p.hvo", "v"}, "does not exist");
+    std::filesystem::remove_all(dir.file("v"));
     std::ofstream(dir.file("tools.json")) << R"({"mimda": {"enabled": true, "gamma": 3}})";
     expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --tools " + dir.file("tools.json") + " -o " + dir.file("o.png"),
                        dir, "tools.json", {"p.hvo", "tools.json"}, "gamma must be between 0 and 1");

@@ -215,3 +215,32 @@ TEST(CliGlCommands, RenderDrawsATimePointOfA4DSeries) {
     }
     EXPECT_FALSE(std::filesystem::exists(dir.file("no.png")));
 }
+
+// The light field's default framing: what shows fills each tile's width (a Looking Glass user's
+// expectation), its depth compressed into the range the display shows sharply; with
+// --true-depth the same scale both ways, and the volume is far smaller (what it was before).
+TEST(CliGlCommands, LightFieldFillsTheScreensWidth) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 32x32x32 -o " + dir.file("p.hvo")).exitCode, 0);
+    const std::string spans =
+        "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
+        "from vtkmodules.util.numpy_support import vtk_to_numpy; "
+        "r = vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update(); w, h, _ = r.GetOutput().GetDimensions(); "
+        "a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).reshape(h, w, -1)[::-1, :, :3].max(axis=2); "
+        "tw, th = w // 8, h // 6; "
+        "print(min(int((a[i * th:(i + 1) * th, j * tw:(j + 1) * tw] > 8).any(axis=0).sum()) for i in range(6) for j in range(8)), tw)\" ";
+    for (const bool trueDepth : {false, true}) {
+        const std::string out = dir.file(trueDepth ? "t" : "q");
+        auto r = test::runCommand(cli + " lightfield " + dir.file("p.hvo") + " --display looking-glass-portrait --size 60x80 " +
+                                  "--mode mip -o " + out + (trueDepth ? " --true-depth" : ""));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find(trueDepth ? "(true depth;" : "(compressed to fit it;"), std::string::npos) << r.output;
+        const auto s = test::runCommand(spans + out + "_qs8x6a0.75.png");
+        int narrowest = 0, tile = 0;
+        ASSERT_EQ(std::sscanf(s.output.c_str(), "%d %d", &narrowest, &tile), 2) << s.output;
+        std::printf("%s: the narrowest of 48 tiles shows the volume across %d of %d columns\n",
+                    trueDepth ? "true depth" : "default", narrowest, tile);
+        if (trueDepth) EXPECT_LT(narrowest, tile / 2);
+        else EXPECT_GE(narrowest, tile * 8 / 10);
+    }
+}

@@ -107,6 +107,37 @@ TEST(DisplayModel, BuiltInProfilesMatchTheThesisDisplays) {
     EXPECT_LT(large.projectorPosition(0).z, 0.0);
 }
 
+// Default framing, worked by hand from the Looking Glass Portrait's profile: a box of 200 mm
+// across, 150 mm up and 180 mm deep fills 95 % of the screen's width or height, whichever comes
+// first; its depth is compressed into the range where s(z) <= 2 s(0), i.e. |z| <= s0 / (2 tan(phi/2))
+// with s0 the screen height over the view height and phi the view cone over (views - 1).
+TEST(DisplayModel, FramingFillsTheWidthAndFitsTheDepthIntoTheSharpRange) {
+    const auto lg = core::DisplayModel::load("looking-glass-portrait");
+    std::vector<glm::dvec3> box;
+    for (int c = 0; c < 8; ++c) box.push_back({c & 1 ? 110.0 : -90.0, c & 2 ? 40.0 : -140.0, c & 4 ? 80.0 : -70.0});
+    // Across: x (200 mm); up: z (150 mm); depth: y (180 mm).
+    const auto f = lg.frame(box, {1, 0, 0}, {0, 0, 1});
+    const double s0 = lg.screenHeightMm / lg.viewHeightPx();
+    const double phi = glm::radians(lg.viewConeDegrees / (lg.viewCount() - 1));
+    const double range = s0 / (2.0 * std::tan(phi / 2.0));
+    EXPECT_NEAR(lg.depthRangeMm(), range, 1e-9);
+    EXPECT_NEAR(lg.accuracy(range), 2.0 * lg.accuracy(0.0), 1e-9);
+    const double expected = std::min(0.95 * lg.screenWidthMm / 200.0, 0.95 * lg.screenHeightMm / 150.0);
+    EXPECT_NEAR(f.scale, expected, 1e-12);
+    EXPECT_NEAR(f.depthScale, std::min(expected, 2.0 * range / 180.0), 1e-12);
+    EXPECT_LT(f.depthScale, f.scale) << "a 180 mm deep head does not fit a Looking Glass's depth without compression";
+    EXPECT_NEAR(f.centre.x, 10.0, 1e-9);
+    EXPECT_NEAR(f.centre.y, -50.0, 1e-9);
+    EXPECT_NEAR(f.centre.z, 5.0, 1e-9);
+    const auto same = lg.frame(box, {1, 0, 0}, {0, 0, 1}, true);
+    EXPECT_EQ(same.scale, same.depthScale);
+    EXPECT_NEAR(same.scale, f.depthScale, 1e-12);
+    // The views place their viewers by the two scales: across by one, along the normal by the other.
+    const auto views = lg.views(f.centre, {1, 0, 0}, {0, 0, 1}, 1.0, 30, 40, f.scale, f.depthScale);
+    EXPECT_NEAR(views.front().screen.viewer.z, lg.observerDistanceMm / f.depthScale, 1e-9);
+    EXPECT_NEAR(views.front().screen.widthMm, lg.screenWidthMm / f.scale, 1e-9);
+}
+
 TEST(DisplayModel, QuiltViewsAreShiftedLeftToRightAndTilesStartBottomLeft) {
     const auto lg = core::DisplayModel::load("looking-glass-portrait");
     const auto views = lg.views({0, 0, 0}, {1, 0, 0}, {0, 0, 1}, 1.0, 42, 56);

@@ -145,6 +145,45 @@ TEST(SpatialIndexTraversal, VisitsExactlyTheLeavesABruteForceRayBoxTestFindsInOr
     EXPECT_GT(leaves, rays);  // rays really cross several leaves
 }
 
+// Rays nearly parallel to a node face (a millionth of a radian off it, as a light-field
+// display's compressed depth makes them): the nudge past an exit face moved the point too little
+// along the face's axis to leave the leaf, the same leaf was found again and the ray ended
+// there (dark lines along brick faces in Looking Glass quilts). Each such ray must reach the
+// volume's far side through every leaf it crosses.
+TEST(CpuRayCaster, RaysGrazingANodeFaceReachTheFarSide) {
+    test::TempDir dir;
+    const auto r = buildPhantom(dir, {64, 64, 64}, 8);
+    const auto space = core::OctreeSpace::of(r->geometry(), r->brickSize(), r->levelCount());
+    std::mt19937 rng(5);
+    const auto cut = test::randomCut(*r, rng, 1.0);  // full resolution everywhere
+    std::vector<std::uint32_t> slots(cut.size(), core::SpatialIndex::kNone);
+    const auto idx = core::SpatialIndex::build(*r, cut, slots);
+    std::vector<std::shared_ptr<const std::vector<float>>> noSlots;
+    const core::CpuRayCaster caster(*r, idx, noSlots, boneTf(*r), {});
+    int stopped = 0, rays = 0;
+    for (const double q : {0.25, 0.5, 0.75})
+        for (const double sign : {-1.0, 1.0})
+            for (const double tilt : {1e-6, 1e-5, 3e-7}) {
+                // Along +y, crossing the plane x = q (octree units) inside the volume, at a grazing
+                // angle of `tilt`.
+                const double x = q * space.extent.x;
+                const glm::dvec3 from(space.octreeToPatient * glm::dvec4(x - sign * 0.6 * tilt, -0.2, 0.37 * space.extent.z, 1.0));
+                const glm::dvec3 to(space.octreeToPatient * glm::dvec4(x + sign * 0.4 * tilt, 1.2, 0.37 * space.extent.z, 1.0));
+                const glm::dvec3 dirW = glm::normalize(to - from);
+                const auto want = bruteForceLeaves(idx, space, from, dirW);
+                const auto visits = caster.traverse(from, dirW);
+                ++rays;
+                if (want.empty()) continue;
+                const bool reached = !visits.empty() && std::find_if(visits.begin(), visits.end(), [&](const auto& v) {
+                                                            return v.node == want.back();
+                                                        }) != visits.end();
+                stopped += reached ? 0 : 1;
+                EXPECT_TRUE(reached) << "x = " << q << " tilt " << sign * tilt << ": " << visits.size() << " of "
+                                     << want.size() << " leaves visited";
+            }
+    EXPECT_EQ(stopped, 0) << "of " << rays << " grazing rays";
+}
+
 TEST(CpuRayCaster, FullResolutionCutMatchesDenseRayMarching) {
     // Dense reference: march the full-resolution volume with the same step and compositing.
     test::TempDir dir;
