@@ -211,15 +211,20 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     if (overlay && tools) throw core::Error("the illustrative tools are not drawn over a fused volume");
     const int labels = reader.geometry().isLabel ? 1 : 0;
     const int fusion = overlay ? 1 + (overlay->reader.geometry().isLabel ? 1 : 0) : 0;  // 1 image, 2 label map
-    // A static variant per mode, tools, labels and fusion.
-    auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion];
+    const int gradient = !overlay && settings.mode == core::RenderSettings::Mode::Dvr && tf.hasGradientOpacity() ? 1 : 0;
+    // A static variant per mode, tools, labels, fusion and gradient opacity.
+    auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion + 16384 * gradient];
     if (!program)
         program = std::make_unique<ComputeProgram>(
             ShaderLibrary::embedded(), "raycast.comp.glsl",
             std::vector<std::string>{"MODE " + std::to_string(mode), "HVX_TOOLS " + std::to_string(tools),
                                      "HVX_LABELS " + std::to_string(labels),
                                      "HVX_FUSION " + std::to_string(fusion ? 1 : 0),
-                                     "HVX_LABELS_B " + std::to_string(fusion == 2 ? 1 : 0)});
+                                     "HVX_LABELS_B " + std::to_string(fusion == 2 ? 1 : 0),
+                                     "HVX_GRADIENT_OPACITY " + std::to_string(gradient)});
+    if (gradient)
+        glNamedBufferData(buffers_[12], GLsizeiptr(tf.gradientTable().size() * sizeof(float)), tf.gradientTable().data(),
+                          GL_STREAM_DRAW);
     const auto packed = core::packTools(settings.tools, {settings.ambient, settings.diffuse, settings.specular, settings.shininess});
     static_assert(sizeof(packed) == 16 * 16, "std140 layout of HvxTools");
     glNamedBufferData(buffers_[9], sizeof packed, &packed, GL_STREAM_DRAW);
@@ -300,7 +305,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     fb.extra = glm::vec4(float(settings.isoValue), settings.shading ? 1.0f : 0.0f, settings.countRays ? 1.0f : 0.0f,
                          float(tf.referenceLength()));
     fb.enhance = glm::vec4(float(settings.boundary), float(settings.viewTransparency),
-                           float(space.minSpacing / (tf.valueMax() - tf.valueMin()) / core::kBoundaryGradientFraction), 0.0f);
+                           float(space.minSpacing / (tf.valueMax() - tf.valueMin()) / core::kBoundaryGradientFraction),
+                           float(tf.gradientMax()));
     fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), pools_[0].row);
     fb.image = glm::uvec4(std::uint32_t(width), std::uint32_t(height), pools_[0].layer, std::uint32_t(views.size()));
     fb.cropLo = glm::vec4(glm::vec3(settings.crop.min * space.extent), 0.0f);
@@ -322,6 +328,7 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, buffers_[8]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, buffers_[10]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, buffers_[11]);
+    if (gradient) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, buffers_[12]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers_[9]);
     glBindTextureUnit(0, pools_[0].texture);

@@ -91,9 +91,9 @@ private:
                                    const core::TransferFunction& tf, const core::RenderSettings& settings, bool skip);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
-    static constexpr int kBuffers = 12;
+    static constexpr int kBuffers = 13;
     unsigned buffers_[kBuffers] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot
-                                       // records, tools, views, tf opacity (F.w, f.w)
+                                       // records, tools, views, tf opacity (F.w, f.w), gradient opacity
     Pool pools_[2];                    // the volume's, and a fused volume's
     bool floatPool_ = false;
     std::size_t uploaded_ = 0;

@@ -50,6 +50,7 @@ std::vector<double> numbers(const QString& path, const QString& name, const QStr
 core::TransferFunctionSpec TransferFunctionFiles::toStored(core::TransferFunctionSpec s, double slope, double intercept) {
     for (auto& p : s.opacity) p.value = (p.value - intercept) / slope;
     for (auto& c : s.colours) c.value = (c.value - intercept) / slope;
+    for (auto& g : s.gradientOpacity) g.magnitude /= std::abs(slope);  // per mm, in stored units
     return s;
 }
 
@@ -57,6 +58,7 @@ core::TransferFunctionSpec TransferFunctionFiles::toPhysical(core::TransferFunct
                                                              double intercept) {
     for (auto& p : s.opacity) p.value = p.value * slope + intercept;
     for (auto& c : s.colours) c.value = c.value * slope + intercept;
+    for (auto& g : s.gradientOpacity) g.magnitude *= std::abs(slope);
     return s;
 }
 
@@ -64,8 +66,13 @@ void TransferFunctionFiles::save(const core::TransferFunctionSpec& physical, con
     QJsonArray opacity, colours;
     for (const auto& p : physical.opacity) opacity.append(QJsonArray{p.value, p.alpha});
     for (const auto& c : physical.colours) colours.append(QJsonArray{c.value, c.rgb.r, c.rgb.g, c.rgb.b});
-    const QJsonObject root{{"format", "holovox-transfer-function"}, {"version", 1}, {"units", "physical"},
-                           {"opacity", opacity}, {"colours", colours}};
+    QJsonObject root{{"format", "holovox-transfer-function"}, {"version", 1}, {"units", "physical"},
+                     {"opacity", opacity}, {"colours", colours}};
+    if (!physical.gradientOpacity.empty()) {  // [|∇f| per mm, scale]
+        QJsonArray gradient;
+        for (const auto& g : physical.gradientOpacity) gradient.append(QJsonArray{g.magnitude, g.scale});
+        root.insert("gradientOpacity", gradient);
+    }
     QSaveFile f(path);  // written under a temporary name, renamed on commit
     if (!f.open(QIODevice::WriteOnly)) fail(path, QObject::tr("cannot be written (%1)").arg(f.errorString()));
     f.write(QJsonDocument(root).toJson());
@@ -93,8 +100,15 @@ core::TransferFunctionSpec TransferFunctionFiles::load(const QString& path) {
             if (!x.isDouble()) fail(path, QObject::tr("a colour stop holds something other than numbers"));
         s.colours.push_back({a[0].toDouble(), {a[1].toDouble(), a[2].toDouble(), a[3].toDouble()}});
     }
+    for (const auto& v : root.value("gradientOpacity").toArray()) {
+        const auto a = v.toArray();
+        if (a.size() != 2 || !a[0].isDouble() || !a[1].isDouble())
+            fail(path, QObject::tr("a gradient opacity point is not [gradient per mm, scale]"));
+        s.gradientOpacity.push_back({a[0].toDouble(), a[1].toDouble()});
+    }
     try {
         s.normalise();
+        core::TransferFunction({{0, glm::dvec4(0.0)}}, 0, 1).setGradientOpacity(s.gradientOpacity);  // checks the curve
     } catch (const core::Error& e) {
         fail(path, QString::fromStdString(e.what()));
     }
@@ -114,6 +128,13 @@ std::vector<std::pair<QString, core::TransferFunctionSpec>> TransferFunctionFile
             fail(path, QObject::tr("preset %1: scalarOpacity needs pairs and colorTransfer quadruples").arg(name));
         core::TransferFunctionSpec s;
         for (std::size_t i = 0; i < opacity.size(); i += 2) s.opacity.push_back({opacity[i], std::clamp(opacity[i + 1], 0.0, 1.0)});
+        // gradientOpacity="N g0 s0 g1 s1 ...": |∇f| (physical units per mm) and its opacity scale.
+        const auto gradient = attrs.hasAttribute("gradientOpacity")
+                                  ? numbers(path, "gradientOpacity of " + name, attrs.value("gradientOpacity").toString())
+                                  : std::vector<double>{};
+        if (gradient.size() % 2) fail(path, QObject::tr("preset %1: gradientOpacity needs pairs").arg(name));
+        for (std::size_t i = 0; i < gradient.size(); i += 2)
+            s.gradientOpacity.push_back({std::max(0.0, gradient[i]), std::clamp(gradient[i + 1], 0.0, 1.0)});
         for (std::size_t i = 0; i < colours.size(); i += 4)
             s.colours.push_back({colours[i], glm::clamp(glm::dvec3(colours[i + 1], colours[i + 2], colours[i + 3]), 0.0, 1.0)});
         try {

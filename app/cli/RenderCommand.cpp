@@ -122,13 +122,13 @@ private:
 int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
-                        "view-transparency", "tools", "crop", "lut", "label-opacity", "overlay", "labels", "time", "db"},
+                        "view-transparency", "tools", "crop", "lut", "label-opacity", "overlay", "labels", "time", "db", "gradient-opacity"},
                        {"cpu", "force-frame"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo|SERIES_UID --time N [--db FILE] [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
                           "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L] | "
-                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
+                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--gradient-opacity G:S,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
     const auto reader = core::OctreeReader::open(timePoint(args));
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
@@ -182,6 +182,26 @@ int renderCommand(int argc, char** argv) {
         preset = "labels (" + table.format() + ")";
         return core::TransferFunction::forLabels(table, opacity, space.minSpacing);
     }();
+    // --gradient-opacity G0:S0,G1:S1,...: opacity scaled by S at gradient magnitude G (physical
+    // units per mm, e.g. HU/mm), linear between, constant beyond (MedVis §3.2.1).
+    auto rendered = tf;
+    if (const auto curve = args.value("gradient-opacity")) {
+        if (g.isLabel) throw core::Error("--gradient-opacity is for images, not label maps");
+        std::vector<core::TransferFunction::GradientPoint> points;
+        std::size_t at = 0;
+        while (at <= curve->size()) {
+            const auto comma = std::min(curve->find(',', at), curve->size());
+            const std::string pair = curve->substr(at, comma - at);
+            double m = 0, scale = 0;
+            char colon = 0, extra = 0;
+            if (std::sscanf(pair.c_str(), "%lf %c %lf %c", &m, &colon, &scale, &extra) != 3 || colon != ':')
+                throw core::Error("--gradient-opacity takes GRADIENT:SCALE pairs separated by commas, e.g. 0:0,50:1 (\"" + pair +
+                                  "\" given)");
+            points.push_back({m / std::abs(g.rescaleSlope), scale});
+            at = comma + 1;
+        }
+        rendered.setGradientOpacity(std::move(points));
+    }
     core::WorkingSetOptions opt;
     opt.maxBricks = std::size_t(args.integer("budget", 4096, 1, 1 << 20));
     opt.voxelsPerPixel = args.number("accuracy").value_or(1.0);
@@ -229,7 +249,7 @@ int renderCommand(int argc, char** argv) {
     core::RenderImage image;
     std::string device = "the CPU";
     if (args.flag("cpu")) {
-        const core::CpuRayCaster base(*reader, ws.index(), ws.slotData(), tf, settings);
+        const core::CpuRayCaster base(*reader, ws.index(), ws.slotData(), rendered, settings);
         if (fused) {
             core::RenderSettings plain = settings;
             plain.crop = {};
@@ -243,7 +263,7 @@ int renderCommand(int argc, char** argv) {
         render::GpuRayCaster gpu;
         std::optional<render::GpuRayCaster::Overlay> overlay;
         if (fused) overlay.emplace(render::GpuRayCaster::Overlay{*fused->reader, fused->ws.index(), fused->ws.slotBricks(), *fused->tf});
-        image = gpu.render(*reader, ws.index(), ws.slotBricks(), tf, settings, view, overlay ? &*overlay : nullptr);
+        image = gpu.render(*reader, ws.index(), ws.slotBricks(), rendered, settings, view, overlay ? &*overlay : nullptr);
         device = "the GPU (" + context.info().renderer + ")";
     }
     const double renderSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();

@@ -76,6 +76,38 @@ TransferFunction TransferFunction::forLabels(const LabelTable& table, double opa
     return TransferFunction(std::move(points), lo - 0.5, lo - 0.5 + kEntries, referenceLength);
 }
 
+void TransferFunction::setGradientOpacity(std::vector<GradientPoint> points) {
+    for (const auto& p : points)
+        if (!std::isfinite(p.magnitude) || !std::isfinite(p.scale) || p.magnitude < 0 || p.scale < 0 || p.scale > 1)
+            throw Error("a gradient opacity point needs a magnitude of 0 or more and a scale of 0 to 1");
+    std::sort(points.begin(), points.end(), [](const GradientPoint& a, const GradientPoint& b) { return a.magnitude < b.magnitude; });
+    const bool flat = std::all_of(points.begin(), points.end(), [](const GradientPoint& p) { return p.scale == 1.0; });
+    gradientPoints_.clear();
+    gradientTable_.clear();
+    gradientMax_ = 1.0;
+    if (points.empty() || flat) return;  // off: nothing scaled, bitwise the plain image
+    gradientPoints_ = std::move(points);
+    gradientMax_ = std::max(gradientPoints_.back().magnitude, 1e-9);
+    gradientTable_.resize(kGradientEntries);
+    for (int i = 0; i < kGradientEntries; ++i) {
+        const double m = gradientMax_ * i / (kGradientEntries - 1);
+        double g = gradientPoints_.front().scale;
+        for (std::size_t k = 1; k < gradientPoints_.size(); ++k) {
+            const auto &a = gradientPoints_[k - 1], &b = gradientPoints_[k];
+            if (m >= a.magnitude) g = b.magnitude > a.magnitude ? a.scale + (b.scale - a.scale) * std::min(1.0, (m - a.magnitude) / (b.magnitude - a.magnitude)) : b.scale;
+        }
+        gradientTable_[std::size_t(i)] = float(g);
+    }
+}
+
+double TransferFunction::gradientScale(double magnitude) const {
+    if (gradientTable_.empty()) return 1.0;
+    const float p = std::clamp(float(magnitude / gradientMax_) * float(kGradientEntries - 1), 0.0f, float(kGradientEntries - 1));
+    const int i = std::min(int(p), kGradientEntries - 2);
+    const float f = p - float(i);
+    return double(gradientTable_[std::size_t(i)] * (1.0f - f) + gradientTable_[std::size_t(i) + 1] * f);
+}
+
 TransferFunction TransferFunction::forColorMap(const ColorMap& map, double low, double high, double opacity,
                                                double valueMin, double valueMax, double referenceLength) {
     if (!(high > low)) throw Error("a colour map's window needs a width above 0");

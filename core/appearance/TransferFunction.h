@@ -67,6 +67,26 @@ public:
     const std::vector<glm::dvec4>& table() const { return f_; }
     const std::vector<glm::dvec4>& integralTable() const { return F_; }
 
+    /// Gradient opacity (MedVis §3.2.1, as VTK's and 3D Slicer's): a sample's opacity is scaled
+    /// by a piecewise-linear curve over its gradient magnitude |∇f| (stored units per mm), as
+    /// extinction: a' = 1 − (1 − a)^g(|∇f|), so homogeneous regions fade and boundaries stay.
+    struct GradientPoint {
+        double magnitude;  ///< |∇f|, stored units per mm
+        double scale;      ///< [0, 1]
+    };
+    static constexpr int kGradientEntries = 256;
+    /// Sets the curve (constant beyond its ends); an empty curve, or one that is 1 everywhere,
+    /// switches it off (the image is then bitwise what it was). Throws core::Error for values
+    /// that are not finite, negative magnitudes or scales outside [0, 1].
+    void setGradientOpacity(std::vector<GradientPoint> points);
+    bool hasGradientOpacity() const { return !gradientPoints_.empty(); }
+    const std::vector<GradientPoint>& gradientOpacity() const { return gradientPoints_; }
+    /// g(|∇f|) from the table, linearly interpolated as the shader reads it (1 when off).
+    double gradientScale(double magnitude) const;
+    /// The curve sampled at kGradientEntries magnitudes over [0, gradientMax()] (the GPU's table).
+    const std::vector<float>& gradientTable() const { return gradientTable_; }
+    double gradientMax() const { return gradientMax_; }
+
 private:
     double position(double value) const;  // continuous table index
     glm::dvec4 integral(double value) const;
@@ -75,6 +95,9 @@ private:
     double min_, max_, refLength_;
     std::vector<glm::dvec4> f_;  // kEntries
     std::vector<glm::dvec4> F_;  // kEntries + 1, F_[i] = integral up to table position i
+    std::vector<GradientPoint> gradientPoints_;
+    std::vector<float> gradientTable_;
+    double gradientMax_ = 1.0;
 };
 
 }  // namespace hvx::core

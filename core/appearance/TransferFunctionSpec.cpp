@@ -30,6 +30,7 @@ TransferFunctionSpec TransferFunctionSpec::from(const TransferFunction& tf) {
         s.opacity.push_back({p.value, p.rgba.a});
         s.colours.push_back({p.value, glm::dvec3(p.rgba)});
     }
+    s.gradientOpacity = tf.gradientOpacity();
     s.normalise();
     return s;
 }
@@ -62,7 +63,9 @@ TransferFunction TransferFunctionSpec::build(double valueMin, double valueMax, d
     for (const auto& c : s.colours) at.insert(c.value);
     std::vector<TransferFunction::Point> pts;
     for (double v : at) pts.push_back({v, glm::dvec4(s.colourAt(v), s.opacityAt(v))});
-    return TransferFunction(std::move(pts), valueMin, valueMax, referenceLength);
+    TransferFunction tf(std::move(pts), valueMin, valueMax, referenceLength);
+    tf.setGradientOpacity(s.gradientOpacity);
+    return tf;
 }
 
 TransferFunctionSpec TransferFunctionSpec::windowed(double centre, double shift, double scale) const {
@@ -70,6 +73,7 @@ TransferFunctionSpec TransferFunctionSpec::windowed(double centre, double shift,
     TransferFunctionSpec s = *this;
     for (auto& p : s.opacity) p.value = centre + shift + (p.value - centre) * scale;
     for (auto& c : s.colours) c.value = centre + shift + (c.value - centre) * scale;
+    for (auto& g : s.gradientOpacity) g.magnitude *= scale;  // values spread by `scale`: so do their gradients
     return s;
 }
 

@@ -20,6 +20,9 @@ struct TransferFunctionSpec {
     };
     std::vector<OpacityPoint> opacity;
     std::vector<ColourStop> colours;
+    /// Opacity scaled by gradient magnitude (TransferFunction::setGradientOpacity; |∇f| in the
+    /// spec's units per mm); empty: none.
+    std::vector<TransferFunction::GradientPoint> gradientOpacity;
 
     /// The curves of an existing transfer function (a preset).
     static TransferFunctionSpec from(const TransferFunction& tf);

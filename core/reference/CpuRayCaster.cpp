@@ -164,10 +164,17 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     // transparency; the gradient is taken once for both.
     const bool enhance = settings_.boundary > 0.0 || settings_.viewTransparency > 0.0;
     const double strengthPerGradient = space_.minSpacing / (tf_.valueMax() - tf_.valueMin()) / kBoundaryGradientFraction;
+    // Gradient opacity (DVR): a' = 1 - (1 - a)^g(|∇f|), as raycast_inputs.glsl's gradientOpacity.
+    const bool gradientOpacity = mode == RenderSettings::Mode::Dvr && tf_.hasGradientOpacity();
+    auto scaleByGradient = [&](double a, double len) {
+        const double g = tf_.gradientScale(len), keep = 1.0 - a;
+        return g <= 0.0 ? 0.0 : keep <= 0.0 ? 1.0 : 1.0 - std::pow(keep, g);
+    };
     auto shade = [&](const glm::vec3& p, const glm::dvec3& base, double& a) {
-        if (!settings_.shading && !enhance) return base;
+        if (!settings_.shading && !enhance && !gradientOpacity) return base;
         glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(L, p));
         const double len = glm::length(g);
+        if (gradientOpacity) a = scaleByGradient(a, len);
         const double facing = len < 1e-9 ? 0.0 : std::abs(glm::dot(g / len, -dw));  // headlight: L = V
         if (enhance) {
             const double strength = std::min(1.0, len * strengthPerGradient);
@@ -235,7 +242,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                         x.gn = std::min(1.0f, glm::length(g) * strengthPerGradientF);
                         x.s = s;
                         x.c = glm::vec3(glm::dvec3(f) / f.w);
-                        x.a = float(a);
+                        x.a = float(gradientOpacity ? scaleByGradient(a, double(glm::length(g))) : a);
                         x.lit = 1.0f;
                         x.importance = 1.0f - std::exp(-float(f.w) * float(tf_.referenceLength()));
                         const float focalNorm = (toolBits & HVX_FOCAL_BIT) ? glsl::hvxFocalNorm(packedTools, x.p) : 2.0f;

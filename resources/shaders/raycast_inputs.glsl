@@ -5,7 +5,7 @@ layout(std140, binding = 0) uniform Frame {
     vec4 tfRange;    // valueMin, valueMax, early termination, step scale
     vec4 shading;    // ambient, diffuse, specular, shininess
     vec4 extra;      // iso value, shading on, count rays (1/0), TF reference length (mm)
-    vec4 enhance;    // boundary enhancement, view-dependent transparency, strength per gradient, unused
+    vec4 enhance;    // boundary enhancement, view-dependent transparency, strength per gradient, gradient opacity's largest |∇f|
     uvec4 brick;     // brick size, border, edge, slots per row
     uvec4 image;     // width, height, slots per layer, views in the batch
     vec4 cropLo;     // xyz: the crop box in octree space (the whole volume: 0 and extent)
@@ -43,6 +43,22 @@ struct SlotRecord {  // per pool slot (render::GpuRayCaster's SlotRecord)
 };
 layout(std430, binding = 7) readonly buffer Slots { SlotRecord slotRecords[]; };
 layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per index node (feedback)
+#ifndef HVX_GRADIENT_OPACITY
+#define HVX_GRADIENT_OPACITY 0
+#endif
+#if HVX_GRADIENT_OPACITY
+// Gradient opacity (core::TransferFunction::gradientTable): g(|∇f|) at 256 magnitudes over
+// [0, enhance.w]; a sample's opacity becomes 1 − (1 − a)^g.
+layout(std430, binding = 10) readonly buffer GradientTable { float gradientTable[]; };
+float gradientOpacity(float a, float len) {
+    float p = clamp(len / enhance.w * 255.0, 0.0, 255.0);
+    int i = min(int(p), 254);
+    float f = p - float(i);
+    float g = gradientTable[i] * (1.0 - f) + gradientTable[i + 1] * f;
+    float keep = 1.0 - a;
+    return g <= 0.0 ? 0.0 : (keep <= 0.0 ? 1.0 : 1.0 - pow(keep, g));
+}
+#endif
 #ifndef HVX_TOOLS
 #define HVX_TOOLS 0
 #endif

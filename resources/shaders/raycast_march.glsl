@@ -12,9 +12,12 @@
 // transparency (core::RenderSettings), with one gradient for both.
 vec3 shadeSample(LeafSampler L, vec3 p, vec3 base, vec3 dw, inout float a) {
     bool enhanceOn = enhance.x > 0.0 || enhance.y > 0.0;
-    if (extra.y < 0.5 && !enhanceOn) return base;
+    if (extra.y < 0.5 && !enhanceOn && HVX_GRADIENT_OPACITY == 0) return base;
     vec3 g = transpose(mat3(patientToOctree)) * leafGradient(L, p);
     float len = length(g);
+#if HVX_GRADIENT_OPACITY
+    a = gradientOpacity(a, len);
+#endif
     float ndl = len < 1e-9 ? 0.0 : abs(dot(g / len, -dw));  // headlight: L = V
     if (enhanceOn) {
         float strength = min(1.0, len * enhance.z);
@@ -159,7 +162,11 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                 x.gn = min(1.0, length(g) * enhance.z);
                 x.s = s;
                 x.c = f.rgb / f.w;
+#if HVX_GRADIENT_OPACITY
+                x.a = gradientOpacity(a, length(g));
+#else
                 x.a = a;
+#endif
                 x.lit = 1.0;
                 x.importance = 1.0 - exp(-f.w * extra.w);
                 float focalNorm = HVX_TOOL_ON(HVX_FOCAL_BIT) ? hvxFocalNorm(tools, x.p) : 2.0;

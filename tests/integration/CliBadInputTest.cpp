@@ -139,6 +139,10 @@ TEST(CliBadInput, LightFieldAndToolInputsFailCleanlyBeforeRendering) {
     std::ofstream(dir.file("tools.json")) << R"({"mimda": {"enabled": true, "gamma": 3}})";
     expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --tools " + dir.file("tools.json") + " -o " + dir.file("o.png"),
                        dir, "tools.json", {"p.hvo", "tools.json"}, "gamma must be between 0 and 1");
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --gradient-opacity 10:0,50 -o " + dir.file("o.png"), dir,
+                       "--gradient-opacity", {"p.hvo", "tools.json"}, "GRADIENT:SCALE pairs");
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --gradient-opacity 10:0,50:2 -o " + dir.file("o.png"), dir,
+                       "gradient opacity", {"p.hvo", "tools.json"}, "scale of 0 to 1");
     std::ofstream(dir.file("fix.json")) << R"({"projectors": [{"lut": {"r": [2]}}]})";
     expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display stereo-anaglyph --size 16x12 --cpu --correction " +
                            dir.file("fix.json") + " -o " + dir.file("s.png"),

@@ -46,6 +46,25 @@ TEST(TransferFunctionFiles, HolovoxJsonRoundTripsInPhysicalUnits) {
     const auto stored = ui::TransferFunctionFiles::toStored(back, 2.0, -1024.0);
     EXPECT_DOUBLE_EQ(stored.opacity[1].value, 662);
     EXPECT_DOUBLE_EQ(ui::TransferFunctionFiles::toPhysical(stored, 2.0, -1024.0).opacity[1].value, 300);
+    EXPECT_TRUE(back.gradientOpacity.empty());
+    // A gradient opacity curve (HU per mm) goes and comes back; in stored units its magnitudes
+    // are divided by the slope (a 2-HU stored step is 1 stored unit).
+    s.gradientOpacity = {{0, 0.1}, {40, 1}};
+    ui::TransferFunctionFiles::save(s, path);
+    const auto withGradient = ui::TransferFunctionFiles::load(path);
+    ASSERT_EQ(withGradient.gradientOpacity.size(), 2u);
+    EXPECT_DOUBLE_EQ(withGradient.gradientOpacity[0].scale, 0.1);
+    EXPECT_DOUBLE_EQ(withGradient.gradientOpacity[1].magnitude, 40);
+    EXPECT_DOUBLE_EQ(ui::TransferFunctionFiles::toStored(withGradient, 2.0, -1024.0).gradientOpacity[1].magnitude, 20);
+    std::ofstream(dir.file("bad.json")) << R"({"format": "holovox-transfer-function", "version": 1, "opacity": [[0, 0.5]],)"
+                                        << R"( "colours": [[0, 1, 1, 1]], "gradientOpacity": [[10, 1.5]]})";
+    try {
+        ui::TransferFunctionFiles::load(QString::fromStdString(dir.file("bad.json")));
+        FAIL() << "a gradient opacity scale of 1.5 was accepted";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("scale of 0 to 1"), std::string::npos) << e.what();
+    }
 }
 
 TEST(TransferFunctionFiles, ReadsSlicerVolumePropertyPresets) {
@@ -60,11 +79,16 @@ TEST(TransferFunctionFiles, ReadsSlicerVolumePropertyPresets) {
     EXPECT_DOUBLE_EQ(aaa.opacity[2].alpha, 0.686275);
     EXPECT_DOUBLE_EQ(aaa.colours[3].rgb.r, 1.0);
     EXPECT_EQ(presets[1].first, "CT-Bone");
+    // Slicer's usual gradientOpacity="4 0 1 255 1" is flat: read, and it scales nothing.
+    ASSERT_EQ(aaa.gradientOpacity.size(), 2u);
+    EXPECT_DOUBLE_EQ(aaa.gradientOpacity[1].magnitude, 255);
+    EXPECT_FALSE(aaa.build(-3024, 3071, 1.0).hasGradientOpacity());
+    EXPECT_TRUE(presets[1].second.gradientOpacity.empty());
 }
 
 TEST(TransferFunctionFiles, ReadsParaViewColourMapsRescaledToTheVolume) {
     test::TempDir dir;
-    const auto current = core::TransferFunctionSpec{{{0, 0}, {100, 1}}, {{0, {0, 0, 0}}}};
+    const auto current = core::TransferFunctionSpec{{{0, 0}, {100, 1}}, {{0, {0, 0, 0}}}, {}};
     const auto map = ui::TransferFunctionFiles::readParaView(
         write(dir, "cool.json", R"([{"Name":"Cool to Warm","ColorSpace":"Diverging",
            "RGBPoints":[-1, 0.23, 0.299, 0.754, 0, 0.865, 0.865, 0.865, 1, 0.706, 0.016, 0.150]}])"),
@@ -82,7 +106,7 @@ TEST(TransferFunctionFiles, BrokenAndHostileFilesGiveOneClearError) {
         const QString path = write(dir, name, text);
         try {
             if (slicer) ui::TransferFunctionFiles::readSlicerPresets(path);
-            else if (paraview) ui::TransferFunctionFiles::readParaView(path, 0, 1, {{{0, 0}}, {{0, {0, 0, 0}}}});
+            else if (paraview) ui::TransferFunctionFiles::readParaView(path, 0, 1, {{{0, 0}}, {{0, {0, 0, 0}}}, {}});
             else ui::TransferFunctionFiles::load(path);
             ADD_FAILURE() << name << " was accepted";
         } catch (const core::Error& e) {
