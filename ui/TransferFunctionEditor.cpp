@@ -8,13 +8,15 @@
 #include <QVBoxLayout>
 
 #include "core/base/Error.h"
+#include "ui/GradientOpacityCanvas.h"
 #include "ui/TransferFunctionCanvas.h"
 #include "ui/TransferFunctionFiles.h"
 
 namespace hvx::ui {
 
 TransferFunctionEditor::TransferFunctionEditor(QWidget* parent)
-    : QWidget(parent), canvas_(new TransferFunctionCanvas(this)), presets_(new QComboBox(this)) {
+    : QWidget(parent), canvas_(new TransferFunctionCanvas(this)), gradient_(new GradientOpacityCanvas(this)),
+      presets_(new QComboBox(this)) {
     presets_->setObjectName("tfPresets");
     presets_->setToolTip(tr("Built-in transfer functions"));
     for (const auto& n : core::TransferFunction::presetNames()) presets_->addItem(QString::fromStdString(n));
@@ -33,8 +35,18 @@ TransferFunctionEditor::TransferFunctionEditor(QWidget* parent)
     layout->setContentsMargins(4, 4, 4, 4);
     layout->addLayout(row);
     layout->addWidget(canvas_, 1);
+    layout->addWidget(gradient_);
     connect(presets_, &QComboBox::activated, this, [this](int i) { applyPreset(presets_->itemText(i)); });
-    connect(canvas_, &TransferFunctionCanvas::edited, this, &TransferFunctionEditor::changed);
+    connect(canvas_, &TransferFunctionCanvas::edited, this, [this] {
+        gradient_->setPoints(canvas_->spec().gradientOpacity);  // window/level scales the gradients too
+        emit changed();
+    });
+    connect(gradient_, &GradientOpacityCanvas::edited, this, [this] {
+        auto s = canvas_->spec();
+        s.gradientOpacity = gradient_->points();
+        canvas_->setSpec(s);
+        emit changed();
+    });
     connect(load, &QPushButton::clicked, this, &TransferFunctionEditor::chooseAndLoad);
     connect(save, &QPushButton::clicked, this, &TransferFunctionEditor::chooseAndSave);
     connect(import, &QPushButton::clicked, this, &TransferFunctionEditor::chooseAndImport);
@@ -46,6 +58,7 @@ void TransferFunctionEditor::setVolume(double valueMin, double valueMax, double 
     intercept_ = intercept;
     canvas_->setRange(valueMin, valueMax, slope, intercept);
     canvas_->setHistogram(histogram);
+    gradient_->setVolume(slope, histogram);
     const QString preset = modality == "CT" ? "ct-bone" : "mr-default";
     presets_->setCurrentText(preset);
     applyPreset(preset);
@@ -58,6 +71,7 @@ void TransferFunctionEditor::applyPreset(const QString& name) {
         const auto tf = core::TransferFunction::preset(name.toStdString(), lo, hi, slope_, intercept_, 1.0);
         presets_->setCurrentText(name);
         canvas_->setSpec(core::TransferFunctionSpec::from(tf));
+        gradient_->setPoints({});
         emit changed();
     } catch (const core::Error& e) {
         emit failed(QString::fromStdString(e.what()));
@@ -68,6 +82,7 @@ const core::TransferFunctionSpec& TransferFunctionEditor::spec() const { return 
 
 void TransferFunctionEditor::setSpec(const core::TransferFunctionSpec& storedUnits) {
     canvas_->setSpec(storedUnits);
+    gradient_->setPoints(storedUnits.gradientOpacity);
     emit changed();
 }
 

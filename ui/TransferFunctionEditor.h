@@ -10,6 +10,7 @@ class QComboBox;
 
 namespace hvx::ui {
 
+class GradientOpacityCanvas;
 class TransferFunctionCanvas;
 
 /// The transfer-function editor dock: a log-scaled histogram of the volume under a
@@ -17,7 +18,8 @@ class TransferFunctionCanvas;
 /// the end points move only vertically), a colour bar with stops (click to add, double-click for
 /// the colour picker, right-click to remove), a window/level drag (middle or Ctrl+drag: left/
 /// right shifts, up/down widens or narrows the whole function), presets, load/save, and import
-/// of 3D Slicer presets.xml and ParaView colour maps. Every edit emits changed() at once.
+/// of 3D Slicer presets.xml and ParaView colour maps; under them the gradient-opacity row
+/// (GradientOpacityCanvas). Every edit emits changed() at once.
 ///
 /// Threading: GUI thread only.
 class TransferFunctionEditor : public QWidget {
@@ -36,6 +38,7 @@ public:
     /// The transfer function to render with.
     core::TransferFunction transferFunction(double referenceLength) const;
     TransferFunctionCanvas* canvas() const { return canvas_; }
+    GradientOpacityCanvas* gradientCanvas() const { return gradient_; }
     QComboBox* presets() const { return presets_; }
 
     void load(const QString& path);
@@ -54,6 +57,7 @@ private:
     void chooseAndImport();
 
     TransferFunctionCanvas* canvas_;
+    GradientOpacityCanvas* gradient_;
     QComboBox* presets_;
     double slope_ = 1, intercept_ = 0;
 };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/geometric.hpp>
+
 #include "core/octree/OctreeLayout.h"
 
 namespace hvx::core {
@@ -25,6 +27,12 @@ VolumeHistogram VolumeHistogram::compute(const OctreeReader& reader, int bins, s
     const auto& grid = layout.levelNodes(level);
     const std::uint32_t bs = reader.brickSize(), border = reader.border();
     const double scale = double(h.counts.size()) / (h.valueMax - h.valueMin);
+    // Gradients: central differences over the level's spacing; the bins reach the steepest
+    // step the value range allows over one voxel.
+    const glm::dvec3 spacing = g.spacing * double(1u << level);
+    const double minSpacing = std::min({spacing.x, spacing.y, spacing.z});
+    h.gradientBinWidth = (h.valueMax - h.valueMin) / minSpacing / double(kGradientBins);
+    h.gradientCounts.assign(kGradientBins, 0);
     for (std::uint32_t z = 0; z < grid[2]; ++z)
         for (std::uint32_t y = 0; y < grid[1]; ++y)
             for (std::uint32_t x = 0; x < grid[0]; ++x) {
@@ -39,6 +47,14 @@ VolumeHistogram VolumeHistogram::compute(const OctreeReader& reader, int bins, s
                             const auto bin = std::clamp(std::int64_t(std::floor((v - h.valueMin) * scale)), std::int64_t(0),
                                                         std::int64_t(h.counts.size()) - 1);
                             ++h.counts[std::size_t(bin)];
+                            if (border == 0) continue;  // no neighbours across the brick's faces
+                            const std::uint32_t x0 = i + border, y0 = j + border, z0 = k + border;
+                            const glm::dvec3 grad((b.value(x0 + 1, y0, z0) - b.value(x0 - 1, y0, z0)) / (2.0 * spacing.x),
+                                                  (b.value(x0, y0 + 1, z0) - b.value(x0, y0 - 1, z0)) / (2.0 * spacing.y),
+                                                  (b.value(x0, y0, z0 + 1) - b.value(x0, y0, z0 - 1)) / (2.0 * spacing.z));
+                            const auto gbin = std::min(std::size_t(glm::length(grad) / h.gradientBinWidth),
+                                                       std::size_t(kGradientBins - 1));
+                            ++h.gradientCounts[gbin];
                         }
             }
     return h;
@@ -54,6 +70,19 @@ std::pair<double, double> VolumeHistogram::bandAround(double value) const {
     while (a > 0 && bin - a < limit && double(counts[std::size_t(a - 1)]) >= floor) --a;
     while (b + 1 < int(counts.size()) && b - bin < limit && double(counts[std::size_t(b + 1)]) >= floor) ++b;
     return {valueMin + a * width, valueMin + (b + 1) * width};
+}
+
+double VolumeHistogram::gradientPercentile(double p) const {
+    std::uint64_t total = 0;
+    for (auto c : gradientCounts) total += c;
+    if (total == 0) return 0.0;
+    const double target = std::clamp(p, 0.0, 1.0) * double(total);
+    double seen = 0;
+    for (std::size_t b = 0; b < gradientCounts.size(); ++b) {
+        seen += double(gradientCounts[b]);
+        if (seen >= target) return double(b + 1) * gradientBinWidth;
+    }
+    return double(gradientCounts.size()) * gradientBinWidth;
 }
 
 double VolumeHistogram::percentile(double p) const {

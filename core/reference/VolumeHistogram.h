@@ -15,6 +15,14 @@ struct VolumeHistogram {
     double valueMin = 0, valueMax = 1;
     int level = 0;
     std::vector<std::uint64_t> counts;
+    /// Gradient magnitudes |∇f| (stored units per mm, central differences at the level read)
+    /// in kGradientBins bins of gradientBinWidth from 0 (gradient opacity's editor row).
+    static constexpr int kGradientBins = 1024;
+    double gradientBinWidth = 1.0;
+    std::vector<std::uint64_t> gradientCounts;
+
+    /// The gradient magnitude below which a fraction `p` of the voxels lie (0 when none).
+    double gradientPercentile(double p) const;
 
     /// The band of values around `value` (stored units), grown over the histogram while the
     /// bins stay above a third of the picked bin's count and at most a quarter of the bins

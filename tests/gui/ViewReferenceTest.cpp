@@ -27,6 +27,7 @@
 #include "core/volume/PhantomVoxelSource.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/support/MemoryVoxelSource.h"
+#include "ui/GradientOpacityCanvas.h"
 #include "ui/JobManager.h"
 #include "ui/JobsPanel.h"
 #include "ui/LightFieldPanel.h"
@@ -204,6 +205,30 @@ private slots:
         }
         QCOMPARE(editor->spec().opacity.size(), before.opacity.size());
         QCOMPARE(editor->spec().colours.size(), before.colours.size());
+
+        // The gradient-opacity row: two clicks make a curve from 0 (no gradient) to 1 (the
+        // steepest shown); the ball's homogeneous inside fades and the frame changes; removing
+        // both points (right-click) brings the frame back.
+        editor->applyPreset("ct-soft-tissue");
+        const QImage soft = settledFrame().convertToFormat(QImage::Format_RGB32);
+        auto* row = editor->gradientCanvas();
+        QVERIFY(row->isVisible());
+        QVERIFY(row->magnitudeMax() > 0);
+        QTest::mouseClick(row, Qt::LeftButton, {}, row->position(0.0, 0.0).toPoint());
+        QTest::mouseClick(row, Qt::LeftButton, {}, row->position(row->magnitudeMax(), 1.0).toPoint());
+        QCOMPARE(editor->spec().gradientOpacity.size(), std::size_t(2));
+        QVERIFY(editor->spec().gradientOpacity.front().scale < 0.05);
+        const QImage edges = settledFrame().convertToFormat(QImage::Format_RGB32);
+        edges.save(test::guiArtifacts() + "/view-gradient-opacity.png");
+        const double changed = psnr(edges, soft);
+        QVERIFY2(changed < 45.0, qPrintable(QString("the gradient curve left the frame as it was: %1 dB").arg(changed)));
+        for (int i = 0; i < 2; ++i) {
+            const auto& q = editor->spec().gradientOpacity.front();
+            QTest::mouseClick(row, Qt::RightButton, {}, row->position(q.magnitude, q.scale).toPoint());
+        }
+        QVERIFY(editor->spec().gradientOpacity.empty());
+        const double back = psnr(settledFrame().convertToFormat(QImage::Format_RGB32), soft);
+        QVERIFY2(back > 60.0, qPrintable(QString("without the curve the frame differs: %1 dB").arg(back)));
         QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("phantom.hvo"))));
     }
 
