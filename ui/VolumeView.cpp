@@ -471,10 +471,9 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
     if (!scene_ || !tf_ || !gpu_) throw core::Error("open a volume first");
     // What the transfer function shows fills the screen's width (or height) and the display's
     // sharp depth range (core::DisplayModel::frame), about the camera's target.
-    const auto& g = scene_->reader->geometry();
-    const auto content = core::ContentBox::of(*scene_->reader, *tf_, settings_.mode != core::RenderSettings::Mode::Dvr);
-    const auto box = content ? *content : core::ContentBox{glm::dvec3(0.0), glm::dvec3(g.dims[0], g.dims[1], g.dims[2])};
-    const auto framing = display.frame(box.corners(g), camera_.right(), camera_.up());
+    const auto framing = core::ContentBox::framing(display, *scene_->reader, *tf_,
+                                                   settings_.mode != core::RenderSettings::Mode::Dvr, camera_.right(),
+                                                   camera_.up(), false);
     const double scale = zoom * framing.scale, depthScale = zoom * framing.depthScale;
     const double beams = double(display.viewCount()) * display.viewWidthPx() * display.viewHeightPx();
     double shrink = beams > maxBeams ? std::sqrt(maxBeams / beams) : 1.0;

@@ -126,9 +126,9 @@ int lightFieldCommand(int argc, char** argv) {
     const glm::dvec3 f = glm::normalize(orbit.target - orbit.eye);
     const glm::dvec3 right = glm::normalize(glm::cross(f, orbit.up));
     const glm::dvec3 up = glm::cross(right, f);
-    const auto content = core::ContentBox::of(*reader, tf, settings.mode == core::RenderSettings::Mode::Mip);
-    const auto box = content ? *content : core::ContentBox{glm::dvec3(0.0), glm::dvec3(g.dims[0], g.dims[1], g.dims[2])};
-    const auto framing = display.frame(box.corners(g), right, up, args.flag("true-depth"));
+    bool content = false;
+    const auto framing = core::ContentBox::framing(display, *reader, tf, settings.mode == core::RenderSettings::Mode::Mip,
+                                                   right, up, args.flag("true-depth"), &content);
     const double zoom = args.number("zoom").value_or(1.0);
     const double scale = zoom * framing.scale, depthScale = zoom * framing.depthScale;
     std::printf("framed %s: %.4g display mm per patient mm across (the screen's %s), %.4g in depth (%s; sharp "

@@ -21,6 +21,7 @@
 #include "core/base/Error.h"
 #include "core/image/ImageWriter.h"
 #include "core/streaming/OctreeSpace.h"
+#include "core/streaming/ContentBox.h"
 #include "core/streaming/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/LightFieldRenderer.h"
@@ -54,18 +55,18 @@ int run(int rank, int size, int argc, char** argv) {
     const auto reader = core::OctreeReader::open(input);
     const auto& g = reader->geometry();
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
-    const glm::dvec3 centre = space.centre();
-    const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
-    const double scale = 0.9 * std::min(display.screenWidthMm, display.screenHeightMm) / (2.0 * glm::length(centre - corner));
-    const auto all = display.views(centre, {1, 0, 0}, {0, 0, 1}, 1.0, width, height, scale);
+    const auto tf = core::TransferFunction::preset(g.modality == "CT" ? "ct-bone" : "mr-default", g.valueMin, g.valueMax,
+                                                   g.rescaleSlope, g.rescaleIntercept, space.minSpacing);
+    // The anterior view, framed as `holovox-cli lightfield` frames it (core::ContentBox::framing).
+    const auto framing = core::ContentBox::framing(display, *reader, tf, false, {1, 0, 0}, {0, 0, 1}, false);
+    const double scale = framing.scale, depthScale = framing.depthScale;
+    const auto all = display.views(framing.centre, {1, 0, 0}, {0, 0, 1}, 1.0, width, height, scale, depthScale);
     std::vector<core::View> mine;
     std::vector<int> ids;
     for (int i = rank; i < int(all.size()); i += size) {
         mine.push_back(all[std::size_t(i)]);
         ids.push_back(i);
     }
-    const auto tf = core::TransferFunction::preset(g.modality == "CT" ? "ct-bone" : "mr-default", g.valueMin, g.valueMax,
-                                                   g.rescaleSlope, g.rescaleIntercept, space.minSpacing);
     core::WorkingSetOptions options;
     options.cpuMirror = cpu;
     options.maxBricks = 8192;
@@ -81,7 +82,7 @@ int run(int rank, int size, int argc, char** argv) {
     render::LightFieldRenderer::Stats stats;
     std::vector<core::RenderImage> images;
     if (!mine.empty())
-        images = render::LightFieldRenderer::render(*reader, ws, loader, tf, {}, mine, display.accuracyFunction(scale),
+        images = render::LightFieldRenderer::render(*reader, ws, loader, tf, {}, mine, display.accuracyFunction(scale, depthScale),
                                                     gpu.get(), true, &stats);
     std::printf("rank %d/%d: %zu views, cut of %zu bricks, %.0f ms ray casting\n", rank, size, images.size(),
                 stats.cutNodes, stats.renderMs);

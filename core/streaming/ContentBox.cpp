@@ -45,4 +45,14 @@ std::vector<glm::dvec3> ContentBox::corners(const VolumeGeometry& g) const {
     return out;
 }
 
+DisplayModel::Framing ContentBox::framing(const DisplayModel& display, const OctreeReader& reader, const TransferFunction& tf,
+                                          bool everyValue, const glm::dvec3& right, const glm::dvec3& up, bool trueDepth,
+                                          bool* found) {
+    const auto& g = reader.geometry();
+    const auto content = of(reader, tf, everyValue);
+    if (found) *found = content.has_value();
+    const ContentBox box = content ? *content : ContentBox{glm::dvec3(0.0), glm::dvec3(g.dims[0], g.dims[1], g.dims[2])};
+    return display.frame(box.corners(g), right, up, trueDepth);
+}
+
 }  // namespace hvx::core

@@ -5,6 +5,7 @@
 #include <glm/vec3.hpp>
 
 #include "core/appearance/TransferFunction.h"
+#include "core/camera/DisplayModel.h"
 #include "core/octree/OctreeReader.h"
 
 namespace hvx::core {
@@ -21,6 +22,12 @@ struct ContentBox {
     /// `everyValue` (MIP) every non-empty node counts.
     static std::optional<ContentBox> of(const OctreeReader& reader, const TransferFunction& tf, bool everyValue = false,
                                         std::size_t maxNodes = 32768);
+    /// A display's default framing (DisplayModel::frame) of what `tf` shows of the volume, or of
+    /// the whole volume when it shows nothing (`found` says which): the one framing of the CLI,
+    /// the MPI renderer and the GUI.
+    static DisplayModel::Framing framing(const DisplayModel& display, const OctreeReader& reader, const TransferFunction& tf,
+                                         bool everyValue, const glm::dvec3& right, const glm::dvec3& up, bool trueDepth,
+                                         bool* found = nullptr);
 };
 
 }  // namespace hvx::core
