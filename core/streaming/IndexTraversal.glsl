@@ -64,23 +64,15 @@ HVX_FN bool hvxNextLeaf(HVX_INDEX_PARAM, vec3 o, vec3 dir, int face, float tExit
     if (next == HVX_NONE) return false;
     vec3 p = o + (tExit + nudge) * dir;
     int axis = face / 2;
-    // Where the ray leaves through this face, it is inside the leaf's extent along the other two
-    // axes: float rounding can put the point just past a face it is parallel to, or crossed a
-    // moment ago, and the leaf found there lies behind the ray, which ended there (dark lines
-    // along brick faces where rays graze them, as the near-orthographic rays of a light-field
-    // display's compressed depth do). Likewise a grazing ray moves too little along the exit
-    // axis for the nudge to carry the point over. So the point is put across the exit face and
-    // kept within the leaf's extent along the others (a ray leaving through an edge then enters
-    // the face neighbour for no length, and the diagonal one next).
+    // A grazing ray (nearly parallel to the face, as the near-orthographic rays of a light-field
+    // display's compressed depth are) moves too little along the exit axis for the nudge to carry
+    // the point over; the point is put across the face. (Component by component: a vector
+    // component picked by a variable index goes through memory on SIMD drivers.)
     float across1 = (hi.x - lo.x) * 1e-4f;
-    for (int a = 0; a < 3; ++a) {
-        if (a == axis) {
-            if ((face & 1) != 0) p[a] = max(p[a], hi[a] + across1);
-            else p[a] = min(p[a], lo[a] - across1);
-        } else {
-            p[a] = clamp(p[a], lo[a] + across1, hi[a] - across1);
-        }
-    }
+    bool up = (face & 1) != 0;
+    if (axis == 0) p.x = up ? max(p.x, hi.x + across1) : min(p.x, lo.x - across1);
+    if (axis == 1) p.y = up ? max(p.y, hi.y + across1) : min(p.y, lo.y - across1);
+    if (axis == 2) p.z = up ? max(p.z, hi.z + across1) : min(p.z, lo.z - across1);
     // The leaf's centre moved across the exit face only: inside the rope's node, which spans
     // at least the leaf's extent along the other two axes.
     vec3 across = 0.5f * (lo + hi);
@@ -96,6 +88,15 @@ HVX_FN bool hvxNextLeaf(HVX_INDEX_PARAM, vec3 o, vec3 dir, int face, float tExit
         lo = ropeLo;
         hi = ropeHi;
     } else {
+        // Where the ray leaves through this face it is inside the leaf's extent along the other
+        // two axes; float rounding can put the point just past a face it runs along, or crossed a
+        // moment ago, and the leaf found from there lay behind the ray, which ended (dark lines
+        // along brick faces). The point is kept within that extent: a ray leaving through an
+        // edge enters the face neighbour for no length, and the diagonal one next.
+        vec3 inside = clamp(p, lo + vec3(across1), hi - vec3(across1));
+        if (axis != 0) p.x = inside.x;
+        if (axis != 1) p.y = inside.y;
+        if (axis != 2) p.z = inside.z;
         n = 0u;
         lo = vec3(0.0f);
         hi = vec3(1.0f);
