@@ -84,6 +84,27 @@ TEST(CliGlCommands, LightFieldWritesEveryFormatAtTheDisplaysSize) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     for (int f = 0; f < 6; ++f)
         EXPECT_EQ(size(pngStats(dir.file("dvi/dvi_frame_0" + std::to_string(f) + ".png"))), "1280 1024") << f;
+    // What the frames hold, read back by VTK: the second frame's 16 tiles are projectors 16-31's
+    // own images (as `--format projectors` writes them), pixel for pixel, under header blocks
+    // coding their ids (R = id, G = 0, B = 255).
+    r = test::runCommand(lf + " --display holovizio-96 --format projectors --size 320x240 -o " + dir.file("proj"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto dvi = test::runCommand(
+        "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
+        "from vtkmodules.util.numpy_support import vtk_to_numpy\n"
+        "def read(p):\n"
+        "    r = vtkPNGReader(); r.SetFileName(p); r.Update(); w, h, _ = r.GetOutput().GetDimensions()\n"
+        "    return vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).reshape(h, w, -1)[::-1, :, :3].astype(int)\n"
+        "f = read(sys.argv[1] + '/dvi/dvi_frame_01.png'); worst = 0; ids = 0\n"
+        "for k in range(16):\n"
+        "    v = read(sys.argv[1] + '/proj/view_%03d.png' % (16 + k)); y, x = 64 + (k // 4) * 240, (k % 4) * 320\n"
+        "    worst = max(worst, abs(f[y:y + 240, x:x + 320] - v).max())\n"
+        "    ids += int((f[32, k * 80 + 40] == [16 + k, 0, 255]).all())\n"
+        "print(worst, ids)\" " + dir.path().string());
+    int worstTile = -1, idBlocks = 0;
+    ASSERT_EQ(std::sscanf(dvi.output.c_str(), "%d %d", &worstTile, &idBlocks), 2) << dvi.output;
+    EXPECT_EQ(worstTile, 0) << "a DVI tile differs from its projector's image";
+    EXPECT_EQ(idBlocks, 16) << "header blocks not coding projectors 16-31";
     // The simulator: what an observer in front of the projector array sees.
     r = test::runCommand(lf + " --display holovizio-96 --format projectors --size 80x60 -o " + dir.file("holo") +
                          " --observer 0,0,1000 --simulate " + dir.file("seen.png"));

@@ -243,6 +243,8 @@ TEST(DisplayModel, DviLayoutPacksSixteenProjectorsPerFrameWithTheirIdsInTheHeade
     EXPECT_EQ(frames[0].height, 1024);
     EXPECT_EQ(core::DviPacker::decodeId(frames[0], 0), 0);
     EXPECT_EQ(core::DviPacker::decodeId(frames[0], 15), 15);
+    // The header's codes survive the PNG's sRGB encoding byte for byte (ImageWriter's formula).
+    for (int k = 0; k < 256; ++k) EXPECT_EQ(core::DviPacker::byteOfLinear(core::DviPacker::linearOfByte(k)), k) << k;
     EXPECT_EQ(core::DviPacker::decodeId(frames[1], 3), 19);
     EXPECT_EQ(core::DviPacker::decodeId(frames[1], 4), -1) << "unused block";
     // Tile 5 of frame 0 (row 1, column 1) holds projector 5.
