@@ -39,7 +39,9 @@ glm::dvec3 parseTriple(const std::string& text, const char* what) {
 }
 
 /// Fails in words, before any rendering, when an output cannot be written: a folder output's
-/// folder is made now (and must take a file), a file output's folder must exist and take one.
+/// nearest existing ancestor must be a folder that takes a file (the folder itself is made
+/// only when the frame is written, so a failed render leaves nothing behind); a file output's
+/// folder must exist and take one.
 void checkOutputs(const std::string& format, const std::string& out, const std::optional<std::string>& simulate) {
     namespace fs = std::filesystem;
     auto probe = [](const fs::path& folder, const std::string& what) {
@@ -54,9 +56,11 @@ void checkOutputs(const std::string& format, const std::string& out, const std::
     };
     if (format == "projectors" || format == "dvi") {
         std::error_code ec;
-        fs::create_directories(out, ec);
-        if (ec) throw core::Error(out + ": cannot make the output folder (" + ec.message() + ")");
-        probe(fs::path(out), out);
+        fs::path existing(out);
+        while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
+        if (!existing.empty() && !fs::is_directory(existing, ec))
+            throw core::Error(out + ": cannot make the output folder (" + existing.string() + " is not a folder)");
+        probe(existing, out);
     } else {
         probe(fs::path(out).parent_path(), out);
     }
