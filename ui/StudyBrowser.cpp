@@ -131,6 +131,8 @@ StudyBrowser::StudyBrowser(JobManager& jobs, QString databasePath, QWidget* pare
     layout->addWidget(count_);
     connect(refreshButton, &QPushButton::clicked, this, &StudyBrowser::refresh);
     connect(text_, &QLineEdit::returnPressed, this, &StudyBrowser::refresh);
+    connect(from_, &QLineEdit::returnPressed, this, &StudyBrowser::refresh);  // Enter in a date searches too
+    connect(to_, &QLineEdit::returnPressed, this, &StudyBrowser::refresh);
     connect(modality_, &QComboBox::activated, this, &StudyBrowser::refresh);
     connect(tree_, &QTreeWidget::itemActivated, this, &StudyBrowser::activated);
     tree_->setContextMenuPolicy(Qt::CustomContextMenu);

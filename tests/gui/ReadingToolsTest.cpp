@@ -262,9 +262,24 @@ private slots:
         axial->setFocus();
         QTest::keyClick(axial, Qt::Key_Up);
         QCOMPARE(bar->slider()->value(), axial->sliceIndex());
-        // A click in the coronal view moves the axial slice: its slider follows.
+        // A click in the coronal view moves the axial slice: its slider follows. The coronal
+        // view's top is superior, so a click in its upper quarter takes the axial plane up, to
+        // the slice nearest the clicked height by the volume's own index-to-patient transform.
         auto* coronal = window_->slice(1);
-        QTest::mouseClick(coronal, Qt::LeftButton, Qt::NoModifier, QPoint(coronal->width() / 2, coronal->height() / 4));
+        QCOMPARE(coronal->edgeLabels().at(2), QString("S"));
+        const int axialBefore = axial->sliceIndex();
+        const double heightBefore = axial->point().z;
+        const QPoint click(coronal->width() / 2, coronal->height() / 4);
+        QTest::mouseClick(coronal, Qt::LeftButton, Qt::NoModifier, click);
+        const glm::dvec3 clicked = coronal->point();
+        QCOMPARE(axial->point(), clicked);  // the views share the point
+        QCOMPARE(window_->slice(2)->point(), clicked);
+        QVERIFY2(clicked.z > heightBefore + 5.0, qPrintable(QString("%1 -> %2 mm").arg(heightBefore).arg(clicked.z)));
+        QVERIFY(std::abs(coronal->widgetAt(clicked).y() - click.y()) < 1.0);
+        const auto geometry = core::OctreeReader::open(dir_.file("w-ct.hvo"))->geometry();
+        const glm::dvec4 ijk = glm::inverse(geometry.indexToPatient()) * glm::dvec4(clicked, 1.0);
+        QCOMPARE(axial->sliceIndex(), int(std::lround(ijk.z)));
+        QVERIFY(axial->sliceIndex() > axialBefore);
         QCOMPARE(bar->slider()->value(), axial->sliceIndex());
         bar->slider()->setValue(45);
         bar->setRate(20);

@@ -8,13 +8,24 @@
 // its Cancel button in the Jobs panel, while every other click waits. Screenshots under
 // <build>/test-artifacts/gui/view-mode-*.png.
 #include <QComboBox>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QInputDialog>
+#include <QMenu>
+#include <QMenuBar>
+#include <QPointer>
+#include <QWheelEvent>
+#include <QMessageBox>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QTest>
 #include <QTimer>
 
 #include <cmath>
+#include <deque>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "core/base/Error.h"
 #include "core/octree/OctreeBuilder.h"
@@ -51,6 +62,31 @@ double psnr(const QImage& a, const QImage& b) {
     return mse > 0 ? 10.0 * std::log10(1.0 / mse) : 99.0;
 }
 
+/// Answers the modal dialogs a click is about to open, one function per dialog in order, as a
+/// user would: each runs once a new modal widget is active (polled, since the click that opens
+/// it does not return until it closes).
+class DialogAnswers : public QObject {
+public:
+    explicit DialogAnswers(std::deque<std::function<void(QWidget*)>> answers) : answers_(std::move(answers)) {
+        timer_.setInterval(30);
+        connect(&timer_, &QTimer::timeout, this, [this] {
+            QWidget* w = QApplication::activeModalWidget();
+            if (!w || w == last_ || answers_.empty()) return;
+            last_ = w;
+            auto answer = std::move(answers_.front());
+            answers_.pop_front();
+            answer(w);
+        });
+        timer_.start();
+    }
+    bool done() const { return answers_.empty(); }
+
+private:
+    std::deque<std::function<void(QWidget*)>> answers_;
+    QTimer timer_;
+    QPointer<QWidget> last_;
+};
+
 QString opposite(const QString& label) {
     const QHash<QString, QString> o{{"L", "R"}, {"R", "L"}, {"A", "P"}, {"P", "A"}, {"S", "I"}, {"I", "S"}};
     return o.value(label);
@@ -79,6 +115,28 @@ class ViewReferenceTest : public QObject, test::GuiFixture {
         core::WorkingSet ws(*reader_, cache, loader, o);
         ws.converge({camera}, tf);
         return ui::toQImage(core::CpuRayCaster(*reader_, ws.index(), ws.slotData(), tf, settings).render(camera));
+    }
+
+    /// Opens menu `title` of the menu bar with the mouse and clicks its entry `item` (the text
+    /// without its & marks); false when either is missing.
+    bool pick(const QString& title, const QString& item) {
+        auto* bar = window_->menuBar();
+        QAction* top = nullptr;
+        for (auto* a : bar->actions())
+            if (QString(a->text()).remove('&') == title) top = a;
+        if (!top || !top->menu()) return false;
+        QTest::mouseClick(bar, Qt::LeftButton, {}, bar->actionGeometry(top).center());
+        QMenu* menu = top->menu();
+        if (!QTest::qWaitFor([&] { return menu->isVisible(); }, 3000)) return false;
+        QAction* hit = nullptr;
+        for (auto* a : menu->actions())
+            if (QString(a->text()).remove('&') == item) hit = a;
+        if (!hit) {
+            menu->close();
+            return false;
+        }
+        QTest::mouseClick(menu, Qt::LeftButton, {}, menu->actionGeometry(hit).center());
+        return true;
     }
 
 private slots:
@@ -263,6 +321,89 @@ private slots:
         QVERIFY2(cancelled, "the light-field frame was not cancelled by its Cancel button");
         QCOMPARE(startedJobs, 1);  // the click on Render while it ran did not start another
         disconnect(window_->jobs(), nullptr, this, nullptr);
+    }
+
+    // The menus, opened and clicked with the mouse: each standard view turns the camera as its
+    // key does, Reset view brings back the first view and zoom, a dock's entry hides and shows
+    // it, File > Save screenshot writes the view at the size typed into its dialogs, File > Open
+    // volume opens the file picked in its dialog, Help > Job log and About open and close.
+    void menusWorkAsActions() {
+        auto* v = view();
+        struct Expect {
+            const char *item, *right, *up;
+        };
+        for (const auto& e : {Expect{"Posterior", "R", "S"}, Expect{"Left", "P", "S"}, Expect{"Right", "A", "S"},
+                              Expect{"Superior", "R", "A"}, Expect{"Inferior", "L", "A"}, Expect{"Anterior", "L", "S"}}) {
+            QVERIFY2(pick("View", e.item), e.item);
+            QCOMPARE(v->orientationLabels(), (QStringList{opposite(e.right), e.right, e.up, opposite(e.up)}));
+        }
+        const double distance = v->camera().distance();
+        QWheelEvent wheel(QPointF(v->width() / 2.0, v->height() / 2.0), v->mapToGlobal(QPointF(v->width() / 2.0, v->height() / 2.0)),
+                          {}, QPoint(0, 240), Qt::NoButton, Qt::NoModifier, Qt::NoScrollPhase, false);
+        QApplication::sendEvent(v, &wheel);
+        QVERIFY(std::abs(v->camera().distance() - distance) > 1e-3 * distance);
+        QVERIFY(pick("View", "Superior"));
+        QVERIFY(pick("View", "Reset view"));
+        QCOMPARE(v->orientationLabels(), (QStringList{"R", "L", "S", "I"}));
+        QVERIFY(std::abs(v->camera().distance() - distance) < 1e-6 * distance);
+
+        QDockWidget* dock = nullptr;
+        for (auto* d : window_->findChildren<QDockWidget*>())
+            if (!dock && d->isVisible() && !d->windowTitle().isEmpty()) dock = d;
+        QVERIFY(dock);
+        QVERIFY2(pick("View", dock->windowTitle()), qPrintable(dock->windowTitle()));
+        QVERIFY(!dock->isVisible());
+        QVERIFY(pick("View", dock->windowTitle()));
+        QVERIFY(dock->isVisible());
+
+        const QString shot = QString::fromStdString(dir_.file("menu-shot.png"));
+        DialogAnswers saving({[&](QWidget* w) {
+                                  auto* d = qobject_cast<QFileDialog*>(w);
+                                  QVERIFY2(d, qPrintable(w->metaObject()->className()));
+                                  d->selectFile(shot);
+                                  static_cast<QDialog*>(d)->accept();  // QFileDialog's own accept, virtually
+                              },
+                              [](QWidget* w) {
+                                  auto* d = qobject_cast<QInputDialog*>(w);
+                                  QVERIFY2(d, qPrintable(w->metaObject()->className()));
+                                  d->setTextValue("320x200");
+                                  d->accept();
+                              }});
+        QVERIFY(pick("File", "Save screenshot\u2026"));
+        QTRY_VERIFY_WITH_TIMEOUT(saving.done(), 10000);
+        QTRY_VERIFY_WITH_TIMEOUT(QFile::exists(shot), 30000);
+        const QImage saved(shot);
+        QCOMPARE(saved.size(), QSize(320, 200));
+        int lit = 0;
+        for (int y = 0; y < saved.height(); y += 4)
+            for (int x = 0; x < saved.width(); x += 4) lit += qGray(saved.pixel(x, y)) > 30 ? 1 : 0;
+        QVERIFY2(lit > 50, "the screenshot shows the volume");
+
+        std::filesystem::copy_file(dir_.file("phantom.hvo"), dir_.file("menu-opened.hvo"));
+        DialogAnswers opening({[&](QWidget* w) {
+            auto* d = qobject_cast<QFileDialog*>(w);
+            QVERIFY2(d, qPrintable(w->metaObject()->className()));
+            d->selectFile(QString::fromStdString(dir_.file("menu-opened.hvo")));
+            static_cast<QDialog*>(d)->accept();
+        }});
+        QVERIFY(pick("File", "Open volume\u2026"));
+        QTRY_VERIFY_WITH_TIMEOUT(opening.done(), 10000);
+        QTRY_VERIFY2_WITH_TIMEOUT(window_->openLabel().contains("menu-opened"), qPrintable(window_->openLabel()), 30000);
+
+        QVERIFY(pick("Help", "Job log"));
+        QDialog* log = window_->findChild<QDialog*>("jobLog");
+        QTRY_VERIFY_WITH_TIMEOUT((log = window_->findChild<QDialog*>("jobLog")) && log->isVisible(), 5000);
+        log->close();
+        QString about;
+        DialogAnswers aboutBox({[&](QWidget* w) {
+            auto* box = qobject_cast<QMessageBox*>(w);
+            QVERIFY2(box, qPrintable(w->metaObject()->className()));
+            about = box->text();
+            box->accept();
+        }});
+        QVERIFY(pick("Help", "About Holovox"));
+        QTRY_VERIFY_WITH_TIMEOUT(aboutBox.done(), 10000);
+        QVERIFY2(about.contains("DCMTK") && about.contains("VTK"), qPrintable(about));
     }
 
     void cleanupTestCase() { close(); }

@@ -71,10 +71,12 @@ const QString kArtifacts = test::guiArtifacts();
 using test::coverage;
 using test::difference;
 
-std::vector<std::string> writeSeries(const std::string& folder, const std::string& patient, unsigned seed) {
+std::vector<std::string> writeSeries(const std::string& folder, const std::string& patient, unsigned seed,
+                                     const std::string& studyDate = {}) {
     core::PhantomVoxelSource phantom({64, 64, 48}, seed, {400, 400, 400}, 5.0);
     dicom::DicomWriteOptions o;
     o.patientName = patient;
+    o.studyDate = studyDate;
     o.patientId = patient.substr(0, 8);
     o.studyDescription = "GUI test";
     o.seriesDescription = "Phantom";
@@ -516,6 +518,37 @@ private slots:
         auto* tree = window_->browser()->tree();
         for (int i = 0; i < tree->topLevelItemCount(); ++i) listed |= tree->topLevelItem(i)->text(0).contains("PACS ROUNDTRIP");
         QVERIFY2(listed, "the retrieved study appears in the study browser");
+
+        // C-MOVE, as a node set to move in its dialog is saved: the peer sends the study to the
+        // storage SCP the retrieve starts on the local port, and the study is filed from there.
+        const auto filed = [dir = peer.settings().local.storageDir] {  // files in the storage folder
+            std::size_t n = 0;
+            for (const auto& e : std::filesystem::recursive_directory_iterator(dir)) n += e.is_regular_file() ? 1 : 0;
+            return n;
+        };
+        const std::size_t before = filed();
+        const auto moved = writeSeries(dir_.file("pacs-moved"), "PACS^MOVED", 9, "20231115");
+        peer.seed(moved);
+        auto moving = peer.settings();
+        moving.nodes[0].retrieve = dicom::RetrieveMethod::Move;
+        moving.save(dir_.file("pacs.json"));
+        pacs->reloadSettings();
+        pacs->nodes()->setCurrentText("peer");
+        pacs->patientField()->clear();
+        QTest::keyClicks(pacs->patientField(), "PACS^MOVED");
+        QTest::mouseClick(pacs->findChild<QPushButton*>("pacsSearch"), Qt::LeftButton);
+        QTRY_COMPARE_WITH_TIMEOUT(pacs->results()->topLevelItemCount(), 1, 30000);
+        pacs->results()->topLevelItem(0)->setSelected(true);
+        QTest::mouseClick(pacs->findChild<QPushButton*>("pacsRetrieve"), Qt::LeftButton);
+        QTRY_COMPARE_WITH_TIMEOUT(retrieved.count(), 2, 120000);
+        QVERIFY2(retrieved.last().first().toString().contains("1 series retrieved"),
+                 qPrintable(retrieved.last().first().toString()));
+        QCOMPARE(filed() - before, moved.size());  // what the peer pushed to the storage SCP
+        QTreeWidgetItem* movedRow = nullptr;
+        for (int i = 0; i < tree->topLevelItemCount(); ++i)
+            if (tree->topLevelItem(i)->text(0).contains("PACS MOVED")) movedRow = tree->topLevelItem(i);
+        QVERIFY2(movedRow && movedRow->childCount() == 1, "the moved study is in the browser");
+        QCOMPARE(movedRow->child(0)->text(3), QString::number(moved.size()));  // every image filed
         // A wrong port gives plain words.
         auto s = peer.settings();
         s.nodes[0].port = std::uint16_t(peer.dicomPort() + 1000);
@@ -602,7 +635,7 @@ private slots:
         auto* tree = browser->tree();
         browser->refresh();
         const int all = tree->topLevelItemCount();
-        QVERIFY2(all >= 3, qPrintable(QString::number(all)));  // GUI^IMPORT, PACS^ROUNDTRIP, the pydicom cases
+        QVERIFY2(all >= 4, qPrintable(QString::number(all)));  // GUI^IMPORT, PACS^ROUNDTRIP, PACS^MOVED, the pydicom cases
         const auto patients = [&] {
             QStringList names;
             for (int i = 0; i < tree->topLevelItemCount(); ++i) names << tree->topLevelItem(i)->text(0);
@@ -616,6 +649,12 @@ private slots:
         }
         QVERIFY(text && from && to);
         QTest::keyClicks(text, "PACS*");
+        QTest::keyClick(text, Qt::Key_Return);
+        QCOMPARE(patients().size(), 2);  // PACS^ROUNDTRIP and PACS^MOVED, from the PACS test
+        QVERIFY2(patients().join(",").contains("PACS ROUNDTRIP") && patients().join(",").contains("PACS MOVED"),
+                 qPrintable(patients().join(", ")));
+        text->clear();
+        QTest::keyClicks(text, "*ROUND*");
         QTest::keyClick(text, Qt::Key_Return);
         QCOMPARE(patients().size(), 1);
         QVERIFY2(patients().first().contains("PACS ROUNDTRIP"), qPrintable(patients().join(", ")));
@@ -635,7 +674,31 @@ private slots:
         QCOMPARE(tree->topLevelItemCount(), 0);
         QTest::keyClicks(from, "x");  // the date field takes digits only
         QCOMPARE(from->text(), QString("99990101"));
+        // A range that keeps some: November 2023 holds the moved study alone (20231115); one day,
+        // 1 March 2024, holds the pydicom cases' studies and neither of today's.
+        const auto studyDates = [&] {
+            QStringList dates;
+            for (int i = 0; i < tree->topLevelItemCount(); ++i)
+                for (int j = 0; j < tree->topLevelItem(i)->childCount(); ++j) dates << tree->topLevelItem(i)->child(j)->text(1);
+            return dates;
+        };
         from->clear();
+        QTest::keyClicks(from, "20231101");
+        QTest::keyClicks(to, "20231130");
+        QTest::keyClick(to, Qt::Key_Return);
+        QCOMPARE(tree->topLevelItemCount(), 1);
+        QVERIFY2(patients().first().contains("PACS MOVED"), qPrintable(patients().join(", ")));
+        QCOMPARE(studyDates(), QStringList{"20231115"});
+        from->clear();
+        to->clear();
+        QTest::keyClicks(from, "20240301");
+        QTest::keyClicks(to, "20240301");
+        QTest::keyClick(to, Qt::Key_Return);
+        QVERIFY2(tree->topLevelItemCount() >= 1 && tree->topLevelItemCount() < all, qPrintable(patients().join(", ")));
+        for (const auto& d : studyDates()) QCOMPARE(d, QString("20240301"));
+        for (const auto& p : patients()) QVERIFY2(!p.contains("GUI IMPORT") && !p.contains("PACS"), qPrintable(p));
+        from->clear();
+        to->clear();
         QTest::keyClick(text, Qt::Key_Return);
         QCOMPARE(tree->topLevelItemCount(), all);
     }

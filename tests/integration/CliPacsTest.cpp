@@ -2,12 +2,16 @@
 // that `pacs nodes` lists; `pacs echo`, `pacs find` at each level (checked against what was
 // seeded), `pacs send` and `pacs get` (files byte-identical to their sources, indexed, listed by
 // `studies`), and a node that does not answer is an error with a sentence and a non-zero exit.
+// `listen` files what storescu pushes and stops on SIGTERM.
 #include <gtest/gtest.h>
+#include <signal.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <thread>
 
 #include "core/base/JobContext.h"
 #include "core/volume/PhantomVoxelSource.h"
@@ -169,4 +173,62 @@ TEST(CliPacs, EveryAssociationSetsTcpNoDelayAndDicomWebNodesWorkAlike) {
         r = test::runCommand(cli + " pacs add bad" + bad + config);
         EXPECT_NE(r.exitCode, 0) << bad;
     }
+}
+
+// `holovox-cli listen`, the storage SCP in the foreground as a reading room runs it for the
+// modalities that push to it: DCMTK's storescu sends a series under an allowed calling AE
+// title, and every image arrives with its pixels, is said on stdout and indexed in the
+// database `studies` reads; a calling AE title not allowed is refused and files nothing;
+// SIGTERM stops it, saying how many it received, and frees the port.
+TEST(CliPacs, ListenFilesWhatAModalityPushesAndStopsOnSigterm) {
+    test::TempDir dir;
+    const auto files = phantomSeries(dir.file("push"), "CLI^PUSHED", "1.2.826.0.1.3680043.9.7777.600",
+                                     "1.2.826.0.1.3680043.9.7777.601", 5);
+    const std::uint16_t port = test::freePort();
+    const std::string db = dir.file("listen.sqlite"), log = dir.file("listen.log");
+    auto r = test::runCommand(cli + " listen --port " + std::to_string(port) + " --ae HVXLISTEN --storage " +
+                              dir.file("in") + " --db " + db + " --allow MODALITY1 --config " + dir.file("none.json") +
+                              " > " + log + " 2>&1 & echo $!");
+    const pid_t pid = pid_t(std::stol(r.output));
+    ASSERT_GT(pid, 0);
+    const auto stop = [pid] {  // SIGTERM, then wait up to 20 s for the process to be gone
+        ::kill(pid, SIGTERM);
+        for (int i = 0; i < 200 && ::kill(pid, 0) == 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        return ::kill(pid, 0) != 0;
+    };
+    if (!test::waitForPort(port, 20)) {
+        stop();
+        FAIL() << "listen did not open port " << port << ": " << bytes(log);
+    }
+    std::string send = "storescu -aet MODALITY1 -aec HVXLISTEN 127.0.0.1 " + std::to_string(port);
+    for (const auto& f : files) send += " " + f;
+    r = test::runCommand(send + " 2>&1");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand("storescu -aet INTRUDER -aec HVXLISTEN 127.0.0.1 " + std::to_string(port) + " " + files[0] +
+                         " 2>&1");
+    EXPECT_NE(r.exitCode, 0) << "a calling AE title not allowed is refused: " << r.output;
+    ASSERT_TRUE(stop()) << "listen did not stop on SIGTERM: " << bytes(log);
+    EXPECT_FALSE(test::waitForPort(port, 0.5)) << "the port is free again";
+
+    const std::string said = bytes(log);
+    EXPECT_NE(said.find("listening on port " + std::to_string(port)), std::string::npos) << said;
+    std::size_t lines = 0;
+    for (auto at = said.find("received CT "); at != std::string::npos; at = said.find("received CT ", at + 1)) ++lines;
+    EXPECT_EQ(lines, files.size()) << said;
+    EXPECT_NE(said.find("stopped after 5 instances"), std::string::npos) << said;
+    std::vector<std::string> stored;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(dir.file("in")))
+        if (e.is_regular_file()) stored.push_back(e.path().string());
+    ASSERT_EQ(stored.size(), files.size());
+    const auto pixels = [](const std::string& path) {  // Pixel Data ends each file
+        const std::string all = bytes(path);
+        return all.substr(all.size() - std::min<std::size_t>(all.size(), 24 * 24 * 2));
+    };
+    std::multiset<std::string> want, have;
+    for (const auto& f : files) want.insert(pixels(f));
+    for (const auto& s : stored) have.insert(pixels(s));
+    EXPECT_TRUE(want == have) << "the stored files carry the pushed pixels";
+    r = test::runCommand(cli + " studies --db " + db);
+    EXPECT_NE(r.output.find("CLI^PUSHED"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("5 images"), std::string::npos) << r.output;
 }
