@@ -1,0 +1,180 @@
+#include "core/octree/SplitVoxelFitter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
+#include "core/base/Error.h"
+
+namespace hvx::core {
+
+void SplitVoxelOptions::validate() const {
+    if (n < 2 || n > 8)
+        throw Error("--split-n " + std::to_string(n) + " is out of range: a split-voxel stands for 2 to 8 voxels per edge");
+    if (overlap > 4)
+        throw Error("--split-overlap " + std::to_string(overlap) + " is out of range: 0 to 4 neighbour layers");
+    if (!std::isfinite(threshold) || threshold < 0.0)
+        throw Error("--split-threshold must be a finite value of 0 or more (" + std::to_string(threshold) + " given)");
+}
+
+SplitVoxelFitter::SplitVoxelFitter(SplitVoxelOptions options) : options_(options) { options_.validate(); }
+
+namespace {
+
+/// A sample's position in cell coordinates.
+glm::vec3 position(std::uint32_t i, std::uint32_t j, std::uint32_t k, std::uint32_t S, std::uint32_t M) {
+    return (glm::vec3(float(i), float(j), float(k)) - float(M) + 0.5f) / float(S);
+}
+
+/// The lower median of a set of values: always one of them, never a blend.
+float lowerMedian(std::vector<float>& v) {
+    auto mid = v.begin() + std::ptrdiff_t((v.size() - 1) / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+
+/// The plane between the window's two classes (cls: 1 front, 2 back, 0 neither). Eqs. 4.1–4.2
+/// first: the normal along the barycentres' difference, through the point that splits it in the
+/// classes' proportion. Two refinements then make it exact for a plane through the window: the
+/// normal becomes Fisher's discriminant direction (the difference corrected by the classes'
+/// pooled spread, which the cube's corners skew), and the offset moves to the split along it
+/// that misplaces fewest samples (the nearest such to Eq. 4.2's). Uniform when the classes are
+/// not separable (barycentres within half a sample) or the plane misses the cell.
+SplitVoxel fromClasses(float front, float back, const std::vector<std::uint8_t>& cls, std::uint32_t S, std::uint32_t M,
+                       float uniformValue) {
+    const std::uint32_t E = S + 2 * M;
+    glm::dvec3 pf(0.0), pb(0.0);
+    double nf = 0, nb = 0;
+    for (std::uint32_t k = 0, at = 0; k < E; ++k)
+        for (std::uint32_t j = 0; j < E; ++j)
+            for (std::uint32_t i = 0; i < E; ++i, ++at) {
+                if (cls[at] == 1) pf += glm::dvec3(position(i, j, k, S, M)), nf += 1;
+                if (cls[at] == 2) pb += glm::dvec3(position(i, j, k, S, M)), nb += 1;
+            }
+    if (nf == 0 || nb == 0) return SplitVoxel::uniform(uniformValue);
+    pf /= nf;
+    pb /= nb;
+    const glm::dvec3 d = pf - pb;
+    const double len = glm::length(d);
+    if (len < 0.5 / double(S)) return SplitVoxel::uniform(uniformValue);
+    // Fisher: n ∝ Sw⁻¹ (pf − pb), Sw the pooled within-class scatter.
+    glm::dmat3 sw(0.0);
+    for (std::uint32_t k = 0, at = 0; k < E; ++k)
+        for (std::uint32_t j = 0; j < E; ++j)
+            for (std::uint32_t i = 0; i < E; ++i, ++at) {
+                if (cls[at] == 0) continue;
+                const glm::dvec3 r = glm::dvec3(position(i, j, k, S, M)) - (cls[at] == 1 ? pf : pb);
+                sw += glm::outerProduct(r, r);
+            }
+    glm::dvec3 n = d / len;
+    if (std::abs(glm::determinant(sw)) > 1e-9) {
+        const glm::dvec3 fisher = glm::inverse(sw) * d;
+        if (glm::length(fisher) > 0.0 && glm::dot(fisher, d) > 0.0) n = glm::normalize(fisher);
+    }
+    // Eq. 4.2's point, projected; then the split along n that misplaces fewest samples.
+    const glm::dvec3 centre(0.5);
+    const double eq42 = glm::dot(n, pb + d * (nb / (nf + nb)) - centre);
+    std::vector<std::pair<double, std::uint8_t>> along;
+    for (std::uint32_t k = 0, at = 0; k < E; ++k)
+        for (std::uint32_t j = 0; j < E; ++j)
+            for (std::uint32_t i = 0; i < E; ++i, ++at)
+                if (cls[at] != 0) along.emplace_back(glm::dot(n, glm::dvec3(position(i, j, k, S, M)) - centre), cls[at]);
+    std::sort(along.begin(), along.end());
+    // Misplaced with the split below sample 0: every back sample (all would be front).
+    long misplaced = long(nb), best = misplaced;
+    double offset = eq42, bestGap = 1e300;
+    for (std::size_t a = 0; a + 1 <= along.size(); ++a) {
+        misplaced += along[a].second == 2 ? -1 : 1;  // sample a now lies behind the split
+        if (a + 1 < along.size() && along[a + 1].first == along[a].first) continue;
+        const double at = a + 1 < along.size() ? 0.5 * (along[a].first + along[a + 1].first) : along[a].first + 0.5 / S;
+        const double gap = std::abs(at - eq42);
+        if (misplaced < best || (misplaced == best && gap < bestGap)) {
+            best = misplaced;
+            bestGap = gap;
+            offset = at;
+        }
+    }
+    const double reach = 0.5 * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z));  // the cell's extent along n
+    if (offset >= reach) return SplitVoxel::uniform(back);    // the whole cell behind the plane
+    if (offset <= -reach) return SplitVoxel::uniform(front);  // the whole cell in front of it
+    return {front, back, glm::vec3(n), float(offset)};
+}
+
+}  // namespace
+
+SplitVoxel SplitVoxelFitter::fit(const float* w, std::uint32_t S, std::uint32_t M) const {
+    const std::uint32_t E = S + 2 * M;
+    const std::size_t count = std::size_t(E) * E * E;
+    const auto inside = [&](std::uint32_t i, std::uint32_t j, std::uint32_t k) {
+        return i >= M && i < M + S && j >= M && j < M + S && k >= M && k < M + S;
+    };
+    if (options_.labels) {
+        // The window's labels by frequency (a window holds few distinct labels).
+        std::vector<std::pair<float, std::uint32_t>> counts, interior;
+        const auto add = [](std::vector<std::pair<float, std::uint32_t>>& c, float v) {
+            for (auto& [label, n] : c)
+                if (label == v) return void(++n);
+            c.emplace_back(v, 1u);
+        };
+        for (std::uint32_t k = 0, at = 0; k < E; ++k)
+            for (std::uint32_t j = 0; j < E; ++j)
+                for (std::uint32_t i = 0; i < E; ++i, ++at) {
+                    add(counts, w[at]);
+                    if (inside(i, j, k)) add(interior, w[at]);
+                }
+        const auto byCount = [](const auto& a, const auto& b) { return a.second > b.second || (a.second == b.second && a.first < b.first); };
+        std::sort(counts.begin(), counts.end(), byCount);
+        std::sort(interior.begin(), interior.end(), byCount);
+        const float mode = interior.front().first;
+        if (counts.size() == 1) return SplitVoxel::uniform(mode);
+        const float front = counts[0].first, back = counts[1].first;
+        std::vector<std::uint8_t> cls(count, 0);
+        for (std::size_t a = 0; a < count; ++a) cls[a] = w[a] == front ? 1 : w[a] == back ? 2 : 0;
+        return fromClasses(front, back, cls, S, M, mode);
+    }
+    // Intensities: two-means clustering (Lloyd), seeded at the window's extremes.
+    const auto [lo, hi] = std::minmax_element(w, w + count);
+    double interiorSum = 0.0;
+    for (std::uint32_t k = M; k < M + S; ++k)
+        for (std::uint32_t j = M; j < M + S; ++j)
+            for (std::uint32_t i = M; i < M + S; ++i) interiorSum += w[(std::size_t(k) * E + j) * E + i];
+    const float mean = float(interiorSum / (double(S) * S * S));
+    if (*hi - *lo <= options_.threshold || *hi == *lo) return SplitVoxel::uniform(mean);
+    double m0 = *lo, m1 = *hi;
+    std::vector<std::uint8_t> high(count, 0);
+    for (int iteration = 0; iteration < 64; ++iteration) {
+        bool changed = false;
+        double s0 = 0, s1 = 0;
+        std::size_t n0 = 0, n1 = 0;
+        for (std::size_t a = 0; a < count; ++a) {
+            const std::uint8_t h = std::abs(w[a] - m1) < std::abs(w[a] - m0) ? 1 : 0;
+            changed |= h != high[a];
+            high[a] = h;
+            (h ? s1 : s0) += w[a];
+            (h ? n1 : n0) += 1;
+        }
+        if (n0 == 0 || n1 == 0) break;
+        m0 = s0 / double(n0);
+        m1 = s1 / double(n1);
+        if (!changed && iteration > 0) break;
+    }
+    if (std::abs(m1 - m0) < options_.threshold) return SplitVoxel::uniform(mean);
+    std::vector<float> frontValues, backValues;
+    std::vector<std::uint8_t> cls(count, 0);
+    for (std::size_t a = 0; a < count; ++a) {
+        (high[a] ? frontValues : backValues).push_back(w[a]);
+        cls[a] = high[a] ? 1 : 2;
+    }
+    if (frontValues.empty() || backValues.empty()) return SplitVoxel::uniform(mean);
+    const bool frontLarger = frontValues.size() >= backValues.size();
+    const float front = lowerMedian(frontValues), back = lowerMedian(backValues);
+    // Not separable: the cell is the larger cluster's material (as labels take the most frequent).
+    return fromClasses(front, back, cls, S, M, frontLarger ? front : back);
+}
+
+}  // namespace hvx::core

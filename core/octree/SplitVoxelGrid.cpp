@@ -1,0 +1,118 @@
+#include "core/octree/SplitVoxelGrid.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <functional>
+
+#include "core/base/Error.h"
+#include "core/base/ThreadPool.h"
+#include "core/volume/ScalarType.h"
+
+namespace hvx::core {
+
+namespace {
+std::uint32_t ceilDiv(std::uint32_t a, std::uint32_t b) { return (a + b - 1) / b; }
+
+/// Fits every cell of `grid` on the shared pool: `fill` writes cell (x, y, z)'s window.
+void fitAll(SplitVoxelGrid& grid, const SplitVoxelFitter& fitter, std::uint32_t S, std::uint32_t M, JobContext& job,
+            const std::function<void(std::uint32_t, std::uint32_t, std::uint32_t, float*)>& fill) {
+    const auto d = grid.dims();
+    const std::uint32_t E = S + 2 * M;
+    const std::size_t rows = std::size_t(d[1]) * d[2];
+    std::atomic<std::size_t> done{0};
+    ThreadPool::shared().parallelFor(rows, [&](std::size_t begin, std::size_t end) {
+        std::vector<float> window(std::size_t(E) * E * E);
+        for (std::size_t r = begin; r < end; ++r) {
+            if (job.cancelled()) return;
+            const auto y = std::uint32_t(r % d[1]), z = std::uint32_t(r / d[1]);
+            for (std::uint32_t x = 0; x < d[0]; ++x) {
+                fill(x, y, z, window.data());
+                grid.at(x, y, z) = fitter.fit(window.data(), S, M);
+            }
+            const std::size_t n = ++done;
+            if (n % 64 == 0) job.report(double(n) / double(rows), "fitting split-voxels");
+        }
+    }, 4);
+    job.throwIfCancelled();
+}
+}  // namespace
+
+SplitVoxelGrid::SplitVoxelGrid(Dims cells, std::uint32_t cellVoxels)
+    : dims_(cells), cellVoxels_(cellVoxels), cells_(std::size_t(cells[0]) * cells[1] * cells[2]) {}
+
+SplitVoxelGrid SplitVoxelGrid::build(VoxelSource& source, const SplitVoxelOptions& options, JobContext& job) {
+    options.validate();
+    const auto& g = source.geometry();
+    if (g.scalarType == ScalarType::Float32)
+        throw Error(source.describe() + ": split-voxels need 8- or 16-bit integer values (this volume holds floats)");
+    const auto d = g.dims;
+    // The volume as floats (stored values), read slab by slab.
+    std::vector<float> volume(g.voxelCount());
+    const std::size_t slice = std::size_t(d[0]) * d[1];
+    std::vector<std::uint8_t> slab(slice * scalarSize(g.scalarType) * 16);
+    for (std::uint32_t z = 0; z < d[2]; z += 16) {
+        const std::uint32_t n = std::min<std::uint32_t>(16, d[2] - z);
+        source.readSlices(z, n, slab.data());
+        float* out = volume.data() + slice * z;
+        for (std::size_t a = 0; a < slice * n; ++a) {
+            switch (g.scalarType) {
+                case ScalarType::UInt8: out[a] = float(slab[a]); break;
+                case ScalarType::Int16: { std::int16_t v; std::memcpy(&v, &slab[2 * a], 2); out[a] = float(v); break; }
+                default: { std::uint16_t v; std::memcpy(&v, &slab[2 * a], 2); out[a] = float(v); break; }
+            }
+        }
+        job.throwIfCancelled();
+    }
+    const std::uint32_t N = options.n, M = options.overlap, E = N + 2 * M;
+    SplitVoxelGrid grid({ceilDiv(d[0], N), ceilDiv(d[1], N), ceilDiv(d[2], N)}, N);
+    const SplitVoxelFitter fitter(options);
+    const auto clampTo = [](long v, std::uint32_t size) { return std::size_t(std::clamp(v, 0L, long(size) - 1)); };
+    fitAll(grid, fitter, N, M, job, [&](std::uint32_t x, std::uint32_t y, std::uint32_t z, float* w) {
+        // Voxels beyond the volume replicate its faces, as brick borders do.
+        for (std::uint32_t k = 0; k < E; ++k)
+            for (std::uint32_t j = 0; j < E; ++j)
+                for (std::uint32_t i = 0; i < E; ++i)
+                    *w++ = volume[(clampTo(long(z * N + k) - long(M), d[2]) * d[1] + clampTo(long(y * N + j) - long(M), d[1])) *
+                                      d[0] +
+                                  clampTo(long(x * N + i) - long(M), d[0])];
+    });
+    return grid;
+}
+
+SplitVoxelGrid SplitVoxelGrid::coarser(const SplitVoxelOptions& options, JobContext& job) const {
+    options.validate();
+    // Each finer cell is sampled at r³ points; a coarser cell covers 2³ finer cells.
+    constexpr std::uint32_t r = 2;
+    const std::uint32_t S = 2 * r, M = options.overlap * r, E = S + 2 * M;
+    SplitVoxelGrid grid({ceilDiv(dims_[0], 2), ceilDiv(dims_[1], 2), ceilDiv(dims_[2], 2)}, cellVoxels_ * 2);
+    const SplitVoxelFitter fitter(options);
+    fitAll(grid, fitter, S, M, job, [&](std::uint32_t x, std::uint32_t y, std::uint32_t z, float* w) {
+        for (std::uint32_t k = 0; k < E; ++k)
+            for (std::uint32_t j = 0; j < E; ++j)
+                for (std::uint32_t i = 0; i < E; ++i) {
+                    // Sample (i, j, k)'s position in finer cells, clamped to the finer grid.
+                    const glm::dvec3 fine = glm::dvec3(2.0 * x, 2.0 * y, 2.0 * z) +
+                                            (glm::dvec3(i, j, k) - double(M) + 0.5) / double(r);
+                    const glm::dvec3 c = glm::clamp(fine, glm::dvec3(0.0),
+                                                    glm::dvec3(dims_[0], dims_[1], dims_[2]) - 1e-6);
+                    const glm::uvec3 cell(c);
+                    *w++ = at(cell.x, cell.y, cell.z).valueAt(glm::vec3(c - glm::dvec3(cell)));
+                }
+    });
+    return grid;
+}
+
+float SplitVoxelGrid::valueAt(const glm::dvec3& index) const {
+    const glm::dvec3 c = glm::clamp((index + 0.5) / double(cellVoxels_), glm::dvec3(0.0),
+                                    glm::dvec3(dims_[0], dims_[1], dims_[2]) - 1e-6);
+    const glm::uvec3 cell(c);
+    return at(cell.x, cell.y, cell.z).valueAt(glm::vec3(c - glm::dvec3(cell)));
+}
+
+std::size_t SplitVoxelGrid::splitCells() const {
+    return std::size_t(std::count_if(cells_.begin(), cells_.end(), [](const SplitVoxel& v) { return !v.isUniform(); }));
+}
+
+}  // namespace hvx::core
