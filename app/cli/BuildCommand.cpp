@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -28,8 +29,8 @@ glm::dvec3 parseSpacing(const std::string& text) {
 int buildCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"o", "output", "brick", "border", "empty-below", "codec", "level", "dims", "type", "endian",
-                        "header-bytes", "spacing", "volume", "grid"},
-                       {"labels", "lossy8", "quiet"});
+                        "header-bytes", "spacing", "volume", "grid", "split-n", "split-overlap", "split-threshold"},
+                       {"labels", "lossy8", "quiet", "split-voxels"});
     if (args.positional().size() != 1) throw core::Error("usage: holovox-cli build INPUT -o OUT.hvo [options]");
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (!out) throw core::Error("build needs an output file: -o OUT.hvo");
@@ -77,7 +78,29 @@ int buildCommand(int argc, char** argv) {
                                                 : rt ? std::unique_ptr<core::VoxelSource>(std::move(rt))
                                                      : core::VoxelSourceFactory::open(args.positional()[0], raw, volume);
     for (const auto& w : source->warnings()) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
-    OctreeBuildRunner::run(*source, *out, opt, !args.flag("quiet"));
+    // Split-voxels (thesis ch. 4): two values and a plane per cell of N³ voxels, for sharp
+    // boundaries and true colours at coarse levels; a file beside the volume's own octree.
+    std::optional<core::SplitVoxelOptions> split;
+    if (args.flag("split-voxels")) {
+        split.emplace();
+        split->n = std::uint32_t(args.integer("split-n", 2, 0, 1 << 20));
+        split->overlap = std::uint32_t(args.integer("split-overlap", 2, 0, 1 << 20));
+        split->labels = opt.labels || source->geometry().isLabel;
+        const auto& g = source->geometry();
+        if (const auto t = args.number("split-threshold")) {
+            // Physical units (HU for CT) on the command line; stored units inside.
+            if (!std::isfinite(*t) || *t < 0)
+                throw core::Error("--split-threshold must be a value of 0 or more, in the volume's units (HU for CT)");
+            split->threshold = std::abs(*t / g.rescaleSlope);
+        } else {
+            // Without one: 2% of the stored range, so that noise inside one material stays one value.
+            split->threshold = 0.02 * std::max(1.0, g.valueMax - g.valueMin);
+        }
+        split->validate();
+    } else if (args.value("split-n") || args.value("split-overlap") || args.value("split-threshold")) {
+        throw core::Error("--split-n, --split-overlap and --split-threshold go with --split-voxels");
+    }
+    OctreeBuildRunner::run(*source, *out, opt, !args.flag("quiet"), split);
     const core::LabelTable* names = nullptr;
     if (const auto* segmentation = dynamic_cast<const dicom::SegmentationSource*>(source.get())) names = &segmentation->table();
     if (const auto* structures = dynamic_cast<const dicom::StructureSetSource*>(source.get())) names = &structures->table();

@@ -11,7 +11,7 @@ namespace hvx::app {
 int infoCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2, {}, {"verify"});
     if (args.positional().size() != 1) throw core::Error("usage: holovox-cli info FILE.hvo [--verify]");
-    const auto reader = core::OctreeReader::open(args.positional()[0]);
+    const auto reader = core::OctreeReader::open(args.positional()[0], true);  // split-voxel octrees too
     std::fputs(core::OctreeSummary::of(*reader).format(*reader).c_str(), stdout);
     if (args.flag("verify")) {
         // Reads and checks every payload; the first corrupt brick ends with an error naming it.

@@ -1,7 +1,10 @@
 #pragma once
 #include <string>
 
+#include <optional>
+
 #include "core/octree/OctreeBuilder.h"
+#include "core/octree/SplitVoxelFitter.h"
 
 namespace hvx::app {
 
@@ -9,8 +12,10 @@ namespace hvx::app {
 /// report (time, throughput, size) followed by the file's summary.
 class OctreeBuildRunner {
 public:
+    /// With `split`, a split-voxel octree (core::SplitVoxelOctreeBuilder).
     static core::BuildReport run(core::VoxelSource& source, const std::string& output,
-                                 const core::BuildOptions& options, bool printSummary);
+                                 const core::BuildOptions& options, bool printSummary,
+                                 const std::optional<core::SplitVoxelOptions>& split = std::nullopt);
 };
 
 }  // namespace hvx::app

@@ -12,6 +12,7 @@ const char* const kUsage =
         "\n"
         "  build INPUT -o OUT.hvo [--brick N] [--border N] [--empty-below V] [--labels]\n"
         "        [--codec zstd|lz4|none] [--level N] [--lossy8] [--volume N]  (N: 1-based, 4D NIfTI)\n"
+        "        [--split-voxels [--split-n 2] [--split-overlap 2] [--split-threshold V]]  (thesis ch. 4)\n"
         "        [--dims XxYxZ --type uint8|int16|uint16|float32 --endian little|big\n"
         "         --header-bytes N --spacing SX,SY,SZ]            (raw input)\n"
         "      INPUT: .nii/.nii.gz, .nrrd/.nhdr, .mha/.mhd, .vtk, .vti, .raw, or phantom:XxYxZ[:seed];\n"

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/octree/SplitVoxel.h"
 #include "core/volume/ScalarType.h"
 
 namespace hvx::core {
@@ -18,12 +19,15 @@ struct Brick {
     bool lossy8 = false;
     float quantMin = 0.0f;  ///< lossy8: value of code 0
     float quantMax = 0.0f;  ///< lossy8: value of code 255
+    bool splitVoxels = false;  ///< a split-voxel octree's brick: edge³ encoded cells, not samples
     std::vector<std::byte> data;
 
     template <class T>
     const T* as() const { return reinterpret_cast<const T*>(data.data()); }
     /// Stored (not rescaled) value of sample (x, y, z), decoding lossy codes.
     double value(std::uint32_t x, std::uint32_t y, std::uint32_t z) const;
+    /// Split-voxel bricks: cell (x, y, z), decoded.
+    SplitVoxel cell(std::uint32_t x, std::uint32_t y, std::uint32_t z) const;
 };
 
 }  // namespace hvx::core

@@ -13,12 +13,16 @@
 /// box-filtered l times by 2 (dims_l = ceil(dims_{l-1} / 2)). Each payload is a cube of
 /// E = B + 2*border samples starting at level voxel x*B - border, with coordinates clamped to
 /// the volume: neighbour samples are replicated so a brick never needs another brick.
+/// Version 2 (FileSplitVoxels) holds split-voxels instead, over the grid of cells (FileHeader::split).
 namespace hvx::core::hvo {
 
 static_assert(std::endian::native == std::endian::little, ".hvo I/O assumes a little-endian host");
 
 inline constexpr char kMagic[8] = {'H', 'O', 'L', 'O', 'V', 'O', 'X', '\0'};
 inline constexpr std::uint32_t kVersion = 1;
+/// Split-voxel octrees (thesis ch. 4): nodes hold split-voxels, not samples. Readers of
+/// version 1 refuse them ("unsupported version 2") rather than read their cells as voxels.
+inline constexpr std::uint32_t kVersionSplitVoxels = 2;
 inline constexpr std::uint32_t kNoNode = 0xffffffffu;
 
 /// Lossless per-brick compression.
@@ -33,6 +37,7 @@ enum FileFlags : std::uint32_t {
     FileMonochrome1 = 16u,  ///< display inverted (DICOM MONOCHROME1)
     FileSpacingAssumed = 32u,      ///< VolumeGeometry::spacingAssumed
     FileOrientationAssumed = 64u,  ///< VolumeGeometry::orientationAssumed
+    FileSplitVoxels = 128u,        ///< version 2: payloads are split-voxels (see FileHeader::split)
 };
 /// NodeRecord::flags.
 enum NodeFlags : std::uint32_t { NodeEmpty = 1u, NodeLossy8 = 2u };
@@ -76,7 +81,15 @@ struct FileHeader {
     /// The DICOM Frame of Reference UID (up to 64 characters, zero padded; all zeros when the
     /// source had none). Written in what older versions kept as reserved zeros.
     char frameOfReferenceUid[64];
-    std::uint8_t reserved[512 - 296 - 4 * 32 - 64 - 8];
+    /// Split-voxel files: dims, spacing and origin above describe the grid of cells (cell (0,0,0)'s
+    /// centre at the origin, cells n voxels apart), so the octree's layout and traversal are the
+    /// usual ones over it; this is the source volume the cells stand for. A payload is
+    /// brickSize³ cells (no border), each SplitVoxel::encodedSize bytes. Zeros in version 1.
+    struct Split {
+        std::uint32_t sourceDims[3];
+        std::uint16_t n;        ///< voxels per cell edge at level 0
+        std::uint16_t overlap;  ///< M, neighbour layers each fit saw
+    } split;
     std::uint64_t headerChecksum;  ///< XXH3-64 of the first 504 bytes
 };
 static_assert(sizeof(FileHeader) == 512);

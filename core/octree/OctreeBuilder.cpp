@@ -1,4 +1,5 @@
 #include "core/octree/OctreeBuilder.h"
+#include "core/octree/HvoHeader.h"
 
 #include <algorithm>
 #include <chrono>
@@ -221,39 +222,6 @@ private:
     std::mutex storeMutex_;
 };
 
-void fillHeader(hvo::FileHeader& h, const VolumeGeometry& g, const BuildOptions& opt, int levels) {
-    std::memset(&h, 0, sizeof h);
-    std::memcpy(h.magic, hvo::kMagic, sizeof h.magic);
-    h.version = hvo::kVersion;
-    h.headerSize = sizeof(hvo::FileHeader);
-    for (int a = 0; a < 3; ++a) {
-        h.dims[a] = g.dims[std::size_t(a)];
-        h.spacing[a] = g.spacing[a];
-        h.origin[a] = g.origin[a];
-        for (int r = 0; r < 3; ++r) h.direction[3 * a + r] = g.direction[a][r];
-    }
-    h.brickSize = opt.brickSize;
-    h.border = opt.border;
-    h.levelCount = std::uint32_t(levels);
-    h.scalarType = std::uint32_t(g.scalarType);
-    h.codec = std::uint32_t(opt.codec);
-    h.flags = (opt.labels || g.isLabel ? hvo::FileLabels : 0u) | (opt.lossy8 ? hvo::FileLossy8 : 0u) |
-              (opt.emptyBelow ? hvo::FileEmptyThreshold : 0u) | hvo::FileShuffled |
-              (g.monochrome1 ? hvo::FileMonochrome1 : 0u) | (g.spacingAssumed ? hvo::FileSpacingAssumed : 0u) |
-              (g.orientationAssumed ? hvo::FileOrientationAssumed : 0u);
-    h.rescaleSlope = g.rescaleSlope;
-    h.rescaleIntercept = g.rescaleIntercept;
-    h.emptyBelow = opt.emptyBelow ? *opt.emptyBelow : 0.0;
-    std::strncpy(h.modality, g.modality.c_str(), sizeof h.modality - 1);
-    std::memcpy(h.frameOfReferenceUid, g.frameOfReferenceUid.data(),
-                std::min(g.frameOfReferenceUid.size(), sizeof h.frameOfReferenceUid));
-    for (std::size_t i = 0; i < std::min<std::size_t>(4, g.windows.size()); ++i) {
-        h.windows[i].centre = g.windows[i].centre;
-        h.windows[i].width = g.windows[i].width;
-        std::strncpy(h.windows[i].name, g.windows[i].name.c_str(), sizeof h.windows[i].name - 1);
-    }
-}
-
 }  // namespace
 
 OctreeBuilder::OctreeBuilder(BuildOptions options) : options_(std::move(options)) {
@@ -273,8 +241,7 @@ BuildReport OctreeBuilder::build(VoxelSource& source, const std::string& output,
     std::vector<hvo::NodeRecord> nodes = layout.nodes();
     AtomicFileWriter out(output);
 
-    hvo::FileHeader header;
-    fillHeader(header, g, options_, layout.levelCount());
+    hvo::FileHeader header = hvo::startHeader(g, options_, layout.levelCount());
     out.append(&header, sizeof header);  // complete == 0 until the end
 
     BuildReport report;
@@ -294,16 +261,7 @@ BuildReport OctreeBuilder::build(VoxelSource& source, const std::string& output,
     });
     job.throwIfCancelled();
 
-    header.valueMin = nodes[0].minValue;
-    header.valueMax = nodes[0].maxValue;
-    header.nodeCount = nodes.size();
-    header.nodeTableChecksum = BrickCodec::checksum(nodes.data(), nodes.size() * sizeof(hvo::NodeRecord));
-    header.nodeTableOffset = out.append(nodes.data(), nodes.size() * sizeof(hvo::NodeRecord));
-    header.fileSize = out.size();
-    header.complete = 1;
-    header.headerChecksum = BrickCodec::checksum(&header, offsetof(hvo::FileHeader, headerChecksum));
-    out.writeAt(0, &header, sizeof header);
-    out.commit();
+    hvo::finishFile(header, nodes, out);
 
     report.nodeCount = nodes.size();
     report.fileBytes = header.fileSize;

@@ -1,4 +1,5 @@
 #include "core/octree/OctreeReader.h"
+#include "core/octree/SplitVoxel.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -28,13 +29,21 @@ bool readFully(int fd, void* dst, std::size_t size, std::uint64_t offset) {
 }
 }  // namespace
 
-std::unique_ptr<OctreeReader> OctreeReader::open(const std::string& path) {
+std::unique_ptr<OctreeReader> OctreeReader::open(const std::string& path, bool acceptSplitVoxels) {
     std::unique_ptr<OctreeReader> r(new OctreeReader());
     r->path_ = path;
     r->fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
     if (r->fd_ < 0) throw Error(path + ": cannot open (" + std::strerror(errno) + ")");
     r->load();
+    if (r->splitVoxels() && !acceptSplitVoxels)
+        throw Error(path + ": a split-voxel octree (cells with two values and a plane, not voxels), which only "
+                           "`holovox-cli info` reads yet; open the volume's own octree");
     return r;
+}
+
+std::array<std::uint32_t, 3> OctreeReader::sourceDims() const {
+    if (!splitVoxels()) return geometry_.dims;
+    return {header_.split.sourceDims[0], header_.split.sourceDims[1], header_.split.sourceDims[2]};
 }
 
 OctreeReader::~OctreeReader() {
@@ -49,7 +58,12 @@ void OctreeReader::load() {
         throw bad("file is shorter than the header");
     auto& h = header_;
     if (std::memcmp(h.magic, hvo::kMagic, sizeof h.magic) != 0) throw bad("wrong magic number");
-    if (h.version != hvo::kVersion) throw bad("unsupported version " + std::to_string(h.version));
+    if (h.version > hvo::kVersionSplitVoxels)
+        throw bad("format version " + std::to_string(h.version) + ", written by a newer Holovox; this one reads versions 1 and 2");
+    if (h.version == 0) throw bad("unsupported version 0");
+    const bool split = (h.flags & hvo::FileSplitVoxels) != 0;
+    if (split != (h.version == hvo::kVersionSplitVoxels))
+        throw bad("version " + std::to_string(h.version) + (split ? " marked as" : " not marked as") + " split-voxels");
     if (BrickCodec::checksum(&h, offsetof(hvo::FileHeader, headerChecksum)) != h.headerChecksum)
         throw bad("header checksum mismatch");
     if (!h.complete) throw bad("the build that wrote it did not finish");
@@ -59,6 +73,14 @@ void OctreeReader::load() {
     if (!isValidScalarType(h.scalarType)) throw bad("unknown scalar type");
     if (h.codec > 2) throw bad("unknown codec");
     if (h.brickSize < 1 || h.brickSize > 256 || h.border > 8) throw bad("brick size or border out of range");
+    if (split) {
+        if (h.border != 0 || h.split.n < 2 || h.split.n > 8 || h.split.overlap > 4 ||
+            !isValidScalarType(h.scalarType) || ScalarType(h.scalarType) == ScalarType::Float32)
+            throw bad("split-voxel parameters out of range");
+        for (int a = 0; a < 3; ++a)
+            if (h.split.sourceDims[a] == 0 || (std::uint64_t(h.split.sourceDims[a]) + h.split.n - 1) / h.split.n != h.dims[a])
+                throw bad("the cell grid does not match the source volume's dimensions");
+    }
     const std::uint64_t tableBytes = h.nodeCount * sizeof(hvo::NodeRecord);
     if (h.nodeCount == 0 || h.nodeCount > (1ull << 32) || h.nodeTableOffset < sizeof h ||
         h.nodeTableOffset > h.fileSize || tableBytes != h.fileSize - h.nodeTableOffset)
@@ -138,6 +160,19 @@ Brick OctreeReader::readBrick(std::uint32_t node) const {
             using T = decltype(tag);
             std::fill_n(reinterpret_cast<T*>(b.data.data()), samples, T(n.minValue));
         });
+        return b;
+    }
+    if (splitVoxels()) {
+        b.splitVoxels = true;
+        const std::size_t bytes = samples * SplitVoxel::encodedSize(scalarSize(b.type));
+        std::vector<std::byte> packed(n.payloadSize);
+        if (!readFully(fd_, packed.data(), packed.size(), n.payloadOffset))
+            throw CorruptBrickError(where() + " cannot be read (" + std::strerror(errno) + ")", node);
+        if (BrickCodec::checksum(packed.data(), packed.size()) != n.checksum)
+            throw CorruptBrickError(where() + " is corrupt (checksum mismatch)", node);
+        b.data.resize(bytes);
+        if (!BrickCodec::decompress(hvo::Codec(header_.codec), packed.data(), packed.size(), b.data.data(), bytes, 1))
+            throw CorruptBrickError(where() + " is corrupt (does not decompress)", node);
         return b;
     }
     b.lossy8 = (n.flags & hvo::NodeLossy8) != 0;

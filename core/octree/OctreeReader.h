@@ -1,4 +1,5 @@
 #pragma once
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -28,8 +29,10 @@ private:
 /// Threading: after open(), every const method may be called from many threads at once.
 class OctreeReader {
 public:
-    /// Opens and validates; throws core::Error naming the file and what is wrong.
-    static std::unique_ptr<OctreeReader> open(const std::string& path);
+    /// Opens and validates; throws core::Error naming the file and what is wrong. A split-voxel
+    /// octree (version 2) is refused with a sentence unless `acceptSplitVoxels`: its bricks hold
+    /// cells, not samples, and only split-aware code (info, its tests) reads them yet.
+    static std::unique_ptr<OctreeReader> open(const std::string& path, bool acceptSplitVoxels = false);
     ~OctreeReader();
     OctreeReader(const OctreeReader&) = delete;
     OctreeReader& operator=(const OctreeReader&) = delete;
@@ -43,6 +46,9 @@ public:
     std::uint32_t brickEdge() const { return header_.brickSize + 2 * header_.border; }
     int levelCount() const { return int(header_.levelCount); }
     const std::vector<hvo::NodeRecord>& nodes() const { return nodes_; }
+    /// A split-voxel octree: geometry() is its grid of cells, sourceDims() the volume's voxels.
+    bool splitVoxels() const { return (header_.flags & hvo::FileSplitVoxels) != 0; }
+    std::array<std::uint32_t, 3> sourceDims() const;
     /// Reads, verifies and decompresses one node's brick. Throws CorruptBrickError.
     Brick readBrick(std::uint32_t node) const;
 

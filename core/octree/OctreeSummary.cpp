@@ -44,7 +44,8 @@ OctreeSummary OctreeSummary::of(const OctreeReader& reader) {
         s.emptyCount += l.emptyCount;
     }
     s.fileBytes = h.fileSize;
-    s.volumeBytes = reader.geometry().byteSize();
+    const auto source = reader.sourceDims();  // a split-voxel octree stands for its source's voxels
+    s.volumeBytes = std::uint64_t(source[0]) * source[1] * source[2] * scalarSize(reader.geometry().scalarType);
     s.rawBrickBytes = h.rawBrickBytes;
     return s;
 }
@@ -55,12 +56,17 @@ std::string OctreeSummary::format(const OctreeReader& reader) const {
     std::ostringstream o;
     char buf[256];
     o << reader.path() << "\n";
-    std::snprintf(buf, sizeof buf, "  volume      %u x %u x %u %s, %s%s\n", g.dims[0], g.dims[1], g.dims[2],
+    // A split-voxel octree's geometry is its grid of cells: said as the source volume's.
+    const double n = reader.splitVoxels() ? double(h.split.n) : 1.0;
+    const auto source = reader.sourceDims();
+    const glm::dvec3 spacing = g.spacing / n;
+    const glm::dvec3 origin = g.origin - g.direction * (spacing * ((n - 1.0) / 2.0));
+    std::snprintf(buf, sizeof buf, "  volume      %u x %u x %u %s, %s%s\n", source[0], source[1], source[2],
                   std::string(scalarName(g.scalarType)).c_str(), g.modality.c_str(), g.isLabel ? " (labels)" : "");
     o << buf;
-    std::snprintf(buf, sizeof buf, "  spacing     %.4g x %.4g x %.4g mm\n", g.spacing.x, g.spacing.y, g.spacing.z);
+    std::snprintf(buf, sizeof buf, "  spacing     %.4g x %.4g x %.4g mm\n", spacing.x, spacing.y, spacing.z);
     o << buf;
-    std::snprintf(buf, sizeof buf, "  origin      (%.2f, %.2f, %.2f) mm LPS\n", g.origin.x, g.origin.y, g.origin.z);
+    std::snprintf(buf, sizeof buf, "  origin      (%.2f, %.2f, %.2f) mm LPS\n", origin.x, origin.y, origin.z);
     o << buf;
     std::snprintf(buf, sizeof buf, "  direction   i=(%.3f,%.3f,%.3f) j=(%.3f,%.3f,%.3f) k=(%.3f,%.3f,%.3f)\n",
                   g.direction[0].x, g.direction[0].y, g.direction[0].z, g.direction[1].x, g.direction[1].y,
@@ -82,11 +88,16 @@ std::string OctreeSummary::format(const OctreeReader& reader) const {
         std::snprintf(buf, sizeof buf, "  empty below %g\n", h.emptyBelow);
         o << buf;
     }
+    if (reader.splitVoxels()) {
+        std::snprintf(buf, sizeof buf, "  split-voxels cells of %u voxels (fitted with %u overlap layers) for %u x %u x %u voxels\n",
+                      unsigned(h.split.n), unsigned(h.split.overlap), source[0], source[1], source[2]);
+        o << buf;
+    }
     o << "  levels      " << levels.size() << "\n";
     for (std::size_t l = levels.size(); l-- > 0;) {
         const auto& L = levels[l];
-        std::snprintf(buf, sizeof buf, "    level %2zu  %5u x %5u x %5u voxels  %4u x %4u x %4u nodes  %10llu nodes  %5.1f%% empty  %s\n",
-                      l, L.dims[0], L.dims[1], L.dims[2], L.nodes[0], L.nodes[1], L.nodes[2],
+        std::snprintf(buf, sizeof buf, "    level %2zu  %5u x %5u x %5u %s  %4u x %4u x %4u nodes  %10llu nodes  %5.1f%% empty  %s\n",
+                      l, L.dims[0], L.dims[1], L.dims[2], reader.splitVoxels() ? "cells " : "voxels", L.nodes[0], L.nodes[1], L.nodes[2],
                       static_cast<unsigned long long>(L.nodeCount),
                       L.nodeCount ? 100.0 * double(L.emptyCount) / double(L.nodeCount) : 0.0,
                       bytes(double(L.payloadBytes)).c_str());

@@ -76,22 +76,30 @@ SplitVoxel fromClasses(float front, float back, const std::vector<std::uint8_t>&
         const glm::dvec3 fisher = glm::inverse(sw) * d;
         if (glm::length(fisher) > 0.0 && glm::dot(fisher, d) > 0.0) n = glm::normalize(fisher);
     }
-    // Eq. 4.2's point, projected; then the split along n that misplaces fewest samples.
+    // Eq. 4.2's point, projected; then the split along n that misplaces fewest samples, found
+    // over a histogram of the samples' projections (bins finer than the encoding's offset
+    // quantum, so no sort is needed).
     const glm::dvec3 centre(0.5);
     const double eq42 = glm::dot(n, pb + d * (nb / (nf + nb)) - centre);
-    std::vector<std::pair<double, std::uint8_t>> along;
+    constexpr int kBins = 1024;
+    const double span = 0.5 * double(E) / double(S) * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z)) + 1e-9;
+    thread_local std::vector<std::int32_t> fronts, backs;
+    fronts.assign(kBins, 0);
+    backs.assign(kBins, 0);
     for (std::uint32_t k = 0, at = 0; k < E; ++k)
         for (std::uint32_t j = 0; j < E; ++j)
-            for (std::uint32_t i = 0; i < E; ++i, ++at)
-                if (cls[at] != 0) along.emplace_back(glm::dot(n, glm::dvec3(position(i, j, k, S, M)) - centre), cls[at]);
-    std::sort(along.begin(), along.end());
-    // Misplaced with the split below sample 0: every back sample (all would be front).
-    long misplaced = long(nb), best = misplaced;
+            for (std::uint32_t i = 0; i < E; ++i, ++at) {
+                if (cls[at] == 0) continue;
+                const double x = glm::dot(n, glm::dvec3(position(i, j, k, S, M)) - centre);
+                const int bin = std::clamp(int((x + span) / (2.0 * span) * kBins), 0, kBins - 1);
+                (cls[at] == 1 ? fronts : backs)[std::size_t(bin)] += 1;
+            }
+    // Split at the lower edge of bin b: bins below are behind, from b on in front.
+    long misplaced = long(nb), best = misplaced;  // b = 0: every back sample in front
     double offset = eq42, bestGap = 1e300;
-    for (std::size_t a = 0; a + 1 <= along.size(); ++a) {
-        misplaced += along[a].second == 2 ? -1 : 1;  // sample a now lies behind the split
-        if (a + 1 < along.size() && along[a + 1].first == along[a].first) continue;
-        const double at = a + 1 < along.size() ? 0.5 * (along[a].first + along[a + 1].first) : along[a].first + 0.5 / S;
+    for (int bin = 0; bin <= kBins; ++bin) {
+        if (bin > 0) misplaced += fronts[std::size_t(bin - 1)] - backs[std::size_t(bin - 1)];
+        const double at = -span + 2.0 * span * double(bin) / kBins;
         const double gap = std::abs(at - eq42);
         if (misplaced < best || (misplaced == best && gap < bestGap)) {
             best = misplaced;
@@ -115,7 +123,9 @@ SplitVoxel SplitVoxelFitter::fit(const float* w, std::uint32_t S, std::uint32_t 
     };
     if (options_.labels) {
         // The window's labels by frequency (a window holds few distinct labels).
-        std::vector<std::pair<float, std::uint32_t>> counts, interior;
+        thread_local std::vector<std::pair<float, std::uint32_t>> counts, interior;
+        counts.clear();
+        interior.clear();
         const auto add = [](std::vector<std::pair<float, std::uint32_t>>& c, float v) {
             for (auto& [label, n] : c)
                 if (label == v) return void(++n);
@@ -133,7 +143,8 @@ SplitVoxel SplitVoxelFitter::fit(const float* w, std::uint32_t S, std::uint32_t 
         const float mode = interior.front().first;
         if (counts.size() == 1) return SplitVoxel::uniform(mode);
         const float front = counts[0].first, back = counts[1].first;
-        std::vector<std::uint8_t> cls(count, 0);
+        thread_local std::vector<std::uint8_t> cls;
+        cls.assign(count, 0);
         for (std::size_t a = 0; a < count; ++a) cls[a] = w[a] == front ? 1 : w[a] == back ? 2 : 0;
         return fromClasses(front, back, cls, S, M, mode);
     }
@@ -146,7 +157,8 @@ SplitVoxel SplitVoxelFitter::fit(const float* w, std::uint32_t S, std::uint32_t 
     const float mean = float(interiorSum / (double(S) * S * S));
     if (*hi - *lo <= options_.threshold || *hi == *lo) return SplitVoxel::uniform(mean);
     double m0 = *lo, m1 = *hi;
-    std::vector<std::uint8_t> high(count, 0);
+    thread_local std::vector<std::uint8_t> high;
+    high.assign(count, 0);
     for (int iteration = 0; iteration < 64; ++iteration) {
         bool changed = false;
         double s0 = 0, s1 = 0;
@@ -164,8 +176,11 @@ SplitVoxel SplitVoxelFitter::fit(const float* w, std::uint32_t S, std::uint32_t 
         if (!changed && iteration > 0) break;
     }
     if (std::abs(m1 - m0) < options_.threshold) return SplitVoxel::uniform(mean);
-    std::vector<float> frontValues, backValues;
-    std::vector<std::uint8_t> cls(count, 0);
+    thread_local std::vector<float> frontValues, backValues;
+    thread_local std::vector<std::uint8_t> cls;
+    frontValues.clear();
+    backValues.clear();
+    cls.assign(count, 0);
     for (std::size_t a = 0; a < count; ++a) {
         (high[a] ? frontValues : backValues).push_back(w[a]);
         cls[a] = high[a] ? 1 : 2;

@@ -153,3 +153,24 @@ TEST(CliBadInput, LightFieldAndToolInputsFailCleanlyBeforeRendering) {
     EXPECT_EQ(dir.entries(),
               (std::vector<std::string>{"fix.json", "p.hvo", "q_qs8x6a0.75.json", "q_qs8x6a0.75.png", "tools.json"}));
 }
+
+// Split-voxel builds: parameters out of range, split options without --split-voxels, a float
+// volume, and a split-voxel octree given to a command that draws voxels, each refused in one
+// sentence that names what is wrong, leaving nothing behind.
+TEST(CliBadInput, SplitVoxelParametersAndFilesAreRefusedInWords) {
+    test::TempDir dir;
+    const std::string out = " -o " + dir.file("s.hvo");
+    expectCleanFailure("build phantom:16x16x16 --split-voxels --split-n 1" + out, dir, "--split-n 1", {}, "out of range");
+    expectCleanFailure("build phantom:16x16x16 --split-voxels --split-n 9" + out, dir, "--split-n 9", {}, "out of range");
+    expectCleanFailure("build phantom:16x16x16 --split-voxels --split-overlap 5" + out, dir, "--split-overlap 5", {},
+                       "out of range");
+    expectCleanFailure("build phantom:16x16x16 --split-voxels --split-threshold -5" + out, dir, "--split-threshold", {});
+    expectCleanFailure("build phantom:16x16x16 --split-n 4" + out, dir, "--split-voxels", {});
+    expectCleanFailure("build phantom:16x16x16 --split-voxels --lossy8" + out, dir, "--lossy8", {});
+    writeBytes(dir.file("f.raw"), 16 * 16 * 16 * 4);
+    expectCleanFailure("build " + dir.file("f.raw") + " --dims 16x16x16 --type float32 --split-voxels" + out, dir,
+                       "8- or 16-bit integer", {"f.raw"});
+    ASSERT_EQ(test::runCommand(cli + " build phantom:16x16x16 --split-voxels --quiet" + out).exitCode, 0);
+    expectCleanFailure("render " + dir.file("s.hvo") + " -o " + dir.file("x.png"), dir, "split-voxel octree",
+                       {"f.raw", "s.hvo"});
+}
