@@ -83,6 +83,7 @@ SplitVoxel fromClasses(float front, float back, const std::vector<std::uint8_t>&
     const double eq42 = glm::dot(n, pb + d * (nb / (nf + nb)) - centre);
     constexpr int kBins = 1024;
     const double span = 0.5 * double(E) / double(S) * (std::abs(n.x) + std::abs(n.y) + std::abs(n.z)) + 1e-9;
+    const std::uint32_t interiorWeight = (E * E * E) / (S * S * S);
     thread_local std::vector<std::int32_t> fronts, backs;
     fronts.assign(kBins, 0);
     backs.assign(kBins, 0);
@@ -92,10 +93,15 @@ SplitVoxel fromClasses(float front, float back, const std::vector<std::uint8_t>&
                 if (cls[at] == 0) continue;
                 const double x = glm::dot(n, glm::dvec3(position(i, j, k, S, M)) - centre);
                 const int bin = std::clamp(int((x + span) / (2.0 * span) * kBins), 0, kBins - 1);
-                (cls[at] == 1 ? fronts : backs)[std::size_t(bin)] += 1;
+                // The cell's own samples weigh as much as the whole window: the plane must
+                // first be right inside the cell, the overlap only steers it.
+                const bool own = i >= M && i < M + S && j >= M && j < M + S && k >= M && k < M + S;
+                (cls[at] == 1 ? fronts : backs)[std::size_t(bin)] += own ? std::int32_t(interiorWeight) : 1;
             }
     // Split at the lower edge of bin b: bins below are behind, from b on in front.
-    long misplaced = long(nb), best = misplaced;  // b = 0: every back sample in front
+    long misplaced = 0;  // b = 0: every back sample in front
+    for (const auto c : backs) misplaced += c;
+    long best = misplaced;
     double offset = eq42, bestGap = 1e300;
     for (int bin = 0; bin <= kBins; ++bin) {
         if (bin > 0) misplaced += fronts[std::size_t(bin - 1)] - backs[std::size_t(bin - 1)];
@@ -118,56 +124,51 @@ SplitVoxel fromClasses(float front, float back, const std::vector<std::uint8_t>&
 SplitVoxel SplitVoxelFitter::fit(const float* w, std::uint32_t S, std::uint32_t M) const {
     const std::uint32_t E = S + 2 * M;
     const std::size_t count = std::size_t(E) * E * E;
-    const auto inside = [&](std::uint32_t i, std::uint32_t j, std::uint32_t k) {
-        return i >= M && i < M + S && j >= M && j < M + S && k >= M && k < M + S;
-    };
-    if (options_.labels) {
-        // The window's labels by frequency (a window holds few distinct labels).
-        thread_local std::vector<std::pair<float, std::uint32_t>> counts, interior;
-        counts.clear();
-        interior.clear();
-        const auto add = [](std::vector<std::pair<float, std::uint32_t>>& c, float v) {
-            for (auto& [label, n] : c)
-                if (label == v) return void(++n);
-            c.emplace_back(v, 1u);
-        };
-        for (std::uint32_t k = 0, at = 0; k < E; ++k)
-            for (std::uint32_t j = 0; j < E; ++j)
-                for (std::uint32_t i = 0; i < E; ++i, ++at) {
-                    add(counts, w[at]);
-                    if (inside(i, j, k)) add(interior, w[at]);
-                }
-        const auto byCount = [](const auto& a, const auto& b) { return a.second > b.second || (a.second == b.second && a.first < b.first); };
-        std::sort(counts.begin(), counts.end(), byCount);
-        std::sort(interior.begin(), interior.end(), byCount);
-        const float mode = interior.front().first;
-        if (counts.size() == 1) return SplitVoxel::uniform(mode);
-        const float front = counts[0].first, back = counts[1].first;
-        thread_local std::vector<std::uint8_t> cls;
-        cls.assign(count, 0);
-        for (std::size_t a = 0; a < count; ++a) cls[a] = w[a] == front ? 1 : w[a] == back ? 2 : 0;
-        return fromClasses(front, back, cls, S, M, mode);
-    }
-    // Intensities: two-means clustering (Lloyd), seeded at the window's extremes.
-    const auto [lo, hi] = std::minmax_element(w, w + count);
-    double interiorSum = 0.0;
+    // The cell's own samples decide its two materials; the overlap only helps place the plane
+    // between them. (Choosing them over the whole window, as the thesis does, lets a third
+    // material of the overlap outvote a thin one inside the cell: a rib two voxels thick in
+    // tissue next to air vanished from CT at every level.)
+    thread_local std::vector<float> interior;
+    interior.clear();
     for (std::uint32_t k = M; k < M + S; ++k)
         for (std::uint32_t j = M; j < M + S; ++j)
-            for (std::uint32_t i = M; i < M + S; ++i) interiorSum += w[(std::size_t(k) * E + j) * E + i];
-    const float mean = float(interiorSum / (double(S) * S * S));
+            for (std::uint32_t i = M; i < M + S; ++i) interior.push_back(w[(std::size_t(k) * E + j) * E + i]);
+    thread_local std::vector<std::uint8_t> cls;
+    cls.assign(count, 0);
+    if (options_.labels) {
+        thread_local std::vector<std::pair<float, std::uint32_t>> counts;
+        counts.clear();
+        for (const float v : interior) {
+            auto it = std::find_if(counts.begin(), counts.end(), [v](const auto& c) { return c.first == v; });
+            if (it == counts.end()) counts.emplace_back(v, 1u);
+            else ++it->second;
+        }
+        std::sort(counts.begin(), counts.end(),
+                  [](const auto& x, const auto& y) { return x.second > y.second || (x.second == y.second && x.first < y.first); });
+        const float front = counts[0].first;
+        if (counts.size() == 1) return SplitVoxel::uniform(front);
+        const float back = counts[1].first;
+        for (std::size_t a = 0; a < count; ++a) cls[a] = w[a] == front ? 1 : w[a] == back ? 2 : 0;
+        return fromClasses(front, back, cls, S, M, front);
+    }
+    // Intensities: two-means clustering (Lloyd) of the cell's samples, seeded at their extremes.
+    const auto [lo, hi] = std::minmax_element(interior.begin(), interior.end());
+    double sum = 0.0;
+    for (const float v : interior) sum += v;
+    const float mean = float(sum / double(interior.size()));
     if (*hi - *lo <= options_.threshold || *hi == *lo) return SplitVoxel::uniform(mean);
     double m0 = *lo, m1 = *hi;
     thread_local std::vector<std::uint8_t> high;
-    high.assign(count, 0);
+    high.assign(interior.size(), 0);
     for (int iteration = 0; iteration < 64; ++iteration) {
         bool changed = false;
         double s0 = 0, s1 = 0;
         std::size_t n0 = 0, n1 = 0;
-        for (std::size_t a = 0; a < count; ++a) {
-            const std::uint8_t h = std::abs(w[a] - m1) < std::abs(w[a] - m0) ? 1 : 0;
+        for (std::size_t a = 0; a < interior.size(); ++a) {
+            const std::uint8_t h = std::abs(interior[a] - m1) < std::abs(interior[a] - m0) ? 1 : 0;
             changed |= h != high[a];
             high[a] = h;
-            (h ? s1 : s0) += w[a];
+            (h ? s1 : s0) += interior[a];
             (h ? n1 : n0) += 1;
         }
         if (n0 == 0 || n1 == 0) break;
@@ -177,18 +178,20 @@ SplitVoxel SplitVoxelFitter::fit(const float* w, std::uint32_t S, std::uint32_t 
     }
     if (std::abs(m1 - m0) < options_.threshold) return SplitVoxel::uniform(mean);
     thread_local std::vector<float> frontValues, backValues;
-    thread_local std::vector<std::uint8_t> cls;
     frontValues.clear();
     backValues.clear();
-    cls.assign(count, 0);
-    for (std::size_t a = 0; a < count; ++a) {
-        (high[a] ? frontValues : backValues).push_back(w[a]);
-        cls[a] = high[a] ? 1 : 2;
-    }
+    for (std::size_t a = 0; a < interior.size(); ++a) (high[a] ? frontValues : backValues).push_back(interior[a]);
     if (frontValues.empty() || backValues.empty()) return SplitVoxel::uniform(mean);
     const bool frontLarger = frontValues.size() >= backValues.size();
     const float front = lowerMedian(frontValues), back = lowerMedian(backValues);
-    // Not separable: the cell is the larger cluster's material (as labels take the most frequent).
+    // The window's samples by the nearer of the two means; a sample farther from both than
+    // half their gap is a third material and places no plane.
+    const double gap = std::abs(m1 - m0);
+    for (std::size_t a = 0; a < count; ++a) {
+        const double d0 = std::abs(w[a] - m0), d1 = std::abs(w[a] - m1);
+        if (std::min(d0, d1) <= 0.5 * gap) cls[a] = d1 < d0 ? 1 : 2;
+    }
+    // Not separable: the cell is its larger cluster's material.
     return fromClasses(front, back, cls, S, M, frontLarger ? front : back);
 }
 

@@ -18,14 +18,16 @@ struct SplitVoxelOptions {
 };
 
 /// Fits one split-voxel to a window of samples (thesis §4.4.1): the cell's S³ interior samples
-/// and `overlap` layers of neighbours on every side, x fastest. Labels: the two most frequent
-/// labels of the window; intensities: two-means clustering seeded at the window's minimum and
-/// maximum, each cluster's median its value. The plane passes through the point of Eq. 4.2
-/// between the two classes' barycentres, normal along Eq. 4.1. The cell is uniform when one
-/// class fills the window, when the barycentres lie within half a sample of each other (not
-/// linearly separable), when the means are closer than the threshold, or when the plane misses
-/// the cell (then the value of the side the cell lies on). A uniform cell of intensities takes
-/// the mean of its interior samples, a uniform cell of labels their most frequent label.
+/// and `overlap` layers of neighbours on every side, x fastest. The cell's own samples choose its
+/// two materials: labels, the two most frequent of the interior; intensities, two-means
+/// clustering of the interior seeded at its extremes, each cluster's median its value. The
+/// window's samples of those two materials (a sample of a third one counts for neither) place
+/// the plane: Eqs. 4.1–4.2 from their barycentres, refined (Fisher's direction, the offset that
+/// misplaces fewest samples). The cell is uniform when its interior holds one material (or
+/// intensities within the threshold: their mean), when the classes are not separable (the
+/// interior's larger class), or when the plane misses the cell (the side it lies on).
+/// The thesis chooses the materials over the whole window; here the interior does, so that a
+/// thin structure inside the cell is not outvoted by a material of the overlap.
 ///
 /// Threading: const; fit may run on many threads at once.
 class SplitVoxelFitter {

@@ -4,7 +4,7 @@
 // and at coarse accuracy, and PSNR against the full-resolution trilinear render at the same
 // element count (a plain level of 2^L voxels against split cells of 2^L voxels).
 //
-//   build/release/tests/bench/hvx_bench_splitvoxels [--size 384] [--phantom 256x256x256]
+//   build/release/tests/bench/hvx_bench_splitvoxels [--size 384] [--phantom 256x256x256] [--png DIR]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -20,6 +20,7 @@
 #include <unistd.h>
 
 #include "core/appearance/LabelTable.h"
+#include "core/image/ImageWriter.h"
 #include "core/octree/OctreeBuilder.h"
 #include "core/octree/OctreeReader.h"
 #include "core/octree/SplitVoxelGrid.h"
@@ -73,6 +74,8 @@ core::RenderImage plain(const core::OctreeReader& reader, const core::View& view
     ms = seconds(t) * 1000.0;
     return img;
 }
+
+std::string g_png;  // --png DIR: the renders, to look at
 
 void run(const std::string& name, core::VoxelSource& source, bool labels, int size, const std::filesystem::path& dir) {
     const auto& g = source.geometry();
@@ -135,6 +138,12 @@ void run(const std::string& name, core::VoxelSource& source, bool labels, int si
         const auto ts = Clock::now();
         const auto split = core::SplitVoxelRayCaster(levels[std::size_t(l)], labelled, tf, rs).render(view);
         const double splitMs = seconds(ts) * 1000.0;
+        if (!g_png.empty()) {
+            const std::string base = g_png + "/" + name + "-cells" + std::to_string(cell);
+            core::ImageWriter::writePng(coarse, base + "-trilinear.png");
+            core::ImageWriter::writePng(split, base + "-split.png");
+            if (l == 0) core::ImageWriter::writePng(full, g_png + "/" + name + "-full.png");
+        }
         std::printf("  cells of %2u voxels | trilinear, cut's finest level %d: %6.0f ms, %5.1f dB | split-voxels: %6.0f ms, "
                     "%5.1f dB (full resolution: level %d, %.0f ms)\n",
                     cell, pl, plainMs, psnr(coarse, full), splitMs, psnr(split, full), level, fullMs);
@@ -148,6 +157,7 @@ int main(int argc, char** argv) {
     for (int i = 1; i + 1 < argc; i += 2) {
         if (!std::strcmp(argv[i], "--size")) size = std::max(64, std::atoi(argv[i + 1]));
         else if (!std::strcmp(argv[i], "--phantom")) dims = core::VoxelSourceFactory::parseDims(argv[i + 1]);
+        else if (!std::strcmp(argv[i], "--png")) g_png = argv[i + 1];
     }
     const auto dir = std::filesystem::temp_directory_path() / ("hvx-split-bench-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);

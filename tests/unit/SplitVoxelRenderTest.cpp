@@ -148,7 +148,7 @@ TEST(SplitVoxelRender, CoarseLevelsKeepEachMaterialsColourAndTheSilhouette) {
                     cell, foreignTrilinear, foreignSplit, hTrilinear, hSplit);
         EXPECT_EQ(foreignSplit, 0);
         EXPECT_GT(foreignTrilinear, 20) << "the trilinear coarse level blends the materials";
-        // Measured: 2.0 px (trilinear 2.2) with cells of 4 voxels, 5.4 px (trilinear 4.5) with
+        // Measured: 2.0 px (trilinear 2.2) with cells of 4 voxels, 5.0 px (trilinear 4.5) with
         // cells of 8, the worst pixel where the seam meets the outline: a cell there holds
         // three materials and keeps two. About 1 mm a pixel here.
         EXPECT_LE(hSplit, double(cell) * 0.75);

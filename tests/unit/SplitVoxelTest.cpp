@@ -102,7 +102,9 @@ TEST(SplitVoxel, EncodingKeepsTheValuesExactlyAndThePlaneWithinItsQuantum) {
 // thesis's N = 2 with two layers of overlap and for N = 4 with one.
 TEST(SplitVoxelFitter, HalfSpacesGiveBackTheirPlane) {
     std::mt19937 rng(11);
-    std::uniform_real_distribution<double> off(-0.3, 0.3);
+    // Offsets within ±0.2 of the centre: the plane then has interior samples on both sides
+    // (a plane through the cell between its sample centres leaves the cell uniform).
+    std::uniform_real_distribution<double> off(-0.2, 0.2);
     for (const bool labels : {true, false})
         for (const auto& [S, M] : {std::pair<std::uint32_t, std::uint32_t>{2, 2}, {4, 1}}) {
             core::SplitVoxelOptions o;
@@ -171,18 +173,38 @@ TEST(SplitVoxelFitter, UniformBlocksComeBackUniform) {
     EXPECT_EQ(v.front, 10.0f);
 }
 
-TEST(SplitVoxelFitter, LabelsTakeTheTwoMostFrequentAndNeverInventOne) {
+// The cell's own labels, not the overlap's: a thin label inside the cell is kept even where a
+// third label fills more of the window.
+TEST(SplitVoxelFitter, LabelsAreTheCellsOwnTwoAndNeverInvented) {
     core::SplitVoxelOptions o;
     o.labels = true;
-    // Three labels in slabs along x: 1 (x < 2.5 samples), 2 (two sample columns), 5 (the rest).
+    // Slabs along x in a 6³ window (interior: x = 2, 3): 1 for x < 3, 2 at x = 3 (one sample
+    // column, inside the cell), 5 beyond (72 samples of the window, none inside).
     std::vector<float> w;
     for (int k = 0; k < 6; ++k)
         for (int j = 0; j < 6; ++j)
             for (int i = 0; i < 6; ++i) w.push_back(i < 3 ? 1.0f : i < 4 ? 2.0f : 5.0f);
     const auto v = core::SplitVoxelFitter(o).fit(w.data(), 2, 2);
-    EXPECT_EQ(v.front, 1.0f);  // 108 samples
-    EXPECT_EQ(v.back, 5.0f);   // 72 samples; label 2 (36) is dropped
+    EXPECT_EQ(v.front, 1.0f);  // 4 interior samples each: the smaller label first
+    EXPECT_EQ(v.back, 2.0f);
     EXPECT_LT(degreesBetween(glm::dvec3(v.normal), {-1, 0, 0}), 1e-3);
+    // Half way between the two interior columns (x = 2.5 and 3.5 in window samples: 0.25 and
+    // 0.75 of the cell): the plane at the cell's centre.
+    EXPECT_LT(std::abs(v.offset), 0.01);
+}
+
+// CT's three materials in one window: a rib two voxels thick inside the cell, soft tissue
+// around it, air in the overlap. The cell keeps bone and tissue (air counts for neither).
+TEST(SplitVoxelFitter, AThinBoneInsideTheCellIsNotOutvotedByAirInTheOverlap) {
+    core::SplitVoxelOptions o;
+    o.threshold = 80.0;
+    std::vector<float> w;
+    for (int k = 0; k < 6; ++k)
+        for (int j = 0; j < 6; ++j)
+            for (int i = 0; i < 6; ++i) w.push_back(j >= 2 && j < 4 && i >= 3 ? 700.0f : i < 1 ? -1000.0f : 40.0f);
+    const auto v = core::SplitVoxelFitter(o).fit(w.data(), 2, 2);
+    EXPECT_EQ(std::set<float>({v.front, v.back}), std::set<float>({700.0f, 40.0f}));
+    EXPECT_FALSE(v.isUniform());
 }
 
 TEST(SplitVoxelOptions, OutOfRangeParametersAreRefusedInWords) {
