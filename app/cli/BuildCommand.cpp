@@ -92,10 +92,7 @@ int buildCommand(int argc, char** argv) {
             if (!std::isfinite(*t) || *t < 0)
                 throw core::Error("--split-threshold must be a value of 0 or more, in the volume's units (HU for CT)");
             split->threshold = std::abs(*t / g.rescaleSlope);
-        } else {
-            // Without one: 2% of the stored range, so that noise inside one material stays one value.
-            split->threshold = 0.02 * std::max(1.0, g.valueMax - g.valueMin);
-        }
+        }  // without one: 2% of the stored range found in the volume, so noise in one material stays one value
         split->validate();
     } else if (args.value("split-n") || args.value("split-overlap") || args.value("split-threshold")) {
         throw core::Error("--split-n, --split-overlap and --split-threshold go with --split-voxels");

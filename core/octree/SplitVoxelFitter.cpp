@@ -18,8 +18,8 @@ void SplitVoxelOptions::validate() const {
         throw Error("--split-n " + std::to_string(n) + " is out of range: a split-voxel stands for 2 to 8 voxels per edge");
     if (overlap > 4)
         throw Error("--split-overlap " + std::to_string(overlap) + " is out of range: 0 to 4 neighbour layers");
-    if (!std::isfinite(threshold) || threshold < 0.0)
-        throw Error("--split-threshold must be a finite value of 0 or more (" + std::to_string(threshold) + " given)");
+    if (threshold && (!std::isfinite(*threshold) || *threshold < 0.0))
+        throw Error("--split-threshold must be a finite value of 0 or more (" + std::to_string(*threshold) + " given)");
 }
 
 SplitVoxelFitter::SplitVoxelFitter(SplitVoxelOptions options) : options_(options) { options_.validate(); }
@@ -156,7 +156,8 @@ SplitVoxel SplitVoxelFitter::fit(const float* w, std::uint32_t S, std::uint32_t 
     double sum = 0.0;
     for (const float v : interior) sum += v;
     const float mean = float(sum / double(interior.size()));
-    if (*hi - *lo <= options_.threshold || *hi == *lo) return SplitVoxel::uniform(mean);
+    const double threshold = options_.threshold.value_or(0.0);
+    if (*hi - *lo <= threshold || *hi == *lo) return SplitVoxel::uniform(mean);
     double m0 = *lo, m1 = *hi;
     thread_local std::vector<std::uint8_t> high;
     high.assign(interior.size(), 0);
@@ -176,7 +177,7 @@ SplitVoxel SplitVoxelFitter::fit(const float* w, std::uint32_t S, std::uint32_t 
         m1 = s1 / double(n1);
         if (!changed && iteration > 0) break;
     }
-    if (std::abs(m1 - m0) < options_.threshold) return SplitVoxel::uniform(mean);
+    if (std::abs(m1 - m0) < threshold) return SplitVoxel::uniform(mean);
     thread_local std::vector<float> frontValues, backValues;
     frontValues.clear();
     backValues.clear();

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <optional>
 
 #include "core/octree/SplitVoxel.h"
 
@@ -10,8 +11,9 @@ struct SplitVoxelOptions {
     std::uint32_t n = 2;        ///< voxels per split-voxel edge at the finest level (2..8)
     std::uint32_t overlap = 2;  ///< M: neighbour voxel layers each cell's fit also sees (0..4)
     /// Intensities: two clusters whose means differ by less than this (stored units) are one
-    /// material, and the cell is uniform. Labels ignore it.
-    double threshold = 0.0;
+    /// material, and the cell is uniform. Labels ignore it. Unset: 2 % of the stored range the
+    /// level-0 build finds in the volume (SplitVoxelGrid::build).
+    std::optional<double> threshold;
     bool labels = false;  ///< label volume: classes are the labels themselves (§4.4.1.1)
     /// Throws core::Error with a sentence naming the parameter and its range.
     void validate() const;

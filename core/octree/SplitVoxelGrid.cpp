@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 
 #include "core/base/Error.h"
 #include "core/base/ThreadPool.h"
@@ -50,6 +51,7 @@ SplitVoxelGrid SplitVoxelGrid::build(VoxelSource& source, const SplitVoxelOption
     const auto d = g.dims;
     // The volume as floats (stored values), read slab by slab.
     std::vector<float> volume(g.voxelCount());
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
     const std::size_t slice = std::size_t(d[0]) * d[1];
     std::vector<std::uint8_t> slab(slice * scalarSize(g.scalarType) * 16);
     for (std::uint32_t z = 0; z < d[2]; z += 16) {
@@ -62,12 +64,17 @@ SplitVoxelGrid SplitVoxelGrid::build(VoxelSource& source, const SplitVoxelOption
                 case ScalarType::Int16: { std::int16_t v; std::memcpy(&v, &slab[2 * a], 2); out[a] = float(v); break; }
                 default: { std::uint16_t v; std::memcpy(&v, &slab[2 * a], 2); out[a] = float(v); break; }
             }
+            lo = std::min(lo, out[a]);
+            hi = std::max(hi, out[a]);
         }
         job.throwIfCancelled();
     }
     const std::uint32_t N = options.n, M = options.overlap, E = N + 2 * M;
     SplitVoxelGrid grid({ceilDiv(d[0], N), ceilDiv(d[1], N), ceilDiv(d[2], N)}, N);
-    const SplitVoxelFitter fitter(options);
+    SplitVoxelOptions resolved = options;
+    if (!resolved.threshold) resolved.threshold = 0.02 * double(hi - lo);
+    grid.threshold_ = *resolved.threshold;
+    const SplitVoxelFitter fitter(resolved);
     const auto clampTo = [](long v, std::uint32_t size) { return std::size_t(std::clamp(v, 0L, long(size) - 1)); };
     fitAll(grid, fitter, N, M, job, [&](std::uint32_t x, std::uint32_t y, std::uint32_t z, float* w) {
         // Voxels beyond the volume replicate its faces, as brick borders do.
@@ -87,7 +94,10 @@ SplitVoxelGrid SplitVoxelGrid::coarser(const SplitVoxelOptions& options, JobCont
     constexpr std::uint32_t r = 2;
     const std::uint32_t S = 2 * r, M = options.overlap * r, E = S + 2 * M;
     SplitVoxelGrid grid({ceilDiv(dims_[0], 2), ceilDiv(dims_[1], 2), ceilDiv(dims_[2], 2)}, cellVoxels_ * 2);
-    const SplitVoxelFitter fitter(options);
+    SplitVoxelOptions resolved = options;
+    if (!resolved.threshold) resolved.threshold = threshold_;  // level 0's, found in the volume
+    grid.threshold_ = *resolved.threshold;
+    const SplitVoxelFitter fitter(resolved);
     fitAll(grid, fitter, S, M, job, [&](std::uint32_t x, std::uint32_t y, std::uint32_t z, float* w) {
         for (std::uint32_t k = 0; k < E; ++k)
             for (std::uint32_t j = 0; j < E; ++j)

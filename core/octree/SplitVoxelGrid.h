@@ -45,6 +45,8 @@ public:
     }
     /// The reconstructed value at a continuous source index (clamped into the grid).
     float valueAt(const glm::dvec3& index) const;
+    /// The intensity threshold this level was fitted with (stored units).
+    double threshold() const { return threshold_; }
     /// How many cells are split (not uniform).
     std::size_t splitCells() const;
 
@@ -52,6 +54,7 @@ private:
     Dims dims_{0, 0, 0};
     std::uint32_t cellVoxels_ = 1;
     std::vector<SplitVoxel> cells_;
+    double threshold_ = 0.0;  // the intensity threshold the level was fitted with (stored units)
 };
 
 }  // namespace hvx::core
