@@ -37,7 +37,7 @@ std::unique_ptr<OctreeReader> OctreeReader::open(const std::string& path, bool a
     r->load();
     if (r->splitVoxels() && !acceptSplitVoxels)
         throw Error(path + ": a split-voxel octree (cells with two values and a plane, not voxels), which only "
-                           "`holovox-cli info` reads yet; open the volume's own octree");
+                           "`holovox-cli info` and `holovox-cli render --cpu` read yet; open the volume's own octree");
     return r;
 }
 

@@ -26,7 +26,8 @@ namespace hvx::core {
 /// fallback of `holovox-cli render --cpu`. A label map (VolumeGeometry::isLabel) is sampled at
 /// the nearest voxel and each sample classified by its own table entry
 /// (TransferFunction::entry), so no label takes a neighbour's colour; gradients for shading
-/// stay trilinear.
+/// stay trilinear. A split-voxel octree (OctreeReader::splitVoxels) is drawn cell by cell
+/// (thesis §4.5.2, SplitCellMarch), DVR only.
 ///
 /// Threading: render() spreads rows over ThreadPool::shared(); the object is immutable.
 class CpuRayCaster {
@@ -48,6 +49,9 @@ private:
     friend class FusedRayCaster;  // samples, classifies and shades each of its two volumes
     glm::vec4 cast(const glm::dvec3& origin, const glm::dvec3& direction, float& depth,
                    std::vector<std::uint32_t>* counts) const;
+    /// A split-voxel octree's ray (DVR): the cells of each leaf by SplitCellMarch.
+    glm::vec4 castSplit(const glm::dvec3& origin, const glm::dvec3& direction, float& depth,
+                        std::vector<std::uint32_t>* counts) const;
     template <class Visitor>
     void walk(const glm::dvec3& origin, const glm::dvec3& direction, Visitor&& visit) const;
     /// What sampling a leaf's brick needs, worked out once per leaf a ray enters.

@@ -128,7 +128,16 @@ bool WorkingSet::available(std::uint32_t node, double priority) {
         nodeSlot_.erase(slotNode_[slot]);
     }
     std::shared_ptr<std::vector<float>> samples;
-    if (options_.cpuMirror) {
+    if (options_.cpuMirror && brick->splitVoxels) {
+        // Split-voxel cells, six floats each: front, back, the plane's normal and offset.
+        samples = std::make_shared<std::vector<float>>(std::size_t(brick->edge) * brick->edge * brick->edge * 6);
+        for (std::uint32_t z = 0, i = 0; z < brick->edge; ++z)
+            for (std::uint32_t y = 0; y < brick->edge; ++y)
+                for (std::uint32_t x = 0; x < brick->edge; ++x) {
+                    const SplitVoxel v = brick->cell(x, y, z);
+                    for (const float f : {v.front, v.back, v.normal.x, v.normal.y, v.normal.z, v.offset}) (*samples)[i++] = f;
+                }
+    } else if (options_.cpuMirror) {
         samples = std::make_shared<std::vector<float>>(std::size_t(brick->edge) * brick->edge * brick->edge);
         for (std::uint32_t z = 0, i = 0; z < brick->edge; ++z)
             for (std::uint32_t y = 0; y < brick->edge; ++y)

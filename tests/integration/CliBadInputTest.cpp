@@ -173,4 +173,12 @@ TEST(CliBadInput, SplitVoxelParametersAndFilesAreRefusedInWords) {
     ASSERT_EQ(test::runCommand(cli + " build phantom:16x16x16 --split-voxels --quiet" + out).exitCode, 0);
     expectCleanFailure("render " + dir.file("s.hvo") + " -o " + dir.file("x.png"), dir, "split-voxel octree",
                        {"f.raw", "s.hvo"});
+    expectCleanFailure("render " + dir.file("s.hvo") + " --cpu --mode mip -o " + dir.file("x.png"), dir, "s.hvo",
+                       {"f.raw", "s.hvo"}, "DVR");
+    expectCleanFailure("slice " + dir.file("s.hvo") + " -o " + dir.file("x.png"), dir, "split-voxel octree",
+                       {"f.raw", "s.hvo"});
+    // The CPU reference draws it.
+    const auto r = test::runCommand(cli + " render " + dir.file("s.hvo") + " --cpu --size 64x64 -o " + dir.file("x.png"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(dir.entries(), (std::vector<std::string>{"f.raw", "s.hvo", "x.png"}));
 }

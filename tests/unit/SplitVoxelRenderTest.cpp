@@ -16,6 +16,7 @@
 #include "core/octree/OctreeBuilder.h"
 #include "core/octree/OctreeReader.h"
 #include "core/octree/SplitVoxelGrid.h"
+#include "core/octree/SplitVoxelOctreeBuilder.h"
 #include "core/reference/CpuRayCaster.h"
 #include "core/reference/SplitVoxelRayCaster.h"
 #include "core/streaming/BrickCache.h"
@@ -154,4 +155,58 @@ TEST(SplitVoxelRender, CoarseLevelsKeepEachMaterialsColourAndTheSilhouette) {
         EXPECT_LE(hSplit, double(cell) * 0.75);
         EXPECT_LE(hTrilinear, double(cell) * 0.75);
     }
+}
+
+// A split-voxel .hvo drawn through the working set by the CPU ray caster (leaf by leaf, each
+// leaf's cells by the same DDA) gives the image the reference caster gives over the same level
+// held whole: at full resolution (cells of 2 voxels) and through the root alone (cells of 8),
+// unshaded and shaded.
+TEST(SplitVoxelRender, AnOctreeDrawnThroughTheWorkingSetMatchesTheLevelHeldWhole) {
+    core::VolumeGeometry g;
+    g.scalarType = core::ScalarType::Int16;
+    g.valueMax = 200.0;
+    g.spacing = {0.9, 1.1, 1.3};
+    test::MemoryVoxelSource source(g, twoMaterialSphere());
+    test::TempDir dir;
+    core::BuildOptions b;
+    b.brickSize = 16;  // cells 64³: levels of 4³, 2³ and 1 brick
+    core::SplitVoxelOptions o;
+    o.threshold = 20.0;
+    core::JobContext job;
+    core::SplitVoxelOctreeBuilder(b, o).build(source, dir.file("s.hvo"), job);
+    const auto reader = core::OctreeReader::open(dir.file("s.hvo"), true);
+    ASSERT_EQ(reader->levelCount(), 3);
+    std::vector<core::SplitVoxelGrid> levels{core::SplitVoxelGrid::build(source, o, job)};
+    while (levels.size() < 3) levels.push_back(levels.back().coarser(o, job));
+    const auto tf = threeColours();
+    const auto space = core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount());
+    const auto view = core::View::orbit(space.centre(), 350.0, -40.0, 25.0, kSize, kSize);
+    for (const bool shading : {false, true})
+        for (const int level : {0, 2}) {
+            core::RenderSettings rs;
+            rs.shading = shading;
+            core::BrickCache cache(std::size_t(1) << 28);
+            core::BrickLoader loader(*reader, cache);
+            core::WorkingSetOptions wo;
+            wo.voxelsPerPixel = level == 0 ? 1e-6 : 1e9;
+            core::WorkingSet ws(*reader, cache, loader, wo);
+            ws.converge({view}, tf);
+            ASSERT_EQ(ws.stats().finestLevel, level);
+            ASSERT_EQ(ws.stats().coarsestLevel, level);
+            const auto viaOctree = core::CpuRayCaster(*reader, ws.index(), ws.slotData(), tf, rs).render(view);
+            const auto whole = core::SplitVoxelRayCaster(levels[std::size_t(level)], source.geometry(), tf, rs).render(view);
+            double se = 0;
+            int lit = 0;
+            for (std::size_t i = 0; i < whole.rgba.size(); ++i) {
+                const glm::vec4 e = viaOctree.rgba[i] - whole.rgba[i];
+                se += double(e.r * e.r + e.g * e.g + e.b * e.b);
+                lit += whole.rgba[i].a > 0.5f;
+            }
+            const double mse = se / (3.0 * double(whole.rgba.size()));
+            const double db = mse > 0 ? 10.0 * std::log10(1.0 / mse) : 99.0;
+            std::printf("level %d (cells of %u voxels), %s: through the working set vs held whole %.1f dB, %d pixels covered\n",
+                        level, levels[std::size_t(level)].cellVoxels(), shading ? "shaded" : "unshaded", db, lit);
+            EXPECT_GT(lit, 2000);
+            EXPECT_GT(db, shading ? 35.0 : 45.0);
+        }
 }
