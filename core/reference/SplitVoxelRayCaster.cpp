@@ -9,6 +9,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/base/ThreadPool.h"
+#include "core/reference/PixelRays.h"
 #include "core/reference/SplitCellMarch.h"
 
 namespace hvx::core {
@@ -53,21 +54,7 @@ glm::vec4 SplitVoxelRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, 
 }
 
 RenderImage SplitVoxelRayCaster::render(const View& view) const {
-    RenderImage img;
-    img.width = view.width;
-    img.height = view.height;
-    img.rgba.assign(std::size_t(view.width) * view.height, glm::vec4(0.0f));
-    img.depth.assign(img.rgba.size(), std::numeric_limits<float>::infinity());
-    ThreadPool::shared().parallelFor(std::size_t(view.height), [&](std::size_t y0, std::size_t y1) {
-        for (std::size_t y = y0; y < y1; ++y)
-            for (int x = 0; x < view.width; ++x) {
-                glm::dvec3 o, d;
-                view.ray(x, double(y), o, d);
-                const std::size_t i = y * std::size_t(view.width) + std::size_t(x);
-                img.rgba[i] = cast(o, d, img.depth[i]);
-            }
-    }, 8);
-    return img;
+    return castPixelRays(view, [this](const glm::dvec3& o, const glm::dvec3& d, float& depth) { return cast(o, d, depth); });
 }
 
 }  // namespace hvx::core

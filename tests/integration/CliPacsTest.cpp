@@ -31,6 +31,16 @@ std::string bytes(const std::string& path) {
     return std::string((std::istreambuf_iterator<char>(in)), {});
 }
 
+/// The 24×24 16-bit pixels that end each file (Pixel Data is the last element), as a multiset.
+std::multiset<std::string> pixelsOf(const std::vector<std::string>& paths) {
+    std::multiset<std::string> out;
+    for (const auto& p : paths) {
+        const std::string all = bytes(p);
+        out.insert(all.substr(all.size() - std::min<std::size_t>(all.size(), 24 * 24 * 2)));
+    }
+    return out;
+}
+
 std::vector<std::string> phantomSeries(const std::string& dir, const std::string& patient, const std::string& study,
                                        const std::string& series, std::uint32_t slices) {
     core::PhantomVoxelSource p({24, 24, slices}, 7);
@@ -104,14 +114,7 @@ TEST(CliPacs, AddListEchoFindSendAndGetAgainstOrthanc) {
         EXPECT_EQ(got[i].rfind(dir.file("rx") + "/", 0), 0u) << "stored under --storage: " << got[i];
     }
     // Pixel Data ends each file: every seeded image's pixels arrived, once each.
-    const auto pixels = [](const std::string& path) {
-        const std::string all = bytes(path);
-        return all.substr(all.size() - std::min<std::size_t>(all.size(), 24 * 24 * 2));
-    };
-    std::multiset<std::string> want, have;
-    for (const auto& s : seeded) want.insert(pixels(s));
-    for (const auto& g : got) have.insert(pixels(g));
-    EXPECT_TRUE(want == have) << "the received files carry the seeded pixels";
+    EXPECT_TRUE(pixelsOf(seeded) == pixelsOf(got)) << "the received files carry the seeded pixels";
     r = test::runCommand(cli + " studies" + db);
     EXPECT_NE(r.output.find("CLI^SEEDED"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("6 images"), std::string::npos) << r.output;
@@ -220,14 +223,7 @@ TEST(CliPacs, ListenFilesWhatAModalityPushesAndStopsOnSigterm) {
     for (const auto& e : std::filesystem::recursive_directory_iterator(dir.file("in")))
         if (e.is_regular_file()) stored.push_back(e.path().string());
     ASSERT_EQ(stored.size(), files.size());
-    const auto pixels = [](const std::string& path) {  // Pixel Data ends each file
-        const std::string all = bytes(path);
-        return all.substr(all.size() - std::min<std::size_t>(all.size(), 24 * 24 * 2));
-    };
-    std::multiset<std::string> want, have;
-    for (const auto& f : files) want.insert(pixels(f));
-    for (const auto& s : stored) have.insert(pixels(s));
-    EXPECT_TRUE(want == have) << "the stored files carry the pushed pixels";
+    EXPECT_TRUE(pixelsOf(files) == pixelsOf(stored)) << "the stored files carry the pushed pixels";
     r = test::runCommand(cli + " studies --db " + db);
     EXPECT_NE(r.output.find("CLI^PUSHED"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("5 images"), std::string::npos) << r.output;
