@@ -53,8 +53,8 @@ struct SplitCompositor {
     }
 };
 
-/// Where a march left off, carried from one box of cells to the next along a ray: the last
-/// material, and the axis of the face it crossed into the current cell (−1: none).
+/// Where a march left off, carried from one box of cells (a leaf) to the next along a ray: the
+/// last material it added (NaN: none, or a stretch the transfer function hides).
 struct SplitMarchState {
     float previous = std::numeric_limits<float>::quiet_NaN();
 };

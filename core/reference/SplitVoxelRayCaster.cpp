@@ -8,7 +8,6 @@
 #include <glm/mat4x4.hpp>
 #include <glm/matrix.hpp>
 
-#include "core/base/ThreadPool.h"
 #include "core/reference/PixelRays.h"
 #include "core/reference/SplitCellMarch.h"
 
@@ -27,7 +26,6 @@ SplitVoxelRayCaster::SplitVoxelRayCaster(const SplitVoxelGrid& grid, const Volum
 }
 
 glm::vec4 SplitVoxelRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& depth) const {
-    glm::dvec4 accum(0.0);
     const glm::dvec3 o(worldToCell_ * glm::dvec4(ow, 1.0));
     const glm::dvec3 d = glm::dmat3(worldToCell_) * dw;  // t stays world mm along the ray
     // Where the ray crosses the volume's box.
