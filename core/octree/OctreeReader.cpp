@@ -162,34 +162,29 @@ Brick OctreeReader::readBrick(std::uint32_t node) const {
         });
         return b;
     }
+    // One read, checksum and decompression for every kind of payload; what it decodes to:
+    // split-voxel cells (unshuffled), lossy 8-bit codes, or samples of the volume's type.
+    std::size_t bytes = 0, width = 1;
     if (splitVoxels()) {
         b.splitVoxels = true;
-        const std::size_t bytes = samples * SplitVoxel::encodedSize(scalarSize(b.type));
-        std::vector<std::byte> packed(n.payloadSize);
-        if (!readFully(fd_, packed.data(), packed.size(), n.payloadOffset))
-            throw CorruptBrickError(where() + " cannot be read (" + std::strerror(errno) + ")", node);
-        if (BrickCodec::checksum(packed.data(), packed.size()) != n.checksum)
-            throw CorruptBrickError(where() + " is corrupt (checksum mismatch)", node);
-        b.data.resize(bytes);
-        if (!BrickCodec::decompress(hvo::Codec(header_.codec), packed.data(), packed.size(), b.data.data(), bytes, 1))
-            throw CorruptBrickError(where() + " is corrupt (does not decompress)", node);
-        return b;
-    }
-    b.lossy8 = (n.flags & hvo::NodeLossy8) != 0;
-    if (b.lossy8) {
-        b.type = ScalarType::UInt8;
-        b.quantMin = n.quantMin;
-        b.quantMax = n.quantMax;
+        bytes = samples * SplitVoxel::encodedSize(scalarSize(b.type));
+    } else {
+        b.lossy8 = (n.flags & hvo::NodeLossy8) != 0;
+        if (b.lossy8) {
+            b.type = ScalarType::UInt8;
+            b.quantMin = n.quantMin;
+            b.quantMax = n.quantMax;
+        }
+        bytes = samples * scalarSize(b.type);
+        width = (header_.flags & hvo::FileShuffled) ? scalarSize(b.type) : 1;
     }
     std::vector<std::byte> packed(n.payloadSize);
     if (!readFully(fd_, packed.data(), packed.size(), n.payloadOffset))
         throw CorruptBrickError(where() + " cannot be read (" + std::strerror(errno) + ")", node);
     if (BrickCodec::checksum(packed.data(), packed.size()) != n.checksum)
         throw CorruptBrickError(where() + " is corrupt (checksum mismatch)", node);
-    b.data.resize(samples * scalarSize(b.type));
-    const std::size_t width = (header_.flags & hvo::FileShuffled) ? scalarSize(b.type) : 1;
-    if (!BrickCodec::decompress(hvo::Codec(header_.codec), packed.data(), packed.size(), b.data.data(), b.data.size(),
-                                width))
+    b.data.resize(bytes);
+    if (!BrickCodec::decompress(hvo::Codec(header_.codec), packed.data(), packed.size(), b.data.data(), bytes, width))
         throw CorruptBrickError(where() + " is corrupt (does not decompress)", node);
     return b;
 }
