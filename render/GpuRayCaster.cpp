@@ -77,12 +77,13 @@ std::uint64_t cellKey(const core::TransferFunction& tf, const core::RenderSettin
 }  // namespace
 
 std::size_t GpuRayCaster::uploadPool(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
-                                     std::uint32_t brickSize, std::uint32_t border, core::ScalarType type) {
+                                     std::uint32_t brickSize, std::uint32_t border, core::ScalarType type, bool split) {
     const std::uint32_t edge = brickSize + 2 * border;
     std::size_t uploaded = 0;
     const auto count = std::uint32_t(std::max<std::size_t>(1, slots.size()));
     // A near-cubic grid of slots, rebuilt only when it must grow or the volume's type changes.
-    if (!pool.texture || edge != pool.edge || type != pool.type || count > pool.row * pool.row * pool.layers) {
+    if (!pool.texture || edge != pool.edge || type != pool.type || split != pool.split ||
+        count > pool.row * pool.row * pool.layers) {
         if (pool.texture) glDeleteTextures(1, &pool.texture);
         GLint maxSize = 2048;
         glGetIntegerv(GL_MAX_3D_TEXTURE_SIZE, &maxSize);
@@ -94,10 +95,12 @@ std::size_t GpuRayCaster::uploadPool(Pool& pool, const std::vector<std::shared_p
         pool.edge = edge;
         pool.type = type;
         glCreateTextures(GL_TEXTURE_3D, 1, &pool.texture);
-        glTextureStorage3D(pool.texture, 1, poolFormat(type), GLsizei(pool.row * edge), GLsizei(pool.row * edge),
-                           GLsizei(pool.layers * edge));
-        glTextureParameteri(pool.texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(pool.texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        pool.split = split;
+        // Split-voxel cells are integers read texel by texel (an integer texture is never filtered).
+        glTextureStorage3D(pool.texture, 1, split ? GL_RGBA16UI : poolFormat(type), GLsizei(pool.row * edge),
+                           GLsizei(pool.row * edge), GLsizei(pool.layers * edge));
+        glTextureParameteri(pool.texture, GL_TEXTURE_MIN_FILTER, split ? GL_NEAREST : GL_LINEAR);
+        glTextureParameteri(pool.texture, GL_TEXTURE_MAG_FILTER, split ? GL_NEAREST : GL_LINEAR);
         glTextureParameteri(pool.texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
         glTextureParameteri(pool.texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
         glTextureParameteri(pool.texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
@@ -105,13 +108,20 @@ std::size_t GpuRayCaster::uploadPool(Pool& pool, const std::vector<std::shared_p
         pool.records.assign(pool.content.size(), {});
         pool.cells.assign(pool.content.size(), {});
         pool.cellsStale.assign(pool.content.size(), true);
-        pool.bytes = pool.content.size() * std::size_t(edge) * edge * edge * core::scalarSize(type);
+        pool.bytes = pool.content.size() * std::size_t(edge) * edge * edge * (split ? 8 : core::scalarSize(type));
     }
     std::vector<std::uint16_t> biased;
     for (std::size_t s = 0; s < slots.size(); ++s) {
         const auto& brick = slots[s];
         if (!brick || pool.content[s] == brick) continue;  // unchanged since the last upload
         if (brick->edge != edge) throw core::Error("a brick does not match the pool's slot size");
+        if (brick->splitVoxels != split) throw core::Error("a brick does not match the pool's kind (split-voxel or not)");
+        if (split) {
+            uploadSplitBrick(pool, std::uint32_t(s), *brick, biased);
+            pool.content[s] = brick;
+            uploaded += brick->data.size();
+            continue;
+        }
         // The texel format converts to normalised floats; the slot's affine map gives stored values back.
         GLenum format = GL_FLOAT;
         const void* data = brick->data.data();
@@ -148,6 +158,32 @@ std::size_t GpuRayCaster::uploadPool(Pool& pool, const std::vector<std::shared_p
         uploaded += brick->data.size();
     }
     return uploaded;
+}
+
+void GpuRayCaster::uploadSplitBrick(Pool& pool, std::uint32_t slot, const core::Brick& brick,
+                                    std::vector<std::uint16_t>& scratch) {
+    // One RGBA16UI texel per cell: 16-bit data is uploaded as encoded (two values, then the
+    // plane's four bytes); 8-bit data's six bytes are widened to the same four channels.
+    const std::uint32_t edge = pool.edge;
+    const std::size_t cells = std::size_t(edge) * edge * edge;
+    const void* data = brick.data.data();
+    if (core::scalarSize(brick.type) == 1) {
+        if (brick.data.size() != cells * 6) throw core::Error("a split-voxel brick has the wrong size");
+        const auto* in = reinterpret_cast<const std::uint8_t*>(brick.data.data());
+        scratch.resize(cells * 4);
+        for (std::size_t i = 0; i < cells; ++i, in += 6) {
+            scratch[4 * i] = in[0];
+            scratch[4 * i + 1] = in[1];
+            scratch[4 * i + 2] = std::uint16_t(in[2] | in[3] << 8);
+            scratch[4 * i + 3] = std::uint16_t(in[4] | in[5] << 8);
+        }
+        data = scratch.data();
+    } else if (brick.data.size() != cells * 8) {
+        throw core::Error("a split-voxel brick has the wrong size");
+    }
+    glTextureSubImage3D(pool.texture, 0, GLint(slot % pool.row * edge), GLint(slot / pool.row % pool.row * edge),
+                        GLint(slot / pool.layer * edge), GLsizei(edge), GLsizei(edge), GLsizei(edge), GL_RGBA_INTEGER,
+                        GL_UNSIGNED_SHORT, data);
 }
 
 void GpuRayCaster::updateVisibleCells(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
@@ -209,11 +245,16 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     if (overlay && settings.mode != core::RenderSettings::Mode::Dvr)
         throw core::Error("two volumes are fused in 3D in DVR only");
     if (overlay && tools) throw core::Error("the illustrative tools are not drawn over a fused volume");
+    // A split-voxel octree (1; 2 for signed values) is walked cell by cell (raycast_split.glsl).
+    const int split = reader.splitVoxels() ? (reader.geometry().scalarType == core::ScalarType::Int16 ? 2 : 1) : 0;
+    if (split && (settings.mode != core::RenderSettings::Mode::Dvr || tools || overlay || tf.hasGradientOpacity()))
+        throw core::Error(reader.path() + ": a split-voxel octree is drawn in DVR, alone, without the illustrative tools or "
+                                          "gradient opacity for now");
     const int labels = reader.geometry().isLabel ? 1 : 0;
     const int fusion = overlay ? 1 + (overlay->reader.geometry().isLabel ? 1 : 0) : 0;  // 1 image, 2 label map
     const int gradient = !overlay && settings.mode == core::RenderSettings::Mode::Dvr && tf.hasGradientOpacity() ? 1 : 0;
-    // A static variant per mode, tools, labels, fusion and gradient opacity.
-    auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion + 16384 * gradient];
+    // A static variant per mode, tools, labels, fusion, gradient opacity and split-voxels.
+    auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion + 16384 * gradient + 32768 * split];
     if (!program)
         program = std::make_unique<ComputeProgram>(
             ShaderLibrary::embedded(), "raycast.comp.glsl",
@@ -221,7 +262,9 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                                      "HVX_LABELS " + std::to_string(labels),
                                      "HVX_FUSION " + std::to_string(fusion ? 1 : 0),
                                      "HVX_LABELS_B " + std::to_string(fusion == 2 ? 1 : 0),
-                                     "HVX_GRADIENT_OPACITY " + std::to_string(gradient)});
+                                     "HVX_GRADIENT_OPACITY " + std::to_string(gradient),
+                                     "HVX_SPLIT " + std::to_string(split ? 1 : 0),
+                                     "HVX_SPLIT_SIGNED " + std::to_string(split == 2 ? 1 : 0)});
     if (gradient)
         glNamedBufferData(buffers_[12], GLsizeiptr(tf.gradientTable().size() * sizeof(float)), tf.gradientTable().data(),
                           GL_STREAM_DRAW);
@@ -229,11 +272,11 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     static_assert(sizeof(packed) == 16 * 16, "std140 layout of HvxTools");
     glNamedBufferData(buffers_[9], sizeof packed, &packed, GL_STREAM_DRAW);
     uploaded_ = uploadPool(pools_[0], slots, reader.brickSize(), reader.border(),
-                           floatPool_ ? core::ScalarType::Float32 : reader.geometry().scalarType);
+                           floatPool_ && !split ? core::ScalarType::Float32 : reader.geometry().scalarType, split != 0);
     // Which cells of each slot's brick may show (64 bits per slot), kept from frame to frame.
     // The fused march skips each volume's cells under its own transfer function.
     const bool dvr = settings.mode == core::RenderSettings::Mode::Dvr;
-    const bool skip = settings.skipEmptyCells && (dvr || settings.mode == core::RenderSettings::Mode::Iso);
+    const bool skip = settings.skipEmptyCells && !split && (dvr || settings.mode == core::RenderSettings::Mode::Iso);
     updateVisibleCells(pools_[0], slots, tf, settings, skip);
     if (overlay) {
         const auto& og = overlay->reader.geometry();
@@ -331,8 +374,10 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     if (gradient) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, buffers_[12]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers_[9]);
-    glBindTextureUnit(0, pools_[0].texture);
-    glBindTextureUnit(1, overlay ? pools_[1].texture : pools_[0].texture);
+    // Each sampler type its own units: a split-voxel pool is an integer texture (unit 2).
+    glBindTextureUnit(0, split ? 0 : pools_[0].texture);
+    glBindTextureUnit(1, overlay ? pools_[1].texture : split ? 0 : pools_[0].texture);
+    glBindTextureUnit(2, split ? pools_[0].texture : 0);
     glDispatchCompute(GLuint((width + 7) / 8), GLuint((height + 7) / 8), GLuint(views.size()));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 

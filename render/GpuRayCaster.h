@@ -81,11 +81,14 @@ private:
         std::vector<bool> cellsStale;
         std::uint64_t cellKey = 0;
         core::ScalarType type = core::ScalarType::Float32;
+        bool split = false;  // RGBA16UI split-voxel cells (raycast_split.glsl), not samples
         std::size_t bytes = 0;
     };
     /// Brings a pool up to date with the working set's slots; returns the bytes uploaded.
     std::size_t uploadPool(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
-                           std::uint32_t brickSize, std::uint32_t border, core::ScalarType type);
+                           std::uint32_t brickSize, std::uint32_t border, core::ScalarType type, bool split = false);
+    /// Writes a split-voxel brick's cells into its slot, one RGBA16UI texel each.
+    static void uploadSplitBrick(Pool& pool, std::uint32_t slot, const core::Brick& brick, std::vector<std::uint16_t>& scratch);
     /// Which cells of each slot's brick may show (all of them when nothing is skipped).
     static void updateVisibleCells(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
                                    const core::TransferFunction& tf, const core::RenderSettings& settings, bool skip);

@@ -129,10 +129,12 @@ int renderCommand(int argc, char** argv) {
         throw core::Error("usage: holovox-cli render FILE.hvo|SERIES_UID --time N [--db FILE] [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
                           "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L] | "
                           "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--gradient-opacity G:S,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
-    // A split-voxel octree: drawn by the CPU reference for now (the GPU variant is to come).
-    const auto reader = core::OctreeReader::open(timePoint(args), args.flag("cpu"));
+    // A split-voxel octree: its cells walked by a DDA (GPU: raycast_split.glsl; --cpu: SplitCellMarch).
+    const auto reader = core::OctreeReader::open(timePoint(args), true);
     if (reader->splitVoxels() && (args.value("overlay") || args.value("labels") || args.value("gradient-opacity")))
         throw core::Error(reader->path() + ": a split-voxel octree is drawn alone, without --overlay, --labels or --gradient-opacity");
+    if (reader->splitVoxels() && (args.value("tools") || (args.value("mode") && *args.value("mode") != "dvr")))
+        throw core::Error(reader->path() + ": a split-voxel octree is drawn in DVR without the illustrative tools for now");
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
     if (const auto v = args.value("view")) {

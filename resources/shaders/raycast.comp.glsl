@@ -1,7 +1,7 @@
 // Single-pass ray casting over the spatial index, one invocation per pixel (thesis ch. 2–3).
 // It mirrors core/reference/CpuRayCaster.cpp step for step; MODE selects a static variant
 // (0 DVR, 1 isosurface, 2 MIP, 3 MinIP, 4 average); HVX_FUSION 1 marches a second volume with
-// the first (DVR only).
+// the first (DVR only); HVX_SPLIT 1 walks a split-voxel octree's cells (DVR only).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "index_buffers.glsl"
@@ -15,6 +15,12 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #endif
 #if HVX_FUSION
 #include "raycast_fusion.glsl"
+#endif
+#ifndef HVX_SPLIT
+#define HVX_SPLIT 0
+#endif
+#if HVX_SPLIT
+#include "raycast_split.glsl"
 #endif
 
 void main() {
@@ -46,7 +52,9 @@ void main() {
         dw = forward.xyz;
     }
     float depth;
-#if HVX_FUSION
+#if HVX_SPLIT
+    vec4 c = castRaySplit(ow, dw, depth);
+#elif HVX_FUSION
     vec4 c = castRayFused(ow, dw, depth);
 #else
     vec4 c = castRay(ow, dw, depth);

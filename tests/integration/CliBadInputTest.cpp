@@ -171,8 +171,8 @@ TEST(CliBadInput, SplitVoxelParametersAndFilesAreRefusedInWords) {
     expectCleanFailure("build " + dir.file("f.raw") + " --dims 16x16x16 --type float32 --split-voxels" + out, dir,
                        "8- or 16-bit integer", {"f.raw"});
     ASSERT_EQ(test::runCommand(cli + " build phantom:16x16x16 --split-voxels --quiet" + out).exitCode, 0);
-    expectCleanFailure("render " + dir.file("s.hvo") + " -o " + dir.file("x.png"), dir, "split-voxel octree",
-                       {"f.raw", "s.hvo"});
+    expectCleanFailure("render " + dir.file("s.hvo") + " --mode iso -o " + dir.file("x.png"), dir, "split-voxel octree",
+                       {"f.raw", "s.hvo"}, "DVR");
     expectCleanFailure("render " + dir.file("s.hvo") + " --cpu --mode mip -o " + dir.file("x.png"), dir, "s.hvo",
                        {"f.raw", "s.hvo"}, "DVR");
     expectCleanFailure("slice " + dir.file("s.hvo") + " -o " + dir.file("x.png"), dir, "split-voxel octree",

@@ -152,6 +152,36 @@ TEST(CliGlCommands, RenderDrawsALabelMapInItsSegmentsColours) {
     EXPECT_NE(r.output.find("is not a label map"), std::string::npos) << r.output;
 }
 
+// pydicom's SEG built as a split-voxel octree (labels: the default material choice) and drawn
+// by the GPU's split-voxel variant and by the CPU reference: the same segments' colours (VTK
+// reads both PNGs) and the same mean colour.
+TEST(CliGlCommands, RenderDrawsASplitVoxelLabelMapOnTheGpuAsTheCpuDoes) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand("/usr/bin/python3 " HVX_SOURCE_DIR "/tests/support/seg_cases.py " + dir.path().string()).exitCode, 0);
+    auto r = test::runCommand(cli + " build " + dir.file("binary.dcm") + " --split-voxels -o " + dir.file("seg.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::vector<double> means;
+    for (const std::string how : {"", " --cpu"}) {
+        const auto png = dir.file(how.empty() ? "gpu.png" : "cpu.png");
+        r = test::runCommand(cli + " render " + dir.file("seg.hvo") + how + " --view 30,20,1 --size 128x128 -o " + png);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        const auto counts = test::runCommand(
+            "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
+            "from vtkmodules.util.numpy_support import vtk_to_numpy; "
+            "r = vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update(); "
+            "a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(int); "
+            "print(int(((a[:, 0] > a[:, 2] + 40) & (a[:, 0] > a[:, 1] + 40)).sum()), int((a[:, 2] > a[:, 0] + 40).sum()))\" " +
+            png);
+        ASSERT_EQ(counts.exitCode, 0) << counts.output;
+        int liver = 0, spleen = 0;
+        ASSERT_EQ(std::sscanf(counts.output.c_str(), "%d %d", &liver, &spleen), 2) << counts.output;
+        EXPECT_GT(liver, 300) << how << counts.output;
+        EXPECT_GT(spleen, 50) << how << counts.output;
+        means.push_back(mean(pngStats(png)));
+    }
+    EXPECT_NEAR(means[0], means[1], 0.5) << "GPU and CPU means differ";
+}
+
 // render --labels: pydicom's SEG fused over its CT in one ray march (the CT, 40 HU throughout,
 // transparent under ct-bone): the segments' colours show, on the GPU and on the CPU alike;
 // --overlay lays an image with a colour map; what cannot be fused is refused with a sentence.

@@ -1,0 +1,201 @@
+// Split-voxel octrees (thesis §4.5, Fig. 4.5; HVX_SPLIT): each leaf's brick holds cells of two
+// values and the plane between them, walked by a 3D DDA. The GPU side of
+// core/reference/SplitCellMarch.h, operation for operation (CpuRayCaster::castSplit is its
+// reference): a uniform cell adds its value over its length, shaded by the face it was entered
+// through where the material changed there (ambient + diffuse inside a material); a split cell
+// adds its two materials on either side of the plane, in the order the ray meets them, shaded
+// by the plane's normal. Each segment composites at opacity 1 − exp(−f.w·δt), f being the
+// value's table entry (labels) or table sample (intensities). DVR only.
+#ifndef HVX_SPLIT_SIGNED
+#define HVX_SPLIT_SIGNED 0
+#endif
+// RGBA16UI, one texel per cell: front and back (the stored values' bits), then the plane's four
+// signed bytes (normal x | y << 8, normal z | offset << 8), as core::SplitVoxel encodes them.
+layout(binding = 2) uniform usampler3D splitPool;
+
+struct SplitCell {
+    float front, back;
+    vec3 normal;   // unit, in cell coordinates; zero for a uniform cell
+    float offset;  // the plane: dot(normal, x − centre) = offset
+};
+
+float splitStored(uint bits) {
+#if HVX_SPLIT_SIGNED
+    return float(bitfieldExtract(int(bits), 0, 16));
+#else
+    return float(bits);
+#endif
+}
+
+// core::SplitVoxel::decode.
+SplitCell splitCell(ivec3 texel) {
+    uvec4 q = texelFetch(splitPool, texel, 0);
+    SplitCell c;
+    c.front = splitStored(q.x);
+    c.back = splitStored(q.y);
+    vec3 n = vec3(float(bitfieldExtract(int(q.z), 0, 8)), float(bitfieldExtract(int(q.z), 8, 8)),
+                  float(bitfieldExtract(int(q.w), 0, 8)));
+    bool uniformCell = n == vec3(0.0) || c.front == c.back;
+    c.normal = uniformCell ? vec3(0.0) : normalize(n);
+    c.offset = uniformCell ? 0.0 : float(bitfieldExtract(int(q.w), 8, 8)) / 127.0 * 0.8660254;
+    if (uniformCell) c.back = c.front;
+    return c;
+}
+
+// What a ray has gathered: colour and opacity, depth of its first contribution, and the last
+// material it added (core::SplitCompositor and SplitMarchState).
+struct SplitRay {
+    vec4 accum;
+    float depth;
+    float previous;
+    bool havePrevious;
+};
+
+// core::SplitCompositor::add: `value` over [ta, tb] (world mm), at a boundary of normal
+// `normalCell` (cell coordinates) or inside a material. False once the ray is opaque.
+bool splitAdd(inout SplitRay r, float value, float ta, float tb, bool boundary, vec3 normalCell, vec3 view) {
+    if (tb <= ta) return true;
+#if HVX_LABELS
+    vec4 f = tfF[min(int(tfPosition(value)), 4095)];
+#else
+    vec4 f = tfSample(value);
+#endif
+    if (f.w <= 0.0) return true;
+    float a = 1.0 - exp(-f.w * (tb - ta));
+    vec3 colour = f.rgb / f.w;
+    if (extra.y > 0.5) {
+        if (!boundary) {
+            colour *= shading.x + shading.y;
+        } else {
+            float facing = abs(dot(normalize(transpose(mat3(patientToOctree)) * normalCell), view));
+            colour = colour * (shading.x + shading.y * facing) + vec3(shading.z * pow(facing, shading.w));
+        }
+    }
+    if (r.accum.w == 0.0) r.depth = ta;
+    float w = (1.0 - r.accum.w) * a;
+    r.accum += vec4(colour * w, w);
+    return r.accum.w < tfRange.z;
+}
+
+// core::marchSplitCells over the brickSize³ cells of the slot whose first texel is `corner`,
+// for the ray o + t·d in the leaf's cell coordinates, t from t0 to t1 (inside the leaf).
+bool splitMarchLeaf(vec3 o, vec3 d, float t0, float t1, ivec3 corner, inout SplitRay r, vec3 view) {
+    if (t0 >= t1) return true;
+    int dims = int(brick.x);
+    vec3 entry = o + d * t0;
+    ivec3 cell, stepDir;
+    vec3 tNext, tDelta;
+    for (int a = 0; a < 3; ++a) {
+        cell[a] = clamp(int(floor(entry[a])), 0, dims - 1);
+        stepDir[a] = d[a] > 0.0 ? 1 : -1;
+        bool parallel = abs(d[a]) < 1e-30;
+        tDelta[a] = parallel ? 1e30 : 1.0 / abs(d[a]);
+        float face = d[a] > 0.0 ? float(cell[a]) + 1.0 : float(cell[a]);
+        tNext[a] = parallel ? 1e30 : (face - o[a]) / d[a];
+    }
+    float tIn = t0;
+    int crossed = -1;
+    for (int guard = 0; guard < 4 * 1024 && tIn < t1; ++guard) {
+        int a = tNext.x < tNext.y ? (tNext.x < tNext.z ? 0 : 2) : (tNext.y < tNext.z ? 1 : 2);
+        float tOut = min(tNext[a], t1);
+        SplitCell v = splitCell(corner + cell);
+        bool go = true;
+        if (v.normal == vec3(0.0)) {
+            bool changed = r.havePrevious && r.previous != v.front;
+            vec3 face = vec3(0.0);
+            if (crossed >= 0 && changed) face[crossed] = 1.0;
+            go = splitAdd(r, v.front, tIn, tOut, crossed >= 0 && changed, face, view);
+            r.previous = v.front;
+        } else {
+            float dn = dot(v.normal, d);
+            float at = dot(v.normal, o - (vec3(cell) + 0.5));
+            if (abs(dn) < 1e-30) {  // along the plane: the side the ray runs on
+                float side = at >= v.offset ? v.front : v.back;
+                go = splitAdd(r, side, tIn, tOut, true, v.normal, view);
+                r.previous = side;
+            } else {
+                // The material met first is the front one when the ray runs against the normal.
+                bool frontFirst = dn <= 0.0;
+                float first = frontFirst ? v.front : v.back, second = frontFirst ? v.back : v.front;
+                float tPlane = (v.offset - at) / dn;
+                if (tPlane <= tIn) {
+                    go = splitAdd(r, second, tIn, tOut, true, v.normal, view);
+                    r.previous = second;
+                } else if (tPlane >= tOut) {
+                    go = splitAdd(r, first, tIn, tOut, true, v.normal, view);
+                    r.previous = first;
+                } else {
+                    go = splitAdd(r, first, tIn, tPlane, true, v.normal, view) &&
+                         splitAdd(r, second, tPlane, tOut, true, v.normal, view);
+                    r.previous = second;
+                }
+            }
+        }
+        r.havePrevious = true;
+        if (!go) return false;
+        if (tOut >= t1) break;
+        cell[a] += stepDir[a];
+        if (cell[a] < 0 || cell[a] >= dims) break;
+        tNext[a] += tDelta[a];
+        crossed = a;
+        tIn = tOut;
+    }
+    return true;
+}
+
+// The ray through the split-voxel octree: clipped to the volume (or its crop box), leaf by leaf
+// through the index (shared traversal step) as castRay walks it, each leaf's cells by the DDA.
+vec4 castRaySplit(vec3 ow, vec3 dw, out float depth) {
+    depth = 1.0 / 0.0;
+    vec3 o = (patientToOctree * vec4(ow, 1.0)).xyz;
+    vec3 d = mat3(patientToOctree) * dw;
+    float t0 = 0.0, t1 = 1e30;
+    for (int a = 0; a < 3; ++a) {
+        if (abs(d[a]) < 1e-15) {
+            if (o[a] < cropLo[a] || o[a] > cropHi[a]) return vec4(0.0);
+            continue;
+        }
+        float ta = (cropLo[a] - o[a]) / d[a], tb = (cropHi[a] - o[a]) / d[a];
+        t0 = max(t0, min(ta, tb));
+        t1 = min(t1, max(ta, tb));
+    }
+    if (!(t1 > t0)) return vec4(0.0);
+    vec3 inv = vec3(abs(d.x) > 1e-20 ? 1.0 / d.x : (d.x >= 0.0 ? 1e30 : -1e30),
+                    abs(d.y) > 1e-20 ? 1.0 / d.y : (d.y >= 0.0 ? 1e30 : -1e30),
+                    abs(d.z) > 1e-20 ? 1.0 / d.z : (d.z >= 0.0 ? 1e30 : -1e30));
+    float nudge = 1e-3 * extent.w / max(1e-12, length(d));
+    uint n = 0u;
+    vec3 lo = vec3(0.0), hi = vec3(1.0);
+    hvxDescend(0u, n, lo, hi, o + (t0 + nudge) * d);
+    SplitRay r;
+    r.accum = vec4(0.0);
+    r.depth = 1.0 / 0.0;
+    r.previous = 0.0;
+    r.havePrevious = false;
+    vec3 view = -normalize(dw);
+    float tIn = t0;
+    for (int guard = 0; guard < 65536; ++guard) {
+        float tExit = 0.0;
+        int face = hvxExitFace(o, inv, lo, hi, tExit);
+        float tOut = min(tExit, t1);
+        if (tOut > tIn) {
+            uvec4 nd = hvxNodes[n];
+            if (nd.x == HVX_NONE) {  // nothing the transfer function shows
+                r.havePrevious = false;
+            } else {
+                if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);  // visibility feedback
+                uint level = nd.y & 0xFFu;
+                float scale = float(brick.x) * float(1u << level);
+                vec3 origin = floor(lo * float(1u << level) + 0.5) * float(brick.x);
+                uint slot = nd.x;
+                ivec3 corner = ivec3(uvec3(slot % brick.w, slot / brick.w % brick.w, slot / image.z) * brick.z);
+                if (!splitMarchLeaf(o * scale - origin, d * scale, tIn, tOut, corner, r, view)) break;
+            }
+        }
+        if (tExit >= t1) break;
+        if (!hvxNextLeaf(0u, o, d, face, tExit, nudge, n, lo, hi)) break;
+        tIn = max(tIn, tExit);
+    }
+    depth = r.depth;
+    return r.accum;
+}
