@@ -1,5 +1,6 @@
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 
 #include "app/cli/CliArgs.h"
@@ -10,6 +11,8 @@
 #include "core/base/AtomicFileWriter.h"
 #include "core/volume/VoxelSourceFactory.h"
 #include "core/octree/OctreeReader.h"
+#include "core/octree/OctreeVoxelSource.h"
+#include "core/appearance/LabelTable.h"
 #include "dicom/SegmentationSource.h"
 #include "dicom/StructureSetSource.h"
 
@@ -74,9 +77,14 @@ int buildCommand(int argc, char** argv) {
     } else if (args.value("grid")) {
         throw core::Error("--grid is for RT Structure Sets, which are drawn onto an image's grid");
     }
-    std::unique_ptr<core::VoxelSource> source = seg  ? std::unique_ptr<core::VoxelSource>(std::move(seg))
-                                                : rt ? std::unique_ptr<core::VoxelSource>(std::move(rt))
-                                                     : core::VoxelSourceFactory::open(args.positional()[0], raw, volume);
+    // An octree: its full-resolution level read back exactly (a split-voxel octree of a volume
+    // already built, without its original files).
+    const bool fromOctree = std::filesystem::path(args.positional()[0]).extension() == ".hvo";
+    std::unique_ptr<core::VoxelSource> source =
+        seg          ? std::unique_ptr<core::VoxelSource>(std::move(seg))
+        : rt         ? std::unique_ptr<core::VoxelSource>(std::move(rt))
+        : fromOctree ? std::make_unique<core::OctreeVoxelSource>(core::OctreeReader::open(args.positional()[0]))
+                     : core::VoxelSourceFactory::open(args.positional()[0], raw, volume);
     for (const auto& w : source->warnings()) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
     // Split-voxels (thesis ch. 4): two values and a plane per cell of N³ voxels, for sharp
     // boundaries and true colours at coarse levels; a file beside the volume's own octree.
@@ -101,6 +109,13 @@ int buildCommand(int argc, char** argv) {
     const core::LabelTable* names = nullptr;
     if (const auto* segmentation = dynamic_cast<const dicom::SegmentationSource*>(source.get())) names = &segmentation->table();
     if (const auto* structures = dynamic_cast<const dicom::StructureSetSource*>(source.get())) names = &structures->table();
+    // A label map's names and colours follow it from octree to octree.
+    const std::string sidecar = core::LabelTable::sidecarPath(args.positional()[0]);
+    if (fromOctree && std::filesystem::exists(sidecar)) {
+        std::error_code ec;
+        std::filesystem::copy_file(sidecar, core::LabelTable::sidecarPath(*out), std::filesystem::copy_options::overwrite_existing, ec);
+        if (ec) throw core::Error(core::LabelTable::sidecarPath(*out) + ": cannot be written (" + ec.message() + ")");
+    }
     if (names) {
         const std::string table = names->toSlicerTable(), path = core::LabelTable::sidecarPath(*out);
         core::AtomicFileWriter w(path);

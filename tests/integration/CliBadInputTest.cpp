@@ -177,6 +177,13 @@ TEST(CliBadInput, SplitVoxelParametersAndFilesAreRefusedInWords) {
                        {"f.raw", "s.hvo"}, "DVR");
     expectCleanFailure("slice " + dir.file("s.hvo") + " -o " + dir.file("x.png"), dir, "split-voxel octree",
                        {"f.raw", "s.hvo"});
+    // A split-voxel octree is no volume to build from; a lossy octree's values are not the volume's.
+    expectCleanFailure("build " + dir.file("s.hvo") + " --split-voxels -o " + dir.file("t.hvo"), dir, "split-voxel octree",
+                       {"f.raw", "s.hvo"});
+    ASSERT_EQ(test::runCommand(cli + " build phantom:16x16x16 --lossy8 --quiet -o " + dir.file("l.hvo")).exitCode, 0);
+    expectCleanFailure("build " + dir.file("l.hvo") + " --split-voxels -o " + dir.file("t.hvo"), dir, "l.hvo",
+                       {"f.raw", "l.hvo", "s.hvo"}, "lossily");
+    std::filesystem::remove(dir.file("l.hvo"));
     // The CPU reference draws it.
     const auto r = test::runCommand(cli + " render " + dir.file("s.hvo") + " --cpu --size 64x64 -o " + dir.file("x.png"));
     EXPECT_EQ(r.exitCode, 0) << r.output;

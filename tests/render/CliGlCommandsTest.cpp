@@ -152,19 +152,23 @@ TEST(CliGlCommands, RenderDrawsALabelMapInItsSegmentsColours) {
     EXPECT_NE(r.output.find("is not a label map"), std::string::npos) << r.output;
 }
 
-// pydicom's SEG built as a split-voxel octree (labels: the default material choice) and drawn
+// pydicom's SEG built as a split-voxel octree (from its plain octree) and drawn
 // by the GPU's split-voxel variant and by the CPU reference: the same segments' colours (VTK
 // reads both PNGs) and the same mean colour.
 TEST(CliGlCommands, RenderDrawsASplitVoxelLabelMapOnTheGpuAsTheCpuDoes) {
     test::TempDir dir;
     ASSERT_EQ(test::runCommand("/usr/bin/python3 " HVX_SOURCE_DIR "/tests/support/seg_cases.py " + dir.path().string()).exitCode, 0);
-    auto r = test::runCommand(cli + " build " + dir.file("binary.dcm") + " --split-voxels -o " + dir.file("seg.hvo"));
+    // Built from the plain octree (its level 0 read back), the label names and colours follow.
+    auto r = test::runCommand(cli + " build " + dir.file("binary.dcm") + " -o " + dir.file("plain.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " build " + dir.file("plain.hvo") + " --split-voxels -o " + dir.file("seg.hvo"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     std::vector<double> means;
     for (const std::string how : {"", " --cpu"}) {
         const auto png = dir.file(how.empty() ? "gpu.png" : "cpu.png");
         r = test::runCommand(cli + " render " + dir.file("seg.hvo") + how + " --view 30,20,1 --size 128x128 -o " + png);
         ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("tf labels (3D Slicer colour table)"), std::string::npos) << r.output;
         const auto counts = test::runCommand(
             "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
             "from vtkmodules.util.numpy_support import vtk_to_numpy; "
