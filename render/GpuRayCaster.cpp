@@ -254,7 +254,9 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const int fusion = overlay ? 1 + (overlay->reader.geometry().isLabel ? 1 : 0) : 0;  // 1 image, 2 label map
     const int gradient = !overlay && settings.mode == core::RenderSettings::Mode::Dvr && tf.hasGradientOpacity() ? 1 : 0;
     // A static variant per mode, tools, labels, fusion, gradient opacity and split-voxels.
-    auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion + 16384 * gradient + 32768 * split];
+    const int nearest = settings.nearest && !split ? 1 : 0;
+    auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion + 16384 * gradient + 32768 * split +
+                              131072 * nearest];
     if (!program)
         program = std::make_unique<ComputeProgram>(
             ShaderLibrary::embedded(), "raycast.comp.glsl",
@@ -264,7 +266,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                                      "HVX_LABELS_B " + std::to_string(fusion == 2 ? 1 : 0),
                                      "HVX_GRADIENT_OPACITY " + std::to_string(gradient),
                                      "HVX_SPLIT " + std::to_string(split ? 1 : 0),
-                                     "HVX_SPLIT_SIGNED " + std::to_string(split == 2 ? 1 : 0)});
+                                     "HVX_SPLIT_SIGNED " + std::to_string(split == 2 ? 1 : 0),
+                                     "HVX_NEAREST " + std::to_string(nearest)});
     if (gradient)
         glNamedBufferData(buffers_[12], GLsizeiptr(tf.gradientTable().size() * sizeof(float)), tf.gradientTable().data(),
                           GL_STREAM_DRAW);

@@ -122,13 +122,14 @@ private:
 int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
-                        "view-transparency", "tools", "crop", "lut", "label-opacity", "overlay", "labels", "time", "db", "gradient-opacity"},
-                       {"cpu", "force-frame"});
+                        "view-transparency", "tools", "crop", "lut", "label-opacity", "overlay", "labels", "time", "db", "gradient-opacity",
+                        "level"},
+                       {"cpu", "force-frame", "nearest"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo|SERIES_UID --time N [--db FILE] [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
                           "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L] | "
-                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--gradient-opacity G:S,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
+                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--level L] [--nearest] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--gradient-opacity G:S,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
     // A split-voxel octree: its cells walked by a DDA (GPU: raycast_split.glsl; --cpu: SplitCellMarch).
     const auto reader = core::OctreeReader::open(timePoint(args), true);
     if (reader->splitVoxels() && (args.value("overlay") || args.value("labels") || args.value("gradient-opacity")))
@@ -210,6 +211,16 @@ int renderCommand(int argc, char** argv) {
     core::WorkingSetOptions opt;
     opt.maxBricks = std::size_t(args.integer("budget", 4096, 1, 1 << 20));
     opt.voxelsPerPixel = args.number("accuracy").value_or(1.0);
+    // --level L: that level wherever the view reaches it (the thesis's Fig. 4.6 compares
+    // reconstructions at one level); --nearest: each sample takes its voxel's value.
+    if (args.value("level")) {
+        if (args.value("accuracy")) throw core::Error("--level and --accuracy each choose the detail: give one");
+        opt.finestLevel = int(args.integer("level", 0, 0, reader->levelCount() - 1));
+        opt.voxelsPerPixel = 1e-6;
+    }
+    settings.nearest = args.flag("nearest");
+    if (settings.nearest && (reader->splitVoxels() || g.isLabel))
+        throw core::Error("--nearest is for an image's voxels: a label map is always read nearest, a split-voxel octree by its planes");
     opt.cpuMirror = args.flag("cpu");  // the GPU pool takes bricks in their stored type
     opt.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
     if (settings.mode == core::RenderSettings::Mode::Iso) {

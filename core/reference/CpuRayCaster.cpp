@@ -113,7 +113,9 @@ CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafL
     return L;
 }
 
-float CpuRayCaster::sample(const Leaf& L, const glm::vec3& p) const { return labels_ ? nearest(L, p) : linear(L, p); }
+float CpuRayCaster::sample(const Leaf& L, const glm::vec3& p) const {
+    return labels_ || settings_.nearest ? nearest(L, p) : linear(L, p);
+}
 
 float CpuRayCaster::nearest(const Leaf& L, const glm::vec3& p) const {
     const int e = L.edge;

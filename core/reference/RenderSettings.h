@@ -24,6 +24,9 @@ struct RenderSettings {
     /// the transfer function (DVR) or not holding the iso value. The image is the same either
     /// way; off only for the tests that show it.
     bool skipEmptyCells = true;
+    /// Nearest-neighbour reconstruction: each sample takes its voxel's value (a label map
+    /// always does); the thesis's Fig. 4.6 compares it with trilinear and split-voxels.
+    bool nearest = false;
     ToolSet tools;                   ///< illustrative tools (DVR only)
     CropBox crop;                    ///< rays start and end at its faces (every mode)
 };

@@ -189,7 +189,7 @@ const SpatialIndex& WorkingSet::update(const std::vector<View>& views, const Tra
             const auto [err, id] = heap.top();
             heap.pop();
             const auto& n = nodes[id];
-            if (n.level == 0 || err <= 1.0 || invisible_[id] || loader_.failed(id)) {
+            if (int(n.level) <= options_.finestLevel || err <= 1.0 || invisible_[id] || loader_.failed(id)) {
                 cut_.push_back(id);
                 continue;
             }

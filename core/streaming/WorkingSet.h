@@ -25,6 +25,7 @@ struct WorkingSetOptions {
     std::size_t maxBricks = 2048;                  ///< GPU pool slots
     std::size_t uploadBytesPerFrame = 64u << 20;   ///< new slot contents per frame
     double voxelsPerPixel = 1.0;                   ///< accuracy target (larger is coarser)
+    int finestLevel = 0;  ///< the cut goes no finer than this level (a level drawn whole: comparisons)
     CropBox crop;  ///< nodes outside it are neither refined nor loaded
     bool clip = false;
     glm::dvec4 clipPlane{0, 0, 1, 0};  ///< world plane; keeps points with dot(n, p) + d >= 0

@@ -61,10 +61,14 @@ float leafSampleLinear(LeafSampler L, vec3 p) {
     return texture(brickPool, clamp(p * L.scale + L.offset, L.texLo, L.texHi)).r * L.decode.x + L.decode.y;
 }
 
-// A label map (HVX_LABELS) reads the nearest sample: the filtered fetch at a texel's centre
-// returns that texel alone, so no label is ever blended with its neighbour.
+// A label map (HVX_LABELS) reads the nearest sample, as nearest-neighbour reconstruction does
+// (HVX_NEAREST): the filtered fetch at a texel's centre returns that texel alone, so no label
+// is ever blended with its neighbour.
+#ifndef HVX_NEAREST
+#define HVX_NEAREST 0
+#endif
 float leafSample(LeafSampler L, vec3 p) {
-#if HVX_LABELS
+#if HVX_LABELS || HVX_NEAREST
     vec3 size = vec3(textureSize(brickPool, 0));
     vec3 centre = (floor((p * L.scale + L.offset) * size) + 0.5) / size;
     return texture(brickPool, clamp(centre, L.texLo, L.texHi)).r * L.decode.x + L.decode.y;
