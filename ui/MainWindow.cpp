@@ -57,6 +57,7 @@
 #include "ui/SliceScroller.h"
 #include "ui/SliceView.h"
 #include "ui/FusionLink.h"
+#include "ui/SplitVoxelLink.h"
 #include "ui/SliceLayers.h"
 #include "ui/LayersPanel.h"
 #include "ui/StudyBrowser.h"
@@ -106,6 +107,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     connect(layersPanel_, &LayersPanel::show3DToggled, fusion, &FusionLink::setEnabled);
     connect(fusion, &FusionLink::failed, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     layersPanel_->setJobs(jobs_.get(), browser_->databasePath());
+    splitLink_ = new SplitVoxelLink(*controls_, *view_, *jobs_, this);  // trilinear, nearest or split-voxels per volume
     auto* studies = addDock(tr("Studies"), "studiesDock", browser_, Qt::LeftDockWidgetArea);
     auto* pacsDock = addDock(tr("PACS"), "pacsDock", pacs_, Qt::LeftDockWidgetArea);
     tabifyDockWidget(studies, pacsDock);
@@ -366,6 +368,7 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
         controls_->setVolume(g.rescaleSlope, g.rescaleIntercept, std::min(pMin, pMax), std::max(pMin, pMax), g.modality == "CT");
         tfEditor_->setVolume(g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept, g.modality, {});
         view_->setVolume(reader, keepCamera);
+        splitLink_->setVolume(reader, path, openLabel_);
         openPath_.clear();  // the new volume's crop box is not saved under the old one's key
         crop_->setVolume(g.dims, g.spacing, g.direction);
         view_->setRenderSettings(renderSettings());
@@ -450,6 +453,7 @@ void MainWindow::setUpTimePoints(const QString& path) {
     // The series' label without its volume ("... #2 echo 2 (TE 20 ms)" as the browser names it).
     timeBaseLabel_ = openLabel_.endsWith(timeNames_[current]) ? openLabel_.chopped(timeNames_[current].size()).trimmed()
                                                                : openLabel_;
+    splitLink_->setVolume(nullptr, {}, {});  // a 4D series is drawn from its own octrees
     timeReaders_.assign(volumes.size(), nullptr);
     timeReaders_[std::size_t(current)] = reader_;
     view_->setTimePoints(timeReaders_, current);

@@ -27,6 +27,7 @@ class SliceView;
 class SliceLayers;
 class LayersPanel;
 class SliceScroller;
+class SplitVoxelLink;
 class StudyBrowser;
 class ToolsPanel;
 class TransferFunctionEditor;
@@ -65,6 +66,8 @@ public:
     StudyBrowser* browser() const { return browser_; }
     PacsPanel* pacs() const { return pacs_; }
     JobManager* jobs() const { return jobs_.get(); }
+    /// The open volume's reconstruction in 3D and its split-voxel octree.
+    SplitVoxelLink* splitVoxels() const { return splitLink_; }
     JobsPanel* jobsPanel() const { return jobsPanel_; }
     TransferFunctionEditor* tfEditor() const { return tfEditor_; }
     RenderControls* renderControls() const { return controls_; }
@@ -116,6 +119,7 @@ private:
     void setUpTimePoints(const QString& path);
 
     std::unique_ptr<JobManager> jobs_;
+    SplitVoxelLink* splitLink_ = nullptr;
     VolumeView* view_;
     StudyBrowser* browser_;
     PacsPanel* pacs_;

@@ -5,6 +5,7 @@
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QSlider>
+#include <QStandardItemModel>
 
 #include <cmath>
 
@@ -28,13 +29,19 @@ QSlider* slider(int lo, int hi, int value, QWidget* parent) {
 }  // namespace
 
 RenderControls::RenderControls(QWidget* parent)
-    : QWidget(parent), mode_(new QComboBox(this)), shading_(new QCheckBox(tr("Phong shading"), this)),
+    : QWidget(parent), mode_(new QComboBox(this)), reconstruction_(new QComboBox(this)), shading_(new QCheckBox(tr("Phong shading"), this)),
       ambient_(spin(0, 1, 0.05, 0.35, this)), diffuse_(spin(0, 1, 0.05, 0.65, this)), specular_(spin(0, 1, 0.05, 0.25, this)),
       shininess_(spin(1, 128, 1, 24, this)), iso_(spin(-1e6, 1e6, 10, 300, this)), boundary_(slider(0, 100, 0, this)),
       viewTransparency_(slider(0, 100, 0, this)), quality_(slider(0, 100, 100, this)) {
     mode_->setObjectName("renderMode");
     mode_->addItems({tr("DVR"), tr("Isosurface"), tr("MIP"), tr("MinIP"), tr("X-ray (average)")});
     mode_->setToolTip(tr("Direct volume rendering, first-hit isosurface, maximum/minimum intensity projection, average"));
+    reconstruction_->setObjectName("reconstruction");
+    reconstruction_->addItems({tr("Trilinear"), tr("Nearest"), tr("Split-voxels")});
+    reconstruction_->setToolTip(
+        tr("Between voxels: trilinear interpolation, the nearest voxel, or split-voxels (thesis ch. 4: two values and "
+           "the plane between them per cell of 2\u00b3 voxels and more, so that coarse levels keep sharp boundaries "
+           "and no colour appears that neither material has; built once in the background; drawn in DVR without tools)"));
     shading_->setChecked(true);
     boundary_->setToolTip(tr("Boundary enhancement: fades homogeneous regions, keeps boundaries"));
     viewTransparency_->setToolTip(tr("View-dependent transparency: boundaries facing you turn transparent, silhouettes stay"));
@@ -43,6 +50,7 @@ RenderControls::RenderControls(QWidget* parent)
     iso_->setToolTip(tr("Isovalue in physical units (HU for CT)"));
     auto* form = new QFormLayout(this);
     form->addRow(tr("Mode"), mode_);
+    form->addRow(tr("Reconstruction"), reconstruction_);
     form->addRow(QString(), shading_);
     form->addRow(tr("Ambient"), ambient_);
     form->addRow(tr("Diffuse"), diffuse_);
@@ -57,6 +65,7 @@ RenderControls::RenderControls(QWidget* parent)
         emit changed();
     });
     iso_->setEnabled(false);
+    connect(reconstruction_, &QComboBox::currentIndexChanged, this, &RenderControls::changed);
     connect(shading_, &QCheckBox::toggled, this, &RenderControls::changed);
     for (auto* s : {ambient_, diffuse_, specular_, shininess_, iso_})
         connect(s, &QDoubleSpinBox::valueChanged, this, &RenderControls::changed);
@@ -81,7 +90,19 @@ core::RenderSettings RenderControls::settings() const {
     s.boundary = boundary_->value() / 100.0;
     s.viewTransparency = viewTransparency_->value() / 100.0;
     s.isoValue = (iso_->value() - intercept_) / slope_;
+    s.nearest = reconstruction() == Reconstruction::Nearest;
     return s;
+}
+
+RenderControls::Reconstruction RenderControls::reconstruction() const {
+    return Reconstruction(std::max(0, reconstruction_->currentIndex()));
+}
+
+void RenderControls::setReconstruction(Reconstruction r, bool labels) {
+    const QSignalBlocker b(reconstruction_);
+    if (auto* model = qobject_cast<QStandardItemModel*>(reconstruction_->model())) model->item(0)->setEnabled(!labels);
+    reconstruction_->setItemText(1, labels ? tr("Nearest (labels)") : tr("Nearest"));
+    reconstruction_->setCurrentIndex(int(labels && r == Reconstruction::Trilinear ? Reconstruction::Nearest : r));
 }
 
 void RenderControls::setSettings(const core::RenderSettings& s) {

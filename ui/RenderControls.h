@@ -10,9 +10,10 @@ class QSlider;
 
 namespace hvx::ui {
 
-/// The 3D view's controls: render mode (DVR, isosurface, MIP, MinIP, X-ray), Phong shading
-/// parameters, boundary enhancement and view-dependent transparency, the isovalue (physical
-/// units) and a quality/accuracy slider. Emits changed() on every edit.
+/// The 3D view's controls: render mode (DVR, isosurface, MIP, MinIP, X-ray), reconstruction
+/// (trilinear, nearest, split-voxels), Phong shading parameters, boundary enhancement and
+/// view-dependent transparency, the isovalue (physical units) and a quality/accuracy slider.
+/// Emits changed() on every edit.
 ///
 /// Threading: GUI thread only.
 class RenderControls : public QWidget {
@@ -27,12 +28,21 @@ public:
     double accuracy() const;
     void setAccuracy(double voxelsPerPixel);
     QComboBox* mode() const { return mode_; }
+    /// How the 3D view reconstructs the volume between its voxels (the thesis's Fig. 4.6):
+    /// trilinear, nearest neighbour, or split-voxels (two values and a plane per cell).
+    enum class Reconstruction { Trilinear, Nearest, SplitVoxels };
+    Reconstruction reconstruction() const;
+    /// Sets the choice without emitting changed(); for a label map, trilinear is not offered
+    /// (a label is never blended with its neighbour).
+    void setReconstruction(Reconstruction r, bool labels);
+    QComboBox* reconstructionBox() const { return reconstruction_; }
 
 signals:
     void changed();
 
 private:
     QComboBox* mode_;
+    QComboBox* reconstruction_;
     QCheckBox* shading_;
     QDoubleSpinBox *ambient_, *diffuse_, *specular_, *shininess_, *iso_;
     QSlider *boundary_, *viewTransparency_, *quality_;

@@ -100,6 +100,8 @@ std::unique_ptr<VolumeView::Scene> VolumeView::makeScene(std::shared_ptr<const c
 void VolumeView::setVolume(std::shared_ptr<const core::OctreeReader> reader, bool keepCamera) {
     keepCamera = keepCamera && scene_ != nullptr;
     fused_.reset();
+    split_.reset();
+    splitShown_ = false;
     scene_.reset();
     times_.clear();
     timePoint_ = -1;
@@ -116,6 +118,8 @@ void VolumeView::setTimePoints(std::vector<std::shared_ptr<const core::OctreeRea
     if (readers.empty() || current < 0 || current >= int(readers.size()) || !readers[std::size_t(current)])
         throw core::Error("the time point shown must have an octree");
     const bool keepCamera = scene_ != nullptr;
+    split_.reset();  // drawn from the series' own octrees
+    splitShown_ = false;
     scene_.reset();
     times_.clear();
     times_.resize(readers.size());
@@ -190,6 +194,7 @@ void VolumeView::setTransferFunction(const core::TransferFunction& tf) {
 void VolumeView::setRenderSettings(const core::RenderSettings& settings) {
     settings_ = settings;
     if (scene_) applyMode(scene_->ws.options(), settings);
+    if (split_) applyMode(split_->ws.options(), settings);
     for (auto& scene : times_)
         if (scene) scene->prefetchedFor.reset();
     for (auto& scene : times_)
@@ -201,6 +206,20 @@ void VolumeView::setFusedVolume(std::shared_ptr<const core::OctreeReader> reader
     if (!reader) return clearFusedVolume();
     if (!fused_ || fused_->reader != reader) fused_ = makeScene(std::move(reader), kCacheBytes);
     fusedTf_ = std::make_unique<core::TransferFunction>(tf);
+    update();
+}
+
+void VolumeView::setSplitVolume(std::shared_ptr<const core::OctreeReader> reader) {
+    if (!reader) {
+        split_.reset();
+        splitShown_ = false;
+    } else if (!split_ || split_->reader != reader) {
+        if (!reader->splitVoxels()) throw core::Error(reader->path() + " is not a split-voxel octree");
+        split_.reset();
+        splitShown_ = false;
+        split_ = makeScene(std::move(reader), kCacheBytes);
+        applyMode(split_->ws.options(), settings_);
+    }
     update();
 }
 
@@ -221,6 +240,7 @@ void VolumeView::setAccuracy(double voxelsPerPixel) {
     accuracy_ = std::clamp(voxelsPerPixel, 0.25, 16.0);
     if (scene_) scene_->ws.options().voxelsPerPixel = accuracy_;
     if (fused_) fused_->ws.options().voxelsPerPixel = accuracy_;
+    if (split_) split_->ws.options().voxelsPerPixel = accuracy_;
     for (auto& scene : times_)
         if (scene) {
             scene->ws.options().voxelsPerPixel = accuracy_;
@@ -250,7 +270,14 @@ QString VolumeView::levelReadout() const {
     const auto& r = readouts_;
     const QString range = r.finestLevel == r.coarsestLevel ? tr("level %1").arg(r.finestLevel)
                                                            : tr("levels %1\u2013%2").arg(r.finestLevel).arg(r.coarsestLevel);
-    const QString of = tr("%1 of %2").arg(range).arg(r.levels - 1);
+    QString of = tr("%1 of %2").arg(range).arg(r.levels - 1);
+    if (splitShown_) {  // level l holds cells of N·2^l voxels
+        const int n = int(split_->reader->header().split.n);
+        const int fine = n << r.finestLevel, coarse = n << r.coarsestLevel;
+        of = fine == coarse ? tr("split-voxels, cells of %1 voxels").arg(fine)
+                            : tr("split-voxels, cells of %1\u2013%2 voxels").arg(fine).arg(coarse);
+        if (r.settled && r.complete) return of;
+    }
     if (!r.settled) return tr("%1, refining\u2026").arg(of);
     if (!r.complete) return tr("%1: the brick budget is reached").arg(of);
     if (r.coarsestLevel == 0) return tr("full resolution");
@@ -280,22 +307,31 @@ void VolumeView::initializeGL() {
 }
 
 core::RenderImage VolumeView::renderFrame(const core::View& view, const core::RenderSettings& rs, bool converge) {
-    auto& ws = scene_->ws;
+    // A fused volume is marched with the open one in DVR without tools; otherwise the open volume
+    // alone, as split-voxels when it has them (DVR without tools).
+    const bool dvrAlone = rs.mode == core::RenderSettings::Mode::Dvr && !rs.tools.variantBits();
+    fusedShown_ = fused_ && fusedTf_ && dvrAlone;
+    splitShown_ = split_ && dvrAlone && !fusedShown_;
+    if (splitShown_) {  // what the crop box and the clip plane remove is not loaded either
+        split_->ws.options().crop = scene_->ws.options().crop;
+        split_->ws.options().clip = scene_->ws.options().clip;
+        split_->ws.options().clipPlane = scene_->ws.options().clipPlane;
+    }
+    auto& ws = drawn().ws;
     ws.converge({view}, *tf_, {}, converge ? 64 : 1);
-    // A fused volume is marched with the open one in DVR without tools; otherwise the open volume alone.
-    fusedShown_ = fused_ && fusedTf_ && rs.mode == core::RenderSettings::Mode::Dvr && !rs.tools.variantBits();
     std::optional<render::GpuRayCaster::Overlay> overlay;
     if (fusedShown_) {
         fused_->ws.options().crop = {};
         fused_->ws.converge({view}, *fusedTf_, {}, converge ? 64 : 1);
         overlay.emplace(render::GpuRayCaster::Overlay{*fused_->reader, fused_->ws.index(), fused_->ws.slotBricks(), *fusedTf_});
     }
-    auto img = gpu_->render(*scene_->reader, ws.index(), ws.slotBricks(), *tf_, rs, view, overlay ? &*overlay : nullptr);
+    auto img = gpu_->render(*drawn().reader, ws.index(), ws.slotBricks(), *tf_, rs, view, overlay ? &*overlay : nullptr);
     if (fusedShown_ && rs.countRays) fused_->ws.setRayCounts(img.overlayRayCounts);
     // Leave the GL state as QPainter's engine expects it.
     glUseProgram(0);
     glBindTextureUnit(0, 0);
     glBindTextureUnit(1, 0);
+    glBindTextureUnit(2, 0);
     return img;
 }
 
@@ -322,25 +358,25 @@ void VolumeView::paintGL() {
             auto img = renderFrame(lastView_, rs, false);
             lastDepth_ = img.depth;
             // The cut was refined for the reduced view; refine it for the full one next frame.
-            scene_->ws.setRayCounts(img.rayCounts);
+            drawn().ws.setRayCounts(img.rayCounts);
             prefetchNeighbours();
             const double ms = double(t.nsecsElapsed()) / 1e6;
             quality_.frameDone(level, ms);
             frame_ = toQImage(img).scaled(w, h, Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
             ++frames_;
-            const auto& st = scene_->ws.stats();
+            const auto& st = drawn().ws.stats();
             readouts_.frameMs = ms;
             readouts_.fps = 1000.0 / std::max(ms, 1e-3);
             readouts_.residentBricks = st.cutNodes;
             readouts_.poolSlots = st.slotsUsed;
-            readouts_.cacheBytes = scene_->cache.bytes();
-            readouts_.cacheBudget = scene_->cache.budget();
+            readouts_.cacheBytes = drawn().cache.bytes();
+            readouts_.cacheBudget = drawn().cache.budget();
             readouts_.resolution = level.resolution;
             readouts_.complete = st.complete;
             readouts_.settled = st.settled();
             readouts_.finestLevel = st.finestLevel;
             readouts_.coarsestLevel = st.coarsestLevel;
-            readouts_.levels = scene_->reader->levelCount();
+            readouts_.levels = drawn().reader->levelCount();
             // Keep drawing while bricks arrive or the frame is not yet full quality, but never
             // forever: a cut that cannot settle (pool too small for the view) stops after a while.
             const bool settled = st.settled() && (!fusedShown_ || fused_->ws.stats().settled());

@@ -76,6 +76,12 @@ public:
     void setFusedVolume(std::shared_ptr<const core::OctreeReader> reader, const core::TransferFunction& tf);
     void clearFusedVolume();
     bool fusedShown() const { return fusedShown_; }
+    /// A split-voxel octree of the open volume (thesis ch. 4), drawn in 3D in its place in DVR
+    /// without the illustrative tools or a fused volume (splitShown() says whether the last frame
+    /// drew it), through its own working set; nullptr goes back to the volume's own octree.
+    /// setVolume() ends it.
+    void setSplitVolume(std::shared_ptr<const core::OctreeReader> reader);
+    bool splitShown() const { return splitShown_; }
     void setTransferFunction(const core::TransferFunction& tf);
     void setRenderSettings(const core::RenderSettings& settings);
     const core::RenderSettings& renderSettings() const { return settings_; }
@@ -170,6 +176,10 @@ private:
 
     std::unique_ptr<Scene> scene_;
     std::unique_ptr<Scene> fused_;  // a volume fused over scene_'s (setFusedVolume)
+    std::unique_ptr<Scene> split_;  // the open volume as split-voxels (setSplitVolume)
+    bool splitShown_ = false;
+    /// The scene the last frame drew: split_ when splitShown_, else scene_.
+    Scene& drawn() const { return splitShown_ ? *split_ : *scene_; }
     std::unique_ptr<core::TransferFunction> fusedTf_;
     bool fusedShown_ = false;
     /// The other time points' scenes (the shown one's entry is empty: it is scene_).

@@ -1,0 +1,169 @@
+// GUI tests of the 3D view's reconstruction choice under Xvfb (Qt Test; thesis ch. 4): a label
+// map opens with split-voxels, built once in the background into the cache folder and drawn in
+// the 3D view (its readout says so); nearest and split-voxels are switched without a rebuild and
+// each volume keeps its choice; an image starts trilinear, and split-voxels give way to its own
+// octree in MIP; a volume split-voxels cannot be built for goes back to trilinear with the
+// reason in the Jobs panel. Screenshot under <build>/test-artifacts/gui/reconstruction.png.
+#include <QComboBox>
+#include <QFileInfo>
+#include <QSignalSpy>
+#include <QStandardItemModel>
+#include <QTest>
+
+#include <glm/geometric.hpp>
+
+#include "core/octree/OctreeBuilder.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "tests/gui/GuiTestSupport.h"
+#include "tests/support/MemoryVoxelSource.h"
+#include "ui/RenderControls.h"
+#include "ui/SplitVoxelLink.h"
+
+using namespace hvx;
+
+namespace {
+void build(core::VoxelSource& s, const std::string& path, bool labels = false) {
+    core::BuildOptions o;
+    o.brickSize = 16;
+    o.labels = labels;
+    core::JobContext job;
+    core::OctreeBuilder(o).build(s, path, job);
+}
+
+/// 96³ at 2 mm: a sphere of label 1 cut by an oblique plane, label 2 beyond it, 0 around.
+test::MemoryVoxelSource labelSphere() {
+    core::VolumeGeometry g;
+    g.scalarType = core::ScalarType::UInt8;
+    g.dims = {96, 96, 96};
+    g.spacing = {2, 2, 2};
+    g.modality = "SEG";
+    g.isLabel = true;
+    g.valueMax = 2;
+    test::DenseVolume v;
+    v.dims = g.dims;
+    const glm::dvec3 c(47.5), n = glm::normalize(glm::dvec3(1, 0.4, 0.3));
+    for (std::uint32_t k = 0; k < 96; ++k)
+        for (std::uint32_t j = 0; j < 96; ++j)
+            for (std::uint32_t i = 0; i < 96; ++i) {
+                const glm::dvec3 p(i, j, k);
+                v.values.push_back(glm::length(p - c) > 36 ? 0.0 : glm::dot(n, p - c) >= 0 ? 2.0 : 1.0);
+            }
+    return test::MemoryVoxelSource(g, v);
+}
+}  // namespace
+
+class ReconstructionTest : public QObject, test::GuiFixture {
+    Q_OBJECT
+
+    QComboBox* box() const { return window_->findChild<QComboBox*>("reconstruction"); }
+    ui::SplitVoxelLink* link() const { return window_->splitVoxels(); }
+    QString file(const char* name) { return QString::fromStdString(dir_.file(name)); }
+    /// Split-voxel builds among the jobs a spy on JobManager::started saw.
+    static int builds(const QSignalSpy& started) {
+        int n = 0;
+        for (const auto& args : started) n += args.at(1).toString().startsWith("Split-voxels of");
+        return n;
+    }
+
+private slots:
+    void initTestCase() {
+        open();
+        auto labels = labelSphere();
+        build(labels, dir_.file("labels.hvo"), true);
+        core::PhantomVoxelSource ct({96, 96, 80});
+        build(ct, dir_.file("ct.hvo"));
+        // A float volume (split-voxels keep 8- and 16-bit integers only).
+        core::VolumeGeometry g;
+        g.scalarType = core::ScalarType::Float32;
+        g.dims = {32, 32, 32};
+        test::DenseVolume v;
+        v.dims = g.dims;
+        v.values.assign(32 * 32 * 32, 0.5);
+        test::MemoryVoxelSource f(g, v);
+        build(f, dir_.file("float.hvo"));
+    }
+
+    // Split-voxels by default for a label map: built once, drawn, said; nearest and back without
+    // a rebuild; the choice and the built file kept when the volume is opened again.
+    void labelMapsOpenWithSplitVoxels() {
+        QSignalSpy started(window_->jobs(), &ui::JobManager::started);
+        QVERIFY(window_->openPath(file("labels.hvo")));
+        QCOMPARE(box()->currentIndex(), int(ui::RenderControls::Reconstruction::SplitVoxels));
+        auto* model = qobject_cast<QStandardItemModel*>(box()->model());
+        QVERIFY2(model && !model->item(0)->isEnabled(), "trilinear is not offered for labels");
+        QTRY_VERIFY_WITH_TIMEOUT(link()->splitReader() != nullptr, 60000);
+        QCOMPARE(builds(started), 1);
+        const QString cached = ui::SplitVoxelLink::cachePath(file("labels.hvo"));
+        QVERIFY2(QFileInfo::exists(cached), qPrintable(cached));
+        QVERIFY2(!qEnvironmentVariable("XDG_CACHE_HOME").isEmpty() && cached.startsWith(qEnvironmentVariable("XDG_CACHE_HOME")),
+                 qPrintable(cached + " is not in the test's own cache folder"));
+        const QImage split = settledFrame();
+        QVERIFY(view()->splitShown());
+        QVERIFY2(view()->levelReadout().startsWith("split-voxels, cells of"), qPrintable(view()->levelReadout()));
+        QVERIFY2(test::coverage(split) > 0.05, qPrintable(QString::number(test::coverage(split))));
+        saveArtifact("reconstruction.png");
+
+        box()->setCurrentIndex(int(ui::RenderControls::Reconstruction::Nearest));
+        const QImage nearest = settledFrame();
+        QVERIFY(!view()->splitShown());
+        QVERIFY2(!view()->levelReadout().contains("split"), qPrintable(view()->levelReadout()));
+        // The same sphere, drawn from two octrees: close, not the same.
+        const double d = test::difference(split, nearest);
+        QVERIFY2(d > 0.0 && d < 12.0, qPrintable(QString::number(d)));
+
+        box()->setCurrentIndex(int(ui::RenderControls::Reconstruction::SplitVoxels));
+        settledFrame();
+        QVERIFY(view()->splitShown());
+        QCOMPARE(builds(started), 1);  // no rebuild
+
+        QVERIFY(window_->openPath(file("ct.hvo")));
+        QVERIFY(window_->openPath(file("labels.hvo")));
+        QCOMPARE(box()->currentIndex(), int(ui::RenderControls::Reconstruction::SplitVoxels));
+        QTRY_VERIFY_WITH_TIMEOUT(link()->splitReader() != nullptr, 10000);
+        QCOMPARE(builds(started), 1);  // the file built before, reused
+        settledFrame();
+        QVERIFY(view()->splitShown());
+    }
+
+    // An image opens trilinear; split-voxels chosen are built and drawn in DVR, and give way to
+    // the volume's own octree in MIP; the choice is the volume's own.
+    void imagesKeepTheirOwnChoice() {
+        QVERIFY(window_->openPath(file("ct.hvo")));
+        QCOMPARE(box()->currentIndex(), int(ui::RenderControls::Reconstruction::Trilinear));
+        box()->setCurrentIndex(int(ui::RenderControls::Reconstruction::SplitVoxels));
+        QTRY_VERIFY_WITH_TIMEOUT(link()->splitReader() != nullptr, 60000);
+        settledFrame();
+        QVERIFY(view()->splitShown());
+        window_->findChild<QComboBox*>("renderMode")->setCurrentIndex(2);  // MIP
+        settledFrame();
+        QVERIFY(!view()->splitShown());
+        QVERIFY2(!view()->levelReadout().contains("split"), qPrintable(view()->levelReadout()));
+        window_->findChild<QComboBox*>("renderMode")->setCurrentIndex(0);
+        settledFrame();
+        QVERIFY(view()->splitShown());
+        QVERIFY(window_->openPath(file("labels.hvo")));
+        QVERIFY(window_->openPath(file("ct.hvo")));
+        QCOMPARE(box()->currentIndex(), int(ui::RenderControls::Reconstruction::SplitVoxels));
+    }
+
+    // Split-voxels cannot be built for a float volume: the Jobs panel says why in a sentence and
+    // the choice goes back to trilinear, the view drawing the volume's own octree.
+    void aBuildThatFailsGoesBackToTrilinear() {
+        QSignalSpy finished(window_->jobs(), &ui::JobManager::finished);
+        QVERIFY(window_->openPath(file("float.hvo")));
+        box()->setCurrentIndex(int(ui::RenderControls::Reconstruction::SplitVoxels));
+        QTRY_VERIFY_WITH_TIMEOUT(finished.count() >= 1, 30000);
+        QCOMPARE(finished.last().at(1).toString(), QString("failed"));
+        const QString why = finished.last().at(2).toString();
+        QVERIFY2(why.contains("8- or 16-bit"), qPrintable(why));
+        QCOMPARE(box()->currentIndex(), int(ui::RenderControls::Reconstruction::Trilinear));
+        settledFrame();
+        QVERIFY(!view()->splitShown());
+        QVERIFY(!QFileInfo::exists(ui::SplitVoxelLink::cachePath(file("float.hvo"))));
+    }
+
+    void cleanupTestCase() { close(); }
+};
+
+int main(int argc, char** argv) { return test::runGuiTests<ReconstructionTest>(argc, argv); }
+#include "ReconstructionTest.moc"
