@@ -58,6 +58,7 @@
 #include "ui/SliceView.h"
 #include "ui/FusionLink.h"
 #include "ui/SplitVoxelLink.h"
+#include "ui/ReconstructionComparison.h"
 #include "ui/SliceLayers.h"
 #include "ui/LayersPanel.h"
 #include "ui/StudyBrowser.h"
@@ -108,6 +109,12 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     connect(fusion, &FusionLink::failed, this, [this](const QString& text) { statusBar()->showMessage(text, 8000); });
     layersPanel_->setJobs(jobs_.get(), browser_->databasePath());
     splitLink_ = new SplitVoxelLink(*controls_, *view_, *jobs_, this);  // trilinear, nearest or split-voxels per volume
+    connect(controls_, &RenderControls::compareRequested, this, [this] {
+        if (!reader_ || !view_->hasVolume()) return showError(tr("Open a volume first: the comparison draws it."));
+        auto* dialog = new ReconstructionComparison(*view_, *splitLink_, reader_, this);
+        dialog->setAttribute(Qt::WA_DeleteOnClose);
+        dialog->show();
+    });
     auto* studies = addDock(tr("Studies"), "studiesDock", browser_, Qt::LeftDockWidgetArea);
     auto* pacsDock = addDock(tr("PACS"), "pacsDock", pacs_, Qt::LeftDockWidgetArea);
     tabifyDockWidget(studies, pacsDock);

@@ -4,6 +4,8 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QHBoxLayout>
+#include <QPushButton>
 #include <QSlider>
 #include <QStandardItemModel>
 
@@ -50,7 +52,14 @@ RenderControls::RenderControls(QWidget* parent)
     iso_->setToolTip(tr("Isovalue in physical units (HU for CT)"));
     auto* form = new QFormLayout(this);
     form->addRow(tr("Mode"), mode_);
-    form->addRow(tr("Reconstruction"), reconstruction_);
+    auto* compare = new QPushButton(tr("Compare\u2026"), this);
+    compare->setObjectName("compareReconstructions");
+    compare->setToolTip(tr("One octree level drawn with trilinear, nearest and split-voxel reconstruction side by side"));
+    connect(compare, &QPushButton::clicked, this, &RenderControls::compareRequested);
+    auto* reconstructionRow = new QHBoxLayout;
+    reconstructionRow->addWidget(reconstruction_, 1);
+    reconstructionRow->addWidget(compare);
+    form->addRow(tr("Reconstruction"), reconstructionRow);
     form->addRow(QString(), shading_);
     form->addRow(tr("Ambient"), ambient_);
     form->addRow(tr("Diffuse"), diffuse_);

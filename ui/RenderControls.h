@@ -39,6 +39,8 @@ public:
 
 signals:
     void changed();
+    /// "Compare…": the same level with each reconstruction, side by side.
+    void compareRequested();
 
 private:
     QComboBox* mode_;

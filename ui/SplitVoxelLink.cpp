@@ -76,15 +76,17 @@ void SplitVoxelLink::apply() {
         view_.setSplitVolume(nullptr);
         return;
     }
-    if (split_) {
-        view_.setSplitVolume(split_);
-        return;
-    }
+    if (split_) view_.setSplitVolume(split_);
+    else prepare();
+}
+
+void SplitVoxelLink::prepare() {
+    if (!reader_ || split_) return;
     const QString cached = cachePath(path_);
     if (QFileInfo::exists(cached)) {
         try {
             split_ = core::OctreeReader::open(cached.toStdString(), true);
-            view_.setSplitVolume(split_);
+            if (controls_.reconstruction() == Reconstruction::SplitVoxels) view_.setSplitVolume(split_);
             emit ready();
             return;
         } catch (const core::Error&) {

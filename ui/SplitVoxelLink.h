@@ -32,8 +32,13 @@ public:
     /// Where the split-voxel octree of the octree file `path` is kept (its name follows the
     /// file's path, size and modification time).
     static QString cachePath(const QString& path);
+    /// The volume the link serves (null: none, or a 4D series).
+    const std::shared_ptr<const core::OctreeReader>& volume() const { return reader_; }
     /// The split-voxel octree of the open volume, once built or found (null before).
     std::shared_ptr<const core::OctreeReader> splitReader() const { return split_; }
+    /// Makes the split-voxel octree of the open volume available without choosing it: opens the
+    /// cached file, or starts its build (ready() says when).
+    void prepare();
 
 signals:
     /// The open volume's split-voxel octree is ready (and shown, if still chosen).

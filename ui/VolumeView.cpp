@@ -502,6 +502,35 @@ void VolumeView::capture(const QString& path, int width, int height) {
     update();
 }
 
+QImage VolumeView::renderLevel(std::shared_ptr<const core::OctreeReader> reader, int level, bool nearest, QSize size) {
+    if (!scene_ || !tf_ || !gpu_ || !reader) throw core::Error("open a volume first");
+    if (level < 0 || level >= reader->levelCount())
+        throw core::Error(reader->path() + " has no level " + std::to_string(level));
+    core::RenderSettings rs = settings_;
+    rs.mode = core::RenderSettings::Mode::Dvr;
+    rs.tools = {};
+    rs.nearest = nearest && !reader->splitVoxels();
+    core::WorkingSetOptions o;
+    o.cpuMirror = false;
+    o.voxelsPerPixel = 1e-6;
+    o.finestLevel = level;
+    o.crop = scene_->ws.options().crop;
+    Scene scene(std::move(reader), o, std::size_t(512) << 20);
+    const auto view = camera_.view(size.width(), size.height());
+    scene.ws.converge({view}, *tf_, {}, 256);
+    makeCurrent();
+    try {
+        const auto img = gpu_->render(*scene.reader, scene.ws.index(), scene.ws.slotBricks(), *tf_, rs, view);
+        glUseProgram(0);
+        for (GLuint unit = 0; unit < 3; ++unit) glBindTextureUnit(unit, 0);
+        doneCurrent();
+        return toQImage(img);
+    } catch (...) {
+        doneCurrent();
+        throw;
+    }
+}
+
 std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel& display, double eta, double zoom,
                                                        double maxBeams, bool interactive, core::JobContext* job) {
     if (!scene_ || !tf_ || !gpu_) throw core::Error("open a volume first");

@@ -97,6 +97,11 @@ public:
     /// Renders the current view at full quality at width x height and writes a PNG or EXR.
     /// Throws core::Error naming the file on failure.
     void capture(const QString& path, int width, int height);
+    /// The current view drawn at full quality at `size` from `reader` (the open volume's octree
+    /// or its split-voxel octree) at its level `level` wherever the view reaches it, through a
+    /// working set of its own: the thesis's Fig. 4.6 compares reconstructions so. `nearest`:
+    /// nearest-neighbour samples (plain octrees). DVR without tools. Throws core::Error.
+    QImage renderLevel(std::shared_ptr<const core::OctreeReader> reader, int level, bool nearest, QSize size);
     /// Renders every view of a multi-view display from one working set with the display's
     /// accuracy s(z), the screen centred on the camera's target and facing the camera; `zoom`
     /// scales the volume's default fit. Views are shrunk so the frame holds at most `maxBeams`

@@ -5,6 +5,7 @@
 // octree in MIP; a volume split-voxels cannot be built for goes back to trilinear with the
 // reason in the Jobs panel. Screenshot under <build>/test-artifacts/gui/reconstruction.png.
 #include <QComboBox>
+#include <QPushButton>
 #include <QFileInfo>
 #include <QSignalSpy>
 #include <QStandardItemModel>
@@ -16,6 +17,7 @@
 #include "core/volume/PhantomVoxelSource.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/support/MemoryVoxelSource.h"
+#include "ui/ReconstructionComparison.h"
 #include "ui/RenderControls.h"
 #include "ui/SplitVoxelLink.h"
 
@@ -160,6 +162,35 @@ private slots:
         settledFrame();
         QVERIFY(!view()->splitShown());
         QVERIFY(!QFileInfo::exists(ui::SplitVoxelLink::cachePath(file("float.hvo"))));
+    }
+
+    // The thesis's Fig. 4.6 from the Rendering dock's Compare button: the CT phantom at one level
+    // (voxels of 4) drawn trilinear, nearest and as split-voxels, side by side: three different
+    // images of the same body.
+    void compareShowsOneLevelThreeWays() {
+        QVERIFY(window_->openPath(file("ct.hvo")));
+        settledFrame();
+        window_->findChild<QPushButton*>("compareReconstructions")->click();
+        auto* dialog = window_->findChild<ui::ReconstructionComparison*>();
+        QVERIFY(dialog);
+        QTRY_VERIFY_WITH_TIMEOUT(!dialog->image(2).isNull(), 60000);
+        QTRY_VERIFY_WITH_TIMEOUT(dialog->renderedCount() > 0, 10000);
+        dialog->grab().save(test::guiArtifacts() + "/reconstruction-compare.png");
+        for (int i = 0; i < 3; ++i)
+            QVERIFY2(test::coverage(dialog->image(i)) > 0.01,
+                     qPrintable(QString("image %1 covers %2").arg(i).arg(test::coverage(dialog->image(i)))));
+        const double dTN = test::difference(dialog->image(0), dialog->image(1)),
+                     dNS = test::difference(dialog->image(1), dialog->image(2));
+        QVERIFY2(dTN > 0.2 && dNS > 0.2, qPrintable(QString("trilinear-nearest %1, nearest-split %2").arg(dTN).arg(dNS)));
+        QVERIFY2(dTN < 40 && dNS < 40, qPrintable(QString("trilinear-nearest %1, nearest-split %2").arg(dTN).arg(dNS)));
+        const int before = dialog->renderedCount();
+        dialog->setVoxels(8);
+        QCOMPARE(dialog->renderedCount(), before + 1);
+        QVERIFY(test::difference(dialog->image(2), dialog->image(1)) > 0.2);
+        dialog->setVoxels(16);  // coarser than the octree's root: said, not drawn
+        QCOMPARE(dialog->renderedCount(), before + 1);
+        QVERIFY2(dialog->statusText().contains("coarser than its root"), qPrintable(dialog->statusText()));
+        dialog->close();
     }
 
     void cleanupTestCase() { close(); }
