@@ -119,6 +119,8 @@ std::size_t GpuRayCaster::uploadPool(Pool& pool, const std::vector<std::shared_p
         if (split) {
             uploadSplitBrick(pool, std::uint32_t(s), *brick, biased);
             pool.content[s] = brick;
+            pool.cells[s] = core::BrickCells::ofSplit(*brick);
+            pool.cellsStale[s] = true;
             uploaded += brick->data.size();
             continue;
         }
@@ -187,15 +189,17 @@ void GpuRayCaster::uploadSplitBrick(Pool& pool, std::uint32_t slot, const core::
 }
 
 void GpuRayCaster::updateVisibleCells(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
-                                      const core::TransferFunction& tf, const core::RenderSettings& settings, bool skip) {
+                                      const core::TransferFunction& tf, const core::RenderSettings& settings, bool skip,
+                                      bool labels) {
     const bool dvr = settings.mode == core::RenderSettings::Mode::Dvr;
     const std::uint64_t key = skip ? cellKey(tf, settings) : 0;
     if (key != pool.cellKey) std::fill(pool.cellsStale.begin(), pool.cellsStale.end(), true);
     pool.cellKey = key;
     for (std::size_t s = 0; s < slots.size(); ++s) {
         if (!slots[s] || !pool.cellsStale[s]) continue;
+        // A split-voxel label map's values are classified by their own entry: nothing to widen.
         const std::uint64_t bits = !skip ? ~std::uint64_t(0)
-                                   : dvr ? pool.cells[s].visible(tf)
+                                   : dvr ? pool.cells[s].visible(tf, pool.split && labels)
                                          : pool.cells[s].straddling(settings.isoValue);
         pool.records[s].visible = glm::uvec2(std::uint32_t(bits), std::uint32_t(bits >> 32));
         pool.cellsStale[s] = false;
@@ -279,13 +283,13 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     // Which cells of each slot's brick may show (64 bits per slot), kept from frame to frame.
     // The fused march skips each volume's cells under its own transfer function.
     const bool dvr = settings.mode == core::RenderSettings::Mode::Dvr;
-    const bool skip = settings.skipEmptyCells && !split && (dvr || settings.mode == core::RenderSettings::Mode::Iso);
-    updateVisibleCells(pools_[0], slots, tf, settings, skip);
+    const bool skip = settings.skipEmptyCells && (dvr || settings.mode == core::RenderSettings::Mode::Iso);
+    updateVisibleCells(pools_[0], slots, tf, settings, skip, reader.geometry().isLabel);
     if (overlay) {
         const auto& og = overlay->reader.geometry();
         uploaded_ += uploadPool(pools_[1], overlay->bricks, overlay->reader.brickSize(), overlay->reader.border(),
                                 floatPool_ ? core::ScalarType::Float32 : og.scalarType);
-        updateVisibleCells(pools_[1], overlay->bricks, overlay->tf, settings, skip);
+        updateVisibleCells(pools_[1], overlay->bricks, overlay->tf, settings, skip, og.isLabel);
     }
     static_assert(sizeof(SlotRecord) == 16, "std430 layout of SlotRecord");
     uploadPair(buffers_[8], pools_[0].records, overlay ? &pools_[1].records : nullptr);

@@ -91,7 +91,8 @@ private:
     static void uploadSplitBrick(Pool& pool, std::uint32_t slot, const core::Brick& brick, std::vector<std::uint16_t>& scratch);
     /// Which cells of each slot's brick may show (all of them when nothing is skipped).
     static void updateVisibleCells(Pool& pool, const std::vector<std::shared_ptr<const core::Brick>>& slots,
-                                   const core::TransferFunction& tf, const core::RenderSettings& settings, bool skip);
+                                   const core::TransferFunction& tf, const core::RenderSettings& settings, bool skip,
+                                   bool labels);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
     static constexpr int kBuffers = 13;

@@ -59,8 +59,26 @@ BrickCells BrickCells::ofSamples(const float* samples, std::uint32_t brickSize, 
     return cells;
 }
 
-std::uint64_t BrickCells::visible(const TransferFunction& tf) const {
-    const double entry = (tf.valueMax() - tf.valueMin()) / TransferFunction::kEntries;
+BrickCells BrickCells::ofSplit(const Brick& brick) {
+    BrickCells cells;
+    const std::uint32_t n = brick.edge, block = n / kPerAxis;
+    if (n % kPerAxis != 0 || block == 0) {
+        cells.ranges.fill(glm::vec2(-std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()));
+        return cells;
+    }
+    cells.ranges.fill(glm::vec2(std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()));
+    for (std::uint32_t z = 0; z < n; ++z)
+        for (std::uint32_t y = 0; y < n; ++y)
+            for (std::uint32_t x = 0; x < n; ++x) {
+                const SplitVoxel v = brick.cell(x, y, z);
+                auto& r = cells.ranges[std::size_t(x / block + kPerAxis * (y / block + kPerAxis * (z / block)))];
+                r = glm::vec2(std::min({r.x, v.front, v.back}), std::max({r.y, v.front, v.back}));
+            }
+    return cells;
+}
+
+std::uint64_t BrickCells::visible(const TransferFunction& tf, bool exact) const {
+    const double entry = exact ? 0.0 : (tf.valueMax() - tf.valueMin()) / TransferFunction::kEntries;
     std::uint64_t bits = 0;
     for (std::size_t c = 0; c < ranges.size(); ++c)
         if (!tf.isEmpty(double(ranges[c].x) - entry, double(ranges[c].y) + entry)) bits |= std::uint64_t(1) << c;

@@ -28,9 +28,16 @@ struct BrickCells {
     /// fastest), as the CPU reference holds them.
     static BrickCells ofSamples(const float* samples, std::uint32_t brickSize, std::uint32_t border);
 
+    /// The ranges of a split-voxel brick (brickSize³ cells, no border): the front and back
+    /// values of the split-voxels in each block of (brickSize/4)³ (a split-voxel is constant on
+    /// either side of its plane, so nothing beyond the block is read). A brick size not
+    /// divisible by 4 gives unbounded ranges (every block may show).
+    static BrickCells ofSplit(const Brick& brick);
+
     /// Bit c set where cell c may show under `tf`: its range, widened by one table entry each
-    /// side (the table is interpolated between entries), meets non-zero opacity.
-    std::uint64_t visible(const TransferFunction& tf) const;
+    /// side (the table is interpolated between entries), meets non-zero opacity. `exact`: the
+    /// values are classified by their own entry (a split-voxel label map's), never widened.
+    std::uint64_t visible(const TransferFunction& tf, bool exact = false) const;
     /// Bit c set where cell c may hold the iso surface of `value` (min <= value <= max): in
     /// any other cell, all samples lie on one side of the value.
     std::uint64_t straddling(double value) const;

@@ -43,12 +43,14 @@ SplitCell splitCell(ivec3 texel) {
 }
 
 // What a ray has gathered: colour and opacity, depth of its first contribution, and the last
-// material it added (core::SplitCompositor and SplitMarchState).
+// material it added (core::SplitCompositor and SplitMarchState); previousHidden: the last
+// material was one the transfer function hides, stepped over without reading it.
 struct SplitRay {
     vec4 accum;
     float depth;
     float previous;
     bool havePrevious;
+    bool previousHidden;
 };
 
 // core::SplitCompositor::add: `value` over [ta, tb] (world mm), at a boundary of normal
@@ -77,31 +79,58 @@ bool splitAdd(inout SplitRay r, float value, float ta, float tb, bool boundary, 
     return r.accum.w < tfRange.z;
 }
 
-// core::marchSplitCells over the brickSize³ cells of the slot whose first texel is `corner`,
-// for the ray o + t·d in the leaf's cell coordinates, t from t0 to t1 (inside the leaf).
-bool splitMarchLeaf(vec3 o, vec3 d, float t0, float t1, ivec3 corner, inout SplitRay r, vec3 view) {
-    if (t0 >= t1) return true;
-    int dims = int(brick.x);
-    vec3 entry = o + d * t0;
-    ivec3 cell, stepDir;
-    vec3 tNext, tDelta;
+// The DDA's next face crossings from `cell` on, for the ray o + t·d.
+void splitDdaAxes(vec3 o, vec3 d, ivec3 cell, out ivec3 stepDir, out vec3 tNext, out vec3 tDelta) {
     for (int a = 0; a < 3; ++a) {
-        cell[a] = clamp(int(floor(entry[a])), 0, dims - 1);
         stepDir[a] = d[a] > 0.0 ? 1 : -1;
         bool parallel = abs(d[a]) < 1e-30;
         tDelta[a] = parallel ? 1e30 : 1.0 / abs(d[a]);
         float face = d[a] > 0.0 ? float(cell[a]) + 1.0 : float(cell[a]);
         tNext[a] = parallel ? 1e30 : (face - o[a]) / d[a];
     }
+}
+
+// core::marchSplitCells over the brickSize³ cells of the slot whose first texel is `corner`,
+// for the ray o + t·d in the leaf's cell coordinates, t from t0 to t1 (inside the leaf). The
+// brick's 4×4×4 blocks the transfer function hides (`visible`, core::BrickCells::ofSplit) are
+// crossed in one step: nothing in them adds to the ray, and the cell after them is entered
+// from a hidden material, as the cell-by-cell march would have it.
+bool splitMarchLeaf(vec3 o, vec3 d, float t0, float t1, ivec3 corner, uvec2 visible, inout SplitRay r, vec3 view) {
+    if (t0 >= t1) return true;
+    int dims = int(brick.x);
+    int block = max(1, dims / 4);
+    vec3 invD = vec3(abs(d.x) > 1e-30 ? 1.0 / d.x : 1e30, abs(d.y) > 1e-30 ? 1.0 / d.y : 1e30,
+                     abs(d.z) > 1e-30 ? 1.0 / d.z : 1e30);
+    ivec3 cell = clamp(ivec3(floor(o + d * t0)), ivec3(0), ivec3(dims - 1)), stepDir;
+    vec3 tNext, tDelta;
+    splitDdaAxes(o, d, cell, stepDir, tNext, tDelta);
     float tIn = t0;
     int crossed = -1;
     for (int guard = 0; guard < 4 * 1024 && tIn < t1; ++guard) {
+        ivec3 b = min(cell / block, ivec3(3));
+        int bit = b.x + 4 * b.y + 16 * b.z;
+        if (((bit < 32 ? visible.x : visible.y) & (1u << uint(bit & 31))) == 0u) {
+            // A hidden block: on to its far face, and into the cell beyond it.
+            vec3 lo = vec3(b * block), hi = lo + float(block);
+            vec3 far = max((lo - o) * invD, (hi - o) * invD);
+            int a = far.x < far.y ? (far.x < far.z ? 0 : 2) : (far.y < far.z ? 1 : 2);
+            r.havePrevious = true;
+            r.previousHidden = true;
+            crossed = a;
+            tIn = max(tIn, far[a]);
+            if (tIn >= t1) break;
+            cell = clamp(ivec3(floor(o + d * tIn)), ivec3(0), ivec3(dims - 1));
+            cell[a] = d[a] > 0.0 ? int(hi[a]) : int(lo[a]) - 1;  // never back into the block
+            if (cell[a] < 0 || cell[a] >= dims) break;
+            splitDdaAxes(o, d, cell, stepDir, tNext, tDelta);
+            continue;
+        }
         int a = tNext.x < tNext.y ? (tNext.x < tNext.z ? 0 : 2) : (tNext.y < tNext.z ? 1 : 2);
         float tOut = min(tNext[a], t1);
         SplitCell v = splitCell(corner + cell);
         bool go = true;
         if (v.normal == vec3(0.0)) {
-            bool changed = r.havePrevious && r.previous != v.front;
+            bool changed = r.havePrevious && (r.previousHidden || r.previous != v.front);
             vec3 face = vec3(0.0);
             if (crossed >= 0 && changed) face[crossed] = 1.0;
             go = splitAdd(r, v.front, tIn, tOut, crossed >= 0 && changed, face, view);
@@ -132,6 +161,7 @@ bool splitMarchLeaf(vec3 o, vec3 d, float t0, float t1, ivec3 corner, inout Spli
             }
         }
         r.havePrevious = true;
+        r.previousHidden = false;
         if (!go) return false;
         if (tOut >= t1) break;
         cell[a] += stepDir[a];
@@ -172,6 +202,7 @@ vec4 castRaySplit(vec3 ow, vec3 dw, out float depth) {
     r.depth = 1.0 / 0.0;
     r.previous = 0.0;
     r.havePrevious = false;
+    r.previousHidden = false;
     vec3 view = -normalize(dw);
     float tIn = t0;
     for (int guard = 0; guard < 65536; ++guard) {
@@ -189,7 +220,8 @@ vec4 castRaySplit(vec3 ow, vec3 dw, out float depth) {
                 vec3 origin = floor(lo * float(1u << level) + 0.5) * float(brick.x);
                 uint slot = nd.x;
                 ivec3 corner = ivec3(uvec3(slot % brick.w, slot / brick.w % brick.w, slot / image.z) * brick.z);
-                if (!splitMarchLeaf(o * scale - origin, d * scale, tIn, tOut, corner, r, view)) break;
+                if (!splitMarchLeaf(o * scale - origin, d * scale, tIn, tOut, corner, slotRecords[slot].visible, r, view))
+                    break;
             }
         }
         if (tExit >= t1) break;

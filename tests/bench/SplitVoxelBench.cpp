@@ -4,6 +4,8 @@
 // and at coarse accuracy, and PSNR against the full-resolution trilinear render at the same
 // element count (a plain level of 2^L voxels against split cells of 2^L voxels). The plain
 // octree is drawn as the product draws it: trilinear for intensities, nearest labels for a label map.
+// Then the GPU ray caster's frame times (EGL, whatever GPU the machine has) for the plain octree
+// and the split-voxel octree at each of the same levels (median of 3 frames after a warm one).
 //
 //   build/release/tests/bench/hvx_bench_splitvoxels [--size 384] [--phantom 256x256x256] [--png DIR]
 #include <algorithm>
@@ -34,6 +36,8 @@
 #include "core/streaming/WorkingSet.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "core/volume/VoxelSourceFactory.h"
+#include "render/EglOffscreenContext.h"
+#include "render/GpuRayCaster.h"
 
 using namespace hvx;
 using Clock = std::chrono::steady_clock;
@@ -77,6 +81,31 @@ core::RenderImage plain(const core::OctreeReader& reader, const core::View& view
 }
 
 std::string g_png;  // --png DIR: the renders, to look at
+std::unique_ptr<render::EglOffscreenContext> g_gl;  // null when no GL 4.5 context could be made
+std::unique_ptr<render::GpuRayCaster> g_gpu;
+
+/// The GPU's frame time (ms, median of 3 after a warm frame) for `reader` at its level `level`
+/// wherever the view reaches it.
+double gpuFrameMs(const core::OctreeReader& reader, int level, const core::View& view, const core::TransferFunction& tf) {
+    core::BrickCache cache(std::size_t(4) << 30);
+    core::BrickLoader loader(reader, cache);
+    core::WorkingSetOptions o;
+    o.voxelsPerPixel = 1e-6;
+    o.finestLevel = level;
+    o.maxBricks = 1u << 16;
+    o.cpuMirror = false;
+    core::WorkingSet ws(reader, cache, loader, o);
+    ws.converge({view}, tf);
+    core::RenderSettings rs;
+    std::vector<double> ms;
+    for (int i = 0; i < 4; ++i) {
+        const auto t = Clock::now();
+        g_gpu->render(reader, ws.index(), ws.slotBricks(), tf, rs, view);
+        if (i) ms.push_back(seconds(t) * 1000.0);
+    }
+    std::sort(ms.begin(), ms.end());
+    return ms[1];
+}
 
 void run(const std::string& name, core::VoxelSource& source, bool labels, int size, const std::filesystem::path& dir) {
     const auto& g = source.geometry();
@@ -156,6 +185,18 @@ void run(const std::string& name, core::VoxelSource& source, bool labels, int si
                     "%5.1f dB (full resolution: level %d, %.0f ms)\n",
                     cell, pl, plainMs, psnr(coarse, full), splitMs, psnr(split, full), level, fullMs);
     }
+    if (!g_gpu) return;
+    const auto splitReader = core::OctreeReader::open(splitPath, true);
+    std::printf("  GPU frames (%s):", g_gl->info().renderer.c_str());
+    std::printf(" full resolution %.0f ms |", gpuFrameMs(*reader, 0, view, tf));
+    for (int l = 0; l < std::min(4, splitReader->levelCount()); ++l) {
+        const std::uint32_t cell = levels[std::size_t(l)].cellVoxels();
+        const int pl = int(std::log2(double(cell)) + 0.5);
+        if (pl >= reader->levelCount()) break;
+        std::printf(" cells of %u: plain %.0f / split %.0f ms |", cell, gpuFrameMs(*reader, pl, view, tf),
+                    gpuFrameMs(*splitReader, l, view, tf));
+    }
+    std::printf("\n");
 }
 }  // namespace
 
@@ -170,6 +211,14 @@ int main(int argc, char** argv) {
     const auto dir = std::filesystem::temp_directory_path() / ("hvx-split-bench-" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     std::printf("CPU reference renders, %dx%d, ThreadPool of the machine's cores\n", size, size);
+    try {
+        g_gl = std::make_unique<render::EglOffscreenContext>();
+        g_gpu = std::make_unique<render::GpuRayCaster>();
+    } catch (const std::exception& e) {
+        std::printf("no GPU frame times: %s\n", e.what());
+        g_gpu.reset();
+        g_gl.reset();
+    }
     {
         core::PhantomVoxelSource ct(dims, 1);
         run("ct-phantom", ct, false, size, dir);

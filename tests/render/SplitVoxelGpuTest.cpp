@@ -15,6 +15,7 @@
 #include "core/octree/SplitVoxelOctreeBuilder.h"
 #include "core/reference/CpuRayCaster.h"
 #include "core/streaming/BrickCache.h"
+#include "core/streaming/BrickCells.h"
 #include "core/streaming/BrickLoader.h"
 #include "core/streaming/OctreeSpace.h"
 #include "core/streaming/WorkingSet.h"
@@ -94,7 +95,28 @@ TEST(SplitVoxelGpu, GpuEqualsTheCpuReferenceForEveryStoredType) {
                 ASSERT_EQ(gl.rayCounts.size(), cpu.rayCounts.size());
                 EXPECT_NEAR(double(raysGpu), double(raysCpu), 0.01 * double(raysCpu)) << c.name;
                 if (!shading) EXPECT_EQ(test::foreignPixels(gl), 0) << c.name << " level " << level;  // (highlights are white)
+                // The blocks the transfer function hides (air) are crossed in one step: the same image.
+                core::RenderSettings every = rs;
+                every.skipEmptyCells = false;
+                EXPECT_GT(test::psnr(gpu.render(*reader, ws.index(), ws.slotBricks(), tf, every, view), gl), 80.0) << c.name;
             }
+        // Hidden blocks exist, and a block's range holds every value of its cells.
+        std::size_t hidden = 0, blocks = 0;
+        for (std::uint32_t n = 0; n < reader->nodes().size(); ++n) {
+            const auto brick = reader->readBrick(n);
+            const auto cells = core::BrickCells::ofSplit(brick);
+            const std::uint64_t bits = cells.visible(tf, c.labels);
+            for (std::uint32_t z = 0; z < brick.edge; ++z)
+                for (std::uint32_t y = 0; y < brick.edge; ++y)
+                    for (std::uint32_t x = 0; x < brick.edge; ++x) {
+                        const auto v = brick.cell(x, y, z);
+                        const auto& r = cells.ranges[x / 4 + 4 * (y / 4 + 4 * (z / 4))];
+                        ASSERT_TRUE(r.x <= std::min(v.front, v.back) && std::max(v.front, v.back) <= r.y);
+                    }
+            for (int block = 0; block < 64; ++block, ++blocks) hidden += !(bits >> block & 1u);
+        }
+        std::printf("%s: %zu of %zu blocks hidden by the transfer function\n", c.name, hidden, blocks);
+        EXPECT_GT(hidden, blocks / 4) << c.name;
     }
 }
 
