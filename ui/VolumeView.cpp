@@ -551,15 +551,18 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
     const auto views = display.views(camera_.target(), camera_.right(), camera_.up(), eta,
                                      std::max(1, int(display.viewWidthPx() * shrink)),
                                      std::max(1, int(display.viewHeightPx() * shrink)), scale, depthScale);
+    // The split-voxel octree where the 3D view draws it (DVR without tools; a light-field frame
+    // draws no fused volume), else the volume's own.
+    Scene& scene = split_ && rs.mode == core::RenderSettings::Mode::Dvr && !rs.tools.variantBits() ? *split_ : *scene_;
     makeCurrent();
     try {
-        core::WorkingSetOptions options = scene_->ws.options();
+        core::WorkingSetOptions options = scene.ws.options();
         options.cpuMirror = false;
-        core::WorkingSet ws(*scene_->reader, scene_->cache, scene_->loader, options);
-        auto images = render::LightFieldRenderer::render(*scene_->reader, ws, scene_->loader, *tf_, rs, views,
+        core::WorkingSet ws(*scene.reader, scene.cache, scene.loader, options);
+        auto images = render::LightFieldRenderer::render(*scene.reader, ws, scene.loader, *tf_, rs, views,
                                                          display.accuracyFunction(scale, depthScale), gpu_.get(), true, nullptr, job);
         glUseProgram(0);
-        glBindTextureUnit(0, 0);
+        for (GLuint unit = 0; unit < 3; ++unit) glBindTextureUnit(unit, 0);
         doneCurrent();
         update();
         return images;

@@ -99,7 +99,9 @@ int lightFieldCommand(int argc, char** argv) {
         throw core::Error("--format stereo needs a stereo display");
     std::optional<core::ProjectorCorrection> correction;
     if (const auto path = args.value("correction")) correction = core::ProjectorCorrection::load(*path);
-    const auto reader = core::OctreeReader::open(args.positional()[0]);
+    const auto reader = core::OctreeReader::open(args.positional()[0], true);  // split-voxel octrees too (DVR)
+    if (reader->splitVoxels() && args.value("mode") && *args.value("mode") != "dvr")
+        throw core::Error(reader->path() + ": a split-voxel octree is drawn in DVR");
     const auto& g = reader->geometry();
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
     const double eta = args.number("eta").value_or(1.0);

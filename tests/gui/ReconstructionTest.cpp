@@ -1,7 +1,7 @@
 // GUI tests of the 3D view's reconstruction choice under Xvfb (Qt Test; thesis ch. 4): a label
 // map opens with split-voxels, built once in the background into the cache folder and drawn in
 // the 3D view (its readout says so); nearest and split-voxels are switched without a rebuild and
-// each volume keeps its choice; an image starts trilinear, and split-voxels give way to its own
+// each volume keeps its choice; light-field frames draw what the view draws; an image starts trilinear, and split-voxels give way to its own
 // octree in MIP; a volume split-voxels cannot be built for goes back to trilinear with the
 // reason in the Jobs panel. Screenshot under <build>/test-artifacts/gui/reconstruction.png.
 #include <QComboBox>
@@ -13,9 +13,11 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/camera/DisplayModel.h"
 #include "core/octree/OctreeBuilder.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "tests/gui/GuiTestSupport.h"
+#include "tests/support/ImageCompare.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "ui/ReconstructionComparison.h"
 #include "ui/RenderControls.h"
@@ -105,8 +107,16 @@ private slots:
         QVERIFY2(test::coverage(split) > 0.05, qPrintable(QString::number(test::coverage(split))));
         saveArtifact("reconstruction.png");
 
+        // A light-field frame draws the split-voxels too (views of the 3D view's volume).
+        const auto display = core::DisplayModel::load("looking-glass-portrait");
+        const auto splitViews = view()->renderViews(display, 1.0, 1.0, 48 * 60 * 80);
+
         box()->setCurrentIndex(int(ui::RenderControls::Reconstruction::Nearest));
         const QImage nearest = settledFrame();
+        const auto nearestViews = view()->renderViews(display, 1.0, 1.0, 48 * 60 * 80);
+        QCOMPARE(splitViews.size(), std::size_t(48));
+        const double views = test::psnr(splitViews[20], nearestViews[20]);
+        QVERIFY2(views > 15.0 && views < 60.0, qPrintable(QString("split and nearest views %1 dB apart").arg(views)));
         QVERIFY(!view()->splitShown());
         QVERIFY2(!view()->levelReadout().contains("split"), qPrintable(view()->levelReadout()));
         // The same sphere, drawn from two octrees: close, not the same.

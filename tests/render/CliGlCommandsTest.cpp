@@ -154,7 +154,8 @@ TEST(CliGlCommands, RenderDrawsALabelMapInItsSegmentsColours) {
 
 // pydicom's SEG built as a split-voxel octree (from its plain octree) and drawn
 // by the GPU's split-voxel variant and by the CPU reference: the same segments' colours (VTK
-// reads both PNGs) and the same mean colour.
+// reads both PNGs) and the same mean colour; a light-field quilt of a split-voxel CT phantom
+// drawn alike by both.
 TEST(CliGlCommands, RenderDrawsASplitVoxelLabelMapOnTheGpuAsTheCpuDoes) {
     test::TempDir dir;
     ASSERT_EQ(test::runCommand("/usr/bin/python3 " HVX_SOURCE_DIR "/tests/support/seg_cases.py " + dir.path().string()).exitCode, 0);
@@ -184,6 +185,24 @@ TEST(CliGlCommands, RenderDrawsASplitVoxelLabelMapOnTheGpuAsTheCpuDoes) {
         means.push_back(mean(pngStats(png)));
     }
     EXPECT_NEAR(means[0], means[1], 0.5) << "GPU and CPU means differ";
+    // A light-field quilt from a split-voxel CT phantom: the 48 views, GPU as CPU; MIP refused.
+    r = test::runCommand(cli + " build phantom:96x96x96 --split-voxels --quiet -o " + dir.file("ps.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::vector<double> quilts;
+    for (const std::string how : {"", " --cpu"}) {
+        const auto out = dir.file(how.empty() ? "lg" : "lc");
+        r = test::runCommand(cli + " lightfield " + dir.file("ps.hvo") + how + " --display looking-glass-portrait --size 60x80 -o " + out);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("48 views of 60x80"), std::string::npos) << r.output;
+        const auto stats = pngStats(out + "_qs8x6a0.75.png");
+        EXPECT_EQ(size(stats), "480 480") << stats;
+        quilts.push_back(mean(stats));
+    }
+    EXPECT_GT(quilts[0], 1.0);
+    EXPECT_NEAR(quilts[0], quilts[1], 0.3) << "GPU and CPU quilts differ";
+    r = test::runCommand(cli + " lightfield " + dir.file("ps.hvo") + " --display looking-glass-portrait --mode mip -o " + dir.file("m") + " 2>&1");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("split-voxel octree is drawn in DVR"), std::string::npos) << r.output;
 }
 
 // render --labels: pydicom's SEG fused over its CT in one ray march (the CT, 40 HU throughout,
