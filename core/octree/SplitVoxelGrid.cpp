@@ -9,6 +9,7 @@
 
 #include "core/base/Error.h"
 #include "core/base/ThreadPool.h"
+#include "core/octree/SplitVoxelWindows.h"
 #include "core/volume/ScalarType.h"
 
 namespace hvx::core {
@@ -69,48 +70,33 @@ SplitVoxelGrid SplitVoxelGrid::build(VoxelSource& source, const SplitVoxelOption
         }
         job.throwIfCancelled();
     }
-    const std::uint32_t N = options.n, M = options.overlap, E = N + 2 * M;
+    const std::uint32_t N = options.n, M = options.overlap;
     SplitVoxelGrid grid({ceilDiv(d[0], N), ceilDiv(d[1], N), ceilDiv(d[2], N)}, N);
     SplitVoxelOptions resolved = options;
     if (!resolved.threshold) resolved.threshold = 0.02 * double(hi - lo);
     grid.threshold_ = *resolved.threshold;
     const SplitVoxelFitter fitter(resolved);
-    const auto clampTo = [](long v, std::uint32_t size) { return std::size_t(std::clamp(v, 0L, long(size) - 1)); };
+    const auto voxel = [&](std::uint32_t i, std::uint32_t j, std::uint32_t k) {
+        return volume[(std::size_t(k) * d[1] + j) * d[0] + i];
+    };
     fitAll(grid, fitter, N, M, job, [&](std::uint32_t x, std::uint32_t y, std::uint32_t z, float* w) {
-        // Voxels beyond the volume replicate its faces, as brick borders do.
-        for (std::uint32_t k = 0; k < E; ++k)
-            for (std::uint32_t j = 0; j < E; ++j)
-                for (std::uint32_t i = 0; i < E; ++i)
-                    *w++ = volume[(clampTo(long(z * N + k) - long(M), d[2]) * d[1] + clampTo(long(y * N + j) - long(M), d[1])) *
-                                      d[0] +
-                                  clampTo(long(x * N + i) - long(M), d[0])];
+        split::fillVoxelWindow(voxel, d, N, M, x, y, z, w);
     });
     return grid;
 }
 
 SplitVoxelGrid SplitVoxelGrid::coarser(const SplitVoxelOptions& options, JobContext& job) const {
     options.validate();
-    // Each finer cell is sampled at r³ points; a coarser cell covers 2³ finer cells.
-    constexpr std::uint32_t r = 2;
-    const std::uint32_t S = 2 * r, M = options.overlap * r, E = S + 2 * M;
     SplitVoxelGrid grid({ceilDiv(dims_[0], 2), ceilDiv(dims_[1], 2), ceilDiv(dims_[2], 2)}, cellVoxels_ * 2);
     SplitVoxelOptions resolved = options;
     if (!resolved.threshold) resolved.threshold = threshold_;  // level 0's, found in the volume
     grid.threshold_ = *resolved.threshold;
     const SplitVoxelFitter fitter(resolved);
-    fitAll(grid, fitter, S, M, job, [&](std::uint32_t x, std::uint32_t y, std::uint32_t z, float* w) {
-        for (std::uint32_t k = 0; k < E; ++k)
-            for (std::uint32_t j = 0; j < E; ++j)
-                for (std::uint32_t i = 0; i < E; ++i) {
-                    // Sample (i, j, k)'s position in finer cells, clamped to the finer grid.
-                    const glm::dvec3 fine = glm::dvec3(2.0 * x, 2.0 * y, 2.0 * z) +
-                                            (glm::dvec3(i, j, k) - double(M) + 0.5) / double(r);
-                    const glm::dvec3 c = glm::clamp(fine, glm::dvec3(0.0),
-                                                    glm::dvec3(dims_[0], dims_[1], dims_[2]) - 1e-6);
-                    const glm::uvec3 cell(c);
-                    *w++ = at(cell.x, cell.y, cell.z).valueAt(glm::vec3(c - glm::dvec3(cell)));
-                }
-    });
+    const auto cell = [&](std::uint32_t x, std::uint32_t y, std::uint32_t z) -> const SplitVoxel& { return at(x, y, z); };
+    fitAll(grid, fitter, split::coarseInterior(), split::coarseOverlap(options.overlap), job,
+           [&](std::uint32_t x, std::uint32_t y, std::uint32_t z, float* w) {
+               split::fillCellWindow(cell, dims_, options.overlap, x, y, z, w);
+           });
     return grid;
 }
 

@@ -19,6 +19,9 @@
 #include "core/octree/OctreeReader.h"
 #include "core/octree/SplitVoxelGrid.h"
 #include "core/octree/SplitVoxelOctreeBuilder.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include <cstring>
+#include <tuple>
 #include "tests/support/TempDir.h"
 #include "tests/support/MemoryVoxelSource.h"
 
@@ -414,4 +417,90 @@ TEST(SplitVoxelOctree, FileHoldsTheLevelsAndIsRefusedWhereVoxelsAreExpected) {
     EXPECT_THROW(core::OctreeReader::open(dir.file("s.hvo"), true), core::Error);
     rewritten(2, flags);
     EXPECT_NO_THROW(core::OctreeReader::open(dir.file("s.hvo"), true));
+}
+
+namespace {
+/// A source that records the slabs asked of it (the builder streams: increasing slices per pass).
+class RecordingSource final : public core::VoxelSource {
+public:
+    explicit RecordingSource(core::VoxelSource& inner) : inner_(inner) {}
+    const core::VolumeGeometry& geometry() const override { return inner_.geometry(); }
+    void readSlices(std::uint32_t first, std::uint32_t count, void* dst) override {
+        reads.push_back({first, count});
+        inner_.readSlices(first, count, dst);
+    }
+    std::string describe() const override { return inner_.describe(); }
+    std::vector<std::array<std::uint32_t, 2>> reads;
+
+private:
+    core::VoxelSource& inner_;
+};
+}  // namespace
+
+// The streamed build (rows of cells along z, bricks written as their rows complete) gives every
+// level exactly as SplitVoxelGrid fits it with the whole volume in memory: the CT phantom's
+// intensities (threshold found in a first pass) and a label map, with several cell sizes,
+// overlaps and brick sizes (many brick rows per level). The volume is read in increasing
+// slabs, once per pass.
+TEST(SplitVoxelOctree, AStreamedBuildEqualsTheLevelsHeldWhole) {
+    test::TempDir dir;
+    core::PhantomVoxelSource phantom({70, 58, 53});
+    for (const auto& [n, m, brick, labels] : {std::tuple{2u, 2u, 4u, false}, std::tuple{3u, 1u, 8u, false},
+                                               std::tuple{2u, 0u, 4u, true}}) {
+        test::DenseVolume dense;
+        dense.dims = phantom.geometry().dims;
+        for (std::uint32_t k = 0; k < 53; ++k)
+            for (std::uint32_t j = 0; j < 58; ++j)
+                for (std::uint32_t i = 0; i < 70; ++i) {
+                    const double hu = phantom.voxel(i, j, k);
+                    dense.values.push_back(labels ? (hu > 300 ? 2.0 : hu > -200 ? 1.0 : 0.0) : hu);
+                }
+        core::VolumeGeometry g = phantom.geometry();
+        if (labels) {
+            g.scalarType = core::ScalarType::UInt8;
+            g.isLabel = true;
+        }
+        test::MemoryVoxelSource memory(g, dense);
+        RecordingSource source(memory);
+        core::BuildOptions b;
+        b.brickSize = brick;
+        core::SplitVoxelOptions o;
+        o.n = n;
+        o.overlap = m;
+        o.labels = labels;
+        core::JobContext job;
+        core::SplitVoxelOctreeBuilder(b, o).build(source, dir.file("s.hvo"), job);
+        // One pass for labels, two for intensities without a threshold, each in increasing slabs.
+        int passes = 0;
+        for (std::size_t r = 0; r < source.reads.size(); ++r) {
+            if (source.reads[r][0] == 0) ++passes;
+            else ASSERT_EQ(source.reads[r][0], source.reads[r - 1][0] + source.reads[r - 1][1]);
+        }
+        EXPECT_EQ(passes, labels ? 1 : 2);
+        const auto reader = core::OctreeReader::open(dir.file("s.hvo"), true);
+        std::vector<core::SplitVoxelGrid> levels{core::SplitVoxelGrid::build(memory, o, job)};
+        while (int(levels.size()) < reader->levelCount()) levels.push_back(levels.back().coarser(o, job));
+        ASSERT_GE(reader->levelCount(), 3);
+        const std::size_t bytes = core::SplitVoxel::encodedSize(core::scalarSize(g.scalarType));
+        std::vector<std::uint8_t> want(bytes);
+        std::size_t cells = 0;
+        for (std::uint32_t id = 0; id < reader->nodes().size(); ++id) {
+            const auto& rec = reader->nodes()[id];
+            const auto brickData = reader->readBrick(id);
+            const auto* got = reinterpret_cast<const std::uint8_t*>(brickData.data.data());
+            const auto& level = levels[rec.level];
+            const auto& d = level.dims();
+            for (std::uint32_t z = 0; z < brick; ++z)
+                for (std::uint32_t y = 0; y < brick; ++y)
+                    for (std::uint32_t x = 0; x < brick; ++x, got += bytes, ++cells) {
+                        level.at(std::min(rec.x * brick + x, d[0] - 1), std::min(rec.y * brick + y, d[1] - 1),
+                                 std::min(rec.z * brick + z, d[2] - 1))
+                            .encode(want.data(), core::scalarSize(g.scalarType), g.scalarType == core::ScalarType::Int16);
+                        ASSERT_EQ(std::memcmp(got, want.data(), bytes), 0)
+                            << "N " << n << " M " << m << " node " << id << " level " << int(rec.level) << " cell " << x << "," << y << "," << z;
+                    }
+        }
+        std::printf("N %u, M %u, bricks of %u%s: %d levels, %zu cells, all as held whole\n", n, m, brick,
+                    labels ? ", labels" : "", reader->levelCount(), cells);
+    }
 }
