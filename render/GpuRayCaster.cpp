@@ -251,9 +251,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     if (overlay && tools) throw core::Error("the illustrative tools are not drawn over a fused volume");
     // A split-voxel octree (1; 2 for signed values) is walked cell by cell (raycast_split.glsl).
     const int split = reader.splitVoxels() ? (reader.geometry().scalarType == core::ScalarType::Int16 ? 2 : 1) : 0;
-    if (split && (settings.mode != core::RenderSettings::Mode::Dvr || tools || overlay || tf.hasGradientOpacity()))
-        throw core::Error(reader.path() + ": a split-voxel octree is drawn in DVR, alone, without the illustrative tools or "
-                                          "gradient opacity for now");
+    if (split && (settings.mode != core::RenderSettings::Mode::Dvr || overlay || tf.hasGradientOpacity()))
+        throw core::Error(reader.path() + ": a split-voxel octree is drawn in DVR, alone, without gradient opacity");
     const int labels = reader.geometry().isLabel ? 1 : 0;
     const int fusion = overlay ? 1 + (overlay->reader.geometry().isLabel ? 1 : 0) : 0;  // 1 image, 2 label map
     const int gradient = !overlay && settings.mode == core::RenderSettings::Mode::Dvr && tf.hasGradientOpacity() ? 1 : 0;

@@ -87,7 +87,7 @@ void ReconstructionComparison::render() {
         } else {
             images_[2]->setPixmap(QPixmap::fromImage(view_.renderLevel(split, splitLevel, false, size)));
             captions_[2]->setText(tr("Split-voxels, cells of %1 voxels (level %2)").arg(voxels).arg(splitLevel));
-            status_->setText(tr("DVR with the view's transfer function and camera, without the tools."));
+            status_->setText(tr("DVR with the view's transfer function, camera and tools."));
         }
         ++rendered_;
         emit rendered();

@@ -16,7 +16,7 @@ class VolumeView;
 /// The thesis's Fig. 4.6 for the open volume: the 3D view's current camera drawn at one voxel
 /// size (2, 4, 8 or 16 voxels) three ways, side by side: trilinear and nearest from the volume's
 /// own octree at that level, and split-voxels from its split-voxel octree at the level of cells
-/// that size (built first when it is not there yet). DVR, without the tools.
+/// that size (built first when it is not there yet). DVR, with the view's tools.
 ///
 /// Threading: GUI thread only.
 class ReconstructionComparison : public QDialog {

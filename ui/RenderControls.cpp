@@ -43,7 +43,7 @@ RenderControls::RenderControls(QWidget* parent)
     reconstruction_->setToolTip(
         tr("Between voxels: trilinear interpolation, the nearest voxel, or split-voxels (thesis ch. 4: two values and "
            "the plane between them per cell of 2\u00b3 voxels and more, so that coarse levels keep sharp boundaries "
-           "and no colour appears that neither material has; built once in the background; drawn in DVR without tools)"));
+           "and no colour appears that neither material has; built once in the background; drawn in DVR)"));
     shading_->setChecked(true);
     boundary_->setToolTip(tr("Boundary enhancement: fades homogeneous regions, keeps boundaries"));
     viewTransparency_->setToolTip(tr("View-dependent transparency: boundaries facing you turn transparent, silhouettes stay"));

@@ -308,10 +308,10 @@ void VolumeView::initializeGL() {
 
 core::RenderImage VolumeView::renderFrame(const core::View& view, const core::RenderSettings& rs, bool converge) {
     // A fused volume is marched with the open one in DVR without tools; otherwise the open volume
-    // alone, as split-voxels when it has them (DVR without tools).
-    const bool dvrAlone = rs.mode == core::RenderSettings::Mode::Dvr && !rs.tools.variantBits();
-    fusedShown_ = fused_ && fusedTf_ && dvrAlone;
-    splitShown_ = split_ && dvrAlone && !fusedShown_;
+    // alone, as split-voxels when it has them (DVR).
+    const bool dvr = rs.mode == core::RenderSettings::Mode::Dvr;
+    fusedShown_ = fused_ && fusedTf_ && dvr && !rs.tools.variantBits();
+    splitShown_ = split_ && dvr && !fusedShown_;
     if (splitShown_) {  // what the crop box and the clip plane remove is not loaded either
         split_->ws.options().crop = scene_->ws.options().crop;
         split_->ws.options().clip = scene_->ws.options().clip;
@@ -508,7 +508,6 @@ QImage VolumeView::renderLevel(std::shared_ptr<const core::OctreeReader> reader,
         throw core::Error(reader->path() + " has no level " + std::to_string(level));
     core::RenderSettings rs = settings_;
     rs.mode = core::RenderSettings::Mode::Dvr;
-    rs.tools = {};
     rs.nearest = nearest && !reader->splitVoxels();
     core::WorkingSetOptions o;
     o.cpuMirror = false;
@@ -551,9 +550,9 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
     const auto views = display.views(camera_.target(), camera_.right(), camera_.up(), eta,
                                      std::max(1, int(display.viewWidthPx() * shrink)),
                                      std::max(1, int(display.viewHeightPx() * shrink)), scale, depthScale);
-    // The split-voxel octree where the 3D view draws it (DVR without tools; a light-field frame
-    // draws no fused volume), else the volume's own.
-    Scene& scene = split_ && rs.mode == core::RenderSettings::Mode::Dvr && !rs.tools.variantBits() ? *split_ : *scene_;
+    // The split-voxel octree where the 3D view draws it (DVR; a light-field frame draws no fused
+    // volume), else the volume's own.
+    Scene& scene = split_ && rs.mode == core::RenderSettings::Mode::Dvr ? *split_ : *scene_;
     makeCurrent();
     try {
         core::WorkingSetOptions options = scene.ws.options();

@@ -77,8 +77,8 @@ public:
     void clearFusedVolume();
     bool fusedShown() const { return fusedShown_; }
     /// A split-voxel octree of the open volume (thesis ch. 4), drawn in 3D in its place in DVR
-    /// without the illustrative tools or a fused volume (splitShown() says whether the last frame
-    /// drew it), through its own working set; nullptr goes back to the volume's own octree.
+    /// without a fused volume (splitShown() says whether the last frame drew it), through its
+    /// own working set; nullptr goes back to the volume's own octree.
     /// setVolume() ends it.
     void setSplitVolume(std::shared_ptr<const core::OctreeReader> reader);
     bool splitShown() const { return splitShown_; }
@@ -100,7 +100,7 @@ public:
     /// The current view drawn at full quality at `size` from `reader` (the open volume's octree
     /// or its split-voxel octree) at its level `level` wherever the view reaches it, through a
     /// working set of its own: the thesis's Fig. 4.6 compares reconstructions so. `nearest`:
-    /// nearest-neighbour samples (plain octrees). DVR without tools. Throws core::Error.
+    /// nearest-neighbour samples (plain octrees). DVR, with the view's tools. Throws core::Error.
     QImage renderLevel(std::shared_ptr<const core::OctreeReader> reader, int level, bool nearest, QSize size);
     /// Renders every view of a multi-view display from one working set with the display's
     /// accuracy s(z), the screen centred on the camera's target and facing the camera; `zoom`

@@ -134,8 +134,8 @@ int renderCommand(int argc, char** argv) {
     const auto reader = core::OctreeReader::open(timePoint(args), true);
     if (reader->splitVoxels() && (args.value("overlay") || args.value("labels") || args.value("gradient-opacity")))
         throw core::Error(reader->path() + ": a split-voxel octree is drawn alone, without --overlay, --labels or --gradient-opacity");
-    if (reader->splitVoxels() && (args.value("tools") || (args.value("mode") && *args.value("mode") != "dvr")))
-        throw core::Error(reader->path() + ": a split-voxel octree is drawn in DVR without the illustrative tools for now");
+    if (reader->splitVoxels() && args.value("mode") && *args.value("mode") != "dvr")
+        throw core::Error(reader->path() + ": a split-voxel octree is drawn in DVR");
     const auto& g = reader->geometry();
     double az = 0, el = 0, zoom = 1;
     if (const auto v = args.value("view")) {

@@ -25,8 +25,8 @@ CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index
     // The cells of each brick the rays may skip (as render::GpuRayCaster), for the slots the
     // index uses.
     const bool dvr = settings_.mode == RenderSettings::Mode::Dvr;
-    if (reader_.splitVoxels() && (settings_.mode != RenderSettings::Mode::Dvr || settings_.tools.variantBits()))
-        throw Error(reader_.path() + ": split-voxel octrees are drawn in DVR without the illustrative tools for now");
+    if (reader_.splitVoxels() && settings_.mode != RenderSettings::Mode::Dvr)
+        throw Error(reader_.path() + ": a split-voxel octree is drawn in DVR");
     if (settings_.skipEmptyCells && !reader_.splitVoxels() && (dvr || settings_.mode == RenderSettings::Mode::Iso)) {
         visibleCells_.assign(slots_.size(), ~std::uint64_t(0));
         std::vector<std::uint32_t> used;
@@ -156,6 +156,10 @@ glm::vec4 CpuRayCaster::castSplit(const glm::dvec3& ow, const glm::dvec3& dw, fl
     const glm::dvec3 o(space_.patientToOctree * glm::dvec4(ow, 1.0));
     const glm::dvec3 d(glm::dmat3(space_.patientToOctree) * dw);
     SplitCompositor out{tf_, settings_, labels_, normalToWorld_, -glm::normalize(dw)};
+    out.toolBits = settings_.tools.variantBits();
+    out.tools = &packedTools;
+    out.origin = ow;
+    if (out.toolBits & HVX_FOCAL_BIT) out.hTheta = glsl::hvxFocalAngle(packedTools, glm::vec3(ow), glm::vec3(glm::normalize(dw)));
     SplitMarchState state;
     const int B = int(reader_.brickSize());
     walk(ow, dw, [&](std::uint32_t n, const glm::vec3& lo, float tIn, float tOut) {
@@ -167,6 +171,7 @@ glm::vec4 CpuRayCaster::castSplit(const glm::dvec3& ow, const glm::dvec3& dw, fl
         if (counts) ++(*counts)[n];
         const Leaf L = leaf(n, lo);
         const glm::dvec3 oc = o * double(L.scale) - glm::dvec3(L.origin), dc = d * double(L.scale);
+        out.piece = double(float(settings_.stepScale) / glm::length(glm::vec3(dc)));  // a cell's length along the ray (mm), as the GPU
         return marchSplitCells(oc, dc, tIn, tOut, glm::ivec3(B),
                                [&](const glm::ivec3& c) {
                                    const float* q = L.data + 6 * ((std::size_t(c.z) * std::size_t(B) + std::size_t(c.y)) * std::size_t(B) + std::size_t(c.x));

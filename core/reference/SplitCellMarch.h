@@ -8,6 +8,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "core/appearance/Enhancers.h"
 #include "core/appearance/TransferFunction.h"
 #include "core/octree/SplitVoxel.h"
 #include "core/reference/RenderSettings.h"
@@ -18,7 +19,10 @@ namespace hvx::core {
 /// value v and length δt adds the colour of its table entry (labels) or table value
 /// (intensities) at opacity 1 − exp(−tau·δt), shaded (RenderSettings' Phong terms, headlight)
 /// by a normal when the segment lies at a boundary, else ambient + diffuse as Holovox shades
-/// homogeneous regions. Shared by the split-voxel reference caster and the CPU ray caster's
+/// homogeneous regions. With the illustrative tools, a segment is cut into pieces of at most
+/// `piece` mm, each a sample of core/appearance/Enhancers.glsl (gradient: the boundary's unit
+/// normal at full strength, none inside a material) composited by MImDA, as the voxel march
+/// composites its samples. Shared by the split-voxel reference caster and the CPU ray caster's
 /// split-voxel leaves.
 struct SplitCompositor {
     const TransferFunction& tf;
@@ -28,11 +32,21 @@ struct SplitCompositor {
     glm::dvec3 view;               ///< −ray direction, unit (headlight)
     glm::dvec4 accum{0.0};
     float depth = std::numeric_limits<float>::infinity();
+    // The tools (toolBits ≠ 0): the packed set, the ray (world, t in mm), its focal cone and
+    // MImDA state, and the longest piece (mm; set per leaf).
+    const glsl::HvxTools* tools = nullptr;
+    int toolBits = 0;
+    glm::dvec3 origin{0.0};
+    float hTheta = 1.0f;
+    bool entered = false;
+    float importanceMax = 0.0f;
+    double piece = 1.0;
 
     /// Adds `value` over [ta, tb] (world mm); `normalCell` in cell coordinates or null. False
     /// once the ray is opaque (RenderSettings::earlyTermination).
     bool add(float value, double ta, double tb, const glm::dvec3* normalCell) {
         if (tb <= ta) return true;
+        if (toolBits) return addWithTools(value, ta, tb, normalCell);
         const glm::dvec4 f = labels ? tf.entry(value) : tf.sample(value);
         if (f.w <= 0.0) return true;
         const double alpha = 1.0 - std::exp(-f.w * (tb - ta));
@@ -50,6 +64,54 @@ struct SplitCompositor {
         const double w = (1.0 - accum.w) * alpha;
         accum += glm::dvec4(colour * w, w);
         return accum.w < settings.earlyTermination;
+    }
+
+    /// add() with the tools, in the float operations of raycast_split.glsl's splitAdd.
+    bool addWithTools(float value, double ta, double tb, const glm::dvec3* normalCell) {
+        const glm::dvec4 f = labels ? tf.entry(value) : tf.sample(value);
+        if (f.w <= 0.0) return true;
+        const glm::vec3 g = normalCell ? glm::vec3(glm::normalize(cellNormalToWorld * *normalCell)) : glm::vec3(0.0f);
+        const int pieces = std::max(1, int(std::ceil(float(tb - ta) / float(piece))));
+        const float len = float(tb - ta) / float(pieces);
+        const float a = 1.0f - std::exp(-float(f.w) * len);
+        const glm::vec3 dir = -glm::vec3(view);
+        for (int i = 0; i < pieces; ++i) {
+            const float t = float(ta) + (float(i) + 0.5f) * len;
+            glsl::HvxSample x;
+            x.p = glm::vec3(origin) + t * dir;
+            x.v = dir;
+            x.g = g;
+            x.gn = normalCell ? 1.0f : 0.0f;
+            x.s = value;
+            x.c = glm::vec3(f) / float(f.w);
+            x.a = a;
+            x.lit = 1.0f;
+            x.importance = 1.0f - std::exp(-float(f.w) * float(tf.referenceLength()));
+            const float focalNorm = (toolBits & HVX_FOCAL_BIT) ? glsl::hvxFocalNorm(*tools, x.p) : 2.0f;
+            bool enteredNow = entered;
+            glsl::hvxEnhance(x, *tools, toolBits, focalNorm, g, hTheta, enteredNow);
+            glm::vec4 acc(accum);
+            if (enteredNow && !entered) {  // clip what lies in front of the focal probe
+                acc = glm::vec4(0.0f);
+                importanceMax = 0.0f;
+                entered = true;
+            }
+            glm::vec3 colour = x.c;
+            if (x.lit >= 0.0f) {
+                const float gl2 = glm::dot(x.g, x.g);
+                const float ndl = gl2 > 0.0f ? std::abs(glm::dot(x.g, -x.v)) / std::sqrt(gl2) : 1.0f;
+                const glm::vec3 phong = settings.shading ? x.c * float(settings.ambient + settings.diffuse * ndl) +
+                                                               glm::vec3(float(settings.specular) * std::pow(ndl, float(settings.shininess)))
+                                                         : x.c;
+                colour = glm::mix(x.c * float(settings.ambient + kEmphasisEmission), phong, x.lit);
+            }
+            glsl::hvxMimda(acc, importanceMax, colour * x.a, x.a, x.importance, tools->bandAxis.w);
+            accum = glm::dvec4(acc);
+            if (std::isinf(depth) && acc.w > 0.02f) depth = t;
+            if (glsl::hvxMimdaFutureDelta(acc.w, importanceMax, tools->bandAxis.w) < 1.0f - float(settings.earlyTermination))
+                return false;
+        }
+        return true;
     }
 };
 

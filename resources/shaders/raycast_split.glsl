@@ -51,7 +51,59 @@ struct SplitRay {
     float previous;
     bool havePrevious;
     bool previousHidden;
+    // The illustrative tools (HVX_TOOLS): the ray's origin (world), its focal cone, MImDA state
+    // and the longest piece a segment is cut into (mm; a cell's length along the ray).
+    vec3 ow;
+    float hTheta;
+    bool entered;
+    float importanceMax;
+    float piece;
 };
+
+#if HVX_TOOLS != 0
+// core::SplitCompositor::addWithTools: the segment in pieces, each a sample of the enhancers
+// (gradient: the boundary's unit normal at full strength, none inside a material) composited
+// by MImDA.
+bool splitAddTools(inout SplitRay r, vec4 f, float value, float ta, float tb, bool boundary, vec3 normalCell, vec3 view) {
+    vec3 g = boundary ? normalize(transpose(mat3(patientToOctree)) * normalCell) : vec3(0.0);
+    int pieces = max(1, int(ceil((tb - ta) / r.piece)));
+    float len = (tb - ta) / float(pieces);
+    float a = 1.0 - exp(-f.w * len);
+    vec3 dir = -view;
+    for (int i = 0; i < pieces; ++i) {
+        float t = ta + (float(i) + 0.5) * len;
+        HvxSample x;
+        x.p = r.ow + t * dir;
+        x.v = dir;
+        x.g = g;
+        x.gn = boundary ? 1.0 : 0.0;
+        x.s = value;
+        x.c = f.rgb / f.w;
+        x.a = a;
+        x.lit = 1.0;
+        x.importance = 1.0 - exp(-f.w * extra.w);
+        float focalNorm = HVX_TOOL_ON(HVX_FOCAL_BIT) ? hvxFocalNorm(tools, x.p) : 2.0;
+        bool enteredNow = r.entered;
+        hvxEnhance(x, tools, HVX_TOOLS, focalNorm, g, r.hTheta, enteredNow);
+        if (enteredNow && !r.entered) {  // clip what lies in front of the focal probe
+            r.accum = vec4(0.0);
+            r.importanceMax = 0.0;
+            r.entered = true;
+        }
+        vec3 colour = x.c;
+        if (x.lit >= 0.0) {
+            float gl2 = dot(x.g, x.g);
+            float ndl = gl2 > 0.0 ? abs(dot(x.g, -x.v)) / sqrt(gl2) : 1.0;
+            vec3 phong = extra.y > 0.5 ? x.c * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w)) : x.c;
+            colour = mix(x.c * (shading.x + HVX_EMPHASIS_EMISSION), phong, x.lit);
+        }
+        hvxMimda(r.accum, r.importanceMax, colour * x.a, x.a, x.importance, tools.bandAxis.w);
+        if (isinf(r.depth) && r.accum.w > 0.02) r.depth = t;
+        if (hvxMimdaFutureDelta(r.accum.w, r.importanceMax, tools.bandAxis.w) < 1.0 - tfRange.z) return false;
+    }
+    return true;
+}
+#endif
 
 // core::SplitCompositor::add: `value` over [ta, tb] (world mm), at a boundary of normal
 // `normalCell` (cell coordinates) or inside a material. False once the ray is opaque.
@@ -63,6 +115,9 @@ bool splitAdd(inout SplitRay r, float value, float ta, float tb, bool boundary, 
     vec4 f = tfSample(value);
 #endif
     if (f.w <= 0.0) return true;
+#if HVX_TOOLS != 0
+    return splitAddTools(r, f, value, ta, tb, boundary, normalCell, view);
+#endif
     float a = 1.0 - exp(-f.w * (tb - ta));
     vec3 colour = f.rgb / f.w;
     if (extra.y > 0.5) {
@@ -203,6 +258,15 @@ vec4 castRaySplit(vec3 ow, vec3 dw, out float depth) {
     r.previous = 0.0;
     r.havePrevious = false;
     r.previousHidden = false;
+    r.ow = ow;
+    r.entered = false;
+    r.importanceMax = 0.0;
+    r.piece = 1.0;
+#if HVX_TOOLS != 0
+    r.hTheta = HVX_TOOL_ON(HVX_FOCAL_BIT) ? hvxFocalAngle(tools, ow, dw) : 1.0;
+#else
+    r.hTheta = 1.0;
+#endif
     vec3 view = -normalize(dw);
     float tIn = t0;
     for (int guard = 0; guard < 65536; ++guard) {
@@ -219,6 +283,7 @@ vec4 castRaySplit(vec3 ow, vec3 dw, out float depth) {
                 float scale = float(brick.x) * float(1u << level);
                 vec3 origin = floor(lo * float(1u << level) + 0.5) * float(brick.x);
                 uint slot = nd.x;
+                r.piece = tfRange.w / length(d * scale);  // a cell's length along the ray (mm)
                 ivec3 corner = ivec3(uvec3(slot % brick.w, slot / brick.w % brick.w, slot / image.z) * brick.z);
                 if (!splitMarchLeaf(o * scale - origin, d * scale, tIn, tOut, corner, slotRecords[slot].visible, r, view))
                     break;
