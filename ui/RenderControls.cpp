@@ -5,7 +5,11 @@
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QHBoxLayout>
+#include <QActionGroup>
+#include <QMenu>
 #include <QPushButton>
+#include <QSettings>
+#include <QToolButton>
 #include <QSlider>
 #include <QStandardItemModel>
 
@@ -56,10 +60,31 @@ RenderControls::RenderControls(QWidget* parent)
     compare->setObjectName("compareReconstructions");
     compare->setToolTip(tr("One octree level drawn with trilinear, nearest and split-voxel reconstruction side by side"));
     connect(compare, &QPushButton::clicked, this, &RenderControls::compareRequested);
+    // The preset: how images open (a label map opens with split-voxels; each volume keeps its own choice).
+    auto* preset = new QToolButton(this);
+    preset->setObjectName("reconstructionDefault");
+    preset->setText(tr("Default"));
+    preset->setToolTip(tr("How images open in 3D from now on (each volume keeps the choice made for it; label maps open with split-voxels)"));
+    preset->setPopupMode(QToolButton::InstantPopup);
+    auto* menu = new QMenu(preset);
+    auto* group = new QActionGroup(menu);
+    const QString current = QSettings().value("reconstruction/default", "trilinear").toString();
+    for (const auto& [key, text] : {std::pair{"trilinear", tr("Images open trilinear")}, {"nearest", tr("Images open nearest")},
+                                    {"split-voxels", tr("Images open with split-voxels")}}) {
+        auto* action = menu->addAction(text);
+        action->setObjectName(QStringLiteral("reconstructionDefault-%1").arg(QLatin1String(key)));
+        action->setCheckable(true);
+        action->setChecked(current == QLatin1String(key));
+        group->addAction(action);
+        connect(action, &QAction::triggered, this, [k = QString::fromLatin1(key)] { QSettings().setValue("reconstruction/default", k); });
+    }
+    preset->setMenu(menu);
     auto* reconstructionRow = new QHBoxLayout;
-    reconstructionRow->addWidget(reconstruction_, 1);
     reconstructionRow->addWidget(compare);
-    form->addRow(tr("Reconstruction"), reconstructionRow);
+    reconstructionRow->addWidget(preset);
+    reconstructionRow->addStretch(1);
+    form->addRow(tr("Reconstruction"), reconstruction_);
+    form->addRow(QString(), reconstructionRow);
     form->addRow(QString(), shading_);
     form->addRow(tr("Ambient"), ambient_);
     form->addRow(tr("Diffuse"), diffuse_);

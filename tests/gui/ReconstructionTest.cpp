@@ -1,9 +1,11 @@
 // GUI tests of the 3D view's reconstruction choice under Xvfb (Qt Test; thesis ch. 4): a label
 // map opens with split-voxels, built once in the background into the cache folder and drawn in
 // the 3D view (its readout says so); nearest and split-voxels are switched without a rebuild and
-// each volume keeps its choice; light-field frames draw what the view draws; an image starts trilinear, and split-voxels give way to its own
+// each volume keeps its choice; light-field frames draw what the view draws; an image starts as
+// the Default menu says (trilinear unless changed), and split-voxels give way to its own
 // octree in MIP; a volume split-voxels cannot be built for goes back to trilinear with the
 // reason in the Jobs panel. Screenshot under <build>/test-artifacts/gui/reconstruction.png.
+#include <QAction>
 #include <QComboBox>
 #include <QPushButton>
 #include <QFileInfo>
@@ -76,6 +78,9 @@ private slots:
         build(labels, dir_.file("labels.hvo"), true);
         core::PhantomVoxelSource ct({96, 96, 80});
         build(ct, dir_.file("ct.hvo"));
+        core::PhantomVoxelSource ct2({48, 48, 40}, 2), ct3({48, 48, 40}, 3);
+        build(ct2, dir_.file("ct2.hvo"));
+        build(ct3, dir_.file("ct3.hvo"));
         // A float volume (split-voxels keep 8- and 16-bit integers only).
         core::VolumeGeometry g;
         g.scalarType = core::ScalarType::Float32;
@@ -156,6 +161,15 @@ private slots:
         QVERIFY(window_->openPath(file("labels.hvo")));
         QVERIFY(window_->openPath(file("ct.hvo")));
         QCOMPARE(box()->currentIndex(), int(ui::RenderControls::Reconstruction::SplitVoxels));
+        // The preset: an image never opened before opens as the Default menu says.
+        QVERIFY(window_->openPath(file("ct2.hvo")));
+        QCOMPARE(box()->currentIndex(), int(ui::RenderControls::Reconstruction::Trilinear));
+        window_->findChild<QAction*>("reconstructionDefault-nearest")->trigger();
+        QVERIFY(window_->openPath(file("ct3.hvo")));
+        QCOMPARE(box()->currentIndex(), int(ui::RenderControls::Reconstruction::Nearest));
+        QVERIFY(window_->openPath(file("ct2.hvo")));  // chosen before (trilinear): kept
+        QCOMPARE(box()->currentIndex(), int(ui::RenderControls::Reconstruction::Trilinear));
+        window_->findChild<QAction*>("reconstructionDefault-trilinear")->trigger();
     }
 
     // Split-voxels cannot be built for a float volume: the Jobs panel says why in a sentence and
