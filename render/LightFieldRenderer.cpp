@@ -4,6 +4,9 @@
 #include <chrono>
 #include <string>
 
+#include "core/base/Error.h"
+#include "core/reference/FusedRayCaster.h"
+
 namespace hvx::render {
 
 std::vector<core::RenderImage> LightFieldRenderer::render(const core::OctreeReader& reader, core::WorkingSet& ws,
@@ -11,11 +14,15 @@ std::vector<core::RenderImage> LightFieldRenderer::render(const core::OctreeRead
                                                           const core::RenderSettings& settings,
                                                           const std::vector<core::View>& views,
                                                           const core::AccuracyFunction& accuracy, GpuRayCaster* gpu,
-                                                          bool converge, Stats* stats, core::JobContext* job) {
+                                                          bool converge, Stats* stats, core::JobContext* job,
+                                                          const Fused* fused) {
+    if (fused && (settings.mode != core::RenderSettings::Mode::Dvr || settings.tools.variantBits()))
+        throw core::Error("two volumes are fused in DVR, without the illustrative tools");
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
     if (job) job->report(0.0, "refining the cut for all views");
     const int frames = ws.converge(views, tf, accuracy, converge ? 64 : 1);
+    if (fused) fused->ws.converge(views, fused->tf, accuracy, converge ? 64 : 1);
     const auto t1 = Clock::now();
     if (job) job->throwIfCancelled();
     std::vector<core::RenderImage> out;
@@ -33,12 +40,22 @@ std::vector<core::RenderImage> LightFieldRenderer::render(const core::OctreeRead
                                 std::to_string(views.size()));
                 job->throwIfCancelled();
             }
-            auto images = gpu->renderViews(reader, ws.index(), ws.slotBricks(), tf, settings, some);
+            const GpuRayCaster::Overlay overlay{fused ? fused->reader : reader, fused ? fused->ws.index() : ws.index(),
+                                                fused ? fused->ws.slotBricks() : ws.slotBricks(), fused ? fused->tf : tf};
+            auto images = gpu->renderViews(reader, ws.index(), ws.slotBricks(), tf, settings, some, fused ? &overlay : nullptr);
             for (auto& im : images) out.push_back(std::move(im));
         }
     } else {
         const core::CpuRayCaster cpu(reader, ws.index(), ws.slotData(), tf, settings);
-        for (const auto& v : views) out.push_back(cpu.render(v));
+        if (fused) {
+            core::RenderSettings uncropped = settings;  // the partner is cut by the base volume's box
+            uncropped.crop = {};
+            const core::CpuRayCaster second(fused->reader, fused->ws.index(), fused->ws.slotData(), fused->tf, uncropped);
+            const core::FusedRayCaster both(cpu, second);
+            for (const auto& v : views) out.push_back(both.render(v));
+        } else {
+            for (const auto& v : views) out.push_back(cpu.render(v));
+        }
     }
     if (stats) {
         stats->cutNodes = ws.stats().cutNodes;

@@ -550,16 +550,28 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
     const auto views = display.views(camera_.target(), camera_.right(), camera_.up(), eta,
                                      std::max(1, int(display.viewWidthPx() * shrink)),
                                      std::max(1, int(display.viewHeightPx() * shrink)), scale, depthScale);
-    // The split-voxel octree where the 3D view draws it (DVR; a light-field frame draws no fused
-    // volume), else the volume's own.
-    Scene& scene = split_ && rs.mode == core::RenderSettings::Mode::Dvr ? *split_ : *scene_;
+    // What the 3D view draws: the fused volume over the open one (DVR without tools), else the
+    // split-voxel octree (DVR), else the volume's own octree.
+    const bool dvr = rs.mode == core::RenderSettings::Mode::Dvr;
+    const bool fusedToo = fused_ && fusedTf_ && dvr && !rs.tools.variantBits();
+    Scene& scene = split_ && dvr && !fusedToo ? *split_ : *scene_;
     makeCurrent();
     try {
         core::WorkingSetOptions options = scene.ws.options();
         options.cpuMirror = false;
         core::WorkingSet ws(*scene.reader, scene.cache, scene.loader, options);
+        std::optional<core::WorkingSet> fusedWs;
+        std::optional<render::LightFieldRenderer::Fused> fused;
+        if (fusedToo) {
+            core::WorkingSetOptions o = fused_->ws.options();
+            o.cpuMirror = false;
+            o.crop = {};
+            fusedWs.emplace(*fused_->reader, fused_->cache, fused_->loader, o);
+            fused.emplace(render::LightFieldRenderer::Fused{*fused_->reader, *fusedWs, *fusedTf_});
+        }
         auto images = render::LightFieldRenderer::render(*scene.reader, ws, scene.loader, *tf_, rs, views,
-                                                         display.accuracyFunction(scale, depthScale), gpu_.get(), true, nullptr, job);
+                                                         display.accuracyFunction(scale, depthScale), gpu_.get(), true, nullptr,
+                                                         job, fused ? &*fused : nullptr);
         glUseProgram(0);
         for (GLuint unit = 0; unit < 3; ++unit) glBindTextureUnit(unit, 0);
         doneCurrent();

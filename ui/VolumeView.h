@@ -103,7 +103,8 @@ public:
     /// nearest-neighbour samples (plain octrees). DVR, with the view's tools. Throws core::Error.
     QImage renderLevel(std::shared_ptr<const core::OctreeReader> reader, int level, bool nearest, QSize size);
     /// Renders every view of a multi-view display from one working set with the display's
-    /// accuracy s(z), the screen centred on the camera's target and facing the camera; `zoom`
+    /// accuracy s(z) (what the 3D view draws: its fused volume too, or its split-voxels), the
+    /// screen centred on the camera's target and facing the camera; `zoom`
     /// scales the volume's default fit. Views are shrunk so the frame holds at most `maxBeams`
     /// rays. `interactive` lowers the sampling rate as the thesis does while moving: pixels of
     /// 2.5 mm on the screen (at least twice the display's own) and a doubled step. Throws

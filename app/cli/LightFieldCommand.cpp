@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "app/cli/CliArgs.h"
+#include "app/cli/FusedLayer.h"
 #include "app/cli/Commands.h"
 #include "core/base/AtomicFileWriter.h"
 #include "core/streaming/BrickCache.h"
@@ -71,8 +72,8 @@ void checkOutputs(const std::string& format, const std::string& out, const std::
 int lightFieldCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"display", "o", "output", "format", "eta", "view", "zoom", "tf", "mode", "size", "observer",
-                        "simulate", "budget", "cache-mb", "correction"},
-                       {"cpu", "list", "true-depth"});
+                        "simulate", "budget", "cache-mb", "correction", "overlay", "labels", "lut", "label-opacity"},
+                       {"cpu", "list", "true-depth", "force-frame"});
     if (args.flag("list")) {
         for (const auto& n : core::DisplayModel::builtInNames()) {
             const auto d = core::DisplayModel::load(n);
@@ -84,7 +85,8 @@ int lightFieldCommand(int argc, char** argv) {
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out || !args.value("display"))
         throw core::Error("usage: holovox-cli lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] "
-                          "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--true-depth] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json] [--cpu]");
+                          "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--true-depth] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json] "
+                          "[--overlay B.hvo[:lut=NAME,opacity=O,window=W/L] | --labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--cpu]");
     const auto display = core::DisplayModel::load(*args.value("display"));
     const std::string format = args.value("format").value_or(
         display.kind == core::DisplayModel::Kind::Lenticular ? "quilt"
@@ -148,9 +150,22 @@ int lightFieldCommand(int argc, char** argv) {
     opt.maxBricks = std::size_t(args.integer("budget", 8192, 1, 1 << 20));
     opt.cpuMirror = args.flag("cpu");
     opt.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
-    core::BrickCache cache(std::size_t(args.integer("cache-mb", 2048, 16, 1 << 20)) << 20);
+    const std::size_t cacheBytes = std::size_t(args.integer("cache-mb", 2048, 16, 1 << 20)) << 20;
+    core::BrickCache cache(cacheBytes);
     core::BrickLoader loader(*reader, cache);
     core::WorkingSet ws(*reader, cache, loader, opt);
+    // --overlay or --labels: a second volume fused in every view (its own cut, the same budget).
+    std::unique_ptr<FusedLayer> fused;
+    std::optional<render::LightFieldRenderer::Fused> fusedViews;
+    if (const auto spec = args.value("overlay") ? args.value("overlay") : args.value("labels")) {
+        if (args.value("overlay") && args.value("labels")) throw core::Error("one volume at a time is fused: --overlay or --labels");
+        if (settings.mode != core::RenderSettings::Mode::Dvr) throw core::Error("two volumes are fused in DVR only");
+        if (reader->splitVoxels()) throw core::Error(reader->path() + ": a split-voxel octree is drawn alone");
+        fused = std::make_unique<FusedLayer>(*spec, args.value("labels").has_value(), args, g, cacheBytes, opt);
+        fusedViews.emplace(render::LightFieldRenderer::Fused{*fused->reader, fused->ws, *fused->tf});
+    } else if (args.value("lut") || args.value("label-opacity")) {
+        throw core::Error("--lut and --label-opacity go with --labels");
+    }
     render::LightFieldRenderer::Stats stats;
     std::vector<core::RenderImage> images;
     std::string device = "the CPU";
@@ -162,7 +177,7 @@ int lightFieldCommand(int argc, char** argv) {
         device = "the GPU (" + context->info().renderer + ")";
     }
     images = render::LightFieldRenderer::render(*reader, ws, loader, tf, settings, views, display.accuracyFunction(scale, depthScale),
-                                                gpu.get(), true, &stats);
+                                                gpu.get(), true, &stats, nullptr, fusedViews ? &*fusedViews : nullptr);
 
     if (correction)  // per-projector warp and colour LUTs
         for (std::size_t i = 0; i < images.size(); ++i) images[i] = correction->apply(images[i], i);
@@ -222,6 +237,9 @@ int lightFieldCommand(int argc, char** argv) {
                 display.name.c_str(), images.size(), images.front().width, images.front().height, device.c_str(),
                 stats.cutNodes, stats.refineFrames, stats.refineMs, stats.renderMs,
                 double(images.size()) / (stats.renderMs / 1000.0), beams / 1e6 / (stats.renderMs / 1000.0), written.c_str());
+    if (fused)
+        std::printf("fused %s (%s): cut of %zu bricks (%zu loaded)\n", fused->path.c_str(), fused->description.c_str(),
+                    fused->ws.stats().cutNodes, fused->loader.loadedCount());
     return 0;
 }
 

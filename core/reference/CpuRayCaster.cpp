@@ -1,5 +1,6 @@
 #include "core/reference/CpuRayCaster.h"
 #include "core/reference/SplitCellMarch.h"
+#include "core/reference/ToolColour.h"
 
 #include <algorithm>
 #include <cmath>
@@ -295,18 +296,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                             importanceMax = 0.0f;
                             enteredProbe = true;
                         }
-                        glm::vec3 colour = x.c;
-                        if (x.lit >= 0.0f) {
-                            const float gl2 = glm::dot(x.g, x.g);
-                            const float ndl = gl2 > 0.0f ? std::abs(glm::dot(x.g, -x.v)) / std::sqrt(gl2) : 1.0f;
-                            const glm::vec3 phong = settings_.shading
-                                                        ? x.c * float(settings_.ambient + settings_.diffuse * ndl) +
-                                                              glm::vec3(float(settings_.specular) *
-                                                                        std::pow(ndl, float(settings_.shininess)))
-                                                        : x.c;
-                            colour = glm::mix(x.c * float(settings_.ambient + kEmphasisEmission), phong, x.lit);
-                        }
-                        glsl::hvxMimda(accum, importanceMax, colour * x.a, x.a, x.importance, gamma);
+                        glsl::hvxMimda(accum, importanceMax, toolColour(x, settings_) * x.a, x.a, x.importance, gamma);
                         if (!hit && accum.w > 0.02f) {
                             hit = true;
                             depth = t;

@@ -12,6 +12,7 @@
 #include "core/appearance/TransferFunction.h"
 #include "core/octree/SplitVoxel.h"
 #include "core/reference/RenderSettings.h"
+#include "core/reference/ToolColour.h"
 
 namespace hvx::core {
 
@@ -96,16 +97,7 @@ struct SplitCompositor {
                 importanceMax = 0.0f;
                 entered = true;
             }
-            glm::vec3 colour = x.c;
-            if (x.lit >= 0.0f) {
-                const float gl2 = glm::dot(x.g, x.g);
-                const float ndl = gl2 > 0.0f ? std::abs(glm::dot(x.g, -x.v)) / std::sqrt(gl2) : 1.0f;
-                const glm::vec3 phong = settings.shading ? x.c * float(settings.ambient + settings.diffuse * ndl) +
-                                                               glm::vec3(float(settings.specular) * std::pow(ndl, float(settings.shininess)))
-                                                         : x.c;
-                colour = glm::mix(x.c * float(settings.ambient + kEmphasisEmission), phong, x.lit);
-            }
-            glsl::hvxMimda(acc, importanceMax, colour * x.a, x.a, x.importance, tools->bandAxis.w);
+            glsl::hvxMimda(acc, importanceMax, toolColour(x, settings) * x.a, x.a, x.importance, tools->bandAxis.w);
             accum = glm::dvec4(acc);
             if (std::isinf(depth) && acc.w > 0.02f) depth = t;
             if (glsl::hvxMimdaFutureDelta(acc.w, importanceMax, tools->bandAxis.w) < 1.0f - float(settings.earlyTermination))

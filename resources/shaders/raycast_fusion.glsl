@@ -146,9 +146,7 @@ FusedCursor fusedCursor(mat4 toOctree, vec3 boxLo, vec3 boxHi, float rootVoxelIn
         k.tHi = min(k.tHi, max(ta, tb));
     }
     if (!(k.tHi > k.tLo)) k.tHi = -1.0 / 0.0;
-    k.inv = vec3(abs(k.d.x) > 1e-20 ? 1.0 / k.d.x : (k.d.x >= 0.0 ? 1e30 : -1e30),
-                 abs(k.d.y) > 1e-20 ? 1.0 / k.d.y : (k.d.y >= 0.0 ? 1e30 : -1e30),
-                 abs(k.d.z) > 1e-20 ? 1.0 / k.d.z : (k.d.z >= 0.0 ? 1e30 : -1e30));
+    k.inv = rayInverse(k.d);
     k.octPerMm = length(k.d);
     k.nudge = 1e-3 * rootVoxelInv / max(1e-12, k.octPerMm);
     k.tExit = -1.0 / 0.0;

@@ -28,24 +28,48 @@ vec3 shadeSample(LeafSampler L, vec3 p, vec3 base, vec3 dw, inout float a) {
     return base * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w));
 }
 
-vec4 castRay(vec3 ow, vec3 dw, out float depth) {
-    depth = 1.0 / 0.0;
-    vec3 o = (patientToOctree * vec4(ow, 1.0)).xyz;
-    vec3 d = mat3(patientToOctree) * dw;
-    float t0 = 0.0, t1 = 1e30;
+// The ray o + t·d (octree space, t in world mm from t = 0) clipped to the crop box (the whole
+// volume when nothing is cropped): [t0, t1], false when it misses.
+bool clipToCrop(vec3 o, vec3 d, out float t0, out float t1) {
+    t0 = 0.0;
+    t1 = 1e30;
     for (int a = 0; a < 3; ++a) {
         if (abs(d[a]) < 1e-15) {
-            if (o[a] < cropLo[a] || o[a] > cropHi[a]) return vec4(0.0);
+            if (o[a] < cropLo[a] || o[a] > cropHi[a]) return false;
             continue;
         }
         float ta = (cropLo[a] - o[a]) / d[a], tb = (cropHi[a] - o[a]) / d[a];
         t0 = max(t0, min(ta, tb));
         t1 = min(t1, max(ta, tb));
     }
-    if (!(t1 > t0)) return vec4(0.0);
-    vec3 inv = vec3(abs(d.x) > 1e-20 ? 1.0 / d.x : (d.x >= 0.0 ? 1e30 : -1e30),
-                    abs(d.y) > 1e-20 ? 1.0 / d.y : (d.y >= 0.0 ? 1e30 : -1e30),
-                    abs(d.z) > 1e-20 ? 1.0 / d.z : (d.z >= 0.0 ? 1e30 : -1e30));
+    return t1 > t0;
+}
+
+// 1 / d per axis, ±1e30 along an axis the ray (nearly) parallels: the traversal's slab tests.
+vec3 rayInverse(vec3 d) {
+    return vec3(abs(d.x) > 1e-20 ? 1.0 / d.x : (d.x >= 0.0 ? 1e30 : -1e30),
+                abs(d.y) > 1e-20 ? 1.0 / d.y : (d.y >= 0.0 ? 1e30 : -1e30),
+                abs(d.z) > 1e-20 ? 1.0 / d.z : (d.z >= 0.0 ? 1e30 : -1e30));
+}
+
+// A tool sample's colour (core::CpuRayCaster and SplitCompositor alike): Phong by its gradient
+// (none: facing), or ambient + emission where a tool emphasises it, mixed by x.lit; a sample
+// already shaded (x.lit < 0) keeps its colour.
+vec3 toolColour(HvxSample x) {
+    if (x.lit < 0.0) return x.c;
+    float gl2 = dot(x.g, x.g);
+    float ndl = gl2 > 0.0 ? abs(dot(x.g, -x.v)) / sqrt(gl2) : 1.0;
+    vec3 phong = extra.y > 0.5 ? x.c * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w)) : x.c;
+    return mix(x.c * (shading.x + HVX_EMPHASIS_EMISSION), phong, x.lit);
+}
+
+vec4 castRay(vec3 ow, vec3 dw, out float depth) {
+    depth = 1.0 / 0.0;
+    vec3 o = (patientToOctree * vec4(ow, 1.0)).xyz;
+    vec3 d = mat3(patientToOctree) * dw;
+    float t0, t1;
+    if (!clipToCrop(o, d, t0, t1)) return vec4(0.0);
+    vec3 inv = rayInverse(d);
     float octPerMm = length(d);
     float nudge = 1e-3 * extent.w / max(1e-12, octPerMm);
     uint n = 0u;
@@ -178,14 +202,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                     importanceMax = 0.0;
                     entered = true;
                 }
-                vec3 colour = x.c;
-                if (x.lit >= 0.0) {
-                    float gl2 = dot(x.g, x.g);
-                    float ndl = gl2 > 0.0 ? abs(dot(x.g, -x.v)) / sqrt(gl2) : 1.0;
-                    vec3 phong = extra.y > 0.5 ? x.c * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w))
-                                               : x.c;
-                    colour = mix(x.c * (shading.x + HVX_EMPHASIS_EMISSION), phong, x.lit);
-                }
+                vec3 colour = toolColour(x);
                 hvxMimda(accum, importanceMax, colour * x.a, x.a, x.importance, tools.bandAxis.w);
                 if (!hit && accum.w > 0.02) { hit = true; depth = t; }
                 if (hvxMimdaFutureDelta(accum.w, importanceMax, tools.bandAxis.w) < 1.0 - tfRange.z) done = true;

@@ -90,14 +90,7 @@ bool splitAddTools(inout SplitRay r, vec4 f, float value, float ta, float tb, bo
             r.importanceMax = 0.0;
             r.entered = true;
         }
-        vec3 colour = x.c;
-        if (x.lit >= 0.0) {
-            float gl2 = dot(x.g, x.g);
-            float ndl = gl2 > 0.0 ? abs(dot(x.g, -x.v)) / sqrt(gl2) : 1.0;
-            vec3 phong = extra.y > 0.5 ? x.c * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w)) : x.c;
-            colour = mix(x.c * (shading.x + HVX_EMPHASIS_EMISSION), phong, x.lit);
-        }
-        hvxMimda(r.accum, r.importanceMax, colour * x.a, x.a, x.importance, tools.bandAxis.w);
+        hvxMimda(r.accum, r.importanceMax, toolColour(x) * x.a, x.a, x.importance, tools.bandAxis.w);
         if (isinf(r.depth) && r.accum.w > 0.02) r.depth = t;
         if (hvxMimdaFutureDelta(r.accum.w, r.importanceMax, tools.bandAxis.w) < 1.0 - tfRange.z) return false;
     }
@@ -234,20 +227,9 @@ vec4 castRaySplit(vec3 ow, vec3 dw, out float depth) {
     depth = 1.0 / 0.0;
     vec3 o = (patientToOctree * vec4(ow, 1.0)).xyz;
     vec3 d = mat3(patientToOctree) * dw;
-    float t0 = 0.0, t1 = 1e30;
-    for (int a = 0; a < 3; ++a) {
-        if (abs(d[a]) < 1e-15) {
-            if (o[a] < cropLo[a] || o[a] > cropHi[a]) return vec4(0.0);
-            continue;
-        }
-        float ta = (cropLo[a] - o[a]) / d[a], tb = (cropHi[a] - o[a]) / d[a];
-        t0 = max(t0, min(ta, tb));
-        t1 = min(t1, max(ta, tb));
-    }
-    if (!(t1 > t0)) return vec4(0.0);
-    vec3 inv = vec3(abs(d.x) > 1e-20 ? 1.0 / d.x : (d.x >= 0.0 ? 1e30 : -1e30),
-                    abs(d.y) > 1e-20 ? 1.0 / d.y : (d.y >= 0.0 ? 1e30 : -1e30),
-                    abs(d.z) > 1e-20 ? 1.0 / d.z : (d.z >= 0.0 ? 1e30 : -1e30));
+    float t0, t1;
+    if (!clipToCrop(o, d, t0, t1)) return vec4(0.0);
+    vec3 inv = rayInverse(d);
     float nudge = 1e-3 * extent.w / max(1e-12, length(d));
     uint n = 0u;
     vec3 lo = vec3(0.0), hi = vec3(1.0);

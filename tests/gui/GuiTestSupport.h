@@ -12,6 +12,7 @@
 #include <cmath>
 #include <memory>
 
+#include "core/octree/OctreeBuilder.h"
 #include "tests/support/TempDir.h"
 #include "ui/JobManager.h"
 #include "ui/MainWindow.h"
@@ -24,6 +25,15 @@ inline QString guiArtifacts() {
     const QString dir = QStringLiteral(HVX_BINARY_DIR "/test-artifacts/gui");
     QDir().mkpath(dir);
     return dir;
+}
+
+/// Builds `path` from `source` in bricks of 16 (several bricks and levels for small test volumes).
+inline void buildOctree(core::VoxelSource& source, const std::string& path, bool labels = false) {
+    core::BuildOptions o;
+    o.brickSize = 16;
+    o.labels = labels;
+    core::JobContext job;
+    core::OctreeBuilder(o).build(source, path, job);
 }
 
 /// Fraction of pixels that are not black.

@@ -18,7 +18,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/camera/DisplayModel.h"
 #include "core/octree/OctreeBuilder.h"
+#include "ui/ImageConversion.h"
 #include "dicom/DicomSeriesWriter.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/support/MemoryVoxelSource.h"
@@ -56,13 +58,6 @@ test::MemoryVoxelSource volume(std::array<std::uint32_t, 3> dims, glm::dvec3 spa
     return test::MemoryVoxelSource(g, v);
 }
 
-void build(core::VoxelSource& s, const std::string& path, bool labels = false) {
-    core::BuildOptions o;
-    o.brickSize = 16;
-    o.labels = labels;
-    core::JobContext job;
-    core::OctreeBuilder(o).build(s, path, job);
-}
 
 double hot(const glm::dvec3& p) { return 10 * std::exp(-glm::dot(p - kHotSpot, p - kHotSpot) / (2 * 36.0)); }
 
@@ -118,6 +113,10 @@ class LayersTest : public QObject, test::GuiFixture {
         QVERIFY2(hidden.first < liver / 20 && hidden.second > spleen / 2,
                  qPrintable(QString("liver hidden: liver %1, spleen %2 pixels").arg(hidden.first).arg(hidden.second)));
         legend->topLevelItem(0)->setCheckState(0, Qt::Checked);
+        // A light-field frame fuses them too: the organs' hues in a middle view.
+        const auto views = view()->renderViews(core::DisplayModel::load("looking-glass-portrait"), 1.0, 1.0, 48 * 120 * 160);
+        const auto [lfLiver, lfSpleen] = organPixels(ui::toQImage(views[views.size() / 2]));
+        QVERIFY2(lfLiver > 30 && lfSpleen > 5, qPrintable(QString("light field: liver %1, spleen %2 pixels").arg(lfLiver).arg(lfSpleen)));
         show3D->setChecked(false);
         const auto alone = organPixels(settledFrame());
         QVERIFY2(alone.first < liver / 20 && alone.second < spleen / 20,
@@ -130,19 +129,19 @@ private slots:
         open();
         auto ct = volume({96, 96, 64}, {2, 2, 2}, glm::dmat3(1.0), core::ScalarType::Int16, "CT", kFrame,
                          [](const glm::dvec3&) { return 40.0; });
-        build(ct, dir_.file("ct.hvo"));
+        test::buildOctree(ct, dir_.file("ct.hvo"));
         const glm::dmat3 rot(glm::rotate(glm::dmat4(1.0), glm::radians(25.0), glm::normalize(glm::dvec3(0.3, 1, 2))));
         auto pet = volume({50, 40, 24}, {2.5, 3.1, 4.0}, rot, core::ScalarType::Float32, "PT", kFrame, hot);
-        build(pet, dir_.file("pet.hvo"));
+        test::buildOctree(pet, dir_.file("pet.hvo"));
         auto elsewhere = volume({50, 40, 24}, {2.5, 3.1, 4.0}, rot, core::ScalarType::Float32, "PT", kFrame + ".9", hot);
-        build(elsewhere, dir_.file("elsewhere.hvo"));
+        test::buildOctree(elsewhere, dir_.file("elsewhere.hvo"));
         labels_ = std::make_unique<test::MemoryVoxelSource>(volume({48, 48, 32}, {4, 4, 4}, glm::dmat3(1.0), core::ScalarType::UInt8, "SEG", kFrame,
                              [](const glm::dvec3& p) {
                                  if (glm::length(p - kLiver) < 14) return 1.0;
                                  if (std::abs(p.x - 40) < 8 && std::abs(p.y) < 8 && std::abs(p.z) < 8) return 2.0;
                                  return 0.0;
                              }));
-        build(*labels_, dir_.file("labels.hvo"), true);
+        test::buildOctree(*labels_, dir_.file("labels.hvo"), true);
         std::ofstream(dir_.file("organs.ctbl")) << "# Color table file organs.ctbl\n0 Background 0 0 0 0\n"
                                                    "1 liver 200 60 60 255\n2 spleen 60 60 200 255\n";
         QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("ct.hvo"))));

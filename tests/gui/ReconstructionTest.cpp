@@ -28,13 +28,6 @@
 using namespace hvx;
 
 namespace {
-void build(core::VoxelSource& s, const std::string& path, bool labels = false) {
-    core::BuildOptions o;
-    o.brickSize = 16;
-    o.labels = labels;
-    core::JobContext job;
-    core::OctreeBuilder(o).build(s, path, job);
-}
 
 /// 96³ at 2 mm: a sphere of label 1 cut by an oblique plane, label 2 beyond it, 0 around.
 test::MemoryVoxelSource labelSphere() {
@@ -75,12 +68,12 @@ private slots:
     void initTestCase() {
         open();
         auto labels = labelSphere();
-        build(labels, dir_.file("labels.hvo"), true);
+        test::buildOctree(labels, dir_.file("labels.hvo"), true);
         core::PhantomVoxelSource ct({96, 96, 80});
-        build(ct, dir_.file("ct.hvo"));
+        test::buildOctree(ct, dir_.file("ct.hvo"));
         core::PhantomVoxelSource ct2({48, 48, 40}, 2), ct3({48, 48, 40}, 3);
-        build(ct2, dir_.file("ct2.hvo"));
-        build(ct3, dir_.file("ct3.hvo"));
+        test::buildOctree(ct2, dir_.file("ct2.hvo"));
+        test::buildOctree(ct3, dir_.file("ct3.hvo"));
         // A float volume (split-voxels keep 8- and 16-bit integers only).
         core::VolumeGeometry g;
         g.scalarType = core::ScalarType::Float32;
@@ -89,7 +82,7 @@ private slots:
         v.dims = g.dims;
         v.values.assign(32 * 32 * 32, 0.5);
         test::MemoryVoxelSource f(g, v);
-        build(f, dir_.file("float.hvo"));
+        test::buildOctree(f, dir_.file("float.hvo"));
     }
 
     // Split-voxels by default for a label map: built once, drawn, said; nearest and back without

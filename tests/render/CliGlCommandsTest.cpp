@@ -30,6 +30,22 @@ std::string pngStats(const std::string& path) {
     return r.exitCode == 0 ? r.output.substr(0, r.output.find('\n')) : "unreadable: " + r.output;
 }
 
+/// Liver-red (145, 30, 35) and spleen-blue (0, 119, 192) pixels of a PNG as VTK reads it (lit:
+/// red-dominant and blue-dominant).
+std::pair<int, int> segmentPixels(const std::string& png) {
+    const auto counts = test::runCommand(
+        "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
+        "from vtkmodules.util.numpy_support import vtk_to_numpy; "
+        "r = vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update(); "
+        "a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(int); "
+        "print(int(((a[:, 0] > a[:, 2] + 40) & (a[:, 0] > a[:, 1] + 40)).sum()), int((a[:, 2] > a[:, 0] + 40).sum()))\" " +
+        png);
+    int liver = -1, spleen = -1;
+    if (counts.exitCode != 0 || std::sscanf(counts.output.c_str(), "%d %d", &liver, &spleen) != 2)
+        ADD_FAILURE() << png << ": " << counts.output;
+    return {liver, spleen};
+}
+
 std::string size(const std::string& stats) { return stats.substr(0, stats.find(' ', stats.find(' ') + 1)); }
 double mean(const std::string& stats) { return std::stod(stats.substr(stats.rfind(' ') + 1)); }
 }  // namespace
@@ -131,18 +147,9 @@ TEST(CliGlCommands, RenderDrawsALabelMapInItsSegmentsColours) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("tf labels (3D Slicer colour table)"), std::string::npos) << r.output;
     // Liver (145, 30, 35) and spleen (0, 119, 192), lit: red-dominant and blue-dominant pixels.
-    const auto counts = test::runCommand(
-        "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
-        "from vtkmodules.util.numpy_support import vtk_to_numpy; "
-        "r = vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update(); "
-        "a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(int); "
-        "print(int(((a[:, 0] > a[:, 2] + 40) & (a[:, 0] > a[:, 1] + 40)).sum()), int((a[:, 2] > a[:, 0] + 40).sum()))\" " +
-        dir.file("seg.png"));
-    ASSERT_EQ(counts.exitCode, 0) << counts.output;
-    int liver = 0, spleen = 0;
-    ASSERT_EQ(std::sscanf(counts.output.c_str(), "%d %d", &liver, &spleen), 2) << counts.output;
-    EXPECT_GT(liver, 300) << counts.output;
-    EXPECT_GT(spleen, 50) << counts.output;
+    const auto [liver, spleen] = segmentPixels(dir.file("seg.png"));
+    EXPECT_GT(liver, 300);
+    EXPECT_GT(spleen, 50);
     r = test::runCommand(cli + " render " + dir.file("seg.hvo") + " --tf ct-bone -o " + dir.file("x.png"));
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.output.find("label table"), std::string::npos) << r.output;
@@ -170,18 +177,9 @@ TEST(CliGlCommands, RenderDrawsASplitVoxelLabelMapOnTheGpuAsTheCpuDoes) {
         r = test::runCommand(cli + " render " + dir.file("seg.hvo") + how + " --view 30,20,1 --size 128x128 -o " + png);
         ASSERT_EQ(r.exitCode, 0) << r.output;
         EXPECT_NE(r.output.find("tf labels (3D Slicer colour table)"), std::string::npos) << r.output;
-        const auto counts = test::runCommand(
-            "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
-            "from vtkmodules.util.numpy_support import vtk_to_numpy; "
-            "r = vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update(); "
-            "a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(int); "
-            "print(int(((a[:, 0] > a[:, 2] + 40) & (a[:, 0] > a[:, 1] + 40)).sum()), int((a[:, 2] > a[:, 0] + 40).sum()))\" " +
-            png);
-        ASSERT_EQ(counts.exitCode, 0) << counts.output;
-        int liver = 0, spleen = 0;
-        ASSERT_EQ(std::sscanf(counts.output.c_str(), "%d %d", &liver, &spleen), 2) << counts.output;
-        EXPECT_GT(liver, 300) << how << counts.output;
-        EXPECT_GT(spleen, 50) << how << counts.output;
+        const auto [liver, spleen] = segmentPixels(png);
+        EXPECT_GT(liver, 300) << how;
+        EXPECT_GT(spleen, 50) << how;
         means.push_back(mean(pngStats(png)));
     }
     EXPECT_NEAR(means[0], means[1], 0.5) << "GPU and CPU means differ";
@@ -221,23 +219,25 @@ TEST(CliGlCommands, RenderFusesASegmentationOverItsImage) {
     const std::string line = r.output.substr(at, r.output.find('\n', at) - at);
     r = test::runCommand(cli + " build-series " + line.substr(line.rfind(' ') + 1) + db + " -o " + dir.file("ct.hvo"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    const std::string count =
-        "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
-        "from vtkmodules.util.numpy_support import vtk_to_numpy; "
-        "r = vtkPNGReader(); r.SetFileName(sys.argv[1]); r.Update(); "
-        "a = vtk_to_numpy(r.GetOutput().GetPointData().GetScalars()).astype(int); "
-        "print(int(((a[:, 0] > a[:, 2] + 40) & (a[:, 0] > a[:, 1] + 40)).sum()), int((a[:, 2] > a[:, 0] + 40).sum()))\" ";
     for (const std::string device : {"", " --cpu"}) {
         r = test::runCommand(cli + " render " + dir.file("ct.hvo") + " --labels " + dir.file("seg.hvo") + device +
                              " --view 30,20,1 --size 128x128 -o " + dir.file("fused.png"));
         ASSERT_EQ(r.exitCode, 0) << r.output;
         EXPECT_NE(r.output.find("fused " + dir.file("seg.hvo") + " (labels, 3D Slicer colour table)"), std::string::npos)
             << r.output;
-        const auto counts = test::runCommand(count + dir.file("fused.png"));
-        int liver = 0, spleen = 0;
-        ASSERT_EQ(std::sscanf(counts.output.c_str(), "%d %d", &liver, &spleen), 2) << counts.output;
-        EXPECT_GT(liver, 300) << device << counts.output;
-        EXPECT_GT(spleen, 50) << device << counts.output;
+        const auto [liver, spleen] = segmentPixels(dir.file("fused.png"));
+        EXPECT_GT(liver, 300) << device;
+        EXPECT_GT(spleen, 50) << device;
+        // A light-field quilt fuses them in every view.
+        r = test::runCommand(cli + " lightfield " + dir.file("ct.hvo") + " --labels " + dir.file("seg.hvo") + device +
+                             " --display looking-glass-portrait --size 60x80 -o " + dir.file("lf"));
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_NE(r.output.find("fused " + dir.file("seg.hvo") + " (labels, 3D Slicer colour table)"), std::string::npos)
+            << r.output;
+        const auto [lfLiver, lfSpleen] = segmentPixels(dir.file("lf_qs8x6a0.75.png"));
+        std::printf("light field%s: liver %d, spleen %d pixels over 48 views\n", device.c_str(), lfLiver, lfSpleen);
+        EXPECT_GT(lfLiver, 48 * 20) << device;
+        EXPECT_GT(lfSpleen, 48 * 4) << device;
     }
     // The CT under a hot colour map over the segmentation's grid's image: shown, said.
     r = test::runCommand(cli + " render " + dir.file("ct.hvo") + " --overlay " + dir.file("ct.hvo") +
@@ -256,6 +256,17 @@ TEST(CliGlCommands, RenderFusesASegmentationOverItsImage) {
         EXPECT_NE(r.output.find(sentence), std::string::npos) << args << ": " << r.output;
     }
     EXPECT_FALSE(std::filesystem::exists(dir.file("no.png")));
+    for (const auto& [args, sentence] : std::vector<std::pair<std::string, std::string>>{
+             {" --labels " + dir.file("seg.hvo") + " --overlay " + dir.file("ct.hvo"), "one volume at a time"},
+             {" --labels " + dir.file("seg.hvo") + " --mode mip", "in DVR only"},
+             {" --labels " + dir.file("ct.hvo"), "is not a label map"},
+             {" --lut " + dir.file("seg.hvo.ctbl"), "go with --labels"}}) {
+        r = test::runCommand(cli + " lightfield " + dir.file("ct.hvo") + args + " --display looking-glass-portrait -o " +
+                             dir.file("no") + " 2>&1");
+        EXPECT_NE(r.exitCode, 0) << args;
+        EXPECT_NE(r.output.find(sentence), std::string::npos) << args << ": " << r.output;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("no_qs8x6a0.75.png")));
 }
 
 // render --time N: the N-th time point of pydicom's ten-time-point series, from the database

@@ -30,6 +30,23 @@
 using namespace hvx;
 
 namespace {
+/// The two-material sphere as a split-voxel octree `path` of bricks of `brickSize` cells (16:
+/// cells 64³, levels of 4³, 2³ and 1 brick), its air `air`, the material threshold 20.
+std::unique_ptr<core::OctreeReader> splitSphere(const std::string& path, core::VolumeGeometry g, std::uint32_t brickSize = 16,
+                                                double air = 0.0) {
+    auto volume = test::twoMaterialSphere();
+    for (auto& v : volume.values)
+        if (v == 0.0) v = air;
+    test::MemoryVoxelSource source(g, std::move(volume));
+    core::BuildOptions b;
+    b.brickSize = brickSize;
+    core::SplitVoxelOptions o;
+    o.threshold = 20.0;
+    core::JobContext job;
+    core::SplitVoxelOctreeBuilder(b, o).build(source, path, job);
+    return core::OctreeReader::open(path, true);
+}
+
 struct Case {
     const char* name;
     core::ScalarType type;
@@ -51,18 +68,8 @@ TEST(SplitVoxelGpu, GpuEqualsTheCpuReferenceForEveryStoredType) {
         g.valueMin = c.air;
         g.valueMax = 200.0;
         g.spacing = {0.9, 1.1, 1.3};
-        auto volume = test::twoMaterialSphere();
-        for (auto& v : volume.values)
-            if (v == 0.0) v = c.air;
-        test::MemoryVoxelSource source(g, std::move(volume));
         test::TempDir dir;
-        core::BuildOptions b;
-        b.brickSize = 16;  // cells 64³: levels of 4³, 2³ and 1 brick
-        core::SplitVoxelOptions o;
-        o.threshold = 20.0;
-        core::JobContext job;
-        core::SplitVoxelOctreeBuilder(b, o).build(source, dir.file("s.hvo"), job);
-        const auto reader = core::OctreeReader::open(dir.file("s.hvo"), true);
+        const auto reader = splitSphere(dir.file("s.hvo"), g, 16, c.air);
         ASSERT_EQ(reader->levelCount(), 3);
         const auto space = core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount());
         const auto view = core::View::orbit(space.centre(), 350.0, -40.0, 25.0, 160, 160);
@@ -130,13 +137,8 @@ TEST(SplitVoxelGpu, WhatTheVariantDoesNotDrawIsRefusedInWords) {
     core::VolumeGeometry g;
     g.scalarType = core::ScalarType::UInt8;
     g.valueMax = 200.0;
-    test::MemoryVoxelSource source(g, test::twoMaterialSphere());
     test::TempDir dir;
-    core::BuildOptions b;
-    b.brickSize = 32;
-    core::JobContext job;
-    core::SplitVoxelOctreeBuilder(b, core::SplitVoxelOptions{}).build(source, dir.file("s.hvo"), job);
-    const auto reader = core::OctreeReader::open(dir.file("s.hvo"), true);
+    const auto reader = splitSphere(dir.file("s.hvo"), g, 32);
     const auto tf = test::threeColours();
     const auto space = core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount());
     const auto view = core::View::orbit(space.centre(), 350.0, 0.0, 0.0, 32, 32);
@@ -193,11 +195,8 @@ TEST(SplitVoxelGpu, OneLevelThreeReconstructionsAsTheThesisFigure) {
     b.brickSize = 16;
     core::JobContext job;
     core::OctreeBuilder(b).build(source, dir.file("plain.hvo"), job);
-    core::SplitVoxelOptions o;
-    o.threshold = 20.0;
-    core::SplitVoxelOctreeBuilder(b, o).build(source, dir.file("split.hvo"), job);
     const auto plain = core::OctreeReader::open(dir.file("plain.hvo"));
-    const auto split = core::OctreeReader::open(dir.file("split.hvo"), true);
+    const auto split = splitSphere(dir.file("split.hvo"), g);
     const auto tf = test::threeColours();
     const auto space = core::OctreeSpace::of(plain->geometry(), plain->brickSize(), plain->levelCount());
     const auto view = core::View::orbit(space.centre(), 350.0, -40.0, 25.0, 160, 160);
@@ -234,15 +233,8 @@ TEST(SplitVoxelGpu, TheToolsDrawOverSplitVoxelsAsTheCpuReferenceDoes) {
     g.scalarType = core::ScalarType::Int16;
     g.valueMax = 200.0;
     g.spacing = {0.9, 1.1, 1.3};
-    test::MemoryVoxelSource source(g, test::twoMaterialSphere());
     test::TempDir dir;
-    core::BuildOptions b;
-    b.brickSize = 16;
-    core::SplitVoxelOptions o;
-    o.threshold = 20.0;
-    core::JobContext job;
-    core::SplitVoxelOctreeBuilder(b, o).build(source, dir.file("s.hvo"), job);
-    const auto reader = core::OctreeReader::open(dir.file("s.hvo"), true);
+    const auto reader = splitSphere(dir.file("s.hvo"), g);
     const auto tf = test::threeColours();
     const auto space = core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount());
     const auto view = core::View::orbit(space.centre(), 350.0, -40.0, 25.0, 160, 160);
