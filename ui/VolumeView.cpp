@@ -35,22 +35,9 @@
 #include "ui/EdgeLabels.h"
 #include "ui/MeasurementOverlay.h"
 #include "ui/ImageConversion.h"
+#include "ui/VolumeViewScene.h"
 
 namespace hvx::ui {
-
-/// Everything that belongs to one open volume, in construction order.
-struct VolumeView::Scene {
-    std::shared_ptr<const core::OctreeReader> reader;
-    core::BrickCache cache;
-    core::BrickLoader loader;
-    core::WorkingSet ws;
-    core::OctreeSpace space;
-    std::optional<core::View> prefetchedFor;  // the view a neighbouring time point was last refined for
-    Scene(std::shared_ptr<const core::OctreeReader> r, core::WorkingSetOptions options, std::size_t cacheBytes)
-        : reader(std::move(r)), cache(cacheBytes), loader(*reader, cache), ws(*reader, cache, loader, options),
-          space(core::OctreeSpace::of(reader->geometry(), reader->brickSize(), reader->levelCount())) {}
-};
-
 
 VolumeView::VolumeView(QWidget* parent) : QOpenGLWidget(parent) {
     setFocusPolicy(Qt::StrongFocus);
@@ -77,111 +64,6 @@ VolumeView::~VolumeView() {
     scene_.reset();
 }
 
-namespace {
-constexpr std::size_t kCacheBytes = std::size_t(2) << 30;  // the view's brick cache budget
-
-/// What the render mode asks of a working set: culling by the transfer function (DVR) or
-/// the iso value's bricks alone.
-void applyMode(core::WorkingSetOptions& o, const core::RenderSettings& settings) {
-    o.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
-    o.isosurface = settings.mode == core::RenderSettings::Mode::Iso;
-    o.isoValue = settings.isoValue;
-}
-}  // namespace
-
-std::unique_ptr<VolumeView::Scene> VolumeView::makeScene(std::shared_ptr<const core::OctreeReader> reader,
-                                                         std::size_t cacheBytes) const {
-    core::WorkingSetOptions options;
-    options.cpuMirror = false;
-    options.voxelsPerPixel = accuracy_;
-    return std::make_unique<Scene>(std::move(reader), options, cacheBytes);
-}
-
-void VolumeView::setVolume(std::shared_ptr<const core::OctreeReader> reader, bool keepCamera) {
-    keepCamera = keepCamera && scene_ != nullptr;
-    fused_.reset();
-    split_.reset();
-    splitShown_ = false;
-    scene_.reset();
-    times_.clear();
-    timePoint_ = -1;
-    error_.clear();
-    if (reader) {
-        scene_ = makeScene(std::move(reader), kCacheBytes);
-        setRenderSettings(settings_);
-        if (!keepCamera) resetView();
-    }
-    update();
-}
-
-void VolumeView::setTimePoints(std::vector<std::shared_ptr<const core::OctreeReader>> readers, int current) {
-    if (readers.empty() || current < 0 || current >= int(readers.size()) || !readers[std::size_t(current)])
-        throw core::Error("the time point shown must have an octree");
-    const bool keepCamera = scene_ != nullptr;
-    split_.reset();  // drawn from the series' own octrees
-    splitShown_ = false;
-    scene_.reset();
-    times_.clear();
-    times_.resize(readers.size());
-    for (std::size_t i = 0; i < readers.size(); ++i) setTimePoint(int(i), std::move(readers[i]));
-    scene_ = std::move(times_[std::size_t(current)]);
-    timePoint_ = current;
-    setRenderSettings(settings_);
-    if (!keepCamera) resetView();
-    update();
-}
-
-void VolumeView::setTimePoint(int index, std::shared_ptr<const core::OctreeReader> reader) {
-    if (index < 0 || index >= int(times_.size()) || index == timePoint_ || !reader) return;
-    // Every time point keeps its bricks: the view's budget shared among them.
-    times_[std::size_t(index)] = makeScene(std::move(reader), std::max(kCacheBytes / times_.size(), std::size_t(64) << 20));
-    applyMode(times_[std::size_t(index)]->ws.options(), settings_);
-}
-
-bool VolumeView::showTimePoint(int index) {
-    if (index < 0 || index >= int(times_.size())) return false;
-    if (index == timePoint_) return true;
-    if (!times_[std::size_t(index)]) return false;
-    times_[std::size_t(timePoint_)] = std::move(scene_);
-    scene_ = std::move(times_[std::size_t(index)]);
-    timePoint_ = index;
-    setRenderSettings(settings_);
-    update();
-    return true;
-}
-
-void VolumeView::prefetchNeighbours() {
-    if (times_.empty() || !tf_) return;
-    const int n = int(times_.size());
-    for (const int next : {(timePoint_ + 1) % n, (timePoint_ + n - 1) % n}) {
-        auto& scene = times_[std::size_t(next)];
-        if (!scene) continue;
-        // Refined for this very view and settled: nothing more to ask of it (a still view does
-        // not refine its neighbours frame after frame).
-        const auto& before = scene->prefetchedFor;
-        const auto &mine = scene->ws.options(), &shown = scene_->ws.options();
-        const bool sameOptions = mine.clip == shown.clip && mine.clipPlane == shown.clipPlane &&
-                                 mine.crop.min == shown.crop.min && mine.crop.max == shown.crop.max;
-        if (before && sameOptions && scene->ws.stats().settled() && before->eye == lastView_.eye && before->target == lastView_.target &&
-            before->up == lastView_.up && before->width == lastView_.width && before->height == lastView_.height &&
-            before->fovYDegrees == lastView_.fovYDegrees && before->orthoHeight == lastView_.orthoHeight &&
-            before->model == lastView_.model)
-            continue;
-        scene->prefetchedFor = lastView_;
-        scene->ws.options().clip = scene_->ws.options().clip;
-        scene->ws.options().clipPlane = scene_->ws.options().clipPlane;
-        scene->ws.options().crop = scene_->ws.options().crop;
-        scene->ws.update({lastView_}, *tf_);  // requests what that frame will need; the loader reads it meanwhile
-    }
-}
-
-std::size_t VolumeView::bricksLoaded() const {
-    std::size_t n = scene_ ? scene_->loader.loadedCount() : 0;
-    for (const auto& t : times_)
-        if (t) n += t->loader.loadedCount();
-    return n;
-}
-
 bool VolumeView::hasVolume() const { return scene_ != nullptr; }
 
 void VolumeView::setTransferFunction(const core::TransferFunction& tf) {
@@ -193,40 +75,12 @@ void VolumeView::setTransferFunction(const core::TransferFunction& tf) {
 
 void VolumeView::setRenderSettings(const core::RenderSettings& settings) {
     settings_ = settings;
-    if (scene_) applyMode(scene_->ws.options(), settings);
-    if (split_) applyMode(split_->ws.options(), settings);
+    if (scene_) volume_view::applyMode(scene_->ws.options(), settings);
+    if (split_) volume_view::applyMode(split_->ws.options(), settings);
     for (auto& scene : times_)
         if (scene) scene->prefetchedFor.reset();
     for (auto& scene : times_)
-        if (scene) applyMode(scene->ws.options(), settings);
-    update();
-}
-
-void VolumeView::setFusedVolume(std::shared_ptr<const core::OctreeReader> reader, const core::TransferFunction& tf) {
-    if (!reader) return clearFusedVolume();
-    if (!fused_ || fused_->reader != reader) fused_ = makeScene(std::move(reader), kCacheBytes);
-    fusedTf_ = std::make_unique<core::TransferFunction>(tf);
-    update();
-}
-
-void VolumeView::setSplitVolume(std::shared_ptr<const core::OctreeReader> reader) {
-    if (!reader) {
-        split_.reset();
-        splitShown_ = false;
-    } else if (!split_ || split_->reader != reader) {
-        if (!reader->splitVoxels()) throw core::Error(reader->path() + " is not a split-voxel octree");
-        split_.reset();
-        splitShown_ = false;
-        split_ = makeScene(std::move(reader), kCacheBytes);
-        applyMode(split_->ws.options(), settings_);
-    }
-    update();
-}
-
-void VolumeView::clearFusedVolume() {
-    if (!fused_) return;
-    fused_.reset();
-    fusedTf_.reset();
+        if (scene) volume_view::applyMode(scene->ws.options(), settings);
     update();
 }
 
@@ -482,104 +336,6 @@ void VolumeView::paintOverlays(QPainter& p) {
         if (centre && rim)
             overlay.sphere(*centre, std::hypot(rim->x() - centre->x(), rim->y() - centre->y()),
                            MeasurementOverlay::regionLabel(m));
-    }
-}
-
-void VolumeView::capture(const QString& path, int width, int height) {
-    if (!scene_ || !tf_ || !gpu_) throw core::Error("nothing to capture: no volume is open");
-    if (width < 1 || height < 1 || width > 16384 || height > 16384)
-        throw core::Error("capture size must be between 1x1 and 16384x16384");
-    makeCurrent();
-    try {
-        core::RenderSettings rs = settings_;
-        const auto img = renderFrame(camera_.view(width, height), rs, true);
-        doneCurrent();
-        core::ImageWriter::write(img, path.toStdString());
-    } catch (...) {
-        doneCurrent();
-        throw;
-    }
-    update();
-}
-
-QImage VolumeView::renderLevel(std::shared_ptr<const core::OctreeReader> reader, int level, bool nearest, QSize size) {
-    if (!scene_ || !tf_ || !gpu_ || !reader) throw core::Error("open a volume first");
-    if (level < 0 || level >= reader->levelCount())
-        throw core::Error(reader->path() + " has no level " + std::to_string(level));
-    core::RenderSettings rs = settings_;
-    rs.mode = core::RenderSettings::Mode::Dvr;
-    rs.nearest = nearest && !reader->splitVoxels();
-    core::WorkingSetOptions o;
-    o.cpuMirror = false;
-    o.voxelsPerPixel = 1e-6;
-    o.finestLevel = level;
-    o.crop = scene_->ws.options().crop;
-    Scene scene(std::move(reader), o, std::size_t(512) << 20);
-    const auto view = camera_.view(size.width(), size.height());
-    scene.ws.converge({view}, *tf_, {}, 256);
-    makeCurrent();
-    try {
-        const auto img = gpu_->render(*scene.reader, scene.ws.index(), scene.ws.slotBricks(), *tf_, rs, view);
-        glUseProgram(0);
-        for (GLuint unit = 0; unit < 3; ++unit) glBindTextureUnit(unit, 0);
-        doneCurrent();
-        return toQImage(img);
-    } catch (...) {
-        doneCurrent();
-        throw;
-    }
-}
-
-std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel& display, double eta, double zoom,
-                                                       double maxBeams, bool interactive, core::JobContext* job) {
-    if (!scene_ || !tf_ || !gpu_) throw core::Error("open a volume first");
-    // What the transfer function shows fills the screen's width (or height) and the display's
-    // sharp depth range (core::DisplayModel::frame), about the camera's target.
-    const auto framing = core::ContentBox::framing(display, *scene_->reader, *tf_,
-                                                   settings_.mode != core::RenderSettings::Mode::Dvr, camera_.right(),
-                                                   camera_.up(), false);
-    const double scale = zoom * framing.scale, depthScale = zoom * framing.depthScale;
-    const double beams = double(display.viewCount()) * display.viewWidthPx() * display.viewHeightPx();
-    double shrink = beams > maxBeams ? std::sqrt(maxBeams / beams) : 1.0;
-    core::RenderSettings rs = settings_;
-    if (interactive) {  // thesis §5.5: 2.5 mm on screen and a doubled integration step
-        const double pixelMm = display.screenHeightMm / std::max(1, display.viewHeightPx());
-        shrink *= std::min(0.5, pixelMm / 2.5);
-        rs.stepScale *= 2.0;
-    }
-    const auto views = display.views(camera_.target(), camera_.right(), camera_.up(), eta,
-                                     std::max(1, int(display.viewWidthPx() * shrink)),
-                                     std::max(1, int(display.viewHeightPx() * shrink)), scale, depthScale);
-    // What the 3D view draws: the fused volume over the open one (DVR without tools), else the
-    // split-voxel octree (DVR), else the volume's own octree.
-    const bool dvr = rs.mode == core::RenderSettings::Mode::Dvr;
-    const bool fusedToo = fused_ && fusedTf_ && dvr && !rs.tools.variantBits();
-    Scene& scene = split_ && dvr && !fusedToo ? *split_ : *scene_;
-    makeCurrent();
-    try {
-        core::WorkingSetOptions options = scene.ws.options();
-        options.cpuMirror = false;
-        core::WorkingSet ws(*scene.reader, scene.cache, scene.loader, options);
-        std::optional<core::WorkingSet> fusedWs;
-        std::optional<render::LightFieldRenderer::Fused> fused;
-        if (fusedToo) {
-            core::WorkingSetOptions o = fused_->ws.options();
-            o.cpuMirror = false;
-            o.crop = {};
-            fusedWs.emplace(*fused_->reader, fused_->cache, fused_->loader, o);
-            fused.emplace(render::LightFieldRenderer::Fused{*fused_->reader, *fusedWs, *fusedTf_});
-        }
-        auto images = render::LightFieldRenderer::render(*scene.reader, ws, scene.loader, *tf_, rs, views,
-                                                         display.accuracyFunction(scale, depthScale), gpu_.get(), true, nullptr,
-                                                         job, fused ? &*fused : nullptr);
-        glUseProgram(0);
-        for (GLuint unit = 0; unit < 3; ++unit) glBindTextureUnit(unit, 0);
-        doneCurrent();
-        update();
-        return images;
-    } catch (...) {
-        doneCurrent();
-        throw;
     }
 }
 
