@@ -52,6 +52,7 @@ QString SplitVoxelLink::cachePath(const QString& path) {
 void SplitVoxelLink::setVolume(std::shared_ptr<const core::OctreeReader> reader, const QString& path, const QString& label) {
     reader_ = std::move(reader);
     split_.reset();
+    applied_.reset();
     job_ = -1;  // a build still running for the previous volume goes on (its file is kept for next time)
     path_ = path;
     label_ = label;
@@ -71,6 +72,8 @@ void SplitVoxelLink::setVolume(std::shared_ptr<const core::OctreeReader> reader,
 void SplitVoxelLink::apply() {
     if (!reader_) return;
     const Reconstruction r = controls_.reconstruction();
+    if (applied_ && *applied_ == int(r)) return;  // another control of the dock changed
+    applied_ = int(r);
     QSettings().setValue("reconstruction/" + key_, QLatin1String(kNames[int(r)]));
     if (r != Reconstruction::SplitVoxels) {
         view_.setSplitVolume(nullptr);

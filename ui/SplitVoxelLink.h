@@ -3,6 +3,7 @@
 #include <QString>
 
 #include <memory>
+#include <optional>
 
 #include "core/octree/OctreeReader.h"
 
@@ -54,6 +55,7 @@ private:
     std::shared_ptr<const core::OctreeReader> reader_, split_;
     QString path_, key_, label_;
     int job_ = -1;  // the build running for reader_, if any
+    std::optional<int> applied_;  // the reconstruction last applied to reader_ (RenderControls::Reconstruction)
 };
 
 }  // namespace hvx::ui
