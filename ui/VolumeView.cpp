@@ -167,9 +167,7 @@ core::RenderImage VolumeView::renderFrame(const core::View& view, const core::Re
     fusedShown_ = fused_ && fusedTf_ && dvr && !rs.tools.variantBits();
     splitShown_ = split_ && dvr && !fusedShown_;
     if (splitShown_) {  // what the crop box and the clip plane remove is not loaded either
-        split_->ws.options().crop = scene_->ws.options().crop;
-        split_->ws.options().clip = scene_->ws.options().clip;
-        split_->ws.options().clipPlane = scene_->ws.options().clipPlane;
+        split_->ws.options().takeCullingOf(scene_->ws.options());
     }
     auto& ws = drawn().ws;
     ws.converge({view}, *tf_, {}, converge ? 64 : 1);

@@ -80,17 +80,14 @@ void VolumeView::prefetchNeighbours() {
         // not refine its neighbours frame after frame).
         const auto& before = scene->prefetchedFor;
         const auto &mine = scene->ws.options(), &shown = scene_->ws.options();
-        const bool sameOptions = mine.clip == shown.clip && mine.clipPlane == shown.clipPlane &&
-                                 mine.crop.min == shown.crop.min && mine.crop.max == shown.crop.max;
+        const bool sameOptions = mine.sameCullingAs(shown);
         if (before && sameOptions && scene->ws.stats().settled() && before->eye == lastView_.eye && before->target == lastView_.target &&
             before->up == lastView_.up && before->width == lastView_.width && before->height == lastView_.height &&
             before->fovYDegrees == lastView_.fovYDegrees && before->orthoHeight == lastView_.orthoHeight &&
             before->model == lastView_.model)
             continue;
         scene->prefetchedFor = lastView_;
-        scene->ws.options().clip = scene_->ws.options().clip;
-        scene->ws.options().clipPlane = scene_->ws.options().clipPlane;
-        scene->ws.options().crop = scene_->ws.options().crop;
+        scene->ws.options().takeCullingOf(scene_->ws.options());
         scene->ws.update({lastView_}, *tf_);  // requests what that frame will need; the loader reads it meanwhile
     }
 }

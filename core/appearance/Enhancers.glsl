@@ -57,6 +57,7 @@ HVX_FN void hvxClip(HVX_INOUT(HvxSample) x, vec4 plane, float thickness, float f
 // The pq-norm of the probe-local position (Eqs 6.6-6.7): p = q = 2 sphere, p = 2, q = 4
 // cylinder, p = q = 4 rounded cube.
 HVX_FN float hvxPqNorm(vec3 local, float p, float q) {
+    if (p == 2.0f && q == 2.0f) return length(local);  // the sphere (the default): no pow
     float xy = pow(pow(abs(local.x), p) + pow(abs(local.y), p), 1.0f / p);
     return pow(pow(xy, q) + pow(abs(local.z), q), 1.0f / q);
 }
@@ -171,7 +172,7 @@ struct HvxTools {
     vec4 focalRot1;
     vec4 focalRot2;
     vec4 focalParams;    // beta, rho, g_l, g_h
-    vec4 focalStyle;     // s_l, s_h, toon a, -
+    vec4 focalStyle;     // s_l, s_h, toon a, bounding radius (ToolSet::FocalProbe::boundingRadius)
     vec4 contextCentre;  // xyz, radius
     vec4 contextAxis;    // xyz (unit), -
     vec4 contextParams;  // g_l, g_h, a_l, a_h
@@ -197,6 +198,36 @@ HVX_FN float hvxFocalNorm(HvxTools t, vec3 p) {
     mat3 rot = mat3(vec3(t.focalRot0), vec3(t.focalRot1), vec3(t.focalRot2));
     vec3 local = (transpose(rot) * (p - vec3(t.focalCentre))) / vec3(t.focalRadii);
     return hvxPqNorm(local, t.focalCentre.w, t.focalRadii.w);
+}
+
+// Whether the tools make a sample at p on a ray of direction v fully transparent whatever its
+// value and gradient (hvxEnhance would set x.a to exactly 0), so that the ray caster may skip
+// its gradient and enhancers. Conservative: true only where
+// - the focal probe's focus cone holds the ray (hTheta = 0) and p lies outside the probe's
+//   bounding sphere (the context there is scaled by hTheta, Eq. 6.15);
+// - the clip plane is seen so nearly face-on that mu = 0 and p lies on its cut-away side;
+// - the context probe's axis is far enough from the view that omega_a = 0 and p lies in the
+//   probe's front half (Eq. 6.17: mu_a = omega_d · eta, eta = 0).
+// The last two only outside the focal probe's sphere (a sample inside it may open the probe,
+// which clears what lies in front), and none under MImDA (a hidden sample still raises the
+// ray's maximum importance).
+HVX_FN bool hvxHidden(HvxTools t, int hvxBits, vec3 p, vec3 v, float hTheta) {
+    if (HVX_TOOL_ON(HVX_MIMDA_BIT)) return false;
+    if (HVX_TOOL_ON(HVX_FOCAL_BIT)) {
+        vec3 r = p - vec3(t.focalCentre);
+        if (dot(r, r) <= t.focalStyle.w * t.focalStyle.w) return false;
+        if (hTheta <= 0.0f) return true;
+    }
+    if (HVX_TOOL_ON(HVX_CLIP_BIT) && dot(vec3(t.clipPlane), p) + t.clipPlane.w > 0.0f &&
+        hvxClipMu(t.clipPlane, v, t.clipParams.y, t.clipParams.z) <= 0.0f)
+        return true;
+    if (HVX_TOOL_ON(HVX_CONTEXT_BIT)) {
+        vec3 r = p - vec3(t.contextCentre);
+        if (dot(r, r) < t.contextCentre.w * t.contextCentre.w && dot(r, v) < 0.0f &&
+            hvxSmooth(t.contextParams.z, t.contextParams.w, abs(dot(vec3(t.contextAxis), v))) <= 0.0f)
+            return true;
+    }
+    return false;
 }
 
 // Applies the active tools in a fixed order: clip plane, focal probe, context probe, band

@@ -47,6 +47,15 @@ glm::dmat3 ToolSet::FocalProbe::rotation() const {
     return rz * ry * rx;
 }
 
+double ToolSet::FocalProbe::boundingRadius() const {
+    // The unit pq-ball lies in the Euclidean ball of radius 2^(1/2 - 1/p) · 2^(1/2 - 1/q) (each
+    // factor 1 for an exponent below 2: an lp norm with p <= 2 is at least the l2 norm), and in
+    // the box of its radii.
+    const double r = std::max({radii.x, radii.y, radii.z}) *
+                     std::pow(2.0, std::max(0.0, 0.5 - 1.0 / p) + std::max(0.0, 0.5 - 1.0 / q));
+    return std::min(r, glm::length(radii));
+}
+
 bool ToolSet::clipHides(const View& view) const {
     if (!clip.enabled) return false;
     const glm::dvec3 n = glm::normalize(clip.normal);
@@ -184,7 +193,7 @@ glsl::HvxTools packTools(const ToolSet& t, const glm::dvec4& shading) {
     p.focalRot1 = glm::vec4(glm::vec3(rotation[1]), 0.0f);
     p.focalRot2 = glm::vec4(glm::vec3(rotation[2]), 0.0f);
     p.focalParams = glm::vec4(float(t.focal.beta), float(t.focal.rho), float(t.focal.gl), float(t.focal.gh));
-    p.focalStyle = glm::vec4(float(t.focal.sl), float(t.focal.sh), float(t.focal.toon), 0.0f);
+    p.focalStyle = glm::vec4(float(t.focal.sl), float(t.focal.sh), float(t.focal.toon), float(t.focal.boundingRadius()));
     p.contextCentre = glm::vec4(glm::vec3(t.context.centre), float(t.context.radius));
     p.contextAxis = glm::vec4(glm::vec3(glm::normalize(t.context.axis)), 0.0f);
     p.contextParams = glm::vec4(float(t.context.gl), float(t.context.gh), float(t.context.al), float(t.context.ah));

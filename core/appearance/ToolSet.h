@@ -33,6 +33,8 @@ struct ToolSet {
         glm::dvec3 rotationDegrees{0.0};
         /// The probe's axes (columns) in patient space.
         glm::dmat3 rotation() const;
+        /// The radius of a sphere about `centre` that holds the whole probe (pq-norm <= 1).
+        double boundingRadius() const;
         double p = 2, q = 2;
         double beta = -2, rho = 0.55;
         double gl = 0.015, gh = 0.95, sl = 0.7, sh = 0.95, toon = 3;

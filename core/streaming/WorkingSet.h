@@ -34,6 +34,17 @@ struct WorkingSetOptions {
     double isoValue = 0.0;             ///< stored units
     std::uint32_t visibleRays = 1;     ///< a leaf hit by fewer rays last frame is invisible
     bool cpuMirror = true;  ///< keep float copies of pool slots for the CPU ray caster (off for GPU-only use)
+
+    /// Takes what the crop box and the clip plane leave out (crop, clip) from another working
+    /// set's options: a second volume drawn in the same view.
+    void takeCullingOf(const WorkingSetOptions& o) {
+        crop = o.crop;
+        clip = o.clip;
+        clipPlane = o.clipPlane;
+    }
+    bool sameCullingAs(const WorkingSetOptions& o) const {
+        return crop.min == o.crop.min && crop.max == o.crop.max && clip == o.clip && clipPlane == o.clipPlane;
+    }
 };
 
 /// Per frame, refines the cut of the octree (thesis ch. 2–3): from the root, nodes outside the

@@ -145,7 +145,12 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                 iS = tfOpacityIntegralAt(pS);
                 if (havePrev) {
                     a = 1.0 - exp(-tfSegmentOpacity(sPrev, s, pPrev, iPrev, pS, iS) * (t - tPrev));
+#if HVX_TOOLS != 0
+                    // where the tools leave nothing to see, the sample stays as cheap as a transparent one
+                    if (a > 1e-6 && !hvxHidden(tools, HVX_TOOLS, ow + t * dw, dw, hTheta)) { significant = true; break; }
+#else
                     if (a > 1e-6) { significant = true; break; }
+#endif
                 }
                 pPrev = pS;
                 iPrev = iS;

@@ -2,7 +2,8 @@
 // together, against no tool, in the same run (GPU ray caster through EGL; the thesis reports
 // about 10%).
 //
-//   build/release/tests/bench/hvx_bench_tools FILE.hvo [--size 512] [--frames 4]
+//   build/release/tests/bench/hvx_bench_tools FILE.hvo [--size 512] [--frames 5] [--breakdown]
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -24,13 +25,15 @@ using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv) {
     if (argc < 2) {
-        std::fprintf(stderr, "usage: %s FILE.hvo [--size N] [--frames N]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s FILE.hvo [--size N] [--frames N] [--breakdown]\n", argv[0]);
         return 2;
     }
-    int size = 512, frames = 4;
-    for (int i = 2; i + 1 < argc; i += 2) {
-        if (!std::strcmp(argv[i], "--size")) size = std::atoi(argv[i + 1]);
-        else if (!std::strcmp(argv[i], "--frames")) frames = std::atoi(argv[i + 1]);
+    int size = 512, frames = 5;
+    bool breakdown = false;
+    for (int i = 2; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--breakdown")) breakdown = true;
+        else if (!std::strcmp(argv[i], "--size") && i + 1 < argc) size = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::atoi(argv[++i]);
     }
     const auto reader = core::OctreeReader::open(argv[1]);
     const auto& g = reader->geometry();
@@ -46,7 +49,6 @@ int main(int argc, char** argv) {
     core::WorkingSetOptions options;
     options.cpuMirror = false;
     core::WorkingSet ws(*reader, cache, loader, options);
-    ws.converge({view}, tf);
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
     auto tools = [&](int bits) {
@@ -66,25 +68,58 @@ int main(int argc, char** argv) {
         t.mimda.enabled = bits & core::ToolSet::MimdaBit;
         return t;
     };
-    auto time = [&](int bits) {
+    // Cases are timed in rounds, one frame of each case per round, and each case's median is
+    // reported: this shared machine's speed drifts over seconds, which would otherwise bias
+    // whichever case ran during a slow spell.
+    struct Case {
+        std::string name;
         core::RenderSettings rs;
-        rs.tools = tools(bits);
-        gpu.render(*reader, ws.index(), ws.slotBricks(), tf, rs, view);  // compile the variant
-        const auto t0 = Clock::now();
-        for (int f = 0; f < frames; ++f) gpu.render(*reader, ws.index(), ws.slotBricks(), tf, rs, view);
-        return std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / frames;
+        std::vector<double> ms;
     };
     using T = core::ToolSet;
-    const double none = time(0);
-    std::printf("%s, %dx%d, %s: no tool %.1f ms/frame\n", argv[1], size, size, ctx.info().renderer.c_str(), none);
-    const std::pair<const char*, int> cases[] = {{"clip plane", T::ClipBit},
-                                                 {"focal probe", T::FocalBit},
-                                                 {"context probe", T::ContextBit},
-                                                 {"band picker + MImDA", T::BandBit | T::MimdaBit},
-                                                 {"clip + focal + band (three tools)", T::ClipBit | T::FocalBit | T::BandBit}};
-    for (const auto& [name, bits] : cases) {
-        const double ms = time(bits);
-        std::printf("  %-36s %.1f ms/frame (%+.0f%%)\n", name, ms, (ms / none - 1.0) * 100.0);
+    std::vector<Case> cases;
+    auto add = [&](std::string name, int bits, double earlyTermination = 0.99, double stepScale = 1.0) {
+        Case c{std::move(name), {}, {}};
+        c.rs.tools = tools(bits);
+        c.rs.earlyTermination = earlyTermination;
+        c.rs.stepScale = stepScale;
+        cases.push_back(std::move(c));
+    };
+    add("no tool", 0);
+    add("clip plane", T::ClipBit);
+    add("focal probe", T::FocalBit);
+    add("context probe", T::ContextBit);
+    add("band picker + MImDA", T::BandBit | T::MimdaBit);
+    add("clip + focal + band (three tools)", T::ClipBit | T::FocalBit | T::BandBit);
+    if (breakdown) {  // where the probes' time goes (README: Tool cost)
+        // Seen across its axis, the context probe's front half is hidden outright (omega_a = 0):
+        // the ray caster skips its gradients and enhancers there (core::glsl::hvxHidden).
+        add("context probe, axis across the view", T::ContextBit);
+        const glm::dvec3 forward = glm::normalize(view.target - view.eye);
+        cases.back().rs.tools.context.axis = glm::normalize(glm::cross(forward, view.up));
+        add("no tool, rays never stop early", 0, 2.0);
+        add("focal probe, rays never stop early", T::FocalBit, 2.0);
+        add("focal probe, half the samples", T::FocalBit, 0.99, 2.0);
+        add("context probe, half the samples", T::ContextBit, 0.99, 2.0);
+    }
+    ws.converge({view}, tf);
+    for (auto& c : cases) gpu.render(*reader, ws.index(), ws.slotBricks(), tf, c.rs, view);  // compile the variants
+    for (int r = 0; r < frames; ++r)
+        for (auto& c : cases) {
+            const auto t0 = Clock::now();
+            gpu.render(*reader, ws.index(), ws.slotBricks(), tf, c.rs, view);
+            c.ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        }
+    auto median = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    };
+    const double none = median(cases[0].ms);
+    std::printf("%s, %dx%d, %s, median of %d interleaved rounds: no tool %.1f ms/frame\n", argv[1], size, size,
+                ctx.info().renderer.c_str(), frames, none);
+    for (std::size_t i = 1; i < cases.size(); ++i) {
+        const double ms = median(cases[i].ms);
+        std::printf("  %-40s %.1f ms/frame (%+.0f%%)\n", cases[i].name.c_str(), ms, (ms / none - 1.0) * 100.0);
     }
     return 0;
 }

@@ -195,3 +195,50 @@ TEST(Tools, CropBoxOnTheGpuEqualsTheCpuReference) {
             if (mode == core::RenderSettings::Mode::Dvr) EXPECT_LT(psnr(want, plain), 40.0) << "the crop changes the image";
         }
 }
+
+// Where the tools leave nothing to see (core::glsl::hvxHidden), the GPU skips the samples'
+// gradients and enhancers; the CPU reference runs the whole chain on them. Each tool is set up
+// so that it hides much of the frame: the focal probe's focus cone over the middle of the view,
+// the clip plane face-on, the context probe seen across its axis.
+TEST(Tools, SkippingWhatTheToolsHideLeavesTheImageAsTheCpuReferenceDrawsIt) {
+    core::PhantomVoxelSource phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0);
+    Scene s(phantom, 0, 0);
+    const auto& g = s.reader->geometry();
+    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
+    s.settle(tf);
+    render::EglOffscreenContext ctx;
+    render::GpuRayCaster gpu;
+    const glm::dvec3 forward = glm::normalize(s.view.target - s.view.eye);
+    std::vector<std::pair<const char*, core::ToolSet>> cases(4);
+    cases[0].first = "focal probe, wide focus cone";
+    cases[0].second.focal.enabled = true;
+    cases[0].second.focal.centre = s.centre();
+    cases[0].second.focal.radii = glm::dvec3(60);
+    cases[0].second.focal.rho = 0.9;
+    cases[1].first = "clip plane face-on";
+    cases[1].second.clip.enabled = true;
+    cases[1].second.clip.normal = -forward;  // the cut-away half faces the viewer
+    cases[1].second.clip.offset = glm::dot(forward, s.centre());
+    cases[2].first = "context probe across its axis";
+    cases[2].second.context.enabled = true;
+    cases[2].second.context.centre = s.centre();
+    cases[2].second.context.radius = 90;
+    cases[2].second.context.axis = glm::normalize(glm::cross(forward, s.view.up));
+    cases[3].first = "all three";
+    cases[3].second.focal = cases[0].second.focal;
+    cases[3].second.clip = cases[1].second.clip;
+    cases[3].second.clip.offset += 30;
+    cases[3].second.context = cases[2].second.context;
+    cases[3].second.context.centre += glm::dvec3(40, 0, 0);
+    const auto plain = s.cpu(tf, {});
+    for (const auto& [name, tools] : cases) {
+        core::RenderSettings rs;
+        rs.tools = tools;
+        const auto want = s.cpu(tf, rs);
+        const auto got = gpu.render(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, rs, s.view);
+        const double db = psnr(got, want);
+        std::printf("%s: GPU vs CPU %.1f dB (vs plain DVR %.1f dB)\n", name, db, psnr(want, plain));
+        EXPECT_GT(db, 80.0) << name;
+        EXPECT_LT(psnr(want, plain), 40.0) << name << " changes the image";
+    }
+}

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <random>
 
 #include "core/appearance/Enhancers.h"
 #include "core/base/Error.h"
@@ -180,4 +182,94 @@ TEST(ToolSet, OutOfRangeParametersAreRefusedAndJsonRoundTrips) {
     EXPECT_THROW(core::ToolSet::fromJson("{\"mimda\": {\"gamma\": 7}}"), core::Error);
     EXPECT_THROW(core::ToolSet::fromJson("{\"clip\": {\"normal\": [1, 2]}}"), core::Error);
     EXPECT_THROW(core::ToolSet::fromJson("not json"), core::Error);
+}
+
+TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
+    // hvxHidden lets the ray caster skip a sample's gradient and enhancers; each sample it
+    // declares hidden must come out of the whole chain with opacity exactly 0, whatever its
+    // value, colour, opacity and gradient. Random tools, rays and samples; the chain is run on
+    // each hidden one.
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), pos(0.0f, 1.0f);
+    auto unit = [&] {
+        glm::vec3 v;
+        do v = {u(rng), u(rng), u(rng)};
+        while (glm::length(v) < 0.1f);
+        return glm::normalize(v);
+    };
+    using T = core::ToolSet;
+    int hidden = 0, checked = 0;
+    for (int bits : {int(T::FocalBit), int(T::ClipBit), int(T::ContextBit), T::ClipBit | T::FocalBit | T::BandBit,
+                     T::ClipBit | T::ContextBit | T::FocalBit, T::FocalBit | T::BandBit | T::MimdaBit}) {
+        const int hiddenBefore = hidden;
+        for (int trial = 0; trial < 40; ++trial) {
+            core::ToolSet t;
+            t.clip.enabled = bits & T::ClipBit;
+            t.clip.normal = glm::dvec3(unit());
+            t.clip.offset = 20.0 * u(rng);
+            t.focal.enabled = bits & T::FocalBit;
+            t.focal.centre = glm::dvec3(10.0f * unit());
+            t.focal.radii = {20 + 20 * pos(rng), 20 + 20 * pos(rng), 20 + 20 * pos(rng)};
+            t.focal.p = trial % 3 == 0 ? 2 : 4;
+            t.focal.q = trial % 2 == 0 ? 2 : 6;
+            t.focal.rotationDegrees = {90.0 * u(rng), 90.0 * u(rng), 90.0 * u(rng)};
+            t.context.enabled = bits & T::ContextBit;
+            t.context.centre = glm::dvec3(10.0f * unit());
+            t.context.radius = 30 + 20 * pos(rng);
+            t.context.axis = glm::dvec3(unit());
+            t.band.enabled = bits & T::BandBit;
+            t.band.band = {50, 80, 150, 200};
+            t.mimda.enabled = bits & T::MimdaBit;
+            const auto tools = core::packTools(t, {0.3, 0.7, 0.2, 16});
+            const glm::vec3 eye = 300.0f * unit();
+            for (int ray = 0; ray < 50; ++ray) {
+                const glm::vec3 v = glm::normalize(-eye + 40.0f * unit());
+                const float hTheta = (bits & T::FocalBit) ? hvxFocalAngle(tools, eye, v) : 1.0f;
+                for (int k = 0; k < 60; ++k) {
+                    const glm::vec3 p = eye + v * (200.0f + 200.0f * pos(rng));
+                    if (!hvxHidden(tools, bits, p, v, hTheta)) continue;
+                    ++hidden;
+                    for (int s = 0; s < 4; ++s) {
+                        auto x = sample(p, v, 50.0f * unit(), pos(rng), pos(rng));
+                        x.s = 250 * pos(rng);
+                        x.importance = pos(rng);
+                        const float norm = (bits & T::FocalBit) ? hvxFocalNorm(tools, p) : 2.0f;
+                        bool entered = false;
+                        hvxEnhance(x, tools, bits, norm, 50.0f * unit(), hTheta, entered);
+                        EXPECT_EQ(x.a, 0.0f) << "tools " << bits << " at (" << p.x << ", " << p.y << ", " << p.z << ")";
+                        EXPECT_FALSE(entered) << "a hidden sample opened the focal probe";
+                        ++checked;
+                    }
+                }
+            }
+        }
+        if (bits & T::MimdaBit) EXPECT_EQ(hidden, hiddenBefore) << "nothing is hidden under MImDA";
+        else EXPECT_GT(hidden, hiddenBefore + 100) << "tools " << bits << " hide something";
+    }
+    std::printf("%d hidden samples, %d runs of the chain\n", hidden, checked);
+    EXPECT_GT(hidden, 2000);
+}
+
+TEST(ToolSet, TheFocalProbesBoundingSphereHoldsTheWholeProbe) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    for (double p : {0.5, 1.0, 2.0, 4.0, 16.0, 64.0})
+        for (double q : {0.5, 2.0, 3.0, 8.0, 64.0}) {
+            core::ToolSet t;
+            t.focal.radii = {30, 45, 20};
+            t.focal.p = p;
+            t.focal.q = q;
+            t.focal.rotationDegrees = {20, -35, 70};
+            const auto tools = core::packTools(t, {0.3, 0.7, 0.2, 16});
+            const double bound = t.focal.boundingRadius();
+            EXPECT_LE(bound, glm::length(t.focal.radii) + 1e-9);
+            double farthest = 0;
+            for (int i = 0; i < 20000; ++i) {  // points of the box, kept where inside the probe
+                const glm::dvec3 local(u(rng), u(rng), u(rng));
+                const glm::dvec3 w = t.focal.rotation() * (local * t.focal.radii);
+                if (hvxFocalNorm(tools, glm::vec3(w)) <= 1.0f) farthest = std::max(farthest, glm::length(w));
+            }
+            EXPECT_LE(farthest, bound * (1 + 1e-5)) << "p " << p << " q " << q;
+            if (p == 2 && q == 2) EXPECT_DOUBLE_EQ(bound, 45.0) << "a sphere's bound is its largest radius";
+        }
 }
