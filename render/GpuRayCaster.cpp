@@ -10,6 +10,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/base/Error.h"
+#include "core/image/FrameReconstructor.h"
 #include "core/streaming/OctreeSpace.h"
 
 namespace hvx::render {
@@ -23,8 +24,9 @@ struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
     glm::mat4 patientToOctreeB;
     glm::vec4 extentB, tfRangeB;
     glm::uvec4 brickB, fusionB;
+    glm::uvec4 pixels;
 };
-static_assert(sizeof(FrameBlock) == 64 + 5 * 16 + 2 * 16 + 2 * 16 + 64 + 4 * 16, "std140 layout of Frame");
+static_assert(sizeof(FrameBlock) == 64 + 5 * 16 + 2 * 16 + 2 * 16 + 64 + 5 * 16, "std140 layout of Frame");
 struct ViewBlock {  // std430 mirror of raycast_inputs.glsl's ViewCamera
     glm::vec4 eye, forward, right, up, screenCentre, screenRight, screenUp, screenViewer, screenProjector;
 };
@@ -370,6 +372,10 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
         fb.fusionB = glm::uvec4(pools_[1].layer, std::uint32_t(pools_[0].records.size()),
                                 std::uint32_t(std::max<std::size_t>(1, index.nodes.size())), 0u);
     }
+    // A quincunx sub-frame (RenderSettings::subFrame): every other pixel of every other row.
+    const int stride = settings.subFrame >= 0 ? 2 : 1;
+    const glm::ivec2 phase = settings.subFrame >= 0 ? core::FrameReconstructor::phase(settings.subFrame) : glm::ivec2(0);
+    fb.pixels = glm::uvec4(std::uint32_t(phase.x), std::uint32_t(phase.y), std::uint32_t(stride), 0u);
     glNamedBufferData(buffers_[7], sizeof fb, &fb, GL_STREAM_DRAW);
 
     program->use();
@@ -384,7 +390,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     glBindTextureUnit(0, split ? 0 : pools_[0].texture);
     glBindTextureUnit(1, overlay ? pools_[1].texture : split ? 0 : pools_[0].texture);
     glBindTextureUnit(2, split ? pools_[0].texture : 0);
-    glDispatchCompute(GLuint((width + 7) / 8), GLuint((height + 7) / 8), GLuint(views.size()));
+    const int across = (width + stride - 1) / stride, down = (height + stride - 1) / stride;
+    glDispatchCompute(GLuint((across + 7) / 8), GLuint((down + 7) / 8), GLuint(views.size()));
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 
     std::vector<core::RenderImage> images(views.size());

@@ -27,6 +27,10 @@ struct RenderSettings {
     /// Nearest-neighbour reconstruction: each sample takes its voxel's value (a label map
     /// always does); the thesis's Fig. 4.6 compares it with trilinear and split-voxels.
     bool nearest = false;
+    /// 0–3: the GPU ray caster draws only the pixels of this quincunx sub-frame
+    /// (core::FrameReconstructor::phase), leaving the others as they were; -1: every pixel.
+    /// The CPU reference always draws every pixel.
+    int subFrame = -1;
     ToolSet tools;                   ///< illustrative tools (DVR only)
     CropBox crop;                    ///< rays start and end at its faces (every mode)
 };

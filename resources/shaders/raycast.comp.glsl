@@ -24,7 +24,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #endif
 
 void main() {
-    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 px = ivec2(gl_GlobalInvocationID.xy) * int(pixels.z) + ivec2(pixels.xy);
     uint view = gl_GlobalInvocationID.z;
     if (px.x >= int(image.x) || px.y >= int(image.y) || view >= image.w) return;
     ViewCamera cam = views[view];

@@ -16,6 +16,7 @@ layout(std140, binding = 0) uniform Frame {
     vec4 tfRangeB;   // its transfer function's valueMin, valueMax (table entries 4096 on)
     uvec4 brickB;    // its brick size, border, edge, slots per row of its pool
     uvec4 fusionB;   // its pool's slots per layer, its first slot record, its first index node
+    uvec4 pixels;    // the pixels drawn: x, y phase and stride (core::RenderSettings::subFrame; 0, 0, 1: all)
 };
 // One camera per view of the batch (dispatch layer z = view index).
 struct ViewCamera {
