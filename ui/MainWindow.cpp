@@ -193,7 +193,9 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     connect(controls_, &RenderControls::changed, this, [this] {
         view_->setRenderSettings(renderSettings());
         view_->setAccuracy(controls_->accuracy());
+        view_->setFrameReconstruction(controls_->frameReconstruction());
     });
+    view_->setFrameReconstruction(controls_->frameReconstruction());
     connect(view_, &VolumeView::frameRendered, this, &MainWindow::updateReadouts);
     connect(view_, &VolumeView::failed, this, &MainWindow::showError);
     connect(jobs_.get(), &JobManager::finished, this, [this](int, const QString& state, const QString& message) {

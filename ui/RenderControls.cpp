@@ -36,6 +36,7 @@ QSlider* slider(int lo, int hi, int value, QWidget* parent) {
 
 RenderControls::RenderControls(QWidget* parent)
     : QWidget(parent), mode_(new QComboBox(this)), reconstruction_(new QComboBox(this)), shading_(new QCheckBox(tr("Phong shading"), this)),
+      subFrames_(new QCheckBox(tr("Moving: rebuild from sub-frames"), this)),
       ambient_(spin(0, 1, 0.05, 0.35, this)), diffuse_(spin(0, 1, 0.05, 0.65, this)), specular_(spin(0, 1, 0.05, 0.25, this)),
       shininess_(spin(1, 128, 1, 24, this)), iso_(spin(-1e6, 1e6, 10, 300, this)), boundary_(slider(0, 100, 0, this)),
       viewTransparency_(slider(0, 100, 0, this)), quality_(slider(0, 100, 100, this)) {
@@ -94,6 +95,16 @@ RenderControls::RenderControls(QWidget* parent)
     form->addRow(tr("View transparency"), viewTransparency_);
     form->addRow(tr("Isovalue"), iso_);
     form->addRow(tr("Quality"), quality_);
+    subFrames_->setObjectName("frameReconstruction");
+    subFrames_->setToolTip(tr("While the view moves, draw a quarter of the pixels each frame (a quincunx sub-frame) and "
+                              "rebuild the image from the last four, sharp where it stands still (thesis \u00a73.3); off: "
+                              "whole frames at a lower resolution. Still views are always drawn whole."));
+    subFrames_->setChecked(QSettings().value("view/frameReconstruction", false).toBool());
+    connect(subFrames_, &QCheckBox::toggled, this, [this](bool on) {
+        QSettings().setValue("view/frameReconstruction", on);
+        emit changed();
+    });
+    form->addRow(QString(), subFrames_);
     connect(mode_, &QComboBox::currentIndexChanged, this, [this](int m) {
         iso_->setEnabled(m == 1);
         emit changed();
@@ -112,6 +123,8 @@ void RenderControls::setVolume(double slope, double intercept, double physicalMi
     iso_->setRange(physicalMin, physicalMax);
     iso_->setValue(ct ? 300.0 : 0.5 * (physicalMin + physicalMax));
 }
+
+bool RenderControls::frameReconstruction() const { return subFrames_->isChecked(); }
 
 core::RenderSettings RenderControls::settings() const {
     core::RenderSettings s;

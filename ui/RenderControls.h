@@ -36,6 +36,9 @@ public:
     /// (a label is never blended with its neighbour).
     void setReconstruction(Reconstruction r, bool labels);
     QComboBox* reconstructionBox() const { return reconstruction_; }
+    /// While the camera moves: rebuild frames from quincunx sub-frames (thesis §3.3) rather
+    /// than whole frames at a lower resolution alone. Remembered; off unless chosen.
+    bool frameReconstruction() const;
 
 signals:
     void changed();
@@ -46,6 +49,7 @@ private:
     QComboBox* mode_;
     QComboBox* reconstruction_;
     QCheckBox* shading_;
+    QCheckBox* subFrames_;
     QDoubleSpinBox *ambient_, *diffuse_, *specular_, *shininess_, *iso_;
     QSlider *boundary_, *viewTransparency_, *quality_;
     double slope_ = 1, intercept_ = 0;

@@ -187,6 +187,25 @@ core::RenderImage VolumeView::renderFrame(const core::View& view, const core::Re
     return img;
 }
 
+void VolumeView::setFrameReconstruction(bool on) {
+    if (on == frameReconstruction()) return;
+    auto options = quality_.options();
+    options.subFrames = on;
+    quality_.setOptions(options);
+    rebuilt_.reset();
+}
+
+core::RenderImage VolumeView::rebuildFrame(core::RenderImage subFrame, int k) {
+    // A new number whenever the picture may differ: another camera or size, or bricks that
+    // changed the cut (the rebuilt image keeps a sub-frame's pixels only within one picture).
+    if (!lastView_.sameCamera(rebuiltFor_) || drawn().ws.stats().uploads > 0) ++rebuiltPicture_;
+    rebuiltFor_ = lastView_;
+    auto counts = std::move(subFrame.rayCounts);
+    core::RenderImage out = rebuilt_.add(subFrame, k, rebuiltPicture_);
+    out.rayCounts = std::move(counts);
+    return out;
+}
+
 void VolumeView::paintGL() {
     QPainter painter(this);
     painter.fillRect(rect(), Qt::black);
@@ -199,6 +218,7 @@ void VolumeView::paintGL() {
             core::RenderSettings rs = settings_;
             rs.stepScale *= level.stepScale;
             rs.countRays = true;
+            if (level.subFrame) rs.subFrame = rebuilt_.next();
             const auto view = camera_.view(w, h);
             // A clip plane seen face-on hides its far side: those bricks are not even loaded.
             scene_->ws.options().clip = settings_.mode == core::RenderSettings::Mode::Dvr && settings_.tools.clipHides(view);
@@ -208,6 +228,7 @@ void VolumeView::paintGL() {
             t.start();
             lastView_ = view.scaled(level.resolution);
             auto img = renderFrame(lastView_, rs, false);
+            if (level.subFrame) img = rebuildFrame(std::move(img), rs.subFrame);
             lastDepth_ = img.depth;
             // The cut was refined for the reduced view; refine it for the full one next frame.
             drawn().ws.setRayCounts(img.rayCounts);
@@ -224,6 +245,7 @@ void VolumeView::paintGL() {
             readouts_.cacheBytes = drawn().cache.bytes();
             readouts_.cacheBudget = drawn().cache.budget();
             readouts_.resolution = level.resolution;
+            readouts_.subFrame = level.subFrame;
             readouts_.complete = st.complete;
             readouts_.settled = st.settled();
             readouts_.finestLevel = st.finestLevel;

@@ -14,6 +14,7 @@
 #include "ui/CropBoxHandles.h"
 #include "core/camera/DisplayModel.h"
 #include "core/camera/InteractiveQuality.h"
+#include "core/image/FrameReconstructor.h"
 #include "core/octree/OctreeReader.h"
 #include "core/camera/OrbitCamera.h"
 #include "core/appearance/TransferFunction.h"
@@ -40,6 +41,7 @@ public:
         double fps = 0, frameMs = 0;
         std::size_t residentBricks = 0, poolSlots = 0, cacheBytes = 0, cacheBudget = 0;
         double resolution = 1.0;
+        bool subFrame = false;  ///< the last frame was rebuilt from quincunx sub-frames
         bool complete = false;
         bool settled = false;                      ///< nothing loading: the cut stays while the view does
         int finestLevel = 0, coarsestLevel = 0, levels = 1;  ///< octree levels drawn (0: full resolution)
@@ -90,6 +92,11 @@ public:
     /// Quality/accuracy: voxels per pixel of the working set (1 = full, larger is coarser).
     void setAccuracy(double voxelsPerPixel);
     double accuracy() const { return accuracy_; }
+    /// While the camera moves, each frame draws one quincunx sub-frame and the image is rebuilt
+    /// from the last four (thesis §3.3, core::FrameReconstructor) rather than a whole frame at
+    /// a lower resolution alone; on by default (hvx_bench_gui compares the two).
+    void setFrameReconstruction(bool on);
+    bool frameReconstruction() const { return quality_.options().subFrames; }
     void setStandardView(core::OrbitCamera::Standard view);
     void resetView();
     core::OrbitCamera& camera() { return camera_; }
@@ -198,6 +205,11 @@ private:
     core::RenderSettings settings_;
     core::OrbitCamera camera_;
     core::InteractiveQuality quality_;
+    core::FrameReconstructor rebuilt_;  // while moving: the image from the last four sub-frames
+    std::uint64_t rebuiltPicture_ = 0;  // numbers what the camera and the cut show
+    core::View rebuiltFor_;
+    /// A sub-frame of lastView_ into the rebuilt image (its ray counts kept for the feedback).
+    core::RenderImage rebuildFrame(core::RenderImage subFrame, int k);
     double accuracy_ = 1.0;
     QImage frame_;
     std::vector<float> lastDepth_;  // of the last frame, at its own (maybe reduced) size

@@ -81,11 +81,7 @@ void VolumeView::prefetchNeighbours() {
         const auto& before = scene->prefetchedFor;
         const auto &mine = scene->ws.options(), &shown = scene_->ws.options();
         const bool sameOptions = mine.sameCullingAs(shown);
-        if (before && sameOptions && scene->ws.stats().settled() && before->eye == lastView_.eye && before->target == lastView_.target &&
-            before->up == lastView_.up && before->width == lastView_.width && before->height == lastView_.height &&
-            before->fovYDegrees == lastView_.fovYDegrees && before->orthoHeight == lastView_.orthoHeight &&
-            before->model == lastView_.model)
-            continue;
+        if (before && sameOptions && scene->ws.stats().settled() && before->sameCamera(lastView_)) continue;
         scene->prefetchedFor = lastView_;
         scene->ws.options().takeCullingOf(scene_->ws.options());
         scene->ws.update({lastView_}, *tf_);  // requests what that frame will need; the loader reads it meanwhile

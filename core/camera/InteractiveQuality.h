@@ -14,12 +14,16 @@ public:
         double targetFrameMs = 40.0;  ///< the frame time to hold while moving (25 Hz)
         double minResolution = 0.25;  ///< lowest resolution scale (per axis)
         double movingStepScale = 2.0; ///< step multiplier while moving
+        /// While moving, each frame draws one quincunx sub-frame, a quarter of the rays, and
+        /// the image is rebuilt from the last four (thesis §3.3, core::FrameReconstructor).
+        bool subFrames = false;
     };
     /// What to draw: per-axis resolution scale and step scale.
     struct Level {
         double resolution = 1.0;
         double stepScale = 1.0;
-        bool full() const { return resolution >= 1.0 && stepScale <= 1.0; }
+        bool subFrame = false;  ///< draw one quincunx sub-frame (a quarter of the pixels)
+        bool full() const { return resolution >= 1.0 && stepScale <= 1.0 && !subFrame; }
     };
 
     InteractiveQuality() = default;
@@ -29,6 +33,8 @@ public:
     Level next(bool moving) const;
     /// Feedback: the frame drawn at `used` took `ms`.
     void frameDone(const Level& used, double ms);
+    const Options& options() const { return options_; }
+    void setOptions(const Options& options) { options_ = options; }
     /// Milliseconds per unit of work (a full-resolution, unit-step frame), as last measured.
     double fullFrameMs() const { return fullFrameMs_; }
 

@@ -34,6 +34,12 @@ struct View {
         glm::dvec3 normal() const;
     } screen;
 
+    /// Whether `o` is the same pinhole or orthographic camera at the same size (the rays of
+    /// every pixel alike; Screen views compare as different).
+    bool sameCamera(const View& o) const {
+        return model == o.model && model != Model::Screen && eye == o.eye && target == o.target && up == o.up &&
+               width == o.width && height == o.height && fovYDegrees == o.fovYDegrees && orthoHeight == o.orthoHeight;
+    }
     /// World-space ray through the centre of pixel (x, y), y = 0 at the top row.
     void ray(double x, double y, glm::dvec3& origin, glm::dvec3& direction) const;
     /// World-to-clip matrix (OpenGL conventions), for frustum tests (the Screen model, whose

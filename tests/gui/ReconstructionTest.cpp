@@ -6,6 +6,8 @@
 // octree in MIP; a volume split-voxels cannot be built for goes back to trilinear with the
 // reason in the Jobs panel. Screenshot under <build>/test-artifacts/gui/reconstruction.png.
 #include <QAction>
+#include <QCheckBox>
+#include <QSettings>
 #include <QComboBox>
 #include <QPushButton>
 #include <QFileInfo>
@@ -213,6 +215,40 @@ private slots:
         QCOMPARE(dialog->renderedCount(), before + 1);
         QVERIFY2(dialog->statusText().contains("coarser than its root"), qPrintable(dialog->statusText()));
         dialog->close();
+    }
+
+    // The Rendering dock's "Moving: rebuild from sub-frames" (thesis §3.3): while the view is
+    // dragged, each frame draws one quincunx sub-frame and the image is rebuilt from the last
+    // four; once still, the frame is whole and the same as with the option off. Remembered.
+    void movingFramesRebuiltFromSubFrames() {
+        QVERIFY(window_->openPath(file("ct.hvo")));
+        auto* box = window_->findChild<QCheckBox*>("frameReconstruction");
+        QVERIFY(box);
+        QVERIFY2(!box->isChecked() && !view()->frameReconstruction(), "off unless chosen");
+        const QImage whole = settledFrame();
+        box->setChecked(true);
+        QVERIFY(view()->frameReconstruction());
+        QVERIFY(QSettings().value("view/frameReconstruction").toBool());
+        const QPoint c = view()->rect().center();
+        QTest::mousePress(view(), Qt::LeftButton, {}, c);
+        int rebuilt = 0;
+        for (int i = 1; i <= 8; ++i) {
+            const int before = view()->frameCount();
+            QTest::mouseMove(view(), c + QPoint(6 * i, 0));
+            QTRY_VERIFY_WITH_TIMEOUT(view()->frameCount() > before, 10000);
+            rebuilt += view()->readouts().subFrame;
+            QVERIFY2(test::coverage(view()->lastFrame()) > 0.02, "a rebuilt frame shows the volume");
+        }
+        QVERIFY2(rebuilt >= 6, qPrintable(QString("%1 of 8 moving frames rebuilt from sub-frames").arg(rebuilt)));
+        view()->grab().save(test::guiArtifacts() + "/subframes-moving.png");
+        // Back where it started, then still: a whole frame, as without the option.
+        QTest::mouseMove(view(), c);
+        QTest::mouseRelease(view(), Qt::LeftButton, {}, c);
+        const QImage still = settledFrame();
+        QVERIFY(!view()->readouts().subFrame);
+        QVERIFY2(test::difference(still, whole) < 0.5, qPrintable(QString("still frame differs by %1").arg(test::difference(still, whole))));
+        box->setChecked(false);
+        QVERIFY(!view()->frameReconstruction());
     }
 
     void cleanupTestCase() { close(); }

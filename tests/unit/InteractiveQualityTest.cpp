@@ -44,6 +44,22 @@ TEST(InteractiveQuality, MeasurementsOfReducedFramesAreScaledToAFullFrameAndSmoo
     EXPECT_DOUBLE_EQ(q.fullFrameMs(), 0.7 * 80.0 + 0.3 * 180.0);
 }
 
+TEST(InteractiveQuality, SubFramesDrawAQuarterOfThePixelsSoTheResolutionCanBeHigher) {
+    core::InteractiveQuality q({40.0, 0.25, 2.0, true});
+    EXPECT_TRUE(q.next(true).subFrame);
+    EXPECT_FALSE(q.next(true).full());
+    EXPECT_TRUE(q.next(false).full()) << "still frames are whole frames";
+    EXPECT_FALSE(q.next(false).subFrame);
+    // A sub-frame at half resolution and double step is 1/32 of the work: 10 ms means 320 ms a full frame.
+    q.frameDone(q.next(true), 10.0);
+    EXPECT_DOUBLE_EQ(q.fullFrameMs(), 10.0 / (0.25 / 2.0 * 0.25));
+    // 40 ms a frame then allows 320 / 2 / 4 = 40: the whole resolution (plain frames: half).
+    EXPECT_DOUBLE_EQ(q.next(true).resolution, 1.0);
+    core::InteractiveQuality plain({40.0, 0.25, 2.0, false});
+    plain.frameDone({}, 320.0);
+    EXPECT_NEAR(plain.next(true).resolution, 0.5, 1e-12);
+}
+
 TEST(View, ScaledKeepsTheCameraAndScalesThePixelCount) {
     auto v = core::View::orbit({0, 0, 0}, 500.0, 30.0, 10.0, 640, 480);
     const auto half = v.scaled(0.5);
