@@ -25,8 +25,9 @@ struct alignas(16) FrameBlock {  // std140 mirror of raycast_inputs.glsl
     glm::vec4 extentB, tfRangeB;
     glm::uvec4 brickB, fusionB;
     glm::uvec4 pixels;
+    glm::vec4 detail;
 };
-static_assert(sizeof(FrameBlock) == 64 + 5 * 16 + 2 * 16 + 2 * 16 + 64 + 5 * 16, "std140 layout of Frame");
+static_assert(sizeof(FrameBlock) == 64 + 5 * 16 + 2 * 16 + 2 * 16 + 64 + 6 * 16, "std140 layout of Frame");
 struct ViewBlock {  // std430 mirror of raycast_inputs.glsl's ViewCamera
     glm::vec4 eye, forward, right, up, screenCentre, screenRight, screenUp, screenViewer, screenProjector;
 };
@@ -260,8 +261,9 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const int gradient = !overlay && settings.mode == core::RenderSettings::Mode::Dvr && tf.hasGradientOpacity() ? 1 : 0;
     // A static variant per mode, tools, labels, fusion, gradient opacity and split-voxels.
     const int nearest = settings.nearest && !split ? 1 : 0;
+    const int detail = settings.detailShading() && !tools && !overlay && !split ? 1 : 0;
     auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion + 16384 * gradient + 32768 * split +
-                              131072 * nearest];
+                              131072 * nearest + 262144 * detail];
     if (!program)
         program = std::make_unique<ComputeProgram>(
             ShaderLibrary::embedded(), "raycast.comp.glsl",
@@ -272,7 +274,7 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                                      "HVX_GRADIENT_OPACITY " + std::to_string(gradient),
                                      "HVX_SPLIT " + std::to_string(split ? 1 : 0),
                                      "HVX_SPLIT_SIGNED " + std::to_string(split == 2 ? 1 : 0),
-                                     "HVX_NEAREST " + std::to_string(nearest)});
+                                     "HVX_NEAREST " + std::to_string(nearest), "HVX_DETAIL " + std::to_string(detail)});
     if (gradient)
         glNamedBufferData(buffers_[12], GLsizeiptr(tf.gradientTable().size() * sizeof(float)), tf.gradientTable().data(),
                           GL_STREAM_DRAW);
@@ -376,6 +378,7 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const int stride = settings.subFrame >= 0 ? 2 : 1;
     const glm::ivec2 phase = settings.subFrame >= 0 ? core::FrameReconstructor::phase(settings.subFrame) : glm::ivec2(0);
     fb.pixels = glm::uvec4(std::uint32_t(phase.x), std::uint32_t(phase.y), std::uint32_t(stride), 0u);
+    fb.detail = glm::vec4(float(settings.normalUnsharp), float(settings.exaggeratedShading), 0.0f, 0.0f);
     glNamedBufferData(buffers_[7], sizeof fb, &fb, GL_STREAM_DRAW);
 
     program->use();

@@ -39,7 +39,14 @@ RenderControls::RenderControls(QWidget* parent)
       subFrames_(new QCheckBox(tr("Moving: rebuild from sub-frames"), this)),
       ambient_(spin(0, 1, 0.05, 0.35, this)), diffuse_(spin(0, 1, 0.05, 0.65, this)), specular_(spin(0, 1, 0.05, 0.25, this)),
       shininess_(spin(1, 128, 1, 24, this)), iso_(spin(-1e6, 1e6, 10, 300, this)), boundary_(slider(0, 100, 0, this)),
-      viewTransparency_(slider(0, 100, 0, this)), quality_(slider(0, 100, 100, this)) {
+      viewTransparency_(slider(0, 100, 0, this)), quality_(slider(0, 100, 100, this)), unsharp_(slider(0, 80, 0, this)),
+      exaggerated_(slider(0, 100, 0, this)) {
+    unsharp_->setObjectName("normalUnsharp");
+    unsharp_->setToolTip(tr("Normal unsharp masking (thesis \u00a73.2.2): each normal pushed away from its neighbourhood's, "
+                            "so that fine relief (gyri, vessels, fractures) stands out; left is off, right k = 8"));
+    exaggerated_->setObjectName("exaggeratedShading");
+    exaggerated_->setToolTip(tr("Exaggerated shading: fine relief lit by a grazing light that follows the coarser surface, "
+                                "so it shows at every orientation; left is off"));
     mode_->setObjectName("renderMode");
     mode_->addItems({tr("DVR"), tr("Isosurface"), tr("MIP"), tr("MinIP"), tr("X-ray (average)")});
     mode_->setToolTip(tr("Direct volume rendering, first-hit isosurface, maximum/minimum intensity projection, average"));
@@ -91,6 +98,8 @@ RenderControls::RenderControls(QWidget* parent)
     form->addRow(tr("Diffuse"), diffuse_);
     form->addRow(tr("Specular"), specular_);
     form->addRow(tr("Shininess"), shininess_);
+    form->addRow(tr("Detail (unsharp)"), unsharp_);
+    form->addRow(tr("Exaggerated shading"), exaggerated_);
     form->addRow(tr("Boundary"), boundary_);
     form->addRow(tr("View transparency"), viewTransparency_);
     form->addRow(tr("Isovalue"), iso_);
@@ -114,7 +123,8 @@ RenderControls::RenderControls(QWidget* parent)
     connect(shading_, &QCheckBox::toggled, this, &RenderControls::changed);
     for (auto* s : {ambient_, diffuse_, specular_, shininess_, iso_})
         connect(s, &QDoubleSpinBox::valueChanged, this, &RenderControls::changed);
-    for (auto* s : {boundary_, viewTransparency_, quality_}) connect(s, &QSlider::valueChanged, this, &RenderControls::changed);
+    for (auto* s : {boundary_, viewTransparency_, quality_, unsharp_, exaggerated_})
+        connect(s, &QSlider::valueChanged, this, &RenderControls::changed);
 }
 
 void RenderControls::setVolume(double slope, double intercept, double physicalMin, double physicalMax, bool ct) {
@@ -136,6 +146,8 @@ core::RenderSettings RenderControls::settings() const {
     s.shininess = shininess_->value();
     s.boundary = boundary_->value() / 100.0;
     s.viewTransparency = viewTransparency_->value() / 100.0;
+    s.normalUnsharp = unsharp_->value() / 10.0;
+    s.exaggeratedShading = exaggerated_->value() / 100.0;
     s.isoValue = (iso_->value() - intercept_) / slope_;
     s.nearest = reconstruction() == Reconstruction::Nearest;
     return s;
@@ -163,6 +175,8 @@ void RenderControls::setSettings(const core::RenderSettings& s) {
         shininess_->setValue(s.shininess);
         boundary_->setValue(int(std::lround(s.boundary * 100)));
         viewTransparency_->setValue(int(std::lround(s.viewTransparency * 100)));
+        unsharp_->setValue(int(std::lround(s.normalUnsharp * 10)));
+        exaggerated_->setValue(int(std::lround(s.exaggeratedShading * 100)));
     }
     emit changed();
 }

@@ -11,8 +11,8 @@ class QSlider;
 namespace hvx::ui {
 
 /// The 3D view's controls: render mode (DVR, isosurface, MIP, MinIP, X-ray), reconstruction
-/// (trilinear, nearest, split-voxels), Phong shading parameters, boundary enhancement and
-/// view-dependent transparency, the isovalue (physical units) and a quality/accuracy slider.
+/// (trilinear, nearest, split-voxels), Phong shading parameters, normal unsharp masking and
+/// exaggerated shading, boundary enhancement and view-dependent transparency, the isovalue (physical units) and a quality/accuracy slider.
 /// Emits changed() on every edit.
 ///
 /// Threading: GUI thread only.
@@ -52,6 +52,7 @@ private:
     QCheckBox* subFrames_;
     QDoubleSpinBox *ambient_, *diffuse_, *specular_, *shininess_, *iso_;
     QSlider *boundary_, *viewTransparency_, *quality_;
+    QSlider *unsharp_, *exaggerated_;  // multilevel shading (thesis §3.2.2)
     double slope_ = 1, intercept_ = 0;
 };
 

@@ -69,14 +69,14 @@ std::string timePoint(const CliArgs& args) {
 int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
-                        "view-transparency", "tools", "crop", "lut", "label-opacity", "overlay", "labels", "time", "db", "gradient-opacity",
+                        "view-transparency", "unsharp", "exaggerated", "tools", "crop", "lut", "label-opacity", "overlay", "labels", "time", "db", "gradient-opacity",
                         "level"},
                        {"cpu", "force-frame", "nearest"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo|SERIES_UID --time N [--db FILE] [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
                           "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L] | "
-                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--level L] [--nearest] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--gradient-opacity G:S,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
+                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--level L] [--nearest] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--unsharp 0..8] [--exaggerated 0..1] [--gradient-opacity G:S,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
     // A split-voxel octree: its cells walked by a DDA (GPU: raycast_split.glsl; --cpu: SplitCellMarch).
     const auto reader = core::OctreeReader::open(timePoint(args), true);
     if (reader->splitVoxels() && (args.value("overlay") || args.value("labels") || args.value("gradient-opacity")))
@@ -104,6 +104,12 @@ int renderCommand(int argc, char** argv) {
     settings.viewTransparency = args.number("view-transparency").value_or(0.0);
     if (!(settings.boundary >= 0 && settings.boundary <= 1) || !(settings.viewTransparency >= 0 && settings.viewTransparency <= 1))
         throw core::Error("--boundary and --view-transparency must be between 0 and 1");
+    settings.normalUnsharp = args.number("unsharp").value_or(0.0);
+    settings.exaggeratedShading = args.number("exaggerated").value_or(0.0);
+    if (!(settings.normalUnsharp >= 0 && settings.normalUnsharp <= 8))
+        throw core::Error("--unsharp (normal unsharp masking) must be between 0 and 8");
+    if (!(settings.exaggeratedShading >= 0 && settings.exaggeratedShading <= 1))
+        throw core::Error("--exaggerated (exaggerated shading) must be between 0 and 1");
     if (const auto tools = args.value("tools")) {  // illustrative tools from JSON (core::ToolSet)
         std::ifstream in(*tools);
         if (!in) throw core::Error(*tools + ": cannot be read");

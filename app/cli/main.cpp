@@ -40,7 +40,7 @@ const char* const kUsage =
         "  listen [--port N] [--bind ADDR] [--ae AE] [--storage DIR] [--allow AE]   storage SCP in the foreground\n"
         "  dicom-info FILE               one-line summary of a DICOM file's header\n"
         "  render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] [--tf PRESET]\n"
-        "        [--boundary 0..1] [--view-transparency 0..1] [--tools TOOLS.json]\n"
+        "        [--boundary 0..1] [--view-transparency 0..1] [--unsharp 0..8] [--exaggerated 0..1] [--tools TOOLS.json]\n"
         "        [--iso HU] [--size WxH] [--budget BRICKS] [--accuracy VOXELS_PER_PIXEL] -o OUT.png|OUT.exr\n"
         "        [--lut FILE] [--label-opacity A]   a label map: each label in its table's colour, never\n"
         "        blended (the table beside the octree, else generated colours)\n"

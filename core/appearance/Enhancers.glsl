@@ -160,6 +160,35 @@ HVX_FN float hvxMimdaFutureDelta(float alpha, float importanceMax, float gamma) 
     return 1.0f - (1.0f - gamma * (1.0f - importanceMax)) * alpha;
 }
 
+// ---- Multilevel shading (thesis §3.2.2, Fig. 3.7) ----------------------------------------------
+// The diffuse and specular factors of a sample under a headlight L (unit, towards the eye), from
+// its gradient g (not zero) and a smoothed gradient gs (the coarser scale), two-sided as the
+// Phong shading here is. Normal unsharp masking (Cignoni et al. 2005): n' = normalize(n +
+// k·(n − n_s)). Exaggerated shading (Rusinkiewicz et al. 2006) over the two scales: the finer
+// one lit by the light projected onto the plane of the coarser normal, l_s = L − n_s(n_s·L),
+// a grazing light that shows only its departure from the coarser scale, clamp(a·n'·l_s, −1, 1)
+// with a = 4; under a headlight the coarser scale, lit head-on, would be flat (the paper's
+// clamp(a·n_s·L) saturates), so it keeps its plain Lambert term and the finer scale modulates
+// it: |n_s·L|·(1 + clamp(a·n'·l_s, −1, 1)), at most 1, blended with the plain factor by
+// `exaggerate`. Both scale with the boundary's strength gn (as boundary enhancement's, [0, 1]):
+// in homogeneous tissue a gradient's direction is noise, not detail. Returns (diffuse, |n'·L|
+// for the specular term); with k = 0 and exaggerate = 0, (|n·L|, |n·L|).
+#define HVX_EXAGGERATION 4.0f
+HVX_FN vec2 hvxDetailShading(vec3 g, vec3 gs, vec3 L, float unsharp, float exaggerate, float gn) {
+    vec3 n = g / sqrt(dot(g, g));
+    if (dot(n, L) < 0.0f) n = -n;
+    float sl2 = dot(gs, gs);
+    vec3 ns = sl2 > 0.0f ? gs / sqrt(sl2) : n;
+    if (dot(ns, n) < 0.0f) ns = -ns;
+    vec3 u = n + gn * unsharp * (n - ns);
+    float ul2 = dot(u, u);
+    if (ul2 > 0.0f) n = u / sqrt(ul2);
+    float ndl = abs(dot(n, L));
+    vec3 ls = L - ns * dot(ns, L);
+    float e = min(1.0f, abs(dot(ns, L)) * (1.0f + clamp(HVX_EXAGGERATION * dot(n, ls), -1.0f, 1.0f)));
+    return vec2(mix(ndl, e, gn * exaggerate), ndl);
+}
+
 // ---- The chain -------------------------------------------------------------------------------
 // Tool parameters as the shader's uniform block holds them (std140: vec4s only); filled from
 // core::ToolSet by both sides.

@@ -8,12 +8,14 @@
 #include <glm/exponential.hpp>
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
 #include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 namespace hvx::core::glsl {
 using uint = std::uint32_t;
+using vec2 = glm::vec2;
 using vec3 = glm::vec3;
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;

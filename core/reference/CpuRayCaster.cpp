@@ -211,6 +211,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         const double g = tf_.gradientScale(len), keep = 1.0 - a;
         return g <= 0.0 ? 0.0 : keep <= 0.0 ? 1.0 : 1.0 - std::pow(keep, g);
     };
+    const bool detail = settings_.detailShading() && !settings_.tools.any();
     auto shade = [&](const glm::vec3& p, const glm::dvec3& base, double& a) {
         if (!settings_.shading && !enhance && !gradientOpacity) return base;
         glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(L, p));
@@ -224,6 +225,14 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         }
         if (!settings_.shading) return base;
         if (len < 1e-9) return base * (settings_.ambient + settings_.diffuse);
+        if (detail) {  // as raycast_march.glsl's shadeSample, in float like the shader
+            const glm::vec3 gs = glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f)));
+            const glm::vec2 f = glsl::hvxDetailShading(glm::vec3(g), gs, glm::vec3(-dw), float(settings_.normalUnsharp),
+                                                       float(settings_.exaggeratedShading),
+                                                       std::min(1.0f, float(len) * float(strengthPerGradient)));
+            return base * (settings_.ambient + settings_.diffuse * double(f.x)) +
+                   glm::dvec3(settings_.specular * std::pow(double(f.y), settings_.shininess));
+        }
         return base * (settings_.ambient + settings_.diffuse * facing) +
                glm::dvec3(settings_.specular * std::pow(facing, settings_.shininess));
     };

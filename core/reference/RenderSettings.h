@@ -17,6 +17,15 @@ struct RenderSettings {
     /// View-dependent transparency: opacity is scaled by (1 - v·|∇f|^·|n·V|), so boundaries
     /// facing the viewer turn transparent and silhouettes stay. 0 = off.
     double viewTransparency = 0.0;
+    /// Multilevel shading (thesis §3.2.2, Fig. 3.7; core::glsl::hvxDetailShading), against the
+    /// gradient at twice the voxel spacing: normal unsharp masking k (0 = off, up to 8) and
+    /// exaggerated shading (0 = off, 1 = all). DVR and isosurface with Phong shading, without
+    /// the illustrative tools, a fused volume or split-voxels (they keep their own shading).
+    double normalUnsharp = 0.0;
+    double exaggeratedShading = 0.0;
+    bool detailShading() const {
+        return shading && (mode == Mode::Dvr || mode == Mode::Iso) && (normalUnsharp > 0.0 || exaggeratedShading > 0.0);
+    }
     double earlyTermination = 0.99;
     double stepScale = 1.0;          ///< step = stepScale × the local voxel size
     bool countRays = false;          ///< fill RenderImage::rayCounts (visibility feedback)

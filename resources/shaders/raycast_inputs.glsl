@@ -17,6 +17,7 @@ layout(std140, binding = 0) uniform Frame {
     uvec4 brickB;    // its brick size, border, edge, slots per row of its pool
     uvec4 fusionB;   // its pool's slots per layer, its first slot record, its first index node
     uvec4 pixels;    // the pixels drawn: x, y phase and stride (core::RenderSettings::subFrame; 0, 0, 1: all)
+    vec4 detail;     // normal unsharp masking k, exaggerated shading (HVX_DETAIL), -, -
 };
 // One camera per view of the batch (dispatch layer z = view index).
 struct ViewCamera {
@@ -44,6 +45,9 @@ struct SlotRecord {  // per pool slot (render::GpuRayCaster's SlotRecord)
 };
 layout(std430, binding = 7) readonly buffer Slots { SlotRecord slotRecords[]; };
 layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per index node (feedback)
+#ifndef HVX_DETAIL
+#define HVX_DETAIL 0
+#endif
 #ifndef HVX_GRADIENT_OPACITY
 #define HVX_GRADIENT_OPACITY 0
 #endif

@@ -18,6 +18,7 @@
 #include <QMessageBox>
 #include <QPushButton>
 #include <QSignalSpy>
+#include <QSlider>
 #include <QTest>
 #include <QTimer>
 
@@ -174,6 +175,29 @@ private slots:
             QVERIFY2(lit > 100, qPrintable(names[mode] + " draws nothing"));
         }
         window_->renderControls()->mode()->setCurrentIndex(0);
+    }
+
+    // The Rendering dock's multilevel shading sliders (thesis §3.2.2): the 3D view draws what
+    // the CPU reference draws with them, the image changes, and back at 0 it is as before.
+    void detailShadingSlidersDrawWhatTheReferenceDraws() {
+        auto* unsharp = window_->renderControls()->findChild<QSlider*>("normalUnsharp");
+        auto* exaggerated = window_->renderControls()->findChild<QSlider*>("exaggeratedShading");
+        QVERIFY(unsharp && exaggerated);
+        const QImage plain = settledFrame().convertToFormat(QImage::Format_RGB32);
+        unsharp->setValue(20);  // k = 2
+        exaggerated->setValue(50);
+        QCOMPARE(window_->renderControls()->settings().normalUnsharp, 2.0);
+        const QImage detail = settledFrame().convertToFormat(QImage::Format_RGB32);
+        detail.save(test::guiArtifacts() + "/view-detail-shading.png");
+        const double db = psnr(detail, reference(detail)), change = psnr(detail, plain);
+        qInfo("unsharp 2, exaggerated 0.5: the 3D view vs the CPU reference %.1f dB, vs plain shading %.1f dB", db, change);
+        // 79.5 dB measured: plain DVR agrees at 87.6 here, and unsharp masking amplifies the
+        // normals' rounding (render/DetailShadingTest: 92-96 dB in float images).
+        QVERIFY2(db > 75.0, qPrintable(QString("%1 dB").arg(db)));
+        QVERIFY2(change < 45.0, qPrintable(QString("%1 dB from plain shading").arg(change)));
+        unsharp->setValue(0);
+        exaggerated->setValue(0);
+        QVERIFY(psnr(settledFrame().convertToFormat(QImage::Format_RGB32), plain) > 90.0);
     }
 
     void standardViewKeysTurnTheCamera() {

@@ -142,6 +142,10 @@ TEST(CliBadInput, LightFieldAndToolInputsFailCleanlyBeforeRendering) {
                        "--gradient-opacity", {"p.hvo", "tools.json"}, "GRADIENT:SCALE pairs");
     expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --gradient-opacity 10:0,50:2 -o " + dir.file("o.png"), dir,
                        "gradient opacity", {"p.hvo", "tools.json"}, "scale of 0 to 1");
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --unsharp 9 -o " + dir.file("o.png"), dir, "--unsharp",
+                       {"p.hvo", "tools.json"}, "between 0 and 8");
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --exaggerated 1.5 -o " + dir.file("o.png"), dir,
+                       "--exaggerated", {"p.hvo", "tools.json"}, "between 0 and 1");
     std::ofstream(dir.file("fix.json")) << R"({"projectors": [{"lut": {"r": [2]}}]})";
     expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display stereo-anaglyph --size 16x12 --cpu --correction " +
                            dir.file("fix.json") + " -o " + dir.file("s.png"),
