@@ -15,6 +15,8 @@
 #include "core/streaming/WorkingSet.h"
 #include "render/EglOffscreenContext.h"
 #include "render/GpuRayCaster.h"
+#include "tests/support/ImageCompare.h"
+#include "tests/support/OctreeScene.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;
@@ -74,29 +76,19 @@ TEST(InteractiveFrames, MovingFramesAreCheaperAndCompleteAndStillFramesAreFullQu
 }
 
 // Quincunx sub-frames (thesis §3.3): each draws a quarter of the pixels, each pixel exactly as
-// the full frame draws it, in about a quarter of the time; the four of one view rebuild its
-// full frame exactly, and a moving orbit is rebuilt closer to its full frames than the same
-// rays drawn at half resolution.
+// the full frame draws it; the four of one view rebuild its full frame exactly, and a moving
+// orbit is rebuilt closer to its full frames than the same rays drawn at half resolution.
 TEST(InteractiveFrames, QuincunxSubFramesRebuildTheFullFrame) {
-    test::TempDir dir;
     core::PhantomVoxelSource phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0);
-    core::JobContext job;
-    core::OctreeBuilder({}).build(phantom, dir.file("p.hvo"), job);
-    const auto reader = core::OctreeReader::open(dir.file("p.hvo"));
+    test::OctreeScene scene(phantom);
+    const auto& reader = scene.reader;
+    auto& ws = *scene.ws;
     const auto& g = reader->geometry();
     const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
-    core::BrickCache cache(1u << 30);
-    core::BrickLoader loader(*reader, cache);
-    core::WorkingSet ws(*reader, cache, loader, {});
-    const glm::dvec3 c = ws.space().centre();
+    const glm::dvec3 c = scene.centre();
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
-    auto psnr = [](const core::RenderImage& a, const core::RenderImage& b) {
-        double sum = 0;
-        for (std::size_t i = 0; i < a.rgba.size(); ++i)
-            for (int k = 0; k < 4; ++k) sum += double(a.rgba[i][k] - b.rgba[i][k]) * double(a.rgba[i][k] - b.rgba[i][k]);
-        return sum == 0 ? 1e9 : 10 * std::log10(4.0 * double(a.rgba.size()) / sum);
-    };
+    using test::psnr;
     const auto view = core::View::orbit(c, 1100.0, 25.0, 10.0, 161, 120);  // odd width: a last column of one phase
     ws.converge({view}, tf, {}, 32);
     const auto full = gpu.render(*reader, ws.index(), ws.slotBricks(), tf, {}, view);
