@@ -169,6 +169,20 @@ int main(int argc, char** argv) {
                                                g.valueMax, tf.referenceLength());
             time("transparent TF (march, TF lookups)", clear, flat);
             time("8x8 image (uploads, fixed costs)", tf, {}, 8.0 / height);
+            // The flexible ray caster's features (thesis §3.2.2-3.3), each against "full" above.
+            auto faded = tf;  // gradient opacity: a ramp from 0.5% to 2% of the value range per mm
+            const double range = g.valueMax - g.valueMin;
+            faded.setGradientOpacity({{0.005 * range, 0.0}, {0.02 * range, 1.0}});
+            time("gradient opacity", faded, {});
+            core::RenderSettings detail;
+            detail.normalUnsharp = 2.0;
+            time("normal unsharp masking (k 2)", tf, detail);
+            detail.normalUnsharp = 0.0;
+            detail.exaggeratedShading = 1.0;
+            time("exaggerated shading", tf, detail);
+            core::RenderSettings quincunx;
+            quincunx.subFrame = 1;
+            time("one quincunx sub-frame (a quarter of the rays)", tf, quincunx);
         }
         ctx.release();
     }
