@@ -211,7 +211,8 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         const double g = tf_.gradientScale(len), keep = 1.0 - a;
         return g <= 0.0 ? 0.0 : keep <= 0.0 ? 1.0 : 1.0 - std::pow(keep, g);
     };
-    const bool detail = settings_.detailShading() && !settings_.tools.any();
+    // Tools apply in DVR only (toolBits below); the shader's HVX_DETAIL is off exactly when they do.
+    const bool detail = settings_.detailShading() && !(mode == RenderSettings::Mode::Dvr && settings_.tools.any());
     auto shade = [&](const glm::vec3& p, const glm::dvec3& base, double& a) {
         if (!settings_.shading && !enhance && !gradientOpacity) return base;
         glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(L, p));

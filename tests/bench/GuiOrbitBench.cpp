@@ -6,6 +6,7 @@
 //   xvfb-run -a -s "-screen 0 1600x1000x24" build/release/tests/bench/hvx_bench_gui FILE.hvo [--frames 40]
 #include <QApplication>
 #include <QElapsedTimer>
+#include <QTemporaryDir>
 #include <QTest>
 
 #include <epoxy/gl.h>
@@ -31,7 +32,12 @@ using namespace hvx;
 
 int main(int argc, char** argv) {
     ui::VolumeView::requestGlFormat();
-    qputenv("XDG_CONFIG_HOME", "/tmp/hvx-bench-gui-config");
+    // The workstation's settings, job log, caches and database in a folder of the run's own,
+    // never the user's (removed at exit).
+    QTemporaryDir home;
+    if (!home.isValid()) return 1;
+    for (const char* var : {"HOME", "XDG_CONFIG_HOME", "XDG_DATA_HOME", "XDG_CACHE_HOME"})
+        qputenv(var, (home.path() + "/" + var).toUtf8());
     QApplication app(argc, argv);
     if (argc < 2) {
         std::fprintf(stderr, "usage: %s FILE.hvo [--frames N]\n", argv[0]);
@@ -40,7 +46,7 @@ int main(int argc, char** argv) {
     int frames = 40;
     for (int i = 2; i + 1 < argc; i += 2)
         if (!std::strcmp(argv[i], "--frames")) frames = std::atoi(argv[i + 1]);
-    ui::MainWindow window("/tmp/hvx-bench-gui.sqlite", "/tmp/hvx-bench-gui-pacs.json");
+    ui::MainWindow window(home.filePath("studies.sqlite"), home.filePath("pacs.json"));
     window.resize(1400, 900);
     window.show();
     if (!QTest::qWaitForWindowExposed(&window) || !window.openOctree(argv[1])) return 1;
