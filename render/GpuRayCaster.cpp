@@ -256,6 +256,11 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const int split = reader.splitVoxels() ? (reader.geometry().scalarType == core::ScalarType::Int16 ? 2 : 1) : 0;
     if (split && (settings.mode != core::RenderSettings::Mode::Dvr || overlay || tf.hasGradientOpacity()))
         throw core::Error(reader.path() + ": a split-voxel octree is drawn in DVR, alone, without gradient opacity");
+    // Refraction (raycast_refract.glsl): DVR alone, with the enhancers and shading of the plain
+    // march but not the tools, a fused volume or split-voxels.
+    const int refract = settings.mode == core::RenderSettings::Mode::Dvr && tf.hasRefraction() ? 1 : 0;
+    if (refract && (tools || overlay || split))
+        throw core::Error("refraction is drawn without the illustrative tools, a fused volume or split-voxels");
     const int labels = reader.geometry().isLabel ? 1 : 0;
     const int fusion = overlay ? 1 + (overlay->reader.geometry().isLabel ? 1 : 0) : 0;  // 1 image, 2 label map
     const int gradient = !overlay && settings.mode == core::RenderSettings::Mode::Dvr && tf.hasGradientOpacity() ? 1 : 0;
@@ -263,7 +268,7 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const int nearest = settings.nearest && !split ? 1 : 0;
     const int detail = settings.detailShading() && !tools && !overlay && !split ? 1 : 0;
     auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion + 16384 * gradient + 32768 * split +
-                              131072 * nearest + 262144 * detail];
+                              131072 * nearest + 262144 * detail + 524288 * refract];
     if (!program)
         program = std::make_unique<ComputeProgram>(
             ShaderLibrary::embedded(), "raycast.comp.glsl",
@@ -274,10 +279,14 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                                      "HVX_GRADIENT_OPACITY " + std::to_string(gradient),
                                      "HVX_SPLIT " + std::to_string(split ? 1 : 0),
                                      "HVX_SPLIT_SIGNED " + std::to_string(split == 2 ? 1 : 0),
-                                     "HVX_NEAREST " + std::to_string(nearest), "HVX_DETAIL " + std::to_string(detail)});
+                                     "HVX_NEAREST " + std::to_string(nearest), "HVX_DETAIL " + std::to_string(detail),
+                                     "HVX_REFRACT " + std::to_string(refract)});
     if (gradient)
         glNamedBufferData(buffers_[12], GLsizeiptr(tf.gradientTable().size() * sizeof(float)), tf.gradientTable().data(),
                           GL_STREAM_DRAW);
+    if (refract)
+        glNamedBufferData(buffers_[13], GLsizeiptr(tf.refractionTable().size() * sizeof(glm::vec2)),
+                          tf.refractionTable().data(), GL_STREAM_DRAW);
     const auto packed = core::packTools(settings.tools, {settings.ambient, settings.diffuse, settings.specular, settings.shininess});
     static_assert(sizeof(packed) == 16 * 16, "std140 layout of HvxTools");
     glNamedBufferData(buffers_[9], sizeof packed, &packed, GL_STREAM_DRAW);
@@ -387,6 +396,7 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, buffers_[10]);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, buffers_[11]);
     if (gradient) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, buffers_[12]);
+    if (refract) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, buffers_[13]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers_[7]);
     glBindBufferBase(GL_UNIFORM_BUFFER, 1, buffers_[9]);
     // Each sampler type its own units: a split-voxel pool is an integer texture (unit 2).

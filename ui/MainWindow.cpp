@@ -196,6 +196,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
         view_->setFrameReconstruction(controls_->frameReconstruction());
     });
     view_->setFrameReconstruction(controls_->frameReconstruction());
+    connect(controls_, &RenderControls::refractionChanged, this, &MainWindow::applyTransferFunction);
     connect(view_, &VolumeView::frameRendered, this, &MainWindow::updateReadouts);
     connect(view_, &VolumeView::failed, this, &MainWindow::showError);
     connect(jobs_.get(), &JobManager::finished, this, [this](int, const QString& state, const QString& message) {
@@ -610,10 +611,12 @@ void MainWindow::applyTransferFunction() {
         // would blend two labels into a third's colour).
         tfEditor_->setEnabled(!g.isLabel);
         tfEditor_->setToolTip(g.isLabel ? tr("A label map is drawn with its label table, one colour per label.") : QString());
-        view_->setTransferFunction(
-            g.isLabel ? core::TransferFunction::forLabels(core::LabelTable::forLabelMap(reader_->path(), g.valueMin, g.valueMax),
-                                                          1.0, referenceLength_)
-                      : tfEditor_->transferFunction(referenceLength_));
+        if (g.isLabel)
+            return view_->setTransferFunction(core::TransferFunction::forLabels(
+                core::LabelTable::forLabelMap(reader_->path(), g.valueMin, g.valueMax), 1.0, referenceLength_));
+        auto tf = tfEditor_->transferFunction(referenceLength_);
+        if (controls_->refractionIndex() > 1.0) tf.setRefraction(tf.refractionByOpacity(controls_->refractionIndex()));
+        view_->setTransferFunction(tf);
     } catch (const core::Error& e) {
         showError(QString::fromStdString(e.what()));
     }

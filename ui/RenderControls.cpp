@@ -40,7 +40,12 @@ RenderControls::RenderControls(QWidget* parent)
       ambient_(spin(0, 1, 0.05, 0.35, this)), diffuse_(spin(0, 1, 0.05, 0.65, this)), specular_(spin(0, 1, 0.05, 0.25, this)),
       shininess_(spin(1, 128, 1, 24, this)), iso_(spin(-1e6, 1e6, 10, 300, this)), boundary_(slider(0, 100, 0, this)),
       viewTransparency_(slider(0, 100, 0, this)), quality_(slider(0, 100, 100, this)), unsharp_(slider(0, 80, 0, this)),
-      exaggerated_(slider(0, 100, 0, this)) {
+      exaggerated_(slider(0, 100, 0, this)), refraction_(slider(100, 150, 100, this)) {
+    refraction_->setObjectName("refraction");
+    refraction_->setToolTip(tr("Refraction (thesis \u00a73.2.2): the rays bend by Snell's law where the refraction index "
+                               "changes: what the transfer function shows (from 5 % opacity) refracts with the index "
+                               "chosen, 1.5 at the right, and air with 1. Left is off. DVR only; not drawn with the illustrative tools, a fused volume "
+                               "or split-voxels."));
     unsharp_->setObjectName("normalUnsharp");
     unsharp_->setToolTip(tr("Normal unsharp masking (thesis \u00a73.2.2): each normal pushed away from its neighbourhood's, "
                             "so that fine relief (gyri, vessels, fractures) stands out; left is off, right k = 8"));
@@ -100,6 +105,7 @@ RenderControls::RenderControls(QWidget* parent)
     form->addRow(tr("Shininess"), shininess_);
     form->addRow(tr("Detail (unsharp)"), unsharp_);
     form->addRow(tr("Exaggerated shading"), exaggerated_);
+    form->addRow(tr("Refraction"), refraction_);
     form->addRow(tr("Boundary"), boundary_);
     form->addRow(tr("View transparency"), viewTransparency_);
     form->addRow(tr("Isovalue"), iso_);
@@ -125,6 +131,7 @@ RenderControls::RenderControls(QWidget* parent)
         connect(s, &QDoubleSpinBox::valueChanged, this, &RenderControls::changed);
     for (auto* s : {boundary_, viewTransparency_, quality_, unsharp_, exaggerated_})
         connect(s, &QSlider::valueChanged, this, &RenderControls::changed);
+    connect(refraction_, &QSlider::valueChanged, this, &RenderControls::refractionChanged);
 }
 
 void RenderControls::setVolume(double slope, double intercept, double physicalMin, double physicalMax, bool ct) {
@@ -135,6 +142,8 @@ void RenderControls::setVolume(double slope, double intercept, double physicalMi
 }
 
 bool RenderControls::frameReconstruction() const { return subFrames_->isChecked(); }
+
+double RenderControls::refractionIndex() const { return refraction_->value() / 100.0; }
 
 core::RenderSettings RenderControls::settings() const {
     core::RenderSettings s;

@@ -12,7 +12,8 @@ namespace hvx::ui {
 
 /// The 3D view's controls: render mode (DVR, isosurface, MIP, MinIP, X-ray), reconstruction
 /// (trilinear, nearest, split-voxels), Phong shading parameters, normal unsharp masking and
-/// exaggerated shading, boundary enhancement and view-dependent transparency, the isovalue (physical units) and a quality/accuracy slider.
+/// exaggerated shading, boundary enhancement and view-dependent transparency, refraction, the
+/// isovalue (physical units) and a quality/accuracy slider.
 /// Emits changed() on every edit.
 ///
 /// Threading: GUI thread only.
@@ -39,9 +40,15 @@ public:
     /// While the camera moves: rebuild frames from quincunx sub-frames (thesis §3.3) rather
     /// than whole frames at a lower resolution alone. Remembered; off unless chosen.
     bool frameReconstruction() const;
+    /// Refraction (thesis §3.2.2): the index what the transfer function shows refracts with
+    /// (TransferFunction::refractionByOpacity); 1: none (a transfer function file's own
+    /// refraction curve then applies).
+    double refractionIndex() const;
 
 signals:
     void changed();
+    /// The refraction slider moved (the transfer function changes, not the settings).
+    void refractionChanged();
     /// "Compare…": the same level with each reconstruction, side by side.
     void compareRequested();
 
@@ -53,6 +60,7 @@ private:
     QDoubleSpinBox *ambient_, *diffuse_, *specular_, *shininess_, *iso_;
     QSlider *boundary_, *viewTransparency_, *quality_;
     QSlider *unsharp_, *exaggerated_;  // multilevel shading (thesis §3.2.2)
+    QSlider* refraction_;              // index × 100
     double slope_ = 1, intercept_ = 0;
 };
 

@@ -51,6 +51,7 @@ core::TransferFunctionSpec TransferFunctionFiles::toStored(core::TransferFunctio
     for (auto& p : s.opacity) p.value = (p.value - intercept) / slope;
     for (auto& c : s.colours) c.value = (c.value - intercept) / slope;
     for (auto& g : s.gradientOpacity) g.magnitude /= std::abs(slope);  // per mm, in stored units
+    for (auto& r : s.refraction) r.value = (r.value - intercept) / slope;
     return s;
 }
 
@@ -59,6 +60,7 @@ core::TransferFunctionSpec TransferFunctionFiles::toPhysical(core::TransferFunct
     for (auto& p : s.opacity) p.value = p.value * slope + intercept;
     for (auto& c : s.colours) c.value = c.value * slope + intercept;
     for (auto& g : s.gradientOpacity) g.magnitude *= std::abs(slope);
+    for (auto& r : s.refraction) r.value = r.value * slope + intercept;
     return s;
 }
 
@@ -72,6 +74,11 @@ void TransferFunctionFiles::save(const core::TransferFunctionSpec& physical, con
         QJsonArray gradient;
         for (const auto& g : physical.gradientOpacity) gradient.append(QJsonArray{g.magnitude, g.scale});
         root.insert("gradientOpacity", gradient);
+    }
+    if (!physical.refraction.empty()) {  // [value, refraction index]
+        QJsonArray refraction;
+        for (const auto& r : physical.refraction) refraction.append(QJsonArray{r.value, r.index});
+        root.insert("refraction", refraction);
     }
     QSaveFile f(path);  // written under a temporary name, renamed on commit
     if (!f.open(QIODevice::WriteOnly)) fail(path, QObject::tr("cannot be written (%1)").arg(f.errorString()));
@@ -106,9 +113,17 @@ core::TransferFunctionSpec TransferFunctionFiles::load(const QString& path) {
             fail(path, QObject::tr("a gradient opacity point is not [gradient per mm, scale]"));
         s.gradientOpacity.push_back({a[0].toDouble(), a[1].toDouble()});
     }
+    for (const auto& v : root.value("refraction").toArray()) {
+        const auto a = v.toArray();
+        if (a.size() != 2 || !a[0].isDouble() || !a[1].isDouble())
+            fail(path, QObject::tr("a refraction point is not [value, refraction index]"));
+        s.refraction.push_back({a[0].toDouble(), a[1].toDouble()});
+    }
     try {
         s.normalise();
-        core::TransferFunction({{0, glm::dvec4(0.0)}}, 0, 1).setGradientOpacity(s.gradientOpacity);  // checks the curve
+        core::TransferFunction check({{0, glm::dvec4(0.0)}}, 0, 1);  // checks the curves
+        check.setGradientOpacity(s.gradientOpacity);
+        check.setRefraction(s.refraction);
     } catch (const core::Error& e) {
         fail(path, QString::fromStdString(e.what()));
     }

@@ -68,6 +68,11 @@ bool VolumeView::hasVolume() const { return scene_ != nullptr; }
 
 void VolumeView::setTransferFunction(const core::TransferFunction& tf) {
     tf_ = std::make_unique<core::TransferFunction>(tf);
+    straightTf_.reset();
+    if (tf.hasRefraction()) {
+        straightTf_ = std::make_unique<core::TransferFunction>(tf);
+        straightTf_->setRefraction({});
+    }
     for (auto& scene : times_)  // what the neighbours need changes with what shows
         if (scene) scene->prefetchedFor.reset();
     update();
@@ -121,6 +126,11 @@ void VolumeView::resetView() {
 
 QString VolumeView::levelReadout() const {
     if (!scene_) return {};
+    if (!refractionOff_.isEmpty()) return levelOnlyReadout() + QStringLiteral(" \u2022 ") + refractionOff_;
+    return levelOnlyReadout();
+}
+
+QString VolumeView::levelOnlyReadout() const {
     const auto& r = readouts_;
     const QString range = r.finestLevel == r.coarsestLevel ? tr("level %1").arg(r.finestLevel)
                                                            : tr("levels %1\u2013%2").arg(r.finestLevel).arg(r.coarsestLevel);
@@ -169,15 +179,16 @@ core::RenderImage VolumeView::renderFrame(const core::View& view, const core::Re
     if (splitShown_) {  // what the crop box and the clip plane remove is not loaded either
         split_->ws.options().takeCullingOf(scene_->ws.options());
     }
+    const auto& tf = drawnTf(rs, fusedShown_, splitShown_);
     auto& ws = drawn().ws;
-    ws.converge({view}, *tf_, {}, converge ? 64 : 1);
+    ws.converge({view}, tf, {}, converge ? 64 : 1);
     std::optional<render::GpuRayCaster::Overlay> overlay;
     if (fusedShown_) {
         fused_->ws.options().crop = {};
         fused_->ws.converge({view}, *fusedTf_, {}, converge ? 64 : 1);
         overlay.emplace(render::GpuRayCaster::Overlay{*fused_->reader, fused_->ws.index(), fused_->ws.slotBricks(), *fusedTf_});
     }
-    auto img = gpu_->render(*drawn().reader, ws.index(), ws.slotBricks(), *tf_, rs, view, overlay ? &*overlay : nullptr);
+    auto img = gpu_->render(*drawn().reader, ws.index(), ws.slotBricks(), tf, rs, view, overlay ? &*overlay : nullptr);
     if (fusedShown_ && rs.countRays) fused_->ws.setRayCounts(img.overlayRayCounts);
     // Leave the GL state as QPainter's engine expects it.
     glUseProgram(0);
@@ -185,6 +196,16 @@ core::RenderImage VolumeView::renderFrame(const core::View& view, const core::Re
     glBindTextureUnit(1, 0);
     glBindTextureUnit(2, 0);
     return img;
+}
+
+const core::TransferFunction& VolumeView::drawnTf(const core::RenderSettings& rs, bool fused, bool split) {
+    refractionOff_.clear();
+    if (!straightTf_) return *tf_;
+    if (rs.mode != core::RenderSettings::Mode::Dvr) refractionOff_ = tr("refraction is drawn in DVR");
+    else if (rs.tools.variantBits()) refractionOff_ = tr("refraction is off while the tools are on");
+    else if (fused) refractionOff_ = tr("refraction is off with a fused volume");
+    else if (split) refractionOff_ = tr("refraction is off with split-voxels");
+    return refractionOff_.isEmpty() ? *tf_ : *straightTf_;
 }
 
 void VolumeView::setFrameReconstruction(bool on) {

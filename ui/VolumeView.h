@@ -202,6 +202,12 @@ private:
     void prefetchNeighbours();
     std::unique_ptr<render::GpuRayCaster> gpu_;
     std::unique_ptr<core::TransferFunction> tf_;
+    std::unique_ptr<core::TransferFunction> straightTf_;  // tf_ without its refraction, when it has one
+    /// The transfer function drawn: tf_, less its refraction where refraction is not drawn (the
+    /// tools, a fused volume, split-voxels, a mode other than DVR), said in the readout.
+    QString levelOnlyReadout() const;
+    const core::TransferFunction& drawnTf(const core::RenderSettings& rs, bool fused, bool split);
+    QString refractionOff_;  // why the last frame was drawn without the refraction asked for
     core::RenderSettings settings_;
     core::OrbitCamera camera_;
     core::InteractiveQuality quality_;

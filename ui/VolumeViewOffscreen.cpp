@@ -45,10 +45,12 @@ QImage VolumeView::renderLevel(std::shared_ptr<const core::OctreeReader> reader,
     o.crop = scene_->ws.options().crop;
     Scene scene(std::move(reader), o, std::size_t(512) << 20);
     const auto view = camera_.view(size.width(), size.height());
-    scene.ws.converge({view}, *tf_, {}, 256);
+    // The three reconstructions side by side, without refraction (split-voxels are drawn without it).
+    const auto& tf = straightTf_ ? *straightTf_ : *tf_;
+    scene.ws.converge({view}, tf, {}, 256);
     makeCurrent();
     try {
-        const auto img = gpu_->render(*scene.reader, scene.ws.index(), scene.ws.slotBricks(), *tf_, rs, view);
+        const auto img = gpu_->render(*scene.reader, scene.ws.index(), scene.ws.slotBricks(), tf, rs, view);
         glUseProgram(0);
         for (GLuint unit = 0; unit < 3; ++unit) glBindTextureUnit(unit, 0);
         doneCurrent();
@@ -98,7 +100,8 @@ std::vector<core::RenderImage> VolumeView::renderViews(const core::DisplayModel&
             fusedWs.emplace(*fused_->reader, fused_->cache, fused_->loader, o);
             fused.emplace(render::LightFieldRenderer::Fused{*fused_->reader, *fusedWs, *fusedTf_});
         }
-        auto images = render::LightFieldRenderer::render(*scene.reader, ws, scene.loader, *tf_, rs, views,
+        auto images = render::LightFieldRenderer::render(*scene.reader, ws, scene.loader,
+                                                         drawnTf(rs, fusedToo, &scene == split_.get()), rs, views,
                                                          display.accuracyFunction(scale, depthScale), gpu_.get(), true, nullptr,
                                                          job, fused ? &*fused : nullptr);
         glUseProgram(0);

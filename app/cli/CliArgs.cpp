@@ -1,5 +1,7 @@
 #include "app/cli/CliArgs.h"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -95,6 +97,25 @@ std::vector<double> CliArgs::numbers(const std::string& text, std::size_t count,
     if (v.size() != count || at <= text.size())
         throw core::Error(what + " '" + text + "' needs " + std::to_string(count) + " comma-separated numbers");
     return v;
+}
+
+std::vector<std::pair<double, double>> CliArgs::pairs(const std::string& text, const std::string& what,
+                                                     const std::string& pairName, const std::string& example) {
+    std::vector<std::pair<double, double>> out;
+    std::size_t at = 0;
+    while (at <= text.size()) {
+        const auto comma = std::min(text.find(',', at), text.size());
+        const std::string pair = text.substr(at, comma - at);
+        double a = 0, b = 0;
+        char colon = 0, extra = 0;
+        if (std::sscanf(pair.c_str(), "%lf %c %lf %c", &a, &colon, &b, &extra) != 3 || colon != ':' || !std::isfinite(a) ||
+            !std::isfinite(b))
+            throw core::Error(what + " takes " + pairName + " pairs separated by commas, e.g. " + example + " (\"" + pair +
+                              "\" given)");
+        out.emplace_back(a, b);
+        at = comma + 1;
+    }
+    return out;
 }
 
 }  // namespace hvx::app

@@ -2,6 +2,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace hvx::app {
@@ -23,6 +24,10 @@ public:
     std::optional<double> number(const std::string& name) const;
     /// `count` comma-separated finite numbers ("X,Y,Z"); throws core::Error naming `what` otherwise.
     static std::vector<double> numbers(const std::string& text, std::size_t count, const std::string& what);
+    /// Comma-separated "A:B" pairs of finite numbers ("0:0,50:1"); throws core::Error naming
+    /// `what`, the pair's parts (`pair`, e.g. "GRADIENT:SCALE") and `example` otherwise.
+    static std::vector<std::pair<double, double>> pairs(const std::string& text, const std::string& what,
+                                                        const std::string& pair, const std::string& example);
 
 private:
     std::vector<std::string> positional_;

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "app/cli/CliArgs.h"
+#include "app/cli/RefractionOption.h"
 #include "app/cli/FusedLayer.h"
 #include "app/cli/Commands.h"
 #include "core/base/AtomicFileWriter.h"
@@ -72,7 +73,8 @@ void checkOutputs(const std::string& format, const std::string& out, const std::
 int lightFieldCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"display", "o", "output", "format", "eta", "view", "zoom", "tf", "mode", "size", "observer",
-                        "simulate", "budget", "cache-mb", "correction", "overlay", "labels", "lut", "label-opacity"},
+                        "simulate", "budget", "cache-mb", "correction", "overlay", "labels", "lut", "label-opacity",
+                        "refraction"},
                        {"cpu", "list", "true-depth", "force-frame"});
     if (args.flag("list")) {
         for (const auto& n : core::DisplayModel::builtInNames()) {
@@ -86,7 +88,8 @@ int lightFieldCommand(int argc, char** argv) {
     if (args.positional().size() != 1 || !out || !args.value("display"))
         throw core::Error("usage: holovox-cli lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] "
                           "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--true-depth] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json] "
-                          "[--overlay B.hvo[:lut=NAME,opacity=O,window=W/L] | --labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--cpu]");
+                          "[--overlay B.hvo[:lut=NAME,opacity=O,window=W/L] | --labels L.hvo [--lut FILE] [--label-opacity A]] [--refraction N|V:N,...] "
+                          "[--force-frame] [--cpu]");
     const auto display = core::DisplayModel::load(*args.value("display"));
     const std::string format = args.value("format").value_or(
         display.kind == core::DisplayModel::Kind::Lenticular ? "quilt"
@@ -124,8 +127,15 @@ int lightFieldCommand(int argc, char** argv) {
     if (mode == "mip") settings.mode = core::RenderSettings::Mode::Mip;
     else if (mode != "dvr") throw core::Error("--mode must be dvr or mip for light-field output");
     const std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
-    const auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
-                                                   space.minSpacing);
+    auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
+                                             space.minSpacing);
+    applyRefractionOption(args, g,
+                          g.isLabel || reader->splitVoxels() || settings.mode != core::RenderSettings::Mode::Dvr ||
+                                  args.value("overlay") || args.value("labels")
+                              ? "--refraction bends the rays of an image's DVR, drawn alone: not with a label map, "
+                                "split-voxels, --mode mip, --overlay or --labels"
+                              : "",
+                          tf);
     checkOutputs(format, *out, args.value("simulate"));  // before the first ray: rendering can take minutes
     // Seen from azimuth/elevation like `render`; what the transfer function shows (not the
     // volume's air) framed on the display: its middle on the screen centre, as large as the

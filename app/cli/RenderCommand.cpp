@@ -13,6 +13,7 @@
 #include "app/cli/CliArgs.h"
 #include "app/cli/Commands.h"
 #include "app/cli/FusedLayer.h"
+#include "app/cli/RefractionOption.h"
 #include "core/streaming/BrickCache.h"
 #include "core/streaming/BrickLoader.h"
 #include "core/reference/CpuRayCaster.h"
@@ -70,13 +71,13 @@ int renderCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
                         "view-transparency", "unsharp", "exaggerated", "tools", "crop", "lut", "label-opacity", "overlay", "labels", "time", "db", "gradient-opacity",
-                        "level"},
+                        "level", "refraction"},
                        {"cpu", "force-frame", "nearest"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo|SERIES_UID --time N [--db FILE] [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
                           "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L] | "
-                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--level L] [--nearest] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--unsharp 0..8] [--exaggerated 0..1] [--gradient-opacity G:S,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
+                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--level L] [--nearest] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--unsharp 0..8] [--exaggerated 0..1] [--gradient-opacity G:S,...] [--refraction N|V:N,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
     // A split-voxel octree: its cells walked by a DDA (GPU: raycast_split.glsl; --cpu: SplitCellMarch).
     const auto reader = core::OctreeReader::open(timePoint(args), true);
     if (reader->splitVoxels() && (args.value("overlay") || args.value("labels") || args.value("gradient-opacity")))
@@ -147,20 +148,18 @@ int renderCommand(int argc, char** argv) {
     if (const auto curve = args.value("gradient-opacity")) {
         if (g.isLabel) throw core::Error("--gradient-opacity is for images, not label maps");
         std::vector<core::TransferFunction::GradientPoint> points;
-        std::size_t at = 0;
-        while (at <= curve->size()) {
-            const auto comma = std::min(curve->find(',', at), curve->size());
-            const std::string pair = curve->substr(at, comma - at);
-            double m = 0, scale = 0;
-            char colon = 0, extra = 0;
-            if (std::sscanf(pair.c_str(), "%lf %c %lf %c", &m, &colon, &scale, &extra) != 3 || colon != ':')
-                throw core::Error("--gradient-opacity takes GRADIENT:SCALE pairs separated by commas, e.g. 0:0,50:1 (\"" + pair +
-                                  "\" given)");
+        for (const auto& [m, scale] : CliArgs::pairs(*curve, "--gradient-opacity", "GRADIENT:SCALE", "0:0,50:1"))
             points.push_back({m / std::abs(g.rescaleSlope), scale});
-            at = comma + 1;
-        }
         rendered.setGradientOpacity(std::move(points));
     }
+    // --refraction: the rays bend by Snell's law (an image's DVR, drawn alone without tools).
+    applyRefractionOption(args, g,
+                          g.isLabel || reader->splitVoxels() || settings.mode != core::RenderSettings::Mode::Dvr ||
+                                  settings.tools.any() || args.value("overlay") || args.value("labels")
+                              ? "--refraction bends the rays of an image's DVR, drawn alone without --tools: not with a label "
+                                "map, split-voxels, --mode other than dvr, --tools, --overlay or --labels"
+                              : "",
+                          rendered);
     core::WorkingSetOptions opt;
     opt.maxBricks = std::size_t(args.integer("budget", 4096, 1, 1 << 20));
     opt.voxelsPerPixel = args.number("accuracy").value_or(1.0);
@@ -202,7 +201,8 @@ int renderCommand(int argc, char** argv) {
     core::BrickCache cache(cacheBytes);
     core::BrickLoader loader(*reader, cache);
     core::WorkingSet ws(*reader, cache, loader, opt);
-    const int frames = ws.converge({view}, tf);  // synchronous: load what the cut asks for
+    // Synchronous: load what the cut asks for (a transparent but refracting brick is content).
+    const int frames = ws.converge({view}, rendered);
     // --overlay or --labels: a second volume fused in the same ray march, with its own working
     // set (the same budget) and transfer function.
     std::unique_ptr<FusedLayer> fused;

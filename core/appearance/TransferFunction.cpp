@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+
+#include <glm/common.hpp>
 
 #include "core/appearance/ColorMap.h"
 #include "core/appearance/LabelTable.h"
@@ -157,7 +160,75 @@ bool TransferFunction::isEmpty(double lo, double hi) const {
     // Table bins touched by [lo, hi]; their summed extinction is zero only if all are.
     const auto a = std::size_t(std::clamp(position(lo), 0.0, double(kEntries - 1)));
     const auto b = std::size_t(std::clamp(position(hi), 0.0, double(kEntries - 1)));
+    if (!refractionDeviation_.empty() && refractionDeviation_[b + 1] - refractionDeviation_[a] > 0.0) return false;
     return F_[b + 1].w - F_[a].w <= 0.0;
+}
+
+namespace {
+std::string refractionRangeMessage(double index) {
+    char text[160];
+    std::snprintf(text, sizeof text, "a refraction index must be between %g and %g (got %g)", TransferFunction::kMinRefraction,
+                  TransferFunction::kMaxRefraction, index);
+    return text;
+}
+}  // namespace
+
+void TransferFunction::setRefraction(std::vector<RefractionPoint> points) {
+    for (const auto& p : points)
+        if (!std::isfinite(p.value) || !(p.index >= kMinRefraction && p.index <= kMaxRefraction))
+            throw Error(refractionRangeMessage(p.index));
+    std::stable_sort(points.begin(), points.end(), [](const RefractionPoint& a, const RefractionPoint& b) { return a.value < b.value; });
+    refractionPoints_.clear();
+    refractionTable_.clear();
+    refractionDeviation_.clear();
+    if (std::all_of(points.begin(), points.end(), [](const RefractionPoint& p) { return p.index == 1.0; })) return;
+    refractionPoints_ = std::move(points);
+    refractionTable_.assign(kEntries + 1, glm::vec2(0.0f));
+    refractionDeviation_.assign(kEntries + 1, 0.0);
+    double integral = 0.0;
+    for (int i = 0; i < kEntries; ++i) {
+        const double v = min_ + (max_ - min_) * (i + 0.5) / kEntries;
+        const auto& pts = refractionPoints_;
+        double nu = pts.front().index;
+        if (v >= pts.back().value) nu = pts.back().index;
+        else if (v > pts.front().value) {
+            const auto hi = std::upper_bound(pts.begin(), pts.end(), v, [](double x, const RefractionPoint& p) { return x < p.value; });
+            const auto lo = hi - 1;
+            nu = hi->value > lo->value ? lo->index + (hi->index - lo->index) * (v - lo->value) / (hi->value - lo->value) : hi->index;
+        }
+        refractionTable_[std::size_t(i)] = glm::vec2(float(integral), float(nu - 1.0));
+        integral += nu - 1.0;
+        refractionDeviation_[std::size_t(i) + 1] = refractionDeviation_[std::size_t(i)] + std::abs(nu - 1.0);
+    }
+    refractionTable_[kEntries] = glm::vec2(float(integral), refractionTable_[kEntries - 1].y);
+}
+
+float TransferFunction::refractionSegment(float a, float b) const {
+    if (refractionTable_.empty()) return 1.0f;
+    const float lo = float(min_), hi = float(max_);
+    auto position = [&](float v) { return std::clamp((v - lo) / (hi - lo) * 4096.0f, 0.0f, 4096.0f); };
+    auto integralAt = [&](float p) {
+        const int i = std::min(int(p), kEntries - 1);
+        const glm::vec2 e = refractionTable_[std::size_t(i)];
+        return e.x + e.y * (p - float(i));
+    };
+    const float pa = position(a), pb = position(b);
+    // Across more than one entry the integrals' difference; within one, where that difference
+    // would be float rounding over a short span, the midpoint's index.
+    if (std::abs(pb - pa) > 1.0f) return 1.0f + (integralAt(pb) - integralAt(pa)) / (pb - pa);
+    const float p = std::clamp(position(0.5f * (a + b)) - 0.5f, 0.0f, 4095.0f);
+    const int i = int(p);
+    const int j = std::min(i + 1, kEntries - 1);
+    return 1.0f + glm::mix(refractionTable_[std::size_t(i)].y, refractionTable_[std::size_t(j)].y, p - float(i));
+}
+
+std::vector<TransferFunction::RefractionPoint> TransferFunction::refractionByOpacity(double index) const {
+    if (!(index >= kMinRefraction && index <= kMaxRefraction))
+        throw Error(refractionRangeMessage(index));
+    std::vector<RefractionPoint> out;
+    if (index == 1.0) return out;
+    for (const auto& p : points_) out.push_back({p.value, 1.0 + (index - 1.0) * std::min(1.0, p.rgba.a / 0.05)});
+    return out;
 }
 
 std::vector<std::string> TransferFunction::presetNames() {

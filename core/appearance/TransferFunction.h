@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
@@ -59,7 +60,8 @@ public:
     /// f at the table entry holding `value`, not interpolated: the classification of a label
     /// map, where a value between two entries belongs to one of them, never to a blend.
     glm::dvec4 entry(double value) const;
-    /// True when no value in [lo, hi] has any opacity.
+    /// True when no value in [lo, hi] has any opacity, nor a refraction index other than 1
+    /// (the rays pass such values straight and see nothing: thesis §3.2.2's "empty" values).
     bool isEmpty(double lo, double hi) const;
     const std::vector<Point>& points() const { return points_; }
     /// The table f (kEntries values) and its running integral F (kEntries + 1), as the GPU
@@ -87,6 +89,34 @@ public:
     const std::vector<float>& gradientTable() const { return gradientTable_; }
     double gradientMax() const { return gradientMax_; }
 
+    /// Refraction (thesis §3.2.2, Figs 3.4–3.5): a refraction index ν(s) over stored values,
+    /// piecewise linear between its points (constant beyond the ends), kept as its own
+    /// pre-integrated table, so that a segment's index is its average over the values it spans
+    /// (Eq. 3.1). With one, DVR rays bend at each step by Snell's law
+    /// (core::glsl::hvxRefractStep). An empty curve, or one that is 1 everywhere, switches it
+    /// off (the image is then bitwise what it was).
+    struct RefractionPoint {
+        double value;  ///< stored value
+        double index;  ///< ν, [kMinRefraction, kMaxRefraction]
+    };
+    static constexpr double kMinRefraction = 0.25, kMaxRefraction = 4.0;
+    /// Sets the curve; throws core::Error for values that are not finite or an index outside
+    /// [kMinRefraction, kMaxRefraction].
+    void setRefraction(std::vector<RefractionPoint> points);
+    bool hasRefraction() const { return !refractionPoints_.empty(); }
+    const std::vector<RefractionPoint>& refraction() const { return refractionPoints_; }
+    /// The GPU's table: (∫(ν − 1) up to entry i, ν_i − 1) at kEntries + 1 entries (entry
+    /// kEntries repeats the last ν); relative to 1, so that air's entries are exactly 0.
+    const std::vector<glm::vec2>& refractionTable() const { return refractionTable_; }
+    /// ν averaged over the segment from value a to value b (1 without a curve), in the float
+    /// operations of resources/shaders/raycast_refract.glsl's tfSegmentRefraction.
+    float refractionSegment(float a, float b) const;
+    /// A curve that follows the opacity: ν(s) = 1 + (index − 1) · min(1, α(s) / 0.05) at every
+    /// control point, so that what shows at all (from 5 % opacity per reference length) refracts
+    /// with `index` and what shows nothing (air) does not; the Rendering dock's and the CLI's
+    /// one-number refraction. Index 1: none.
+    std::vector<RefractionPoint> refractionByOpacity(double index) const;
+
 private:
     double position(double value) const;  // continuous table index
     glm::dvec4 integral(double value) const;
@@ -98,6 +128,9 @@ private:
     std::vector<GradientPoint> gradientPoints_;
     std::vector<float> gradientTable_;
     double gradientMax_ = 1.0;
+    std::vector<RefractionPoint> refractionPoints_;
+    std::vector<glm::vec2> refractionTable_;
+    std::vector<double> refractionDeviation_;  // kEntries + 1: running sum of |ν − 1| (isEmpty)
 };
 
 }  // namespace hvx::core

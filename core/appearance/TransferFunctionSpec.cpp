@@ -31,6 +31,7 @@ TransferFunctionSpec TransferFunctionSpec::from(const TransferFunction& tf) {
         s.colours.push_back({p.value, glm::dvec3(p.rgba)});
     }
     s.gradientOpacity = tf.gradientOpacity();
+    s.refraction = tf.refraction();
     s.normalise();
     return s;
 }
@@ -65,6 +66,7 @@ TransferFunction TransferFunctionSpec::build(double valueMin, double valueMax, d
     for (double v : at) pts.push_back({v, glm::dvec4(s.colourAt(v), s.opacityAt(v))});
     TransferFunction tf(std::move(pts), valueMin, valueMax, referenceLength);
     tf.setGradientOpacity(s.gradientOpacity);
+    tf.setRefraction(s.refraction);
     return tf;
 }
 
@@ -73,6 +75,7 @@ TransferFunctionSpec TransferFunctionSpec::windowed(double centre, double shift,
     TransferFunctionSpec s = *this;
     for (auto& p : s.opacity) p.value = centre + shift + (p.value - centre) * scale;
     for (auto& c : s.colours) c.value = centre + shift + (c.value - centre) * scale;
+    for (auto& r : s.refraction) r.value = centre + shift + (r.value - centre) * scale;
     for (auto& g : s.gradientOpacity) g.magnitude *= scale;  // values spread by `scale`: so do their gradients
     return s;
 }

@@ -23,6 +23,8 @@ struct TransferFunctionSpec {
     /// Opacity scaled by gradient magnitude (TransferFunction::setGradientOpacity; |∇f| in the
     /// spec's units per mm); empty: none.
     std::vector<TransferFunction::GradientPoint> gradientOpacity;
+    /// Refraction index over values (TransferFunction::setRefraction); empty: none.
+    std::vector<TransferFunction::RefractionPoint> refraction;
 
     /// The curves of an existing transfer function (a preset).
     static TransferFunctionSpec from(const TransferFunction& tf);

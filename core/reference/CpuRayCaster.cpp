@@ -21,6 +21,7 @@ CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index
     : reader_(reader), index_(index), slots_(slots), tf_(tf), settings_(settings), labels_(reader.geometry().isLabel),
       space_(OctreeSpace::of(reader.geometry(), reader.brickSize(), reader.levelCount())) {
     normalToWorld_ = glm::transpose(glm::inverse(glm::dmat3(space_.octreeToPatient)));
+    strengthPerGradient_ = space_.minSpacing / (tf_.valueMax() - tf_.valueMin()) / kBoundaryGradientFraction;
     settings_.tools.validate();
     packedTools = packTools(settings_.tools, {settings_.ambient, settings_.diffuse, settings_.specular, settings_.shininess});
     // The cells of each brick the rays may skip (as render::GpuRayCaster), for the slots the
@@ -28,6 +29,10 @@ CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index
     const bool dvr = settings_.mode == RenderSettings::Mode::Dvr;
     if (reader_.splitVoxels() && settings_.mode != RenderSettings::Mode::Dvr)
         throw Error(reader_.path() + ": a split-voxel octree is drawn in DVR");
+    // Refraction (CpuRefractedRay.cpp) as the shader's HVX_REFRACT: DVR, without the tools or split-voxels.
+    refracting_ = dvr && tf_.hasRefraction();
+    if (refracting_ && (settings_.tools.any() || reader_.splitVoxels()))
+        throw Error("refraction is drawn without the illustrative tools, a fused volume or split-voxels");
     if (settings_.skipEmptyCells && !reader_.splitVoxels() && (dvr || settings_.mode == RenderSettings::Mode::Iso)) {
         visibleCells_.assign(slots_.size(), ~std::uint64_t(0));
         std::vector<std::uint32_t> used;
@@ -150,6 +155,42 @@ glm::vec3 CpuRayCaster::gradient(const Leaf& L, const glm::vec3& p, float spread
            (2.0f * h);
 }
 
+double CpuRayCaster::scaleByGradient(double a, double len) const {
+    const double g = tf_.gradientScale(len), keep = 1.0 - a;
+    return g <= 0.0 ? 0.0 : keep <= 0.0 ? 1.0 : 1.0 - std::pow(keep, g);
+}
+
+glm::dvec3 CpuRayCaster::shadeSample(const Leaf& L, const glm::vec3& p, const glm::dvec3& base, const glm::dvec3& dw,
+                                     double& a) const {
+    const auto mode = settings_.mode;
+    const bool enhance = settings_.boundary > 0.0 || settings_.viewTransparency > 0.0;
+    // Gradient opacity (DVR): a' = 1 - (1 - a)^g(|∇f|), as raycast_inputs.glsl's gradientOpacity.
+    const bool gradientOpacity = mode == RenderSettings::Mode::Dvr && tf_.hasGradientOpacity();
+    // Tools apply in DVR only; the shader's HVX_DETAIL is off exactly when they do.
+    const bool detail = settings_.detailShading() && !(mode == RenderSettings::Mode::Dvr && settings_.tools.any());
+    if (!settings_.shading && !enhance && !gradientOpacity) return base;
+    glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(L, p));
+    const double len = glm::length(g);
+    if (gradientOpacity) a = scaleByGradient(a, len);
+    const double facing = len < 1e-9 ? 0.0 : std::abs(glm::dot(g / len, -dw));  // headlight: L = V
+    if (enhance) {
+        const double strength = std::min(1.0, len * strengthPerGradient_);
+        a *= (1.0 - settings_.boundary + settings_.boundary * strength) * (1.0 - settings_.viewTransparency * strength * facing);
+    }
+    if (!settings_.shading) return base;
+    if (len < 1e-9) return base * (settings_.ambient + settings_.diffuse);
+    if (detail) {  // as raycast_march.glsl's shadeSample, in float like the shader
+        const glm::vec3 gs = glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f)));
+        const glm::vec2 f = glsl::hvxDetailShading(glm::vec3(g), gs, glm::vec3(-dw), float(settings_.normalUnsharp),
+                                                   float(settings_.exaggeratedShading),
+                                                   std::min(1.0f, float(len) * float(strengthPerGradient_)));
+        return base * (settings_.ambient + settings_.diffuse * double(f.x)) +
+               glm::dvec3(settings_.specular * std::pow(double(f.y), settings_.shininess));
+    }
+    return base * (settings_.ambient + settings_.diffuse * facing) +
+           glm::dvec3(settings_.specular * std::pow(facing, settings_.shininess));
+}
+
 glm::vec4 CpuRayCaster::castSplit(const glm::dvec3& ow, const glm::dvec3& dw, float& depth,
                                   std::vector<std::uint32_t>* counts) const {
     // Each leaf's cells by the DDA of Fig. 4.5 (SplitCellMarch), in the leaf's own cell
@@ -187,6 +228,7 @@ glm::vec4 CpuRayCaster::castSplit(const glm::dvec3& ow, const glm::dvec3& dw, fl
 glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& depth,
                              std::vector<std::uint32_t>* counts) const {
     if (reader_.splitVoxels()) return castSplit(ow, dw, depth, counts);
+    if (refracting_) return castRefracted(ow, dw, depth, counts);
     depth = std::numeric_limits<float>::infinity();
     const glm::vec3 o(space_.patientToOctree * glm::dvec4(ow, 1.0));
     const glm::vec3 d(glm::dmat3(space_.patientToOctree) * dw);
@@ -201,42 +243,9 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     float tPrev = 0.0f, sPrev = 0.0f;
     const auto mode = settings_.mode;
     Leaf L;  // the leaf being sampled
-    // Shades a sample and scales its opacity `a` by boundary enhancement and view-dependent
-    // transparency; the gradient is taken once for both.
-    const bool enhance = settings_.boundary > 0.0 || settings_.viewTransparency > 0.0;
-    const double strengthPerGradient = space_.minSpacing / (tf_.valueMax() - tf_.valueMin()) / kBoundaryGradientFraction;
-    // Gradient opacity (DVR): a' = 1 - (1 - a)^g(|∇f|), as raycast_inputs.glsl's gradientOpacity.
+    const double strengthPerGradient = strengthPerGradient_;
     const bool gradientOpacity = mode == RenderSettings::Mode::Dvr && tf_.hasGradientOpacity();
-    auto scaleByGradient = [&](double a, double len) {
-        const double g = tf_.gradientScale(len), keep = 1.0 - a;
-        return g <= 0.0 ? 0.0 : keep <= 0.0 ? 1.0 : 1.0 - std::pow(keep, g);
-    };
-    // Tools apply in DVR only (toolBits below); the shader's HVX_DETAIL is off exactly when they do.
-    const bool detail = settings_.detailShading() && !(mode == RenderSettings::Mode::Dvr && settings_.tools.any());
-    auto shade = [&](const glm::vec3& p, const glm::dvec3& base, double& a) {
-        if (!settings_.shading && !enhance && !gradientOpacity) return base;
-        glm::dvec3 g = normalToWorld_ * glm::dvec3(gradient(L, p));
-        const double len = glm::length(g);
-        if (gradientOpacity) a = scaleByGradient(a, len);
-        const double facing = len < 1e-9 ? 0.0 : std::abs(glm::dot(g / len, -dw));  // headlight: L = V
-        if (enhance) {
-            const double strength = std::min(1.0, len * strengthPerGradient);
-            a *= (1.0 - settings_.boundary + settings_.boundary * strength) *
-                 (1.0 - settings_.viewTransparency * strength * facing);
-        }
-        if (!settings_.shading) return base;
-        if (len < 1e-9) return base * (settings_.ambient + settings_.diffuse);
-        if (detail) {  // as raycast_march.glsl's shadeSample, in float like the shader
-            const glm::vec3 gs = glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f)));
-            const glm::vec2 f = glsl::hvxDetailShading(glm::vec3(g), gs, glm::vec3(-dw), float(settings_.normalUnsharp),
-                                                       float(settings_.exaggeratedShading),
-                                                       std::min(1.0f, float(len) * float(strengthPerGradient)));
-            return base * (settings_.ambient + settings_.diffuse * double(f.x)) +
-                   glm::dvec3(settings_.specular * std::pow(double(f.y), settings_.shininess));
-        }
-        return base * (settings_.ambient + settings_.diffuse * facing) +
-               glm::dvec3(settings_.specular * std::pow(facing, settings_.shininess));
-    };
+    auto shade = [&](const glm::vec3& p, const glm::dvec3& base, double& a) { return shadeSample(L, p, base, dw, a); };
     // Tools: per-ray state (focal probe cone, entry) and the MImDA accumulator.
     const int toolBits = settings_.mode == RenderSettings::Mode::Dvr ? settings_.tools.variantBits() : 0;
     const float strengthPerGradientF = float(strengthPerGradient);

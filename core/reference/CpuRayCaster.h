@@ -52,6 +52,10 @@ private:
     /// A split-voxel octree's ray (DVR): the cells of each leaf by SplitCellMarch.
     glm::vec4 castSplit(const glm::dvec3& origin, const glm::dvec3& direction, float& depth,
                         std::vector<std::uint32_t>* counts) const;
+    /// A ray bent by Snell's law at each step (TransferFunction::hasRefraction; DVR), step for
+    /// step as resources/shaders/raycast_refract.glsl (CpuRefractedRay.cpp).
+    glm::vec4 castRefracted(const glm::dvec3& origin, const glm::dvec3& direction, float& depth,
+                            std::vector<std::uint32_t>* counts) const;
     template <class Visitor>
     void walk(const glm::dvec3& origin, const glm::dvec3& direction, Visitor&& visit) const;
     /// What sampling a leaf's brick needs, worked out once per leaf a ray enters.
@@ -70,6 +74,13 @@ private:
     glm::dvec4 segment(float a, float b) const { return labels_ ? tf_.entry(b) : tf_.segment(a, b); }
     double segmentExtinction(float a, float b) const { return labels_ ? tf_.entry(b).w : tf_.segmentExtinction(a, b); }
     glm::vec3 gradient(const Leaf& leaf, const glm::vec3& p, float spread = 1.0f) const;
+    /// Shades a sample of colour `base` seen along dw and scales its opacity `a` by gradient
+    /// opacity, boundary enhancement and view-dependent transparency, with one gradient for all
+    /// (raycast_march.glsl's shadeSample).
+    glm::dvec3 shadeSample(const Leaf& leaf, const glm::vec3& p, const glm::dvec3& base, const glm::dvec3& dw,
+                           double& a) const;
+    /// Gradient opacity: a' = 1 − (1 − a)^g(|∇f|).
+    double scaleByGradient(double a, double len) const;
 
     /// Which cells of a slot's brick may show, for the skipping above (all bits when off).
     std::uint64_t visibleCells(std::uint32_t slot) const {
@@ -84,6 +95,8 @@ private:
     bool labels_;
     OctreeSpace space_;
     glm::dmat3 normalToWorld_;
+    double strengthPerGradient_ = 0.0;  // |∇f| (world) -> boundary strength
+    bool refracting_ = false;
     glsl::HvxTools packedTools;
     std::vector<std::uint64_t> visibleCells_;  // per slot; empty when nothing is skipped
 };

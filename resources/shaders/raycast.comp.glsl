@@ -1,7 +1,8 @@
 // Single-pass ray casting over the spatial index, one invocation per pixel (thesis ch. 2–3).
 // It mirrors core/reference/CpuRayCaster.cpp step for step; MODE selects a static variant
 // (0 DVR, 1 isosurface, 2 MIP, 3 MinIP, 4 average); HVX_FUSION 1 marches a second volume with
-// the first (DVR only); HVX_SPLIT 1 walks a split-voxel octree's cells (DVR only).
+// the first (DVR only); HVX_SPLIT 1 walks a split-voxel octree's cells (DVR only); HVX_REFRACT 1
+// bends the rays by Snell's law (DVR only).
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "index_buffers.glsl"
@@ -21,6 +22,12 @@ layout(local_size_x = 8, local_size_y = 8) in;
 #endif
 #if HVX_SPLIT
 #include "raycast_split.glsl"
+#endif
+#ifndef HVX_REFRACT
+#define HVX_REFRACT 0
+#endif
+#if HVX_REFRACT
+#include "raycast_refract.glsl"
 #endif
 
 void main() {
@@ -54,6 +61,8 @@ void main() {
     float depth;
 #if HVX_SPLIT
     vec4 c = castRaySplit(ow, dw, depth);
+#elif HVX_REFRACT
+    vec4 c = castRayRefract(ow, dw, depth);
 #elif HVX_FUSION
     vec4 c = castRayFused(ow, dw, depth);
 #else

@@ -146,6 +146,17 @@ TEST(CliBadInput, LightFieldAndToolInputsFailCleanlyBeforeRendering) {
                        {"p.hvo", "tools.json"}, "between 0 and 8");
     expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --exaggerated 1.5 -o " + dir.file("o.png"), dir,
                        "--exaggerated", {"p.hvo", "tools.json"}, "between 0 and 1");
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --refraction 5 -o " + dir.file("o.png"), dir, "refraction index",
+                       {"p.hvo", "tools.json"}, "between 0.25 and 4");
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --refraction 0:1,100 -o " + dir.file("o.png"), dir,
+                       "--refraction", {"p.hvo", "tools.json"}, "VALUE:INDEX pairs");
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --refraction 1.3 --mode mip -o " + dir.file("o.png"), dir,
+                       "--refraction", {"p.hvo", "tools.json"}, "--mode other than dvr");
+    std::ofstream(dir.file("clip.json")) << R"({"clip": {"enabled": true}})";
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --refraction 1.3 --tools " + dir.file("clip.json") + " -o " +
+                           dir.file("o.png"),
+                       dir, "--refraction", {"clip.json", "p.hvo", "tools.json"}, "--tools");
+    std::filesystem::remove(dir.file("clip.json"));
     std::ofstream(dir.file("fix.json")) << R"({"projectors": [{"lut": {"r": [2]}}]})";
     expectCleanFailure("lightfield " + dir.file("p.hvo") + " --display stereo-anaglyph --size 16x12 --cpu --correction " +
                            dir.file("fix.json") + " -o " + dir.file("s.png"),

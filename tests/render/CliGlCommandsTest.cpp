@@ -6,8 +6,10 @@
 // under ASan (Mesa's llvmpipe keeps allocations LeakSanitizer reports, as for every render test).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "tests/support/ProcessRunner.h"
@@ -44,6 +46,19 @@ std::pair<int, int> segmentPixels(const std::string& png) {
     if (counts.exitCode != 0 || std::sscanf(counts.output.c_str(), "%d %d", &liver, &spleen) != 2)
         ADD_FAILURE() << png << ": " << counts.output;
     return {liver, spleen};
+}
+
+/// The mean absolute difference of two PNGs' RGB values (0–255) as VTK reads them.
+double pngDifference(const std::string& a, const std::string& b) {
+    const auto r = test::runCommand(
+        "/usr/bin/python3 -c \"import sys; from vtkmodules.vtkIOImage import vtkPNGReader; "
+        "from vtkmodules.util.numpy_support import vtk_to_numpy\n"
+        "def rgb(f):\n r = vtkPNGReader(); r.SetFileName(f); r.Update()\n"
+        " return vtk_to_numpy(r.GetOutput().GetPointData().GetScalars())[:, :3].astype(float)\n"
+        "print(abs(rgb(sys.argv[1]) - rgb(sys.argv[2])).mean())\" " +
+        a + " " + b + " 2>&1");
+    if (r.exitCode != 0) ADD_FAILURE() << r.output;
+    return r.exitCode == 0 ? std::stod(r.output) : -1.0;
 }
 
 std::string size(const std::string& stats) { return stats.substr(0, stats.find(' ', stats.find(' ') + 1)); }
@@ -201,6 +216,44 @@ TEST(CliGlCommands, RenderDrawsASplitVoxelLabelMapOnTheGpuAsTheCpuDoes) {
     r = test::runCommand(cli + " lightfield " + dir.file("ps.hvo") + " --display looking-glass-portrait --mode mip -o " + dir.file("m") + " 2>&1");
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.output.find("split-voxel octree is drawn in DVR"), std::string::npos) << r.output;
+}
+
+// render/lightfield --refraction (thesis §3.2.2): the lungs of the CT phantom under ct-lung
+// refract; the image changes, GPU and CPU alike; an index given per HU value (the body as
+// water) is converted to stored values; a light-field quilt bends its rays too.
+TEST(CliGlCommands, RenderAndLightFieldBendTheRaysWithRefraction) {
+    test::TempDir dir;
+    auto r = test::runCommand(cli + " build phantom:96x96x80 --quiet -o " + dir.file("p.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::map<std::string, std::string> png;
+    for (const std::string how : {"", " --cpu"})
+        for (const std::string refraction : {"", " --refraction 1.3", " --refraction=-600:1,-400:1.33"}) {
+            png[how + refraction] = dir.file("r" + std::to_string(png.size()) + ".png");
+            r = test::runCommand(cli + " render " + dir.file("p.hvo") + how + refraction +
+                                 " --tf ct-lung --view 20,15,1 --size 96x96 -o " + png[how + refraction]);
+            ASSERT_EQ(r.exitCode, 0) << r.output;
+        }
+    for (const std::string refraction : {" --refraction 1.3", " --refraction=-600:1,-400:1.33"}) {
+        const double change = pngDifference(png[refraction], png[""]);
+        const double apart = pngDifference(png[refraction], png[" --cpu" + refraction]);
+        std::printf("%s: %.2f from no refraction, GPU and CPU %.2f apart (mean |difference| of 0-255 values)\n",
+                    refraction.c_str(), change, apart);
+        EXPECT_GT(change, 1.0) << refraction << ": refraction changed nothing";
+        EXPECT_LT(apart, change / 5) << refraction << ": GPU and CPU differ";
+    }
+    std::vector<std::string> quilts;
+    for (const std::string refraction : {"", " --refraction 1.3"}) {
+        const auto out = dir.file(refraction.empty() ? "straight" : "bent");
+        r = test::runCommand(cli + " lightfield " + dir.file("p.hvo") + refraction +
+                             " --tf ct-lung --display looking-glass-portrait --size 30x40 -o " + out);
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        quilts.push_back(out + "_qs8x6a0.75.png");
+    }
+    EXPECT_GT(pngDifference(quilts[0], quilts[1]), 2.0) << "the quilt's rays did not bend";
+    r = test::runCommand(cli + " lightfield " + dir.file("p.hvo") + " --refraction 1.3 --mode mip --display looking-glass-portrait -o " +
+                         dir.file("m") + " 2>&1");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("--mode mip"), std::string::npos) << r.output;
 }
 
 // render --labels: pydicom's SEG fused over its CT in one ray march (the CT, 40 HU throughout,

@@ -65,6 +65,23 @@ TEST(TransferFunctionFiles, HolovoxJsonRoundTripsInPhysicalUnits) {
         EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("scale of 0 to 1"), std::string::npos) << e.what();
     }
+    // A refraction curve (physical values) goes and comes back, its values converted as the
+    // opacity's; an index outside [0.25, 4] is refused, naming the file.
+    s.refraction = {{-1000, 1.0}, {300, 1.33}};
+    ui::TransferFunctionFiles::save(s, path);
+    const auto withRefraction = ui::TransferFunctionFiles::load(path);
+    ASSERT_EQ(withRefraction.refraction.size(), 2u);
+    EXPECT_DOUBLE_EQ(withRefraction.refraction[1].index, 1.33);
+    EXPECT_DOUBLE_EQ(ui::TransferFunctionFiles::toStored(withRefraction, 2.0, -1024.0).refraction[1].value, 662);
+    std::ofstream(dir.file("bad.json")) << R"({"format": "holovox-transfer-function", "version": 1, "opacity": [[0, 0.5]],)"
+                                        << R"( "colours": [[0, 1, 1, 1]], "refraction": [[10, 0]]})";
+    try {
+        ui::TransferFunctionFiles::load(QString::fromStdString(dir.file("bad.json")));
+        FAIL() << "a refraction index of 0 was accepted";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("refraction index must be between 0.25 and 4"), std::string::npos) << e.what();
+    }
 }
 
 TEST(TransferFunctionFiles, ReadsSlicerVolumePropertyPresets) {
@@ -88,7 +105,7 @@ TEST(TransferFunctionFiles, ReadsSlicerVolumePropertyPresets) {
 
 TEST(TransferFunctionFiles, ReadsParaViewColourMapsRescaledToTheVolume) {
     test::TempDir dir;
-    const auto current = core::TransferFunctionSpec{{{0, 0}, {100, 1}}, {{0, {0, 0, 0}}}, {}};
+    const auto current = core::TransferFunctionSpec{{{0, 0}, {100, 1}}, {{0, {0, 0, 0}}}, {}, {}};
     const auto map = ui::TransferFunctionFiles::readParaView(
         write(dir, "cool.json", R"([{"Name":"Cool to Warm","ColorSpace":"Diverging",
            "RGBPoints":[-1, 0.23, 0.299, 0.754, 0, 0.865, 0.865, 0.865, 1, 0.706, 0.016, 0.150]}])"),
@@ -106,7 +123,7 @@ TEST(TransferFunctionFiles, BrokenAndHostileFilesGiveOneClearError) {
         const QString path = write(dir, name, text);
         try {
             if (slicer) ui::TransferFunctionFiles::readSlicerPresets(path);
-            else if (paraview) ui::TransferFunctionFiles::readParaView(path, 0, 1, {{{0, 0}}, {{0, {0, 0, 0}}}, {}});
+            else if (paraview) ui::TransferFunctionFiles::readParaView(path, 0, 1, {{{0, 0}}, {{0, {0, 0, 0}}}, {}, {}});
             else ui::TransferFunctionFiles::load(path);
             ADD_FAILURE() << name << " was accepted";
         } catch (const core::Error& e) {

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/appearance/TransferFunction.h"
+#include "core/base/Error.h"
 
 using namespace hvx;
 
@@ -52,4 +53,41 @@ TEST(TransferFunction, EveryEntryIsTheControlPointsInterpolatedAtItsValue) {
         }
         EXPECT_EQ(wrong, 0) << name;
     }
+}
+
+TEST(TransferFunction, RefractionIsPreIntegratedAndCountsAsContent) {
+    // Transparent everywhere; ν rises from 1 at value 100 to 2 at value 300.
+    core::TransferFunction tf({{0, glm::dvec4(0.0)}, {1000, glm::dvec4(0.0)}}, 0, 1000);
+    EXPECT_TRUE(tf.isEmpty(0, 1000));
+    EXPECT_EQ(tf.refractionSegment(200, 250), 1.0f) << "no curve: index 1";
+    tf.setRefraction({{100, 1.0}, {300, 2.0}, {100, 1.0}});
+    ASSERT_TRUE(tf.hasRefraction());
+    // The segment's index is ν's average over the values it spans, worked by hand:
+    // from 0 to 200 the curve is 1 up to 100, then 1 + (v − 100)/200: mean 1 + (100²/400)/200 = 1.125.
+    EXPECT_NEAR(tf.refractionSegment(0, 200), 1.125f, 2e-3);
+    EXPECT_NEAR(tf.refractionSegment(200, 0), 1.125f, 2e-3) << "either direction";
+    EXPECT_NEAR(tf.refractionSegment(300, 900), 2.0f, 1e-4) << "constant beyond the last point";
+    EXPECT_NEAR(tf.refractionSegment(200, 200.05f), 1.5f, 2e-3) << "within one entry: the midpoint's index";
+    EXPECT_EQ(tf.refractionSegment(20, 60), 1.0f) << "air's entries are exactly 0 in the table";
+    // Transparent but refracting values are not empty (the rays bend there); air still is.
+    EXPECT_FALSE(tf.isEmpty(250, 260));
+    EXPECT_TRUE(tf.isEmpty(0, 90));
+    // A curve of 1 everywhere is no curve; an index outside [0.25, 4] is refused.
+    tf.setRefraction({{0, 1.0}, {500, 1.0}});
+    EXPECT_FALSE(tf.hasRefraction());
+    EXPECT_TRUE(tf.isEmpty(0, 1000));
+    EXPECT_THROW(tf.setRefraction({{0, 5.0}}), core::Error);
+    EXPECT_THROW(tf.setRefraction({{std::nan(""), 1.5}}), core::Error);
+}
+
+TEST(TransferFunction, RefractionByOpacityFollowsTheOpacityCurve) {
+    // Air refracts nothing; from 5 % opacity on, what shows refracts with the index given.
+    const core::TransferFunction tf({{0, glm::dvec4(0.0)}, {100, glm::dvec4(1, 1, 1, 0.025)}, {200, glm::dvec4(1, 1, 1, 0.4)}}, 0, 300);
+    const auto curve = tf.refractionByOpacity(1.5);
+    ASSERT_EQ(curve.size(), 3u);
+    EXPECT_DOUBLE_EQ(curve[0].index, 1.0);
+    EXPECT_DOUBLE_EQ(curve[1].index, 1.25);
+    EXPECT_DOUBLE_EQ(curve[2].index, 1.5);
+    EXPECT_TRUE(tf.refractionByOpacity(1.0).empty());
+    EXPECT_THROW(tf.refractionByOpacity(0.1), core::Error);
 }
