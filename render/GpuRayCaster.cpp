@@ -71,6 +71,8 @@ std::uint64_t cellKey(const core::TransferFunction& tf, const core::RenderSettin
         for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
     };
     for (const auto& F : tf.integralTable()) mix(&F.w, sizeof F.w);
+    // An index ≠ 1 makes a transparent cell content (TransferFunction::isEmpty).
+    for (const auto& N : tf.refractionTable()) mix(&N.y, sizeof N.y);
     const double range[3] = {tf.valueMin(), tf.valueMax(), settings.isoValue};
     mix(range, sizeof range);
     const int mode = int(settings.mode);

@@ -1,8 +1,8 @@
 // CpuRayCaster's refract stepper (thesis §3.2.2, Figs 3.4–3.5): step for step, and in the same
 // float operations, as resources/shaders/raycast_refract.glsl. Each step goes one voxel of the
 // current leaf along the ray's current direction; the point reached is tested against the leaf
-// and the crop box (a point in another leaf is found from the root); empty leaves are crossed
-// straight; where a segment's pre-integrated refraction index differs from the one the ray
+// and the crop box (a point in another leaf is found from the root); empty leaves and the cells
+// of a brick that neither show nor refract are crossed straight (index 1); where a segment's pre-integrated refraction index differs from the one the ray
 // travels in, the direction bends by Snell's law (core::glsl::hvxRefractStep) about the
 // gradient's normal (the last boundary's where the gradient at the sample is 0).
 #include <algorithm>
@@ -63,6 +63,7 @@ glm::vec4 CpuRayCaster::castRefracted(const glm::dvec3& ow, const glm::dvec3& dw
     glm::dvec3 color(0.0);
     double alpha = 0.0;
     bool hit = false, havePrev = false, inBrick = false;
+    bool clear = false;  // the ray has crossed clear space (index 1) since its last segment
     float sPrev = 0.0f, nuPrev = 1.0f, voxel = 1.0f;
     glm::vec3 normal(0.0f);  // the last boundary's gradient: a change of index a step behind bends about it
     Leaf L;
@@ -84,16 +85,35 @@ glm::vec4 CpuRayCaster::castRefracted(const glm::dvec3& ow, const glm::dvec3& dw
                 p = q;
                 t += across;
                 havePrev = false;
+                clear = true;
                 continue;
             }
             enter(n);
-            if (!havePrev) {  // the chain of segments starts here, in the medium found here
-                sPrev = sample(L, p);
-                nuPrev = tf_.refractionSegment(sPrev, sPrev);
-                havePrev = true;
+        }
+        // A cell that neither shows nor refracts bends nothing: land on the last step before
+        // its exit, on the ray's own steps (as the shader).
+        const float dt = stepScale * voxel / glm::length(d);
+        const std::uint32_t slot = index_.nodes[n].x;
+        const float cell = 0.25f / float(1u << (index_.nodes[n].y & 0xFFu));
+        const glm::ivec3 at = glm::clamp(glm::ivec3(glm::floor((p - lo) / cell)), glm::ivec3(0), glm::ivec3(3));
+        if (!((visibleCells(slot) >> (at.x + 4 * at.y + 16 * at.z)) & 1u)) {
+            const glm::vec3 cellLo = lo + glm::vec3(at) * cell;
+            const glm::vec3 invD = inverse(d);
+            const glm::vec3 far = glm::max((cellLo - p) * invD, (cellLo + cell - p) * invD);
+            const float k = std::ceil(std::min(std::min(far.x, far.y), far.z) / dt);  // p + k·dt: the first step past the exit
+            if (k >= 3.0f) {
+                p += (k - 1.0f) * dt * d;
+                t += (k - 1.0f) * dt;
+                if (!insideBox(p, cropLo, cropHi)) break;
+                havePrev = false;
+                clear = true;
             }
         }
-        const float dt = stepScale * voxel / glm::length(d);
+        if (!havePrev) {  // the chain of segments starts here: after clear space in index 1, on
+            sPrev = sample(L, p);  // entering the volume in the medium found (a cut face is no boundary)
+            nuPrev = clear ? 1.0f : tf_.refractionSegment(sPrev, sPrev);
+            havePrev = true;
+        }
         const glm::vec3 q = p + dt * d;
         if (!insideBox(q, cropLo, cropHi)) break;
         p = q;
@@ -106,6 +126,7 @@ glm::vec4 CpuRayCaster::castRefracted(const glm::dvec3& ow, const glm::dvec3& dw
             inBrick = false;
             if (index_.nodes[n].x == SpatialIndex::kNone) {
                 havePrev = false;
+                clear = true;
                 continue;
             }
             enter(n);

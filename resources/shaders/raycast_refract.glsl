@@ -3,8 +3,9 @@
 // core/reference/CpuRefractedRay.cpp. A bent ray's exit from its leaf is not known on entry, so
 // each step goes one voxel of the current leaf along the current direction and the point it
 // reaches is tested against the leaf's box (and the crop box); a point in another leaf is found
-// from the root. Empty leaves are crossed straight: nothing shows there and their index is 1
-// (core::TransferFunction::isEmpty). Each segment's index is ν averaged over the values it
+// from the root. Empty leaves, and the cells of a brick that neither show nor refract, are
+// crossed straight: nothing shows there and their index is 1 (core::TransferFunction::isEmpty);
+// the ray then passes from index 1 into what follows, bending there. Each segment's index is ν averaged over the values it
 // spans (the pre-integrated table); where it differs from the index the ray travels in, the ray
 // bends at the sample about the normal of the scalar's gradient there. The change of index may
 // lie a step behind, where the gradient's central differences at the sample no longer see it (a
@@ -50,6 +51,7 @@ vec4 castRayRefract(vec3 ow, vec3 dw, out float depth) {
     vec3 color = vec3(0.0);
     float alpha = 0.0;
     bool hit = false, havePrev = false, inBrick = false;
+    bool clear = false;  // the ray has crossed clear space (index 1) since its last segment
     float sPrev = 0.0, pPrev = 0.0, iPrev = 0.0, nuPrev = 1.0, voxel = 1.0;
     vec3 normal = vec3(0.0);  // the last boundary's gradient (see below)
     LeafSampler L;
@@ -66,21 +68,36 @@ vec4 castRayRefract(vec3 ow, vec3 dw, out float depth) {
                 p = q;
                 t += across;
                 havePrev = false;
+                clear = true;
                 continue;
             }
             if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);  // visibility feedback
             L = leafSampler(n, nd, lo);
             voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
             inBrick = true;
-            if (!havePrev) {  // the chain of segments starts here, in the medium found here
-                sPrev = leafSample(L, p);
-                pPrev = tfPosition(sPrev);
-                iPrev = tfOpacityIntegralAt(pPrev);
-                nuPrev = tfSegmentRefraction(sPrev, sPrev);
-                havePrev = true;
+        }
+        // A cell that neither shows nor refracts (core::BrickCells under TransferFunction::isEmpty,
+        // which counts an index ≠ 1 as content) bends nothing: the ray lands on its last step
+        // before the cell's exit, on its own steps, and goes on from there (as raycast_march.glsl).
+        float dt = tfRange.w * voxel / length(d);
+        float cellExit;
+        if (!cellVisible(L, p, p, rayInverse(d), cellExit)) {
+            float k = ceil(cellExit / dt);  // p + k·dt: the first step past the exit
+            if (k >= 3.0) {
+                p += (k - 1.0) * dt * d;
+                t += (k - 1.0) * dt;
+                if (!insideBox(p, cropLo.xyz, cropHi.xyz)) break;
+                havePrev = false;
+                clear = true;
             }
         }
-        float dt = tfRange.w * voxel / length(d);
+        if (!havePrev) {  // the chain of segments starts here: after clear space in index 1,
+            sPrev = leafSample(L, p);  // on entering the volume in the medium found (a cut is no boundary)
+            pPrev = tfPosition(sPrev);
+            iPrev = tfOpacityIntegralAt(pPrev);
+            nuPrev = clear ? 1.0 : tfSegmentRefraction(sPrev, sPrev);
+            havePrev = true;
+        }
         vec3 q = p + dt * d;
         if (!insideBox(q, cropLo.xyz, cropHi.xyz)) break;
         if (!insideLeaf(q, lo, hi)) {  // the step ended in another leaf
@@ -94,6 +111,7 @@ vec4 castRayRefract(vec3 ow, vec3 dw, out float depth) {
             inBrick = false;
             if (nd.x == HVX_NONE) {
                 havePrev = false;
+                clear = true;
                 continue;
             }
             if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);

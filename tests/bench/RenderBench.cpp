@@ -180,6 +180,15 @@ int main(int argc, char** argv) {
             detail.normalUnsharp = 0.0;
             detail.exaggeratedShading = 1.0;
             time("exaggerated shading", tf, detail);
+            // Refraction (the refract stepper): bending nothing (an index ≠ 1 only at the top value)
+            // and with what shows refracting at 1.3. The cut is the one above (the transfer
+            // function's visible bricks: by opacity, no refracting brick is transparent).
+            auto straight = tf;
+            straight.setRefraction({{g.valueMax - 0.02 * range, 1.0}, {g.valueMax, 1.5}});
+            time("refract stepper, bending nothing", straight, {});
+            auto bent = tf;
+            bent.setRefraction(tf.refractionByOpacity(1.3));
+            time("refraction (what shows at index 1.3)", bent, {});
             core::RenderSettings quincunx;
             quincunx.subFrame = 1;
             time("one quincunx sub-frame (a quarter of the rays)", tf, quincunx);
