@@ -1,5 +1,6 @@
 #include "core/reference/CpuRayCaster.h"
 #include "core/reference/SplitCellMarch.h"
+#include "core/reference/RayCells.h"
 #include "core/reference/ToolColour.h"
 
 #include <algorithm>
@@ -52,13 +53,6 @@ CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index
     }
 }
 
-namespace {
-/// The cell (of BrickCells' 4×4×4) of a leaf with corner `lo` and cell size `cell` holding p.
-glm::ivec3 cellIndex(const glm::vec3& p, const glm::vec3& lo, float cell) {
-    return glm::clamp(glm::ivec3(glm::floor((p - lo) / cell)), glm::ivec3(0), glm::ivec3(3));
-}
-}  // namespace
-
 template <class Visitor>
 void CpuRayCaster::walk(const glm::dvec3& ow, const glm::dvec3& dw, Visitor&& visit) const {
     const glm::dvec3 od = glm::dvec3(space_.patientToOctree * glm::dvec4(ow, 1.0));
@@ -78,8 +72,7 @@ void CpuRayCaster::walk(const glm::dvec3& ow, const glm::dvec3& dw, Visitor&& vi
     }
     if (!(t1 > t0)) return;
     const glm::vec3 o(od), d(dd);
-    glm::vec3 inv;
-    for (int a = 0; a < 3; ++a) inv[a] = std::abs(d[a]) > 1e-20f ? 1.0f / d[a] : (d[a] >= 0 ? 1e30f : -1e30f);
+    const glm::vec3 inv = ray_cells::inverse(d);
     // Step past a face by a thousandth of a level-0 voxel, far above float resolution.
     const float nudge = float(1e-3 / space_.rootVoxels / std::max(1e-12, glm::length(dd)));
     std::uint32_t n = 0;
@@ -234,8 +227,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     const glm::vec3 d(glm::dmat3(space_.patientToOctree) * dw);
     const float octPerMm = glm::length(d);
     const bool skipping = !visibleCells_.empty();
-    glm::vec3 inv;
-    for (int a = 0; a < 3; ++a) inv[a] = std::abs(d[a]) > 1e-20f ? 1.0f / d[a] : (d[a] >= 0 ? 1e30f : -1e30f);
+    const glm::vec3 inv = ray_cells::inverse(d);
     glm::dvec3 color(0.0);
     double alpha = 0.0, extreme = settings_.mode == RenderSettings::Mode::MinIp ? 1e300 : -1e300, sum = 0.0;
     double travelled = 0.0;
@@ -377,11 +369,9 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
             // (a branch would not spare a SIMD lane); here a cell is looked at once, when the
             // ray enters it.
             if (skipping && t >= cellEnd) {
-                const glm::ivec3 c = cellIndex(p, lo, cell);
-                const glm::vec3 cellLo = lo + glm::vec3(c) * cell;
-                const glm::vec3 far = glm::max((cellLo - o) * inv, (cellLo + cell - o) * inv);
-                cellEnd = std::min(std::min(far.x, far.y), far.z);
-                if (!((cellBits >> (c.x + 4 * c.y + 16 * c.z)) & 1u)) {
+                const glm::ivec3 c = ray_cells::index(p, lo, cell);
+                cellEnd = ray_cells::exit(c, lo, cell, o, inv);
+                if (!ray_cells::visible(cellBits, c)) {
                     const float k = std::ceil((cellEnd - t) / dt);  // t + k·dt: the first sample past the exit
                     if (k >= 3.0f) {
                         t += (k - 2.0f) * dt;  // the loop's step makes it t + (k - 1)·dt

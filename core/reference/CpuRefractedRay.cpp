@@ -2,8 +2,8 @@
 // float operations, as resources/shaders/raycast_refract.glsl. Each step goes one voxel of the
 // current leaf along the ray's current direction; the point reached is tested against the leaf
 // and the crop box (a point in another leaf is found from the root); empty leaves and the cells
-// of a brick that neither show nor refract are crossed straight (index 1); where a segment's pre-integrated refraction index differs from the one the ray
-// travels in, the direction bends by Snell's law (core::glsl::hvxRefractStep) about the
+// of a brick that neither show nor refract are crossed straight (index 1); where a segment's
+// pre-integrated refraction index differs from the one the ray travels in, the direction bends by Snell's law (core::glsl::hvxRefractStep) about the
 // gradient's normal (the last boundary's where the gradient at the sample is 0).
 #include <algorithm>
 #include <cmath>
@@ -14,6 +14,7 @@
 
 #include "core/appearance/Refraction.h"
 #include "core/reference/CpuRayCaster.h"
+#include "core/reference/RayCells.h"
 #include "core/streaming/SpatialIndexTraversal.h"
 
 namespace hvx::core {
@@ -24,11 +25,6 @@ bool insideBox(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi) {
 }
 bool insideLeaf(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi) {
     return glm::all(glm::greaterThanEqual(p, lo)) && glm::all(glm::lessThan(p, hi));
-}
-glm::vec3 inverse(const glm::vec3& d) {
-    glm::vec3 inv;
-    for (int a = 0; a < 3; ++a) inv[a] = std::abs(d[a]) > 1e-20f ? 1.0f / d[a] : (d[a] >= 0 ? 1e30f : -1e30f);
-    return inv;
 }
 }  // namespace
 
@@ -77,7 +73,7 @@ glm::vec4 CpuRayCaster::castRefracted(const glm::dvec3& ow, const glm::dvec3& dw
         if (!inBrick) {  // p lies in leaf n
             if (index_.nodes[n].x == SpatialIndex::kNone) {  // empty: straight across
                 float tExit = 0.0f;
-                const int face = glsl::hvxExitFace(p, inverse(d), lo, hi, tExit);
+                const int face = glsl::hvxExitFace(p, ray_cells::inverse(d), lo, hi, tExit);
                 const float across = std::max(tExit, 0.0f) + nudge / glm::length(d);
                 const glm::vec3 q = p + across * d;
                 if (!insideBox(q, cropLo, cropHi)) break;
@@ -95,12 +91,10 @@ glm::vec4 CpuRayCaster::castRefracted(const glm::dvec3& ow, const glm::dvec3& dw
         const float dt = stepScale * voxel / glm::length(d);
         const std::uint32_t slot = index_.nodes[n].x;
         const float cell = 0.25f / float(1u << (index_.nodes[n].y & 0xFFu));
-        const glm::ivec3 at = glm::clamp(glm::ivec3(glm::floor((p - lo) / cell)), glm::ivec3(0), glm::ivec3(3));
-        if (!((visibleCells(slot) >> (at.x + 4 * at.y + 16 * at.z)) & 1u)) {
-            const glm::vec3 cellLo = lo + glm::vec3(at) * cell;
-            const glm::vec3 invD = inverse(d);
-            const glm::vec3 far = glm::max((cellLo - p) * invD, (cellLo + cell - p) * invD);
-            const float k = std::ceil(std::min(std::min(far.x, far.y), far.z) / dt);  // p + k·dt: the first step past the exit
+        const glm::ivec3 at = ray_cells::index(p, lo, cell);
+        if (!ray_cells::visible(visibleCells(slot), at)) {
+            // p + k·dt: the first step past the cell's exit
+            const float k = std::ceil(ray_cells::exit(at, lo, cell, p, ray_cells::inverse(d)) / dt);
             if (k >= 3.0f) {
                 p += (k - 1.0f) * dt * d;
                 t += (k - 1.0f) * dt;

@@ -1,4 +1,5 @@
 #include "core/reference/FusedRayCaster.h"
+#include "core/reference/RayCells.h"
 
 #include <algorithm>
 #include <cmath>
@@ -77,7 +78,7 @@ glm::vec4 FusedRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float
         clip(od, dd, lo, hi, k.tLo, k.tHi);
         k.o = glm::vec3(od);
         k.d = glm::vec3(dd);
-        for (int a = 0; a < 3; ++a) k.inv[a] = std::abs(k.d[a]) > 1e-20f ? 1.0f / k.d[a] : (k.d[a] >= 0 ? 1e30f : -1e30f);
+        k.inv = ray_cells::inverse(k.d);
         k.octPerMm = glm::length(k.d);
         k.nudge = float(1e-3 / c.space_.rootVoxels / std::max(1e-12, glm::length(dd)));
     }
@@ -141,12 +142,10 @@ glm::vec4 FusedRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float
             // A cell that cannot show adds nothing, nor does a segment between two of its
             // samples: not sampled; the segment into the next cell that can show starts from a
             // fresh sample before it, as a dense march would have it.
-            const glm::ivec3 ci = glm::clamp(glm::ivec3(glm::floor((p - k.leafLo) / k.cell)), glm::ivec3(0), glm::ivec3(3));
-            if (!((k.cells >> (ci.x + 4 * ci.y + 16 * ci.z)) & 1u)) {
+            const glm::ivec3 ci = ray_cells::index(p, k.leafLo, k.cell);
+            if (!ray_cells::visible(k.cells, ci)) {
                 k.havePrev = false;
-                const glm::vec3 lo = k.leafLo + glm::vec3(ci) * k.cell;
-                const glm::vec3 far = glm::max((lo - k.o) * k.inv, (lo + k.cell - k.o) * k.inv);
-                k.quietUntil = std::min(std::min(far.x, far.y), far.z);
+                k.quietUntil = ray_cells::exit(ci, k.leafLo, k.cell, k.o, k.inv);
                 continue;
             }
             const float sv = caster.sample(k.leaf, p);
