@@ -95,10 +95,10 @@ private:
                                    bool labels);
 
     std::map<int, std::unique_ptr<ComputeProgram>> programs_;
-    static constexpr int kBuffers = 14;
+    static constexpr int kBuffers = 15;
     unsigned buffers_[kBuffers] = {};  // nodes, ropes, tf f, tf F, colour, depth, ray counts, frame, slot
                                        // records, tools, views, tf opacity (F.w, f.w), gradient opacity,
-                                       // refraction (∫(ν − 1), ν − 1)
+                                       // refraction (∫(ν − 1), ν − 1), index levels (multilevel)
     Pool pools_[2];                    // the volume's, and a fused volume's
     bool floatPool_ = false;
     std::size_t uploaded_ = 0;

@@ -37,6 +37,7 @@ QSlider* slider(int lo, int hi, int value, QWidget* parent) {
 RenderControls::RenderControls(QWidget* parent)
     : QWidget(parent), mode_(new QComboBox(this)), reconstruction_(new QComboBox(this)), shading_(new QCheckBox(tr("Phong shading"), this)),
       subFrames_(new QCheckBox(tr("Moving: rebuild from sub-frames"), this)),
+      multilevel_(new QCheckBox(tr("Blend levels where bricks meet"), this)),
       ambient_(spin(0, 1, 0.05, 0.35, this)), diffuse_(spin(0, 1, 0.05, 0.65, this)), specular_(spin(0, 1, 0.05, 0.25, this)),
       shininess_(spin(1, 128, 1, 24, this)), iso_(spin(-1e6, 1e6, 10, 300, this)), boundary_(slider(0, 100, 0, this)),
       viewTransparency_(slider(0, 100, 0, this)), quality_(slider(0, 100, 100, this)), unsharp_(slider(0, 80, 0, this)),
@@ -120,6 +121,17 @@ RenderControls::RenderControls(QWidget* parent)
         emit changed();
     });
     form->addRow(QString(), subFrames_);
+    multilevel_->setObjectName("multilevel");
+    multilevel_->setToolTip(tr("Multilevel sampling (thesis \u00a73.2.2): where a brick meets a coarser one, its samples "
+                               "blend with the coarser level towards the shared face, so that no seam shows between levels "
+                               "of detail. Trilinear images; a label map, nearest, split-voxels and a fused volume "
+                               "sample each brick's own level."));
+    multilevel_->setChecked(QSettings().value("view/multilevel", kMultilevelDefault).toBool());
+    connect(multilevel_, &QCheckBox::toggled, this, [this](bool on) {
+        QSettings().setValue("view/multilevel", on);
+        emit changed();
+    });
+    form->addRow(QString(), multilevel_);
     connect(mode_, &QComboBox::currentIndexChanged, this, [this](int m) {
         iso_->setEnabled(m == 1);
         emit changed();
@@ -159,6 +171,7 @@ core::RenderSettings RenderControls::settings() const {
     s.exaggeratedShading = exaggerated_->value() / 100.0;
     s.isoValue = (iso_->value() - intercept_) / slope_;
     s.nearest = reconstruction() == Reconstruction::Nearest;
+    s.multilevel = multilevel_->isChecked() && reconstruction() == Reconstruction::Trilinear;
     return s;
 }
 

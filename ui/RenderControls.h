@@ -12,8 +12,8 @@ namespace hvx::ui {
 
 /// The 3D view's controls: render mode (DVR, isosurface, MIP, MinIP, X-ray), reconstruction
 /// (trilinear, nearest, split-voxels), Phong shading parameters, normal unsharp masking and
-/// exaggerated shading, boundary enhancement and view-dependent transparency, refraction, the
-/// isovalue (physical units) and a quality/accuracy slider.
+/// exaggerated shading, boundary enhancement and view-dependent transparency, refraction,
+/// multilevel sampling, the isovalue (physical units) and a quality/accuracy slider.
 /// Emits changed() on every edit.
 ///
 /// Threading: GUI thread only.
@@ -44,6 +44,8 @@ public:
     /// (TransferFunction::refractionByOpacity); 1: none (a transfer function file's own
     /// refraction curve then applies).
     double refractionIndex() const;
+    /// Whether multilevel sampling (RenderSettings::multilevel) starts on: remembered once chosen.
+    static constexpr bool kMultilevelDefault = true;
 
 signals:
     void changed();
@@ -57,6 +59,7 @@ private:
     QComboBox* reconstruction_;
     QCheckBox* shading_;
     QCheckBox* subFrames_;
+    QCheckBox* multilevel_;  // RenderSettings::multilevel (remembered)
     QDoubleSpinBox *ambient_, *diffuse_, *specular_, *shininess_, *iso_;
     QSlider *boundary_, *viewTransparency_, *quality_;
     QSlider *unsharp_, *exaggerated_;  // multilevel shading (thesis §3.2.2)

@@ -75,7 +75,7 @@ int lightFieldCommand(int argc, char** argv) {
                        {"display", "o", "output", "format", "eta", "view", "zoom", "tf", "mode", "size", "observer",
                         "simulate", "budget", "cache-mb", "correction", "overlay", "labels", "lut", "label-opacity",
                         "refraction"},
-                       {"cpu", "list", "true-depth", "force-frame"});
+                       {"cpu", "list", "true-depth", "force-frame", "multilevel"});
     if (args.flag("list")) {
         for (const auto& n : core::DisplayModel::builtInNames()) {
             const auto d = core::DisplayModel::load(n);
@@ -136,6 +136,12 @@ int lightFieldCommand(int argc, char** argv) {
                                 "split-voxels, --mode mip, --overlay or --labels"
                               : "",
                           tf);
+    // --multilevel: a display's accuracy s(z) changes the level with depth; bricks of two levels
+    // meet without a seam where the finer blends with its parent (thesis §3.2.2, Fig. 3.6).
+    settings.multilevel = args.flag("multilevel");
+    if (settings.multilevel && (g.isLabel || reader->splitVoxels() || args.value("overlay") || args.value("labels")))
+        throw core::Error("--multilevel blends an image's samples across levels: not with a label map, split-voxels, "
+                          "--overlay or --labels");
     checkOutputs(format, *out, args.value("simulate"));  // before the first ray: rendering can take minutes
     // Seen from azimuth/elevation like `render`; what the transfer function shows (not the
     // volume's air) framed on the display: its middle on the screen centre, as large as the

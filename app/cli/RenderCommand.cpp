@@ -72,12 +72,12 @@ int renderCommand(int argc, char** argv) {
                        {"view", "mode", "tf", "size", "o", "output", "iso", "budget", "accuracy", "cache-mb", "boundary",
                         "view-transparency", "unsharp", "exaggerated", "tools", "crop", "lut", "label-opacity", "overlay", "labels", "time", "db", "gradient-opacity",
                         "level", "refraction"},
-                       {"cpu", "force-frame", "nearest"});
+                       {"cpu", "force-frame", "nearest", "multilevel"});
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli render FILE.hvo|SERIES_UID --time N [--db FILE] [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] "
                           "[--tf PRESET | --lut LABELS.txt [--label-opacity A]] [--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L] | "
-                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--level L] [--nearest] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--unsharp 0..8] [--exaggerated 0..1] [--gradient-opacity G:S,...] [--refraction N|V:N,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
+                          "--labels L.hvo [--lut FILE] [--label-opacity A]] [--force-frame] [--level L] [--nearest] [--multilevel] [--size WxH] [--boundary 0..1] [--view-transparency 0..1] [--unsharp 0..8] [--exaggerated 0..1] [--gradient-opacity G:S,...] [--refraction N|V:N,...] [--tools TOOLS.json] [--crop I0,J0,K0,I1,J1,K1] -o OUT.png|OUT.exr");
     // A split-voxel octree: its cells walked by a DDA (GPU: raycast_split.glsl; --cpu: SplitCellMarch).
     const auto reader = core::OctreeReader::open(timePoint(args), true);
     if (reader->splitVoxels() && (args.value("overlay") || args.value("labels") || args.value("gradient-opacity")))
@@ -173,6 +173,11 @@ int renderCommand(int argc, char** argv) {
     settings.nearest = args.flag("nearest");
     if (settings.nearest && (reader->splitVoxels() || g.isLabel))
         throw core::Error("--nearest is for an image's voxels: a label map is always read nearest, a split-voxel octree by its planes");
+    // --multilevel: leaves beside coarser ones blend with their parents (thesis §3.2.2, Fig. 3.6).
+    settings.multilevel = args.flag("multilevel");
+    if (settings.multilevel && (settings.nearest || reader->splitVoxels() || g.isLabel || args.value("overlay") || args.value("labels")))
+        throw core::Error("--multilevel blends an image's trilinear samples across levels: not with --nearest, a label map, "
+                          "split-voxels, --overlay or --labels");
     opt.cpuMirror = args.flag("cpu");  // the GPU pool takes bricks in their stored type
     opt.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
     if (settings.mode == core::RenderSettings::Mode::Iso) {

@@ -32,6 +32,7 @@ CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index
         throw Error(reader_.path() + ": a split-voxel octree is drawn in DVR");
     // Refraction (CpuRefractedRay.cpp) as the shader's HVX_REFRACT: DVR, without the tools or split-voxels.
     refracting_ = dvr && tf_.hasRefraction();
+    multilevel_ = settings_.multilevel && !labels_ && !settings_.nearest && !reader_.splitVoxels() && index_.blendingLeaves > 0;
     if (refracting_ && (settings_.tools.any() || reader_.splitVoxels()))
         throw Error("refraction is drawn without the illustrative tools, a fused volume or split-voxels");
     if (settings_.skipEmptyCells && !reader_.splitVoxels() && (dvr || settings_.mode == RenderSettings::Mode::Iso)) {
@@ -99,7 +100,7 @@ std::vector<CpuRayCaster::Visit> CpuRayCaster::traverse(const glm::dvec3& origin
     return out;
 }
 
-CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafLo) const {
+CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafLo, bool levels) const {
     const auto& nd = index_.nodes[node];
     const std::uint32_t depth = nd.y & 0xFFu;
     Leaf L;
@@ -109,6 +110,19 @@ CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafL
     // The leaf's grid origin in level voxels (from its box, not from a sample: samples just
     // outside the leaf read its border).
     L.origin = glm::floor(leafLo * float(1u << depth) + 0.5f) * float(reader_.brickSize()) - float(reader_.border());
+    if (levels && multilevel_ && depth > 0 && node < index_.levels.size()) {
+        const glm::uvec2 lv = index_.levels[node];
+        if (lv.x != SpatialIndex::kNone && lv.y != 0u && lv.x < slots_.size() && slots_[lv.x]) {
+            L.parent = slots_[lv.x]->data();
+            L.parentScale = L.scale * 0.5f;
+            // the parent's box corner: the leaf's, rounded down to the parent's grid (exact in float)
+            const float up = float(1u << (depth - 1));
+            L.parentOrigin = glm::floor(leafLo * up + 0.25f) * float(reader_.brickSize()) - float(reader_.border());
+            L.corners = lv.y;
+            L.lo = leafLo;
+            L.size = 1.0f / float(1u << depth);
+        }
+    }
     return L;
 }
 
@@ -122,13 +136,27 @@ float CpuRayCaster::nearest(const Leaf& L, const glm::vec3& p) const {
     return L.data[(std::size_t(i.z) * std::size_t(e) + std::size_t(i.y)) * std::size_t(e) + std::size_t(i.x)];
 }
 
+float CpuRayCaster::levelWeight(const Leaf& L, const glm::vec3& p) {
+    const glm::vec3 u = glm::clamp((p - L.lo) / L.size, glm::vec3(0.0f), glm::vec3(1.0f));
+    float w = 0.0f;
+    for (std::uint32_t c = 0; c < 8; ++c)
+        if (L.corners & (1u << c))
+            w += ((c & 1u) ? u.x : 1.0f - u.x) * ((c & 2u) ? u.y : 1.0f - u.y) * ((c & 4u) ? u.z : 1.0f - u.z);
+    return w;
+}
+
 float CpuRayCaster::linear(const Leaf& L, const glm::vec3& p) const {
-    const int e = L.edge;
-    glm::vec3 u = p * L.scale - L.origin - 0.5f;
+    const float own = trilinear(L.data, L.edge, L.scale, L.origin, p);
+    if (!L.parent) return own;
+    const float w = levelWeight(L, p);
+    return own * (1.0f - w) + trilinear(L.parent, L.edge, L.parentScale, L.parentOrigin, p) * w;
+}
+
+float CpuRayCaster::trilinear(const float* data, int e, float scale, const glm::vec3& origin, const glm::vec3& p) {
+    glm::vec3 u = p * scale - origin - 0.5f;
     u = glm::clamp(u, glm::vec3(0.0f), glm::vec3(float(e - 1)));
     const glm::ivec3 i0 = glm::min(glm::ivec3(u), glm::ivec3(e - 2 > 0 ? e - 2 : 0));
     const glm::vec3 f = u - glm::vec3(i0);
-    const float* data = L.data;
     auto at = [&](int x, int y, int z) {
         return data[(std::size_t(z) * std::size_t(e) + std::size_t(y)) * std::size_t(e) + std::size_t(x)];
     };
@@ -256,7 +284,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
         }
         if (counts) ++(*counts)[n];
         L = leaf(n, lo);
-        const std::uint64_t cellBits = visibleCells(nd.x);
+        const std::uint64_t cellBits = leafCells(L, nd.x);
         const float cell = 0.25f / float(1u << (nd.y & 0xFFu));
         float cellEnd = -1.0f;  // where the ray leaves the cell last looked at (t >= 0)
         const std::uint32_t depthLevel = nd.y & 0xFFu;

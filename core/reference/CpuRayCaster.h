@@ -64,10 +64,25 @@ private:
         float scale = 1.0f;  // octree units -> level voxels
         glm::vec3 origin{};  // the brick's first sample, in level voxels, less the border
         int edge = 0;
+        // Multilevel sampling (RenderSettings::multilevel), where a coarser leaf touches this one:
+        // the parent's brick, its scale and origin, the corners touched (SpatialIndex::levels)
+        // and the leaf's box (corner, size).
+        const float* parent = nullptr;
+        float parentScale = 1.0f;
+        glm::vec3 parentOrigin{};
+        std::uint32_t corners = 0;
+        glm::vec3 lo{};
+        float size = 1.0f;
     };
-    Leaf leaf(std::uint32_t node, const glm::vec3& leafLo) const;
+    /// `levels`: with multilevel sampling on, blend with the parent (off in the fused march).
+    Leaf leaf(std::uint32_t node, const glm::vec3& leafLo, bool levels = true) const;
     float sample(const Leaf& leaf, const glm::vec3& p) const;  ///< trilinear, or nearest for labels
+    /// Trilinear in the leaf's brick, blended with the parent's by the leaf's level weight.
     float linear(const Leaf& leaf, const glm::vec3& p) const;
+    /// Trilinear in one brick of `edge`^3 samples.
+    static float trilinear(const float* data, int edge, float scale, const glm::vec3& origin, const glm::vec3& p);
+    /// How much of the parent a leaf's sample at p takes: the corners' bits, interpolated trilinearly.
+    static float levelWeight(const Leaf& leaf, const glm::vec3& p);
     float nearest(const Leaf& leaf, const glm::vec3& p) const;
     /// The average f (k, tau) of the segment from value a to b: pre-integrated, or for labels
     /// the entry of b; segmentExtinction: its tau alone.
@@ -86,6 +101,11 @@ private:
     std::uint64_t visibleCells(std::uint32_t slot) const {
         return slot < visibleCells_.size() ? visibleCells_[slot] : ~std::uint64_t(0);
     }
+    /// A leaf's cells that may show: all of them where it blends with its parent, whose values
+    /// its own brick's ranges do not bound.
+    std::uint64_t leafCells(const Leaf& leaf, std::uint32_t slot) const {
+        return leaf.parent ? ~std::uint64_t(0) : visibleCells(slot);
+    }
 
     const OctreeReader& reader_;
     const SpatialIndex& index_;
@@ -97,6 +117,7 @@ private:
     glm::dmat3 normalToWorld_;
     double strengthPerGradient_ = 0.0;  // |∇f| (world) -> boundary strength
     bool refracting_ = false;
+    bool multilevel_ = false;  // RenderSettings::multilevel, where it applies and the index is linked
     glsl::HvxTools packedTools;
     std::vector<std::uint64_t> visibleCells_;  // per slot; empty when nothing is skipped
 };

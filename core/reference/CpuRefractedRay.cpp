@@ -92,7 +92,7 @@ glm::vec4 CpuRayCaster::castRefracted(const glm::dvec3& ow, const glm::dvec3& dw
         const std::uint32_t slot = index_.nodes[n].x;
         const float cell = 0.25f / float(1u << (index_.nodes[n].y & 0xFFu));
         const glm::ivec3 at = ray_cells::index(p, lo, cell);
-        if (!ray_cells::visible(visibleCells(slot), at)) {
+        if (!ray_cells::visible(leafCells(L, slot), at)) {
             // p + k·dt: the first step past the cell's exit
             const float k = std::ceil(ray_cells::exit(at, lo, cell, p, ray_cells::inverse(d)) / dt);
             if (k >= 3.0f) {

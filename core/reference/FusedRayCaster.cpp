@@ -102,7 +102,7 @@ glm::vec4 FusedRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float
         const auto& nd = index.nodes[n];
         k.empty = nd.x == SpatialIndex::kNone;
         if (k.empty) return;
-        k.leaf = k.caster->leaf(n, lo);
+        k.leaf = k.caster->leaf(n, lo, false);  // each volume at its leaf's level, as raycast_fusion.glsl
         k.leafLo = lo;
         k.cell = 0.25f / float(1u << (nd.y & 0xFFu));
         k.cells = k.caster->visibleCells(nd.x);

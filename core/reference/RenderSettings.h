@@ -26,6 +26,12 @@ struct RenderSettings {
     bool detailShading() const {
         return shading && (mode == Mode::Dvr || mode == Mode::Iso) && (normalUnsharp > 0.0 || exaggeratedShading > 0.0);
     }
+    /// Multilevel sampling (thesis §3.2.2, Fig. 3.6): a leaf that a coarser leaf touches blends
+    /// its samples with its parent's, trilinear at both levels and weighted trilinearly by which
+    /// of its corners the coarser leaf touches (quadrilinear), so that bricks of neighbouring
+    /// levels meet without a seam. Trilinear scalar volumes: not label maps, nearest-neighbour
+    /// reconstruction, split-voxels or a fused volume, which sample their leaf's level alone.
+    bool multilevel = false;
     double earlyTermination = 0.99;
     double stepScale = 1.0;          ///< step = stepScale × the local voxel size
     bool countRays = false;          ///< fill RenderImage::rayCounts (visibility feedback)

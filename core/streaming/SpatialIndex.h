@@ -1,8 +1,10 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 namespace hvx::core {
@@ -19,6 +21,14 @@ struct SpatialIndex {
     std::vector<glm::uvec4> nodes;      ///< see IndexTraversal.glsl
     std::vector<std::uint32_t> ropes;   ///< 6 per node
     std::vector<glm::vec2> ranges;      ///< min, max of the node's values
+    /// Multilevel sampling (thesis §3.2.2, Fig. 3.6), per node, filled by linkParents(): x = the
+    /// pool slot of a leaf's parent (kNone: no parent, not resident, or not linked); y = which of
+    /// the leaf's eight corners (bit x + 2y + 4z, 1 = the high side) a coarser leaf with a brick
+    /// touches. Empty until linked: every leaf samples its own level.
+    std::vector<glm::uvec2> levels;
+    /// How many leaves `levels` has blend with their parent (none: multilevel sampling draws
+    /// what sampling each leaf's own level draws, and the ray casters skip it).
+    std::size_t blendingLeaves = 0;
 
     static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
     static constexpr std::uint32_t kLeafBit = 0x100u;
@@ -32,6 +42,12 @@ struct SpatialIndex {
     static SpatialIndex build(const OctreeReader& reader, const std::vector<std::uint32_t>& cut,
                               const std::vector<std::uint32_t>& slotIds);
     std::size_t leafCount() const;
+    /// Fills `levels`: `slotOf(.hvo node id)` gives the pool slot holding a node's brick
+    /// (kNone when none does). The working set keeps every refined node resident, so a cut leaf's
+    /// parent has a slot.
+    void linkParents(const OctreeReader& reader, const std::function<std::uint32_t(std::uint32_t)>& slotOf);
+    /// The index leaf containing octree point p (inside the unit cube) and its depth.
+    std::uint32_t leafAt(const glm::dvec3& p, std::uint32_t& depth) const;
 };
 
 template <class SlotOf>

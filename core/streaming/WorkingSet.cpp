@@ -220,6 +220,12 @@ const SpatialIndex& WorkingSet::update(const std::vector<View>& views, const Tra
     std::vector<std::uint32_t> slots;
     for (auto id : cut_) slots.push_back(nodeSlot_.count(id) ? nodeSlot_[id] : SpatialIndex::kNone);
     index_ = SpatialIndex::build(reader_, cut_, slots);
+    // Every node refined this frame was resident this frame and keeps its slot: each leaf's
+    // parent is there for multilevel sampling.
+    index_.linkParents(reader_, [this](std::uint32_t id) {
+        const auto it = nodeSlot_.find(id);
+        return it == nodeSlot_.end() ? SpatialIndex::kNone : it->second;
+    });
     stats_.cutNodes = cut_.size();
     stats_.finestLevel = reader_.levelCount() - 1;
     stats_.coarsestLevel = 0;

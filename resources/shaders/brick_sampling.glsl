@@ -11,6 +11,17 @@ struct LeafSampler {
     uvec2 visible;  // which of the brick's 4x4x4 cells may show (core::BrickCells), cell x + 4y + 16z
     vec3 leafLo;    // the leaf's corner and cell size, in octree units
     float cell;
+#if HVX_MULTILEVEL
+    // Multilevel sampling (core::RenderSettings::multilevel), where a coarser leaf touches this
+    // one (corners != 0): the parent's placement in the pool, its decode, and the leaf's size.
+    vec3 pScale;
+    vec3 pOffset;
+    vec3 pTexLo;
+    vec3 pTexHi;
+    vec2 pDecode;
+    uint corners;   // core::SpatialIndex::levels' y: the corners a coarser leaf touches
+    float size;
+#endif
 };
 
 // Whether the cell of the leaf containing p may show; if not, sets cellExit to the ray
@@ -27,38 +38,80 @@ bool cellVisible(LeafSampler L, vec3 p, vec3 o, vec3 invD, out float cellExit) {
     return false;
 }
 
-// The sampler of leaf `node` (record nd, box corner leafLo). The slot's cell in the pool is
-// found with float arithmetic (exact below 2^23 slots): integer division is not a vector
-// instruction on CPUs, and this runs once per leaf.
-LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
-    uint depth = nd.y & 0xFFu;
-    float slot = float(nd.x), row = float(brick.w), layer = float(image.z);
+// Where a slot's brick lies in the pool: the map from octree coordinates to texture coordinates
+// (tex = p * scale + offset) and the first and last sample centres, for a brick of `depth` whose
+// corner is `grid` bricks from the origin. The slot's cell in the pool is found with float
+// arithmetic (exact below 2^23 slots): integer division is not a vector instruction on CPUs,
+// and this runs once per leaf.
+void slotPlacement(uint slotId, uint depth, vec3 grid, out vec3 scale, out vec3 offset, out vec3 texLo, out vec3 texHi) {
+    float slot = float(slotId), row = float(brick.w), layer = float(image.z);
     float z = floor((slot + 0.5) / layer);
     float inLayer = slot - z * layer;
     float y = floor((inLayer + 0.5) / row);
     vec3 cell = vec3(inLayer - y * row, y, z) * float(brick.z);
     vec3 texel = 1.0 / vec3(textureSize(brickPool, 0));
     float s = float(brick.x) * float(1u << depth);
-    vec3 lo = floor(leafLo * float(1u << depth) + 0.5) * float(brick.x);
+    vec3 lo = grid * float(brick.x);
     // u = p * s - (lo - border + 0.5) is the brick sample coordinate; tex = (cell + 0.5 + u) * texel.
+    scale = vec3(s) * texel;
+    offset = (cell + float(brick.y) - lo) * texel;
+    texLo = (cell + 0.5) * texel;
+    texHi = (cell + float(brick.z) - 0.5) * texel;
+}
+
+// The sampler of leaf `node` (record nd, box corner leafLo).
+LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
+    uint depth = nd.y & 0xFFu;
     LeafSampler L;
-    L.scale = vec3(s) * texel;
-    L.offset = (cell + float(brick.y) - lo) * texel;
-    L.texLo = (cell + 0.5) * texel;
-    L.texHi = (cell + float(brick.z) - 0.5) * texel;
+    slotPlacement(nd.x, depth, floor(leafLo * float(1u << depth) + 0.5), L.scale, L.offset, L.texLo, L.texHi);
+    float s = float(brick.x) * float(1u << depth);
     SlotRecord record = slotRecords[nd.x];
     L.decode = record.decode;
     L.h = 1.0 / s;
     L.visible = record.visible;
     L.leafLo = leafLo;
     L.cell = 0.25 / float(1u << depth);
+#if HVX_MULTILEVEL
+    uvec2 lv = hvxLevels[node];
+    L.corners = 0u;
+    if (depth > 0u && lv.x != HVX_NONE && lv.y != 0u) {
+        // the parent's corner: the leaf's, rounded down to the parent's grid (exact in float)
+        slotPlacement(lv.x, depth - 1u, floor(leafLo * float(1u << (depth - 1u)) + 0.25), L.pScale, L.pOffset, L.pTexLo,
+                      L.pTexHi);
+        L.pDecode = slotRecords[lv.x].decode;
+        L.corners = lv.y;
+        L.size = 1.0 / float(1u << depth);
+        L.visible = uvec2(0xFFFFFFFFu);  // the parent's values are not bounded by the leaf's cells
+    }
+#endif
     return L;
 }
+
+#if HVX_MULTILEVEL
+// How much of the parent a sample at p takes: the corners' bits, interpolated trilinearly
+// (core::CpuRayCaster::levelWeight).
+float levelWeight(LeafSampler L, vec3 p) {
+    vec3 u = clamp((p - L.leafLo) / L.size, vec3(0.0), vec3(1.0));
+    float w = 0.0;
+    for (uint c = 0u; c < 8u; ++c)
+        if ((L.corners & (1u << c)) != 0u)
+            w += ((c & 1u) != 0u ? u.x : 1.0 - u.x) * ((c & 2u) != 0u ? u.y : 1.0 - u.y) * ((c & 4u) != 0u ? u.z : 1.0 - u.z);
+    return w;
+}
+#endif
 
 // Hardware trilinear filtering inside the slot (the border replicates the neighbours). The
 // decode is linear, so it applies after filtering.
 float leafSampleLinear(LeafSampler L, vec3 p) {
-    return texture(brickPool, clamp(p * L.scale + L.offset, L.texLo, L.texHi)).r * L.decode.x + L.decode.y;
+    float own = texture(brickPool, clamp(p * L.scale + L.offset, L.texLo, L.texHi)).r * L.decode.x + L.decode.y;
+#if HVX_MULTILEVEL
+    if (L.corners != 0u) {  // quadrilinear: trilinear at the leaf's level and its parent's
+        float w = levelWeight(L, p);
+        float up = texture(brickPool, clamp(p * L.pScale + L.pOffset, L.pTexLo, L.pTexHi)).r * L.pDecode.x + L.pDecode.y;
+        own = own * (1.0 - w) + up * w;
+    }
+#endif
+    return own;
 }
 
 // A label map (HVX_LABELS) reads the nearest sample, as nearest-neighbour reconstruction does

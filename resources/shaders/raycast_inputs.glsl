@@ -45,6 +45,13 @@ struct SlotRecord {  // per pool slot (render::GpuRayCaster's SlotRecord)
 };
 layout(std430, binding = 7) readonly buffer Slots { SlotRecord slotRecords[]; };
 layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per index node (feedback)
+#ifndef HVX_MULTILEVEL
+#define HVX_MULTILEVEL 0
+#endif
+#if HVX_MULTILEVEL
+// core::SpatialIndex::levels: per index node, the parent's slot and the corners a coarser leaf touches.
+layout(std430, binding = 12) readonly buffer IndexLevels { uvec2 hvxLevels[]; };
+#endif
 #ifndef HVX_DETAIL
 #define HVX_DETAIL 0
 #endif
