@@ -146,6 +146,8 @@ TEST(CliBadInput, LightFieldAndToolInputsFailCleanlyBeforeRendering) {
                        {"p.hvo", "tools.json"}, "between 0 and 8");
     expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --exaggerated 1.5 -o " + dir.file("o.png"), dir,
                        "--exaggerated", {"p.hvo", "tools.json"}, "between 0 and 1");
+    expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --multilevel --nearest -o " + dir.file("o.png"), dir,
+                       "--multilevel", {"p.hvo", "tools.json"}, "not with --nearest");
     expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --refraction 5 -o " + dir.file("o.png"), dir, "refraction index",
                        {"p.hvo", "tools.json"}, "between 0.25 and 4");
     expectCleanFailure("render " + dir.file("p.hvo") + " --cpu --refraction 0:1,100 -o " + dir.file("o.png"), dir,
