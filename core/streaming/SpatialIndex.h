@@ -4,7 +4,6 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
-#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 namespace hvx::core {
@@ -46,8 +45,6 @@ struct SpatialIndex {
     /// (kNone when none does). The working set keeps every refined node resident, so a cut leaf's
     /// parent has a slot.
     void linkParents(const OctreeReader& reader, const std::function<std::uint32_t(std::uint32_t)>& slotOf);
-    /// The index leaf containing octree point p (inside the unit cube) and its depth.
-    std::uint32_t leafAt(const glm::dvec3& p, std::uint32_t& depth) const;
 };
 
 template <class SlotOf>

@@ -3,26 +3,9 @@
 
 #include "core/octree/OctreeReader.h"
 #include "core/streaming/SpatialIndex.h"
+#include "core/streaming/SpatialIndexTraversal.h"
 
 namespace hvx::core {
-
-std::uint32_t SpatialIndex::leafAt(const glm::dvec3& p, std::uint32_t& depth) const {
-    std::uint32_t n = 0;
-    glm::dvec3 lo(0.0), hi(1.0);
-    for (int guard = 0; guard < 32; ++guard) {
-        const auto& nd = nodes[n];
-        if (nd.y & kLeafBit) break;
-        const glm::dvec3 mid = 0.5 * (lo + hi);
-        const int o = (p.x >= mid.x ? 1 : 0) + (p.y >= mid.y ? 2 : 0) + (p.z >= mid.z ? 4 : 0);
-        n = nd.x + std::uint32_t(o);
-        for (int a = 0; a < 3; ++a) {
-            if (o & (1 << a)) lo[a] = mid[a];
-            else hi[a] = mid[a];
-        }
-    }
-    depth = nodes[n].y & 0xFFu;
-    return n;
-}
 
 void SpatialIndex::linkParents(const OctreeReader& reader, const std::function<std::uint32_t(std::uint32_t)>& slotOf) {
     levels.assign(nodes.size(), glm::uvec2(kNone, 0u));
@@ -48,9 +31,10 @@ void SpatialIndex::linkParents(const OctreeReader& reader, const std::function<s
             for (std::uint32_t o = 0; o < 8 && !(corners & (1u << c)); ++o) {
                 const glm::dvec3 q = corner + off * glm::dvec3(o & 1u ? 1 : -1, o & 2u ? 1 : -1, o & 4u ? 1 : -1);
                 if (q.x < 0 || q.y < 0 || q.z < 0 || q.x >= 1 || q.y >= 1 || q.z >= 1) continue;
-                std::uint32_t d = 0;
-                const std::uint32_t j = leafAt(q, d);
-                if (j != i && nodes[j].x != kNone && d < depth) corners |= 1u << c;
+                std::uint32_t j = 0;  // the leaf holding q (the traversal's own descent)
+                glm::vec3 boxLo(0.0f), boxHi(1.0f);
+                glsl::hvxDescend(*this, j, boxLo, boxHi, glm::vec3(q));
+                if (j != i && nodes[j].x != kNone && (nodes[j].y & 0xFFu) < depth) corners |= 1u << c;
             }
         }
         levels[i] = glm::uvec2(parentSlot, corners);

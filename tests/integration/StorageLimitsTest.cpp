@@ -133,6 +133,10 @@ TEST(StorageLimits, AnInstanceOverTheCapIsCutOffAndTheNextSenderIsServed) {
     const auto small = phantomSeries(src.file("small"), 32, 2);
     EXPECT_NE(l.store("MODALITY1", big), "");
     EXPECT_EQ(l.server->received(), 0u);
+    // The sender may see the abort before the receiver has removed what it had begun writing:
+    // give the receiver up to 5 s to clean up (under load, 1 of ~10 runs found the file there).
+    for (int i = 0; i < 50 && filesUnder(l.local.storageDir) != 0u; ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
     EXPECT_EQ(filesUnder(l.local.storageDir), 0u) << "nothing of the oversized instance may stay";
     EXPECT_EQ(l.store("MODALITY1", small), "");
     EXPECT_EQ(l.server->received(), small.size());
