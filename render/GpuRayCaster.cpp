@@ -265,7 +265,11 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
         throw core::Error("refraction is drawn without the illustrative tools, a fused volume or split-voxels");
     const int labels = reader.geometry().isLabel ? 1 : 0;
     const int fusion = overlay ? 1 + (overlay->reader.geometry().isLabel ? 1 : 0) : 0;  // 1 image, 2 label map
-    const int gradient = !overlay && settings.mode == core::RenderSettings::Mode::Dvr && tf.hasGradientOpacity() ? 1 : 0;
+    // Gradient opacity: either volume's own curve, in the plain march or the fused one.
+    const int gradient = settings.mode == core::RenderSettings::Mode::Dvr &&
+                                 (tf.hasGradientOpacity() || (overlay && overlay->tf.hasGradientOpacity()))
+                             ? 1
+                             : 0;
     // A static variant per mode, tools, labels, fusion, gradient opacity and split-voxels.
     const int nearest = settings.nearest && !split ? 1 : 0;
     const int detail = settings.detailShading() && !tools && !overlay && !split ? 1 : 0;
@@ -287,9 +291,6 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                                      "HVX_NEAREST " + std::to_string(nearest), "HVX_DETAIL " + std::to_string(detail),
                                      "HVX_REFRACT " + std::to_string(refract),
                                      "HVX_MULTILEVEL " + std::to_string(multilevel)});
-    if (gradient)
-        glNamedBufferData(buffers_[12], GLsizeiptr(tf.gradientTable().size() * sizeof(float)), tf.gradientTable().data(),
-                          GL_STREAM_DRAW);
     if (refract)
         glNamedBufferData(buffers_[13], GLsizeiptr(tf.refractionTable().size() * sizeof(glm::vec2)),
                           tf.refractionTable().data(), GL_STREAM_DRAW);
@@ -330,6 +331,12 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     uploadPair(buffers_[2], tables.table, tablesB ? &tablesB->table : nullptr);
     uploadPair(buffers_[3], tables.integral, tablesB ? &tablesB->integral : nullptr);
     uploadPair(buffers_[11], tables.opacity, tablesB ? &tablesB->opacity : nullptr);
+    if (gradient) {  // each volume's gradient table (the second's entries follow the first's); none: ones, unread
+        const std::vector<float> none(core::TransferFunction::kGradientEntries, 1.0f);
+        const auto& ga = tf.hasGradientOpacity() ? tf.gradientTable() : none;
+        const auto* gb = overlay ? (overlay->tf.hasGradientOpacity() ? &overlay->tf.gradientTable() : &none) : nullptr;
+        uploadPair(buffers_[12], ga, gb);
+    }
     const std::size_t pixels = std::size_t(width) * std::size_t(height);
     const std::size_t all = pixels * views.size();
     glNamedBufferData(buffers_[4], GLsizeiptr(all * sizeof(glm::vec4)), nullptr, GL_STREAM_READ);
@@ -374,7 +381,7 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                          float(tf.referenceLength()));
     fb.enhance = glm::vec4(float(settings.boundary), float(settings.viewTransparency),
                            float(space.minSpacing / (tf.valueMax() - tf.valueMin()) / core::kBoundaryGradientFraction),
-                           float(tf.gradientMax()));
+                           tf.hasGradientOpacity() ? float(tf.gradientMax()) : 0.0f);
     fb.brick = glm::uvec4(reader.brickSize(), reader.border(), reader.brickEdge(), pools_[0].row);
     fb.image = glm::uvec4(std::uint32_t(width), std::uint32_t(height), pools_[0].layer, std::uint32_t(views.size()));
     fb.cropLo = glm::vec4(glm::vec3(settings.crop.min * space.extent), 0.0f);
@@ -384,7 +391,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
         const auto spaceB = core::OctreeSpace::of(o.geometry(), o.brickSize(), o.levelCount());
         fb.patientToOctreeB = glm::mat4(spaceB.patientToOctree);
         fb.extentB = glm::vec4(glm::vec3(spaceB.extent), float(1.0 / spaceB.rootVoxels));
-        fb.tfRangeB = glm::vec4(float(overlay->tf.valueMin()), float(overlay->tf.valueMax()), 0.0f, 0.0f);
+        fb.tfRangeB = glm::vec4(float(overlay->tf.valueMin()), float(overlay->tf.valueMax()),
+                                overlay->tf.hasGradientOpacity() ? float(overlay->tf.gradientMax()) : 0.0f, 0.0f);
         fb.brickB = glm::uvec4(o.brickSize(), o.border(), o.brickEdge(), pools_[1].row);
         fb.fusionB = glm::uvec4(pools_[1].layer, std::uint32_t(pools_[0].records.size()),
                                 std::uint32_t(std::max<std::size_t>(1, index.nodes.size())), 0u);

@@ -161,13 +161,18 @@ glm::vec4 FusedRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float
                     const glm::dvec4 f = caster.segment(k.sPrev, sv);
                     const glm::dvec3 base = glm::dvec3(f) / f.w;
                     c[v] = base;
-                    if (s.shading) {  // headlight Phong with this volume's own gradient
+                    // This volume's own gradient: its opacity curve (raycast_inputs.glsl's
+                    // gradientOpacityOf), then headlight Phong.
+                    const bool scaled = caster.tf_.hasGradientOpacity();
+                    if (s.shading || scaled) {
                         const glm::dvec3 g = caster.normalToWorld_ * glm::dvec3(caster.gradient(k.leaf, p));
                         const double len = glm::length(g);
+                        if (scaled) a[v] = caster.scaleByGradient(a[v], len);
                         const double facing = len < 1e-9 ? 0.0 : std::abs(glm::dot(g / len, -dw));
-                        c[v] = len < 1e-9 ? base * (s.ambient + s.diffuse)
-                                          : base * (s.ambient + s.diffuse * facing) +
-                                                glm::dvec3(s.specular * std::pow(facing, s.shininess));
+                        if (s.shading)
+                            c[v] = len < 1e-9 ? base * (s.ambient + s.diffuse)
+                                              : base * (s.ambient + s.diffuse * facing) +
+                                                    glm::dvec3(s.specular * std::pow(facing, s.shininess));
                     }
                 } else {
                     a[v] = 0.0;

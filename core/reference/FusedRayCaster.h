@@ -12,8 +12,9 @@ namespace hvx::core {
 /// base volume's box (or crop box); a step is the finer of the two leaves' voxel sizes, and
 /// only where both volumes are empty is space skipped. Each volume's segment is classified by
 /// its own transfer function (pre-integrated, or by label entry for a label map) and shaded with
-/// its own gradient; the two are composited as one medium: opacity 1 − (1 − a₁)(1 − a₂), colour
-/// the opacity-weighted mean. DVR only; no tools, no boundary enhancement.
+/// its own gradient, its opacity scaled by its own gradient-opacity curve where it has one; the
+/// two are composited as one medium: opacity 1 − (1 − a₁)(1 − a₂), colour the opacity-weighted
+/// mean. DVR only; no tools, no boundary enhancement.
 ///
 /// Threading: render() spreads rows over ThreadPool::shared(); the object is immutable.
 class FusedRayCaster {

@@ -4,6 +4,7 @@
 #ifndef HVX_LABELS_B
 #define HVX_LABELS_B 0
 #endif
+#define TF_GRADIENT_ENTRIES 256  // core::TransferFunction::kGradientEntries
 
 // A leaf's sampler in either pool (brickPool's leafSampler with the pool's own layout).
 LeafSampler fusedLeafSampler(bool second, uvec4 nd, vec3 leafLo) {
@@ -194,13 +195,24 @@ float fusedStep(bool second, inout FusedCursor k, float t, float dt, float t0, v
             vec4 f = fusedSegment(second, k.sPrev, s);
             vec3 base = f.rgb / f.w;
             c = base;
-            if (extra.y > 0.5) {
+#if HVX_GRADIENT_OPACITY
+            float largest = second ? tfRangeB.z : enhance.w;  // 0: this volume has no curve
+            bool scaled = largest > 0.0;
+#else
+            bool scaled = false;
+#endif
+            if (extra.y > 0.5 || scaled) {  // this volume's own gradient: its opacity curve, then headlight Phong
                 mat4 toOctree = second ? patientToOctreeB : patientToOctree;
                 vec3 g = transpose(mat3(toOctree)) * fusedGradient(second, k.L, p);
                 float len = length(g);
-                float ndl = len < 1e-9 ? 0.0 : abs(dot(g / len, -dw));
-                c = len < 1e-9 ? base * (shading.x + shading.y)
-                               : base * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w));
+#if HVX_GRADIENT_OPACITY
+                a = gradientOpacityOf(second ? TF_GRADIENT_ENTRIES : 0, largest, a, len);
+#endif
+                if (extra.y > 0.5) {
+                    float ndl = len < 1e-9 ? 0.0 : abs(dot(g / len, -dw));
+                    c = len < 1e-9 ? base * (shading.x + shading.y)
+                                   : base * (shading.x + shading.y * ndl) + vec3(shading.z * pow(ndl, shading.w));
+                }
             }
         } else {
             a = 0.0;

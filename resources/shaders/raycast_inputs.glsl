@@ -13,7 +13,7 @@ layout(std140, binding = 0) uniform Frame {
     // A second volume fused over the first (HVX_FUSION; raycast_fusion.glsl):
     mat4 patientToOctreeB;
     vec4 extentB;    // xyz: its box in its octree space; w: 1 / its rootVoxels
-    vec4 tfRangeB;   // its transfer function's valueMin, valueMax (table entries 4096 on)
+    vec4 tfRangeB;   // its transfer function's valueMin, valueMax (table entries 4096 on), its gradient opacity's largest |∇f| (0: none)
     uvec4 brickB;    // its brick size, border, edge, slots per row of its pool
     uvec4 fusionB;   // its pool's slots per layer, its first slot record, its first index node
     uvec4 pixels;    // the pixels drawn: x, y phase and stride (core::RenderSettings::subFrame; 0, 0, 1: all)
@@ -60,16 +60,19 @@ layout(std430, binding = 12) readonly buffer IndexLevels { uvec2 hvxLevels[]; };
 #endif
 #if HVX_GRADIENT_OPACITY
 // Gradient opacity (core::TransferFunction::gradientTable): g(|∇f|) at 256 magnitudes over
-// [0, enhance.w]; a sample's opacity becomes 1 − (1 − a)^g.
+// [0, largest]; a sample's opacity becomes 1 − (1 − a)^g. The table at `first` (a fused volume's
+// follows the base's); a largest |∇f| of 0: that volume has no curve.
 layout(std430, binding = 10) readonly buffer GradientTable { float gradientTable[]; };
-float gradientOpacity(float a, float len) {
-    float p = clamp(len / enhance.w * 255.0, 0.0, 255.0);
+float gradientOpacityOf(int first, float largest, float a, float len) {
+    if (largest <= 0.0) return a;
+    float p = clamp(len / largest * 255.0, 0.0, 255.0);
     int i = min(int(p), 254);
     float f = p - float(i);
-    float g = gradientTable[i] * (1.0 - f) + gradientTable[i + 1] * f;
+    float g = gradientTable[first + i] * (1.0 - f) + gradientTable[first + i + 1] * f;
     float keep = 1.0 - a;
     return g <= 0.0 ? 0.0 : (keep <= 0.0 ? 1.0 : 1.0 - pow(keep, g));
 }
+float gradientOpacity(float a, float len) { return gradientOpacityOf(0, enhance.w, a, len); }
 #endif
 #ifndef HVX_TOOLS
 #define HVX_TOOLS 0

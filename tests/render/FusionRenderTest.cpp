@@ -241,3 +241,54 @@ TEST(Fusion, ALabelMapOverAnImageShowsOnlyItsLabelsColours) {
     }
     EXPECT_GT(test::psnr(cpu, gl), 60.0);
 }
+
+// Gradient opacity in the fused march (MedVis §3.2.1): each volume's opacity is scaled by its own
+// curve over its own gradient, the base's and the overlay's alike, on the GPU as in the CPU
+// reference; a flat curve is no curve (the fused image bitwise today's).
+TEST(Fusion, EachVolumeScalesItsOpacityByItsOwnGradientCurve) {
+    test::TempDir dir;
+    const auto view = core::View::orbit(glm::dvec3(0.0), 150.0, 30.0, 20.0, 128, 128);
+    const auto gA = grid({48, 48, 40}, {1.0, 1.0, 1.5}, glm::dmat3(1.0));
+    const auto gB = grid({40, 36, 44}, {1.3, 0.9, 1.1}, rotated());
+    // A faint base, so that the overlay's balls inside its own show through.
+    const auto red = solid({1, 0.2, 0.1}, 0.1), green = solid({0.1, 1, 0.2}, 0.5);
+    auto a = build(dir.file("a.hvo"), gA, markers(gA, 8.0), false, red, view);
+    auto b = build(dir.file("b.hvo"), gB, markers(gB, 6.0), false, green, view);
+    // The balls are uniform inside (|∇f| 0) and step from 0 to 200 at their surfaces.
+    auto redEdges = red, greenEdges = green, redFlat = red;
+    redEdges.setGradientOpacity({{0.0, 0.0}, {20.0, 1.0}});
+    greenEdges.setGradientOpacity({{10.0, 0.0}, {40.0, 1.0}});
+    redFlat.setGradientOpacity({{0.0, 1.0}, {50.0, 1.0}});
+    ASSERT_FALSE(redFlat.hasGradientOpacity());
+
+    render::EglOffscreenContext ctx;
+    render::GpuRayCaster gpu;
+    for (const bool shaded : {false, true}) {
+        core::RenderSettings rs;
+        rs.shading = shaded;
+        auto cpuFused = [&](const core::TransferFunction& ta, const core::TransferFunction& tb) {
+            return core::FusedRayCaster(core::CpuRayCaster(*a.reader, a.ws->index(), a.ws->slotData(), ta, rs),
+                                        core::CpuRayCaster(*b.reader, b.ws->index(), b.ws->slotData(), tb, rs))
+                .render(view);
+        };
+        auto gpuFused = [&](const core::TransferFunction& ta, const core::TransferFunction& tb) {
+            const render::GpuRayCaster::Overlay overlay{*b.reader, b.ws->index(), b.ws->slotBricks(), tb};
+            return gpu.render(*a.reader, a.ws->index(), a.ws->slotBricks(), ta, rs, view, &overlay);
+        };
+        const auto cpuPlain = cpuFused(red, green), gpuPlain = gpuFused(red, green);
+        EXPECT_EQ(test::psnr(cpuPlain, cpuFused(redFlat, green)), 99.0) << "a flat curve changed the CPU image";
+        EXPECT_EQ(test::psnr(gpuPlain, gpuFused(redFlat, green)), 99.0) << "a flat curve changed the GPU image";
+        const std::pair<const core::TransferFunction*, const core::TransferFunction*> cases[] = {
+            {&redEdges, &green}, {&red, &greenEdges}, {&redEdges, &greenEdges}};
+        const char* names[] = {"base's curve", "overlay's curve", "both curves"};
+        for (int i = 0; i < 3; ++i) {
+            const auto cpu = cpuFused(*cases[i].first, *cases[i].second);
+            const auto gl = gpuFused(*cases[i].first, *cases[i].second);
+            const double db = test::psnr(cpu, gl), change = test::psnr(cpu, cpuPlain);
+            std::printf("fused, %s, %s: GPU vs CPU %.1f dB; against no curve %.1f dB\n", shaded ? "shaded" : "unshaded",
+                        names[i], db, change);
+            EXPECT_GT(db, 80.0) << names[i];
+            EXPECT_LT(change, 40.0) << names[i] << ": the curve changed little, the test would not see it ignored";
+        }
+    }
+}
