@@ -157,19 +157,32 @@ TEST(Refraction, GpuEqualsTheCpuReferenceAndAnIndexOfOneIsNoRefraction) {
     const auto cpu = core::CpuRayCaster(*s.reader, s.ws->index(), s.ws->slotData(), water, rs).render(view);
     const auto gl = gpu.render(*s.reader, s.ws->index(), s.ws->slotBricks(), water, rs, view);
     const double db = test::psnr(cpu, gl), change = test::psnr(cpu, cpuPlain);
+    // How far the CPU reference departs from itself when every ray starts 0.1 µm to the side.
+    auto nudged = view;
+    nudged.eye += glm::dvec3(1e-4, 0.0, 0.0);
+    nudged.target += glm::dvec3(1e-4, 0.0, 0.0);
+    const double selfDb = test::psnr(cpu, core::CpuRayCaster(*s.reader, s.ws->index(), s.ws->slotData(), water, rs).render(nudged));
+    const double plainSelfDb =
+        test::psnr(cpuPlain, core::CpuRayCaster(*s.reader, s.ws->index(), s.ws->slotData(), plain, rs).render(nudged));
     std::size_t apart = 0;  // pixels more than 0.02 apart
     for (std::size_t i = 0; i < cpu.rgba.size(); ++i) apart += glm::length(cpu.rgba[i] - gl.rgba[i]) > 0.02f;
     std::printf("refract stepper bending nothing vs the plain march %.1f dB; body at ν 1.33: GPU vs CPU %.1f dB "
-                "(%zu of %zu pixels more than 0.02 apart), against no refraction %.1f dB\n",
-                straightDb, db, apart, cpu.rgba.size(), change);
+                "(%zu of %zu pixels more than 0.02 apart), against no refraction %.1f dB; the CPU reference against "
+                "itself with the camera 0.1 µm aside: %.1f dB refracted, %.1f dB straight\n",
+                straightDb, db, apart, cpu.rgba.size(), change, selfDb, plainSelfDb);
     EXPECT_GT(straightDb, 45.0);
-    // A bent ray carries each float rounding of its samples and normals on to every later step:
-    // its path drifts apart by a tiny distance, which the phantom's noisy tissue (large value
-    // changes per voxel) turns into visible differences along a semi-transparent path. So the two
-    // agree pixel for pixel but for scattered rays (0.5 % measured); the slab above, with smooth
-    // boundaries and clear air, agrees to > 80 dB.
+    // A bent ray carries each rounding of its samples and normals on to every later step, and
+    // the phantom's noisy tissue (large value changes per voxel) turns a path drifted by a tiny
+    // distance into a visible difference: the CPU reference itself, with every ray started
+    // 0.1 µm aside, departs from its own image as far as the GPU does (48.4 vs 49.0 dB
+    // measured), while the straight march moves by nothing visible (> 100 dB). So on noisy data
+    // no two implementations agree to 80 dB unless bit for bit; the test holds the GPU to the
+    // reference's own sensitivity (3 dB of slack) and to scattered rays (0.5 % measured); the
+    // slab above, smooth boundaries in clear air, agrees to > 80 dB.
+    EXPECT_LT(selfDb, 60.0) << "the data no longer amplifies a ray's drift: hold the GPU to 80 dB here";
+    EXPECT_GT(plainSelfDb, 90.0);
+    EXPECT_GT(db, selfDb - 3.0) << "the GPU departs from the reference more than the reference from itself";
     EXPECT_LT(apart, cpu.rgba.size() / 100) << "more than 1 % of the pixels differ";
-    EXPECT_GT(db, 45.0);
     EXPECT_LT(change, 40.0) << "refraction changes the image";
     // Refraction is drawn without the tools (a sentence, not a plausible image).
     auto withTools = rs;
