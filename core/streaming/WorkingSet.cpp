@@ -217,15 +217,34 @@ const SpatialIndex& WorkingSet::update(const std::vector<View>& views, const Tra
     } else if (!skip(0, clips, tf)) {
         complete = false;
     }
-    std::vector<std::uint32_t> slots;
-    for (auto id : cut_) slots.push_back(nodeSlot_.count(id) ? nodeSlot_[id] : SpatialIndex::kNone);
-    index_ = SpatialIndex::build(reader_, cut_, slots);
-    // Every node refined this frame was resident this frame and keeps its slot: each leaf's
-    // parent is there for multilevel sampling.
-    index_.linkParents(reader_, [this](std::uint32_t id) {
+    auto slotOf = [this](std::uint32_t id) {
         const auto it = nodeSlot_.find(id);
         return it == nodeSlot_.end() ? SpatialIndex::kNone : it->second;
-    });
+    };
+    std::vector<std::uint32_t> slots;
+    slots.reserve(cut_.size());
+    for (auto id : cut_) slots.push_back(slotOf(id));
+    // The index depends on the set of cut nodes, their slots and their parents' slots, not on
+    // the order refinement found them in: a view whose cut stays keeps its index, and neither
+    // build nor linkParents runs.
+    std::vector<glm::uvec3> key;
+    key.reserve(cut_.size());
+    for (std::size_t i = 0; i < cut_.size(); ++i)
+        key.push_back({cut_[i], slots[i], nodes[cut_[i]].parent == hvo::kNoNode ? SpatialIndex::kNone : slotOf(nodes[cut_[i]].parent)});
+    std::sort(key.begin(), key.end(), [](const glm::uvec3& a, const glm::uvec3& b) { return a.x < b.x; });
+    stats_.levelsMs = 0.0;
+    stats_.indexRebuilt = !indexBuilt_ || key != indexKey_;
+    if (stats_.indexRebuilt) {
+        index_ = SpatialIndex::build(reader_, cut_, slots);
+        // Every node refined this frame was resident this frame and keeps its slot: each leaf's
+        // parent is there for multilevel sampling.
+        const auto tLevels = std::chrono::steady_clock::now();
+        index_.linkParents(reader_, slotOf);
+        stats_.levelsMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tLevels).count();
+        indexKey_ = std::move(key);
+        indexBuilt_ = true;
+    }
+    stats_.blendingLeaves = index_.blendingLeaves;
     stats_.cutNodes = cut_.size();
     stats_.finestLevel = reader_.levelCount() - 1;
     stats_.coarsestLevel = 0;

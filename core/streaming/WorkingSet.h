@@ -7,6 +7,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
 #include "core/streaming/BrickCache.h"
@@ -64,6 +65,9 @@ public:
 
     struct FrameStats {
         double refineMs = 0;
+        double levelsMs = 0;  ///< of refineMs, linking each leaf to its parent (SpatialIndex::linkParents)
+        std::size_t blendingLeaves = 0;  ///< leaves that blend with their parent (SpatialIndex::blendingLeaves)
+        bool indexRebuilt = false;  ///< the cut, a slot or a parent's slot changed: the index was built anew
         std::size_t cutNodes = 0, emptyLeaves = 0, requested = 0, uploads = 0, uploadBytes = 0, slotsUsed = 0;
         bool complete = false;  ///< every cut node met the target (nothing waited for data)
         int finestLevel = 0, coarsestLevel = 0;  ///< octree levels of the cut (0: full resolution)
@@ -106,6 +110,9 @@ private:
     OctreeSpace space_;
     SpatialIndex index_;
     std::vector<std::uint32_t> cut_;
+    // What index_ was built from: (cut node, its slot, its parent's slot) by node id.
+    std::vector<glm::uvec3> indexKey_;
+    bool indexBuilt_ = false;
     std::vector<std::uint32_t> slotNode_;
     std::vector<std::uint64_t> slotStamp_;
     std::set<std::pair<std::uint64_t, std::uint32_t>> slotsByStamp_;  // least recently used first

@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
                 loader.loadedCount(), ws.stats().refineMs);
     std::fflush(stdout);
     // Orbit: 10 degrees per frame, loading in the background, never waiting.
-    double refineSum = 0, refineMax = 0;
+    double refineSum = 0, refineMax = 0, levelsSum = 0, levelsMax = 0;
+    std::size_t blendingSum = 0, cutSum = 0, rebuilt = 0;
     std::size_t loadedBefore = loader.loadedCount(), loadsMax = 0, complete = 0;
     for (int f = 1; f <= frames; ++f) {
         const auto f0 = Clock::now();
@@ -90,10 +91,18 @@ int main(int argc, char** argv) {
         ws.update({viewAt(10.0 * f)}, tf);
         refineSum += ws.stats().refineMs;
         refineMax = std::max(refineMax, ws.stats().refineMs);
+        levelsSum += ws.stats().levelsMs;
+        levelsMax = std::max(levelsMax, ws.stats().levelsMs);
+        blendingSum += ws.stats().blendingLeaves;
+        cutSum += ws.stats().cutNodes;
+        rebuilt += ws.stats().indexRebuilt;
         complete += ws.stats().complete;
         std::this_thread::sleep_until(f0 + frameTime);
         loadsMax = std::max(loadsMax, loader.loadedCount() - l0);
     }
+    std::printf("of which linking leaves to parents (multilevel sampling): %.3f ms/frame (max %.3f; the index built "
+                "anew in %zu of %d frames), %.1f of %.1f cut leaves blending per frame\n",
+                levelsSum / frames, levelsMax, rebuilt, frames, double(blendingSum) / frames, double(cutSum) / frames);
     struct rusage ru {};
     getrusage(RUSAGE_SELF, &ru);
     const double rssMiB = double(ru.ru_maxrss) / 1024.0;
