@@ -115,22 +115,14 @@ RenderControls::RenderControls(QWidget* parent)
     subFrames_->setToolTip(tr("While the view moves, draw a quarter of the pixels each frame (a quincunx sub-frame) and "
                               "rebuild the image from the last four, sharp where it stands still (thesis \u00a73.3); off: "
                               "whole frames at a lower resolution. Still views are always drawn whole."));
-    subFrames_->setChecked(QSettings().value("view/frameReconstruction", false).toBool());
-    connect(subFrames_, &QCheckBox::toggled, this, [this](bool on) {
-        QSettings().setValue("view/frameReconstruction", on);
-        emit changed();
-    });
+    remember(subFrames_, "view/frameReconstruction", false);
     form->addRow(QString(), subFrames_);
     multilevel_->setObjectName("multilevel");
     multilevel_->setToolTip(tr("Multilevel sampling (thesis \u00a73.2.2): where a brick meets a coarser one, its samples "
                                "blend with the coarser level towards the shared face, so that no seam shows between levels "
                                "of detail. Trilinear images; a label map, nearest, split-voxels and a fused volume "
                                "sample each brick's own level."));
-    multilevel_->setChecked(QSettings().value("view/multilevel", kMultilevelDefault).toBool());
-    connect(multilevel_, &QCheckBox::toggled, this, [this](bool on) {
-        QSettings().setValue("view/multilevel", on);
-        emit changed();
-    });
+    remember(multilevel_, "view/multilevel", kMultilevelDefault);
     form->addRow(QString(), multilevel_);
     connect(mode_, &QComboBox::currentIndexChanged, this, [this](int m) {
         iso_->setEnabled(m == 1);
@@ -144,6 +136,14 @@ RenderControls::RenderControls(QWidget* parent)
     for (auto* s : {boundary_, viewTransparency_, quality_, unsharp_, exaggerated_})
         connect(s, &QSlider::valueChanged, this, &RenderControls::changed);
     connect(refraction_, &QSlider::valueChanged, this, &RenderControls::refractionChanged);
+}
+
+void RenderControls::remember(QCheckBox* box, const QString& key, bool fallback) {
+    box->setChecked(QSettings().value(key, fallback).toBool());
+    connect(box, &QCheckBox::toggled, this, [this, key](bool on) {
+        QSettings().setValue(key, on);
+        emit changed();
+    });
 }
 
 void RenderControls::setVolume(double slope, double intercept, double physicalMin, double physicalMax, bool ct) {

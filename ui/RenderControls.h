@@ -55,6 +55,8 @@ signals:
     void compareRequested();
 
 private:
+    /// Checks `box` as QSettings remembers `key` (`fallback` the first time) and remembers each toggle.
+    void remember(QCheckBox* box, const QString& key, bool fallback);
     QComboBox* mode_;
     QComboBox* reconstruction_;
     QCheckBox* shading_;
