@@ -615,7 +615,17 @@ void MainWindow::applyTransferFunction() {
             return view_->setTransferFunction(core::TransferFunction::forLabels(
                 core::LabelTable::forLabelMap(reader_->path(), g.valueMin, g.valueMax), 1.0, referenceLength_));
         auto tf = tfEditor_->transferFunction(referenceLength_);
-        if (controls_->refractionIndex() > 1.0) tf.setRefraction(tf.refractionByOpacity(controls_->refractionIndex()));
+        // The dock's one number draws ν by opacity in place of the editor's own curve; the
+        // editor's row shows what is drawn.
+        if (const double nu = controls_->refractionIndex(); nu > 1.0) {
+            tf.setRefraction(tf.refractionByOpacity(nu));
+            tfEditor_->showRefractionSetElsewhere(
+                tr("Refraction %1 by opacity, set in the Rendering dock: set it to 1.00 there to draw this row's own curve")
+                    .arg(nu, 0, 'f', 2),
+                tf.refraction());
+        } else {
+            tfEditor_->showRefractionSetElsewhere({}, {});
+        }
         view_->setTransferFunction(tf);
     } catch (const core::Error& e) {
         showError(QString::fromStdString(e.what()));

@@ -9,6 +9,7 @@
 
 #include "core/base/Error.h"
 #include "ui/GradientOpacityCanvas.h"
+#include "ui/RefractionCanvas.h"
 #include "ui/TransferFunctionCanvas.h"
 #include "ui/TransferFunctionFiles.h"
 
@@ -16,7 +17,7 @@ namespace hvx::ui {
 
 TransferFunctionEditor::TransferFunctionEditor(QWidget* parent)
     : QWidget(parent), canvas_(new TransferFunctionCanvas(this)), gradient_(new GradientOpacityCanvas(this)),
-      presets_(new QComboBox(this)) {
+      refraction_(new RefractionCanvas(this)), presets_(new QComboBox(this)) {
     presets_->setObjectName("tfPresets");
     presets_->setToolTip(tr("Built-in transfer functions"));
     for (const auto& n : core::TransferFunction::presetNames()) presets_->addItem(QString::fromStdString(n));
@@ -36,14 +37,22 @@ TransferFunctionEditor::TransferFunctionEditor(QWidget* parent)
     layout->addLayout(row);
     layout->addWidget(canvas_, 1);
     layout->addWidget(gradient_);
+    layout->addWidget(refraction_);
     connect(presets_, &QComboBox::activated, this, [this](int i) { applyPreset(presets_->itemText(i)); });
     connect(canvas_, &TransferFunctionCanvas::edited, this, [this] {
         gradient_->setPoints(canvas_->spec().gradientOpacity);  // window/level scales the gradients too
+        refraction_->setPoints(canvas_->spec().refraction);     // and moves the refraction points with the values
         emit changed();
     });
     connect(gradient_, &GradientOpacityCanvas::edited, this, [this] {
         auto s = canvas_->spec();
         s.gradientOpacity = gradient_->points();
+        canvas_->setSpec(s);
+        emit changed();
+    });
+    connect(refraction_, &RefractionCanvas::edited, this, [this] {
+        auto s = canvas_->spec();
+        s.refraction = refraction_->points();
         canvas_->setSpec(s);
         emit changed();
     });
@@ -59,6 +68,7 @@ void TransferFunctionEditor::setVolume(double valueMin, double valueMax, double 
     canvas_->setRange(valueMin, valueMax, slope, intercept);
     canvas_->setHistogram(histogram);
     gradient_->setVolume(slope, histogram);
+    refraction_->setVolume(valueMin, valueMax, slope, intercept, histogram);
     const QString preset = modality == "CT" ? "ct-bone" : "mr-default";
     presets_->setCurrentText(preset);
     applyPreset(preset);
@@ -72,6 +82,7 @@ void TransferFunctionEditor::applyPreset(const QString& name) {
         presets_->setCurrentText(name);
         canvas_->setSpec(core::TransferFunctionSpec::from(tf));
         gradient_->setPoints({});
+        refraction_->setPoints({});
         emit changed();
     } catch (const core::Error& e) {
         emit failed(QString::fromStdString(e.what()));
@@ -83,7 +94,13 @@ const core::TransferFunctionSpec& TransferFunctionEditor::spec() const { return 
 void TransferFunctionEditor::setSpec(const core::TransferFunctionSpec& storedUnits) {
     canvas_->setSpec(storedUnits);
     gradient_->setPoints(storedUnits.gradientOpacity);
+    refraction_->setPoints(storedUnits.refraction);
     emit changed();
+}
+
+void TransferFunctionEditor::showRefractionSetElsewhere(const QString& why,
+                                                        const std::vector<core::TransferFunction::RefractionPoint>& drawn) {
+    refraction_->showFixed(why, drawn);
 }
 
 core::TransferFunction TransferFunctionEditor::transferFunction(double referenceLength) const {

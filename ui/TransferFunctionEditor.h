@@ -11,6 +11,7 @@ class QComboBox;
 namespace hvx::ui {
 
 class GradientOpacityCanvas;
+class RefractionCanvas;
 class TransferFunctionCanvas;
 
 /// The transfer-function editor dock: a log-scaled histogram of the volume under a
@@ -19,7 +20,8 @@ class TransferFunctionCanvas;
 /// the colour picker, right-click to remove), a window/level drag (middle or Ctrl+drag: left/
 /// right shifts, up/down widens or narrows the whole function), presets, load/save, and import
 /// of 3D Slicer presets.xml and ParaView colour maps; under them the gradient-opacity row
-/// (GradientOpacityCanvas). Every edit emits changed() at once.
+/// (GradientOpacityCanvas) and the refraction row (RefractionCanvas). Every edit emits changed()
+/// at once.
 ///
 /// Threading: GUI thread only.
 class TransferFunctionEditor : public QWidget {
@@ -39,6 +41,11 @@ public:
     core::TransferFunction transferFunction(double referenceLength) const;
     TransferFunctionCanvas* canvas() const { return canvas_; }
     GradientOpacityCanvas* gradientCanvas() const { return gradient_; }
+    RefractionCanvas* refractionCanvas() const { return refraction_; }
+    /// While refraction is set elsewhere (the Rendering dock's one number), the refraction row
+    /// shows that curve (stored units) read-only and says `why`; empty `why`: the row edits the
+    /// spec's own curve again.
+    void showRefractionSetElsewhere(const QString& why, const std::vector<core::TransferFunction::RefractionPoint>& drawn);
     QComboBox* presets() const { return presets_; }
 
     void load(const QString& path);
@@ -58,6 +65,7 @@ private:
 
     TransferFunctionCanvas* canvas_;
     GradientOpacityCanvas* gradient_;
+    RefractionCanvas* refraction_;
     QComboBox* presets_;
     double slope_ = 1, intercept_ = 0;
 };

@@ -40,6 +40,7 @@
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "ui/GradientOpacityCanvas.h"
+#include "ui/RefractionCanvas.h"
 #include "ui/JobManager.h"
 #include "ui/JobsPanel.h"
 #include "ui/LightFieldPanel.h"
@@ -229,6 +230,51 @@ private slots:
         QVERIFY(!view()->levelReadout().contains("refraction"));
         window_->setTools(core::ToolSet{});
         QVERIFY(psnr(settledFrame().convertToFormat(QImage::Format_RGB32), plain) > 90.0);
+    }
+
+    // The transfer-function editor's refraction row: two clicks draw ν rising from 1 to 1.3
+    // where ct-bone's opacity rises, so that the bone refracts (a step within the phantom's noisy
+    // air, lung or soft tissue scatters rays like frosted glass, as the slider's curve by opacity
+    // does not); the 3D view draws what the CPU reference draws with that curve. While the dock's slider is on, the row shows the slider's curve read-only and takes
+    // no clicks; removing the points brings the frame back.
+    void refractionRowDrawsItsOwnCurve() {
+        auto* editor = window_->tfEditor();
+        auto* row = editor->refractionCanvas();
+        QVERIFY(row->isVisible());
+        QVERIFY(!row->readOnly());
+        editor->applyPreset("ct-bone");
+        const QImage plain = settledFrame().convertToFormat(QImage::Format_RGB32);
+        const auto& g = reader_->geometry();
+        auto stored = [&](double hu) { return (hu - g.rescaleIntercept) / g.rescaleSlope; };
+        QTest::mouseClick(row, Qt::LeftButton, {}, row->position(stored(100.0), 1.0).toPoint());
+        QTest::mouseClick(row, Qt::LeftButton, {}, row->position(stored(300.0), 1.3).toPoint());
+        const auto curve = editor->spec().refraction;
+        QCOMPARE(curve.size(), std::size_t(2));
+        QVERIFY2(std::abs(curve.front().index - 1.0) < 0.03 && std::abs(curve.back().index - 1.3) < 0.03,
+                 qPrintable(QString("ν %1 to %2").arg(curve.front().index).arg(curve.back().index)));
+        const QImage bent = settledFrame().convertToFormat(QImage::Format_RGB32);
+        bent.save(test::guiArtifacts() + "/view-refraction-row.png");
+        const double db = psnr(bent, reference(bent)), change = psnr(bent, plain);
+        qInfo("refraction row (ν 1 to 1.3 from 100 to 300 HU): the 3D view vs the CPU reference %.1f dB, vs none %.1f dB", db,
+              change);
+        QVERIFY2(db > 45.0, qPrintable(QString("%1 dB").arg(db)));
+        QVERIFY2(change < 40.0, qPrintable(QString("%1 dB from no refraction").arg(change)));
+        // The dock's one number takes over, and the row says so and shows its curve.
+        auto* slider = window_->renderControls()->findChild<QSlider*>("refraction");
+        slider->setValue(120);
+        QVERIFY(row->readOnly());
+        QVERIFY2(row->toolTip().contains("Rendering dock"), qPrintable(row->toolTip()));
+        QTest::mouseClick(row, Qt::LeftButton, {}, row->position(stored(500.0), 1.2).toPoint());
+        QCOMPARE(editor->spec().refraction.size(), std::size_t(2));
+        slider->setValue(100);
+        QVERIFY(!row->readOnly());
+        for (int i = 0; i < 2; ++i) {
+            const auto& q = editor->spec().refraction.front();
+            QTest::mouseClick(row, Qt::RightButton, {}, row->position(q.value, q.index).toPoint());
+        }
+        QVERIFY(editor->spec().refraction.empty());
+        const double back = psnr(settledFrame().convertToFormat(QImage::Format_RGB32), plain);
+        QVERIFY2(back > 60.0, qPrintable(QString("without the curve the frame differs: %1 dB").arg(back)));
     }
 
     void standardViewKeysTurnTheCamera() {
