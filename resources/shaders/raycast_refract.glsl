@@ -54,78 +54,101 @@ vec4 castRayRefract(vec3 ow, vec3 dw, out float depth) {
     bool clear = false;  // the ray has crossed clear space (index 1) since its last segment
     float sPrev = 0.0, pPrev = 0.0, iPrev = 0.0, nuPrev = 1.0, voxel = 1.0;
     vec3 normal = vec3(0.0);  // the last boundary's gradient (see below)
+    vec3 inv = rayInverse(d);  // d's, until it bends
+    float step = 1.0;          // the leaf's voxel along d (mm), set with the leaf and after a bend
     LeafSampler L;
-    for (int guard = 0; guard < 262144; ++guard) {
-        if (!inBrick) {  // p lies in leaf n
-            uvec4 nd = hvxNodes[n];
-            if (nd.x == HVX_NONE) {  // empty: straight across
-                float tExit = 0.0;
-                int face = hvxExitFace(p, rayInverse(d), lo, hi, tExit);
-                float across = max(tExit, 0.0) + nudge / length(d);
-                vec3 q = p + across * d;
-                if (!insideBox(q, cropLo.xyz, cropHi.xyz)) break;
-                if (!hvxNextLeaf(0u, p, d, face, max(tExit, 0.0), nudge / length(d), n, lo, hi)) break;
+    bool done = false;
+    // Two nested loops, as raycast_march.glsl's: the inner one takes the cheap steps (a sample,
+    // its opacity and index) until one shows or changes the index; shading, compositing and the
+    // bend then run once for the SIMD lanes that stopped together. The steps are those of one
+    // loop doing everything, in the same operations.
+    for (int guard = 0; guard < 262144 && !done;) {
+        bool significant = false;
+        float s = 0.0, pS = 0.0, iS = 0.0, a = 0.0, nu = 1.0;
+        for (; guard < 262144; ++guard) {
+            if (!inBrick) {  // p lies in leaf n
+                uvec4 nd = hvxNodes[n];
+                if (nd.x == HVX_NONE) {  // empty: straight across
+                    float tExit = 0.0;
+                    int face = hvxExitFace(p, inv, lo, hi, tExit);
+                    float across = max(tExit, 0.0) + nudge / length(d);
+                    vec3 q = p + across * d;
+                    if (!insideBox(q, cropLo.xyz, cropHi.xyz)) { done = true; break; }
+                    if (!hvxNextLeaf(0u, p, d, face, max(tExit, 0.0), nudge / length(d), n, lo, hi)) { done = true; break; }
+                    p = q;
+                    t += across;
+                    havePrev = false;
+                    clear = true;
+                    continue;
+                }
+                if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);  // visibility feedback
+                L = leafSampler(n, nd, lo);
+                voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
+                step = tfRange.w * voxel / length(d);
+                inBrick = true;
+            }
+            // A cell that neither shows nor refracts (core::BrickCells under TransferFunction::isEmpty,
+            // which counts an index ≠ 1 as content) bends nothing: the ray lands on its last step
+            // before the cell's exit, on its own steps, and goes on from there (as raycast_march.glsl).
+            float dt = step;  // this step's length (a step into another leaf keeps this leaf's)
+            float cellExit;
+            if (!cellVisible(L, p, p, inv, cellExit)) {
+                float k = ceil(cellExit / dt);  // p + k·dt: the first step past the exit
+                if (k >= 3.0) {
+                    p += (k - 1.0) * dt * d;
+                    t += (k - 1.0) * dt;
+                    if (!insideBox(p, cropLo.xyz, cropHi.xyz)) { done = true; break; }
+                    havePrev = false;
+                    clear = true;
+                }
+            }
+            if (!havePrev) {  // the chain of segments starts here: after clear space in index 1,
+                sPrev = leafSample(L, p);  // on entering the volume in the medium found (a cut is no boundary)
+                pPrev = tfPosition(sPrev);
+                iPrev = tfOpacityIntegralAt(pPrev);
+                nuPrev = clear ? 1.0 : tfSegmentRefraction(sPrev, sPrev);
+                havePrev = true;
+            }
+            vec3 q = p + dt * d;
+            if (!insideBox(q, cropLo.xyz, cropHi.xyz)) { done = true; break; }
+            if (!insideLeaf(q, lo, hi)) {  // the step ended in another leaf
+                n = 0u;
+                lo = vec3(0.0);
+                hi = vec3(1.0);
+                hvxDescend(0u, n, lo, hi, q);
+                uvec4 nd = hvxNodes[n];
                 p = q;
-                t += across;
-                havePrev = false;
-                clear = true;
-                continue;
+                t += dt;
+                inBrick = false;
+                if (nd.x == HVX_NONE) {
+                    havePrev = false;
+                    clear = true;
+                    continue;
+                }
+                if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);
+                L = leafSampler(n, nd, lo);
+                voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
+                step = tfRange.w * voxel / length(d);
+                inBrick = true;
+            } else {
+                p = q;
+                t += dt;
             }
-            if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);  // visibility feedback
-            L = leafSampler(n, nd, lo);
-            voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
-            inBrick = true;
-        }
-        // A cell that neither shows nor refracts (core::BrickCells under TransferFunction::isEmpty,
-        // which counts an index ≠ 1 as content) bends nothing: the ray lands on its last step
-        // before the cell's exit, on its own steps, and goes on from there (as raycast_march.glsl).
-        float dt = tfRange.w * voxel / length(d);
-        float cellExit;
-        if (!cellVisible(L, p, p, rayInverse(d), cellExit)) {
-            float k = ceil(cellExit / dt);  // p + k·dt: the first step past the exit
-            if (k >= 3.0) {
-                p += (k - 1.0) * dt * d;
-                t += (k - 1.0) * dt;
-                if (!insideBox(p, cropLo.xyz, cropHi.xyz)) break;
-                havePrev = false;
-                clear = true;
+            s = leafSample(L, p);
+            pS = tfPosition(s);
+            iS = tfOpacityIntegralAt(pS);
+            a = 1.0 - exp(-tfSegmentOpacity(sPrev, s, pPrev, iPrev, pS, iS) * dt);
+            nu = tfSegmentRefraction(sPrev, s);
+            if (a > 1e-6 || abs(nu - nuPrev) > 1e-5) {
+                significant = true;
+                ++guard;
+                break;
             }
+            sPrev = s;
+            pPrev = pS;
+            iPrev = iS;
         }
-        if (!havePrev) {  // the chain of segments starts here: after clear space in index 1,
-            sPrev = leafSample(L, p);  // on entering the volume in the medium found (a cut is no boundary)
-            pPrev = tfPosition(sPrev);
-            iPrev = tfOpacityIntegralAt(pPrev);
-            nuPrev = clear ? 1.0 : tfSegmentRefraction(sPrev, sPrev);
-            havePrev = true;
-        }
-        vec3 q = p + dt * d;
-        if (!insideBox(q, cropLo.xyz, cropHi.xyz)) break;
-        if (!insideLeaf(q, lo, hi)) {  // the step ended in another leaf
-            n = 0u;
-            lo = vec3(0.0);
-            hi = vec3(1.0);
-            hvxDescend(0u, n, lo, hi, q);
-            uvec4 nd = hvxNodes[n];
-            p = q;
-            t += dt;
-            inBrick = false;
-            if (nd.x == HVX_NONE) {
-                havePrev = false;
-                clear = true;
-                continue;
-            }
-            if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);
-            L = leafSampler(n, nd, lo);
-            voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
-            inBrick = true;
-        } else {
-            p = q;
-            t += dt;
-        }
-        float s = leafSample(L, p);
-        float pS = tfPosition(s), iS = tfOpacityIntegralAt(pS);
-        float a = 1.0 - exp(-tfSegmentOpacity(sPrev, s, pPrev, iPrev, pS, iS) * dt);
-        float nu = tfSegmentRefraction(sPrev, s);
+        if (!significant) break;
         if (a > 1e-6) {
             vec4 f = tfSegment(sPrev, s);
             vec3 c = shadeSample(L, p, f.rgb / f.w, w, a);
@@ -140,6 +163,8 @@ vec4 castRayRefract(vec3 ow, vec3 dw, out float depth) {
             if (dot(normal, normal) > 0.0) {
                 w = hvxRefractStep(w, normal, nuPrev, nu);
                 d = mat3(patientToOctree) * w;
+                inv = rayInverse(d);
+                step = tfRange.w * voxel / length(d);
                 nuPrev = nu;
             }
         }
