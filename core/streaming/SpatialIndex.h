@@ -28,6 +28,9 @@ struct SpatialIndex {
     /// How many leaves `levels` has blend with their parent (none: multilevel sampling draws
     /// what sampling each leaf's own level draws, and the ray casters skip it).
     std::size_t blendingLeaves = 0;
+    /// Of those, how many touch a leaf two or more levels coarser: the blend reaches their
+    /// parent's level there, not the neighbour's (a seam of one level remains).
+    std::size_t steepLeaves = 0;
 
     static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
     static constexpr std::uint32_t kLeafBit = 0x100u;

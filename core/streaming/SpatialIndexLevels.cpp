@@ -38,6 +38,7 @@ constexpr auto kNeighbours = neighbours();
 void SpatialIndex::linkParents(const OctreeReader& reader, const std::function<std::uint32_t(std::uint32_t)>& slotOf) {
     levels.assign(nodes.size(), glm::uvec2(kNone, 0u));
     blendingLeaves = 0;
+    steepLeaves = 0;
     const auto& hn = reader.nodes();
     const int top = int(reader.levelCount()) - 1;
     for (std::size_t i = 0; i < nodes.size(); ++i) {
@@ -55,17 +56,22 @@ void SpatialIndex::linkParents(const OctreeReader& reader, const std::function<s
         // is it; a leaf as fine or finer there means no coarser one touches that side. Corners
         // within the volume only: outside it there are no leaves.
         std::uint32_t corners = 0;
+        bool steep = false;
         for (const auto& nb : kNeighbours) {
-            if ((corners & nb.corners) == nb.corners) continue;
+            if ((corners & nb.corners) == nb.corners && steep) continue;
             const glm::dvec3 centre = lo + size * (glm::dvec3(nb.offset) + 0.5);
             if (centre.x < 0 || centre.y < 0 || centre.z < 0 || centre.x >= 1 || centre.y >= 1 || centre.z >= 1) continue;
             std::uint32_t j = 0;  // the leaf holding it (the traversal's own descent)
             glm::vec3 boxLo(0.0f), boxHi(1.0f);
             glsl::hvxDescend(*this, j, boxLo, boxHi, glm::vec3(centre));
-            if (nodes[j].x != kNone && (nodes[j].y & 0xFFu) < depth) corners |= nb.corners;
+            if (nodes[j].x != kNone && (nodes[j].y & 0xFFu) < depth) {
+                corners |= nb.corners;
+                steep = steep || (nodes[j].y & 0xFFu) + 1 < depth;
+            }
         }
         levels[i] = glm::uvec2(parentSlot, corners);
         blendingLeaves += corners != 0u;
+        steepLeaves += steep;
     }
 }
 

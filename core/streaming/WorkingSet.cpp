@@ -245,6 +245,7 @@ const SpatialIndex& WorkingSet::update(const std::vector<View>& views, const Tra
         indexBuilt_ = true;
     }
     stats_.blendingLeaves = index_.blendingLeaves;
+    stats_.steepLeaves = index_.steepLeaves;
     stats_.cutNodes = cut_.size();
     stats_.finestLevel = reader_.levelCount() - 1;
     stats_.coarsestLevel = 0;

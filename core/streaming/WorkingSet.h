@@ -67,6 +67,7 @@ public:
         double refineMs = 0;
         double levelsMs = 0;  ///< of refineMs, linking each leaf to its parent (SpatialIndex::linkParents)
         std::size_t blendingLeaves = 0;  ///< leaves that blend with their parent (SpatialIndex::blendingLeaves)
+        std::size_t steepLeaves = 0;  ///< of those, touching a leaf two or more levels coarser (SpatialIndex::steepLeaves)
         bool indexRebuilt = false;  ///< the cut, a slot or a parent's slot changed: the index was built anew
         std::size_t cutNodes = 0, emptyLeaves = 0, requested = 0, uploads = 0, uploadBytes = 0, slotsUsed = 0;
         bool complete = false;  ///< every cut node met the target (nothing waited for data)

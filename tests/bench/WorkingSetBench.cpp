@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
     // Orbit: 10 degrees per frame, loading in the background, never waiting.
     double refineSum = 0, refineMax = 0, levelsSum = 0, levelsMax = 0;
-    std::size_t blendingSum = 0, cutSum = 0, rebuilt = 0;
+    std::size_t blendingSum = 0, steepSum = 0, cutSum = 0, rebuilt = 0;
     std::size_t loadedBefore = loader.loadedCount(), loadsMax = 0, complete = 0;
     for (int f = 1; f <= frames; ++f) {
         const auto f0 = Clock::now();
@@ -94,6 +94,7 @@ int main(int argc, char** argv) {
         levelsSum += ws.stats().levelsMs;
         levelsMax = std::max(levelsMax, ws.stats().levelsMs);
         blendingSum += ws.stats().blendingLeaves;
+        steepSum += ws.stats().steepLeaves;
         cutSum += ws.stats().cutNodes;
         rebuilt += ws.stats().indexRebuilt;
         complete += ws.stats().complete;
@@ -101,8 +102,10 @@ int main(int argc, char** argv) {
         loadsMax = std::max(loadsMax, loader.loadedCount() - l0);
     }
     std::printf("of which linking leaves to parents (multilevel sampling): %.3f ms/frame (max %.3f; the index built "
-                "anew in %zu of %d frames), %.1f of %.1f cut leaves blending per frame\n",
-                levelsSum / frames, levelsMax, rebuilt, frames, double(blendingSum) / frames, double(cutSum) / frames);
+                "anew in %zu of %d frames), %.1f of %.1f cut leaves blending per frame, %.1f of them beside a leaf two or more "
+                "levels coarser\n",
+                levelsSum / frames, levelsMax, rebuilt, frames, double(blendingSum) / frames, double(cutSum) / frames,
+                double(steepSum) / frames);
     struct rusage ru {};
     getrusage(RUSAGE_SELF, &ru);
     const double rssMiB = double(ru.ru_maxrss) / 1024.0;

@@ -68,7 +68,7 @@ TEST(SpatialIndexLevels, ACornerIsMarkedExactlyWhereACoarserLeafWithABrickTouche
     const auto reader = core::OctreeReader::open(dir.file("p.hvo"));
     ASSERT_GE(reader->levelCount(), 4u);
     std::mt19937 rng(21);
-    std::size_t linked = 0, blending = 0, marked = 0;
+    std::size_t linked = 0, blending = 0, marked = 0, steepTotal = 0;
     for (std::uint32_t trial = 0; trial < 12; ++trial) {
         const auto cut = test::randomCut(*reader, rng, 0.55 + 0.03 * trial);
         std::vector<std::uint32_t> slots;
@@ -77,7 +77,7 @@ TEST(SpatialIndexLevels, ACornerIsMarkedExactlyWhereACoarserLeafWithABrickTouche
         idx.linkParents(*reader, [&](std::uint32_t id) { return slotOf(id, trial); });
         ASSERT_EQ(idx.levels.size(), idx.nodes.size());
         const auto boxes = leafBoxes(idx);
-        std::size_t blendingHere = 0;
+        std::size_t blendingHere = 0, steepHere = 0;
         for (std::size_t i = 0; i < idx.nodes.size(); ++i) {
             const auto& nd = idx.nodes[i];
             const bool leaf = nd.y & core::SpatialIndex::kLeafBit;
@@ -91,22 +91,32 @@ TEST(SpatialIndexLevels, ACornerIsMarkedExactlyWhereACoarserLeafWithABrickTouche
             ++linked;
             EXPECT_EQ(idx.levels[i].x, slotOf(reader->nodes()[nd.z].parent, trial));
             std::uint32_t want = 0;
+            bool steep = false;
             for (std::uint32_t c = 0; c < 8; ++c) {
                 const glm::dvec3 corner = glm::mix(boxes[i].lo, boxes[i].hi, glm::dvec3(c & 1u, (c >> 1) & 1u, (c >> 2) & 1u));
                 for (std::size_t j = 0; j < idx.nodes.size(); ++j) {
                     const auto& other = idx.nodes[j];
                     if (!(other.y & core::SpatialIndex::kLeafBit) || other.x == core::SpatialIndex::kNone) continue;
-                    if ((other.y & 0xFFu) < (nd.y & 0xFFu) && contains(boxes[j], corner)) want |= 1u << c;
+                    if ((other.y & 0xFFu) < (nd.y & 0xFFu) && contains(boxes[j], corner)) {
+                        want |= 1u << c;
+                        steep = steep || (other.y & 0xFFu) + 1 < (nd.y & 0xFFu);
+                    }
                 }
             }
             EXPECT_EQ(idx.levels[i].y, want) << "trial " << trial << ", leaf " << i;
             blendingHere += want != 0u;
+            steepHere += steep;
             marked += std::uint32_t(__builtin_popcount(want));
         }
         EXPECT_EQ(idx.blendingLeaves, blendingHere);
+        EXPECT_EQ(idx.steepLeaves, steepHere);
         blending += blendingHere;
+        steepTotal += steepHere;
     }
-    std::printf("%zu leaves linked to their parents, %zu of them blending, %zu corners marked\n", linked, blending, marked);
+    std::printf("%zu leaves linked to their parents, %zu of them blending (%zu beside a leaf two or more levels coarser), "
+                "%zu corners marked\n",
+                linked, blending, steepTotal, marked);
+    EXPECT_GT(steepTotal, 10u);
     EXPECT_GT(blending, 100u);  // the cuts mix levels: the check has corners to find
     EXPECT_GT(linked, blending);  // and leaves with none
 }
