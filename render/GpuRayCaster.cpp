@@ -276,8 +276,11 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     // Multilevel sampling (core::RenderSettings::multilevel) where some leaf blends with its
     // parent; with none, the plain variant draws the same image (+30 % a frame spared on llvmpipe).
     const int multilevel = settings.multilevel && !labels && !nearest && !split && !overlay && index.blendingLeaves > 0 ? 1 : 0;
+    // The detail shading's coarser gradient from the parent level, where the index links leaves to parents.
+    const int detailParent = detail && !index.levels.empty() ? 1 : 0;
     auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion + 16384 * gradient + 32768 * split +
-                              131072 * nearest + 262144 * detail + 524288 * refract + 1048576 * multilevel];
+                              131072 * nearest + 262144 * detail + 524288 * refract + 1048576 * multilevel +
+                              2097152 * detailParent];
     if (!program)
         program = std::make_unique<ComputeProgram>(
             ShaderLibrary::embedded(), "raycast.comp.glsl",
@@ -290,7 +293,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
                                      "HVX_SPLIT_SIGNED " + std::to_string(split == 2 ? 1 : 0),
                                      "HVX_NEAREST " + std::to_string(nearest), "HVX_DETAIL " + std::to_string(detail),
                                      "HVX_REFRACT " + std::to_string(refract),
-                                     "HVX_MULTILEVEL " + std::to_string(multilevel)});
+                                     "HVX_MULTILEVEL " + std::to_string(multilevel),
+                                     "HVX_DETAIL_PARENT " + std::to_string(detailParent)});
     if (refract)
         glNamedBufferData(buffers_[13], GLsizeiptr(tf.refractionTable().size() * sizeof(glm::vec2)),
                           tf.refractionTable().data(), GL_STREAM_DRAW);
@@ -411,7 +415,7 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, buffers_[11]);
     if (gradient) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, buffers_[12]);
     if (refract) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, buffers_[13]);
-    if (multilevel) {
+    if (multilevel || detailParent) {
         static_assert(sizeof(glm::uvec2) == 8, "std430 layout of uvec2");
         glNamedBufferData(buffers_[14], GLsizeiptr(index.levels.size() * sizeof(glm::uvec2)), index.levels.data(),
                           GL_STREAM_DRAW);

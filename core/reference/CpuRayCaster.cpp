@@ -33,6 +33,10 @@ CpuRayCaster::CpuRayCaster(const OctreeReader& reader, const SpatialIndex& index
     // Refraction (CpuRefractedRay.cpp) as the shader's HVX_REFRACT: DVR, without the tools or split-voxels.
     refracting_ = dvr && tf_.hasRefraction();
     multilevel_ = settings_.multilevel && !labels_ && !settings_.nearest && !reader_.splitVoxels() && index_.blendingLeaves > 0;
+    // As the shader's HVX_DETAIL_PARENT: the detail shading draws (tools apply in DVR only and
+    // switch it off there) and leaves know their parents.
+    detailParents_ = settings_.detailShading() && !(dvr && settings_.tools.any()) && !reader_.splitVoxels() &&
+                     !index_.levels.empty();
     if (refracting_ && (settings_.tools.any() || reader_.splitVoxels()))
         throw Error("refraction is drawn without the illustrative tools, a fused volume or split-voxels");
     if (settings_.skipEmptyCells && !reader_.splitVoxels() && (dvr || settings_.mode == RenderSettings::Mode::Iso)) {
@@ -110,17 +114,20 @@ CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafL
     // The leaf's grid origin in level voxels (from its box, not from a sample: samples just
     // outside the leaf read its border).
     L.origin = glm::floor(leafLo * float(1u << depth) + 0.5f) * float(reader_.brickSize()) - float(reader_.border());
-    if (levels && multilevel_ && depth > 0 && node < index_.levels.size()) {
+    if (levels && (multilevel_ || detailParents_) && depth > 0 && node < index_.levels.size()) {
         const glm::uvec2 lv = index_.levels[node];
-        if (lv.x != SpatialIndex::kNone && lv.y != 0u && lv.x < slots_.size() && slots_[lv.x]) {
+        const bool blends = multilevel_ && lv.y != 0u;
+        if (lv.x != SpatialIndex::kNone && (blends || detailParents_) && lv.x < slots_.size() && slots_[lv.x]) {
             L.parent = slots_[lv.x]->data();
             L.parentScale = L.scale * 0.5f;
             // the parent's box corner: the leaf's, rounded down to the parent's grid (exact in float)
             const float up = float(1u << (depth - 1));
             L.parentOrigin = glm::floor(leafLo * up + 0.25f) * float(reader_.brickSize()) - float(reader_.border());
-            L.corners = lv.y;
-            L.lo = leafLo;
-            L.size = 1.0f / float(1u << depth);
+            if (blends) {
+                L.corners = lv.y;
+                L.lo = leafLo;
+                L.size = 1.0f / float(1u << depth);
+            }
         }
     }
     return L;
@@ -147,7 +154,7 @@ float CpuRayCaster::levelWeight(const Leaf& L, const glm::vec3& p) {
 
 float CpuRayCaster::linear(const Leaf& L, const glm::vec3& p) const {
     const float own = trilinear(L.data, L.edge, L.scale, L.origin, p);
-    if (!L.parent) return own;
+    if (L.corners == 0u) return own;
     const float w = levelWeight(L, p);
     return own * (1.0f - w) + trilinear(L.parent, L.edge, L.parentScale, L.parentOrigin, p) * w;
 }
@@ -176,6 +183,15 @@ glm::vec3 CpuRayCaster::gradient(const Leaf& L, const glm::vec3& p, float spread
            (2.0f * h);
 }
 
+glm::vec3 CpuRayCaster::coarserGradient(const Leaf& L, const glm::vec3& p) const {
+    if (!L.parent) return gradient(L, p, 2.0f);
+    const float h = 1.0f / L.parentScale;  // one voxel of the parent's level
+    auto up = [&](const glm::vec3& q) { return trilinear(L.parent, L.edge, L.parentScale, L.parentOrigin, q); };
+    return glm::vec3(up(p + glm::vec3(h, 0, 0)) - up(p - glm::vec3(h, 0, 0)), up(p + glm::vec3(0, h, 0)) - up(p - glm::vec3(0, h, 0)),
+                     up(p + glm::vec3(0, 0, h)) - up(p - glm::vec3(0, 0, h))) /
+           (2.0f * h);
+}
+
 double CpuRayCaster::scaleByGradient(double a, double len) const {
     const double g = tf_.gradientScale(len), keep = 1.0 - a;
     return g <= 0.0 ? 0.0 : keep <= 0.0 ? 1.0 : 1.0 - std::pow(keep, g);
@@ -201,7 +217,7 @@ glm::dvec3 CpuRayCaster::shadeSample(const Leaf& L, const glm::vec3& p, const gl
     if (!settings_.shading) return base;
     if (len < 1e-9) return base * (settings_.ambient + settings_.diffuse);
     if (detail) {  // as raycast_march.glsl's shadeSample, in float like the shader
-        const glm::vec3 gs = glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f)));
+        const glm::vec3 gs = glm::vec3(normalToWorld_ * glm::dvec3(coarserGradient(L, p)));
         const glm::vec2 f = glsl::hvxDetailShading(glm::vec3(g), gs, glm::vec3(-dw), float(settings_.normalUnsharp),
                                                    float(settings_.exaggeratedShading),
                                                    std::min(1.0f, float(len) * float(strengthPerGradient_)));

@@ -64,9 +64,10 @@ private:
         float scale = 1.0f;  // octree units -> level voxels
         glm::vec3 origin{};  // the brick's first sample, in level voxels, less the border
         int edge = 0;
-        // Multilevel sampling (RenderSettings::multilevel), where a coarser leaf touches this one:
-        // the parent's brick, its scale and origin, the corners touched (SpatialIndex::levels)
-        // and the leaf's box (corner, size).
+        // The parent's brick, its scale and origin: for multilevel sampling
+        // (RenderSettings::multilevel) where a coarser leaf touches this one (corners != 0), with
+        // the corners touched (SpatialIndex::levels) and the leaf's box (corner, size); and for
+        // the detail shading's coarser gradient wherever the parent is resident.
         const float* parent = nullptr;
         float parentScale = 1.0f;
         glm::vec3 parentOrigin{};
@@ -89,6 +90,10 @@ private:
     glm::dvec4 segment(float a, float b) const { return labels_ ? tf_.entry(b) : tf_.segment(a, b); }
     double segmentExtinction(float a, float b) const { return labels_ ? tf_.entry(b).w : tf_.segmentExtinction(a, b); }
     glm::vec3 gradient(const Leaf& leaf, const glm::vec3& p, float spread = 1.0f) const;
+    /// The detail shading's coarser scale (brick_sampling.glsl's leafCoarserGradient): the
+    /// parent level's gradient one parent voxel apart where the leaf has its parent, else its own
+    /// at twice its spacing.
+    glm::vec3 coarserGradient(const Leaf& leaf, const glm::vec3& p) const;
     /// Shades a sample of colour `base` seen along dw and scales its opacity `a` by gradient
     /// opacity, boundary enhancement and view-dependent transparency, with one gradient for all
     /// (raycast_march.glsl's shadeSample).
@@ -104,7 +109,7 @@ private:
     /// A leaf's cells that may show: all of them where it blends with its parent, whose values
     /// its own brick's ranges do not bound.
     std::uint64_t leafCells(const Leaf& leaf, std::uint32_t slot) const {
-        return leaf.parent ? ~std::uint64_t(0) : visibleCells(slot);
+        return leaf.corners != 0u ? ~std::uint64_t(0) : visibleCells(slot);  // a blending leaf: the parent's values are not bounded by its cells
     }
 
     const OctreeReader& reader_;
@@ -118,6 +123,7 @@ private:
     double strengthPerGradient_ = 0.0;  // |∇f| (world) -> boundary strength
     bool refracting_ = false;
     bool multilevel_ = false;  // RenderSettings::multilevel, where it applies and the index is linked
+    bool detailParents_ = false;  // the detail shading draws, and the index is linked to parents
     glsl::HvxTools packedTools;
     std::vector<std::uint64_t> visibleCells_;  // per slot; empty when nothing is skipped
 };

@@ -11,14 +11,18 @@ struct LeafSampler {
     uvec2 visible;  // which of the brick's 4x4x4 cells may show (core::BrickCells), cell x + 4y + 16z
     vec3 leafLo;    // the leaf's corner and cell size, in octree units
     float cell;
-#if HVX_MULTILEVEL
-    // Multilevel sampling (core::RenderSettings::multilevel), where a coarser leaf touches this
-    // one (corners != 0): the parent's placement in the pool, its decode, and the leaf's size.
+#if HVX_MULTILEVEL || HVX_DETAIL_PARENT
+    // The parent's placement in the pool and its decode: for multilevel sampling
+    // (core::RenderSettings::multilevel) where a coarser leaf touches this one (corners != 0),
+    // and for the detail shading's coarser gradient (HVX_DETAIL_PARENT) wherever it is resident.
     vec3 pScale;
     vec3 pOffset;
     vec3 pTexLo;
     vec3 pTexHi;
     vec2 pDecode;
+    bool hasParent;
+#endif
+#if HVX_MULTILEVEL
     uint corners;   // core::SpatialIndex::levels' y: the corners a coarser leaf touches
     float size;
 #endif
@@ -71,17 +75,23 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
     L.visible = record.visible;
     L.leafLo = leafLo;
     L.cell = 0.25 / float(1u << depth);
-#if HVX_MULTILEVEL
+#if HVX_MULTILEVEL || HVX_DETAIL_PARENT
     uvec2 lv = hvxLevels[node];
+    L.hasParent = false;
+#if HVX_MULTILEVEL
     L.corners = 0u;
-    if (depth > 0u && lv.x != HVX_NONE && lv.y != 0u) {
+#endif
+    if (depth > 0u && lv.x != HVX_NONE && (HVX_DETAIL_PARENT != 0 || lv.y != 0u)) {
         // the parent's corner: the leaf's, rounded down to the parent's grid (exact in float)
         slotPlacement(lv.x, depth - 1u, floor(leafLo * float(1u << (depth - 1u)) + 0.25), L.pScale, L.pOffset, L.pTexLo,
                       L.pTexHi);
         L.pDecode = slotRecords[lv.x].decode;
+        L.hasParent = true;
+#if HVX_MULTILEVEL
         L.corners = lv.y;
         L.size = 1.0 / float(1u << depth);
-        L.visible = uvec2(0xFFFFFFFFu);  // the parent's values are not bounded by the leaf's cells
+        if (lv.y != 0u) L.visible = uvec2(0xFFFFFFFFu);  // the parent's values are not bounded by the leaf's cells
+#endif
     }
 #endif
     return L;
@@ -100,6 +110,13 @@ float levelWeight(LeafSampler L, vec3 p) {
 }
 #endif
 
+#if HVX_MULTILEVEL || HVX_DETAIL_PARENT
+// Trilinear in the parent's brick (L.hasParent).
+float parentSampleLinear(LeafSampler L, vec3 p) {
+    return texture(brickPool, clamp(p * L.pScale + L.pOffset, L.pTexLo, L.pTexHi)).r * L.pDecode.x + L.pDecode.y;
+}
+#endif
+
 // Hardware trilinear filtering inside the slot (the border replicates the neighbours). The
 // decode is linear, so it applies after filtering.
 float leafSampleLinear(LeafSampler L, vec3 p) {
@@ -107,8 +124,7 @@ float leafSampleLinear(LeafSampler L, vec3 p) {
 #if HVX_MULTILEVEL
     if (L.corners != 0u) {  // quadrilinear: trilinear at the leaf's level and its parent's
         float w = levelWeight(L, p);
-        float up = texture(brickPool, clamp(p * L.pScale + L.pOffset, L.pTexLo, L.pTexHi)).r * L.pDecode.x + L.pDecode.y;
-        own = own * (1.0 - w) + up * w;
+        own = own * (1.0 - w) + parentSampleLinear(L, p) * w;
     }
 #endif
     return own;
@@ -139,3 +155,18 @@ vec3 leafGradientSpread(LeafSampler L, vec3 p, float spread) {
 }
 
 vec3 leafGradient(LeafSampler L, vec3 p) { return leafGradientSpread(L, p, 1.0); }
+
+// The coarser scale of the detail shading (core::CpuRayCaster::coarserGradient): the parent
+// level's gradient, central differences one parent voxel apart (HVX_DETAIL_PARENT, where the
+// parent is resident); otherwise the leaf's own at twice its spacing.
+vec3 leafCoarserGradient(LeafSampler L, vec3 p) {
+#if HVX_DETAIL_PARENT
+    if (L.hasParent) {
+        float h = 2.0 * L.h;
+        return vec3(parentSampleLinear(L, p + vec3(h, 0, 0)) - parentSampleLinear(L, p - vec3(h, 0, 0)),
+                    parentSampleLinear(L, p + vec3(0, h, 0)) - parentSampleLinear(L, p - vec3(0, h, 0)),
+                    parentSampleLinear(L, p + vec3(0, 0, h)) - parentSampleLinear(L, p - vec3(0, 0, h))) / (2.0 * h);
+    }
+#endif
+    return leafGradientSpread(L, p, 2.0);
+}

@@ -48,7 +48,10 @@ layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per inde
 #ifndef HVX_MULTILEVEL
 #define HVX_MULTILEVEL 0
 #endif
-#if HVX_MULTILEVEL
+#ifndef HVX_DETAIL_PARENT
+#define HVX_DETAIL_PARENT 0
+#endif
+#if HVX_MULTILEVEL || HVX_DETAIL_PARENT
 // core::SpatialIndex::levels: per index node, the parent's slot and the corners a coarser leaf touches.
 layout(std430, binding = 12) readonly buffer IndexLevels { uvec2 hvxLevels[]; };
 #endif

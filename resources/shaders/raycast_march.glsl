@@ -26,8 +26,8 @@ vec3 shadeSample(LeafSampler L, vec3 p, vec3 base, vec3 dw, inout float a) {
     if (extra.y < 0.5) return base;
     if (len < 1e-9) return base * (shading.x + shading.y);
 #if HVX_DETAIL
-    // normal unsharp masking and exaggerated shading against the gradient at twice the spacing
-    vec2 f = hvxDetailShading(g, transpose(mat3(patientToOctree)) * leafGradientSpread(L, p, 2.0), -dw, detail.x, detail.y,
+    // normal unsharp masking and exaggerated shading against the coarser level's gradient
+    vec2 f = hvxDetailShading(g, transpose(mat3(patientToOctree)) * leafCoarserGradient(L, p), -dw, detail.x, detail.y,
                               min(1.0, len * enhance.z));
     return base * (shading.x + shading.y * f.x) + vec3(shading.z * pow(f.y, shading.w));
 #else
