@@ -2,7 +2,8 @@
 // together, against no tool, in the same run (GPU ray caster through EGL; the thesis reports
 // about 10%).
 //
-//   build/release/tests/bench/hvx_bench_tools FILE.hvo [--size 512] [--frames 5] [--breakdown]
+//   build/release/tests/bench/hvx_bench_tools FILE.hvo [--size 512] [--frames 5] [--breakdown] [--tf PRESET]
+//        [--opacity S]   (S scales the preset's opacity: the thesis measured semi-transparent functions)
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include "core/appearance/TransferFunctionSpec.h"
 #include "core/streaming/BrickCache.h"
 #include "core/streaming/BrickLoader.h"
 #include "core/streaming/OctreeSpace.h"
@@ -30,10 +32,14 @@ int main(int argc, char** argv) {
     }
     int size = 512, frames = 5;
     bool breakdown = false;
+    std::string preset;
+    double opacity = 1.0;
     for (int i = 2; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--breakdown")) breakdown = true;
         else if (!std::strcmp(argv[i], "--size") && i + 1 < argc) size = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--tf") && i + 1 < argc) preset = argv[++i];
+        else if (!std::strcmp(argv[i], "--opacity") && i + 1 < argc) opacity = std::atof(argv[++i]);
     }
     const auto reader = core::OctreeReader::open(argv[1]);
     const auto& g = reader->geometry();
@@ -42,8 +48,13 @@ int main(int argc, char** argv) {
     const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double radius = glm::length(centre - corner);
     const auto view = core::View::orbit(centre, radius / std::tan(glm::radians(15.0)) * 1.05, 30, 15, size, size);
-    const auto tf = core::TransferFunction::preset(g.modality == "CT" ? "ct-soft-tissue" : "mr-default", g.valueMin,
-                                                   g.valueMax, g.rescaleSlope, g.rescaleIntercept, space.minSpacing);
+    if (preset.empty()) preset = g.modality == "CT" ? "ct-soft-tissue" : "mr-default";
+    const auto tf = [&] {
+        auto spec = core::TransferFunctionSpec::from(core::TransferFunction::preset(
+            preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept, space.minSpacing));
+        for (auto& p : spec.opacity) p.alpha *= opacity;
+        return spec.build(g.valueMin, g.valueMax, space.minSpacing);
+    }();
     core::BrickCache cache(2ull << 30);
     core::BrickLoader loader(*reader, cache);
     core::WorkingSetOptions options;
@@ -115,8 +126,8 @@ int main(int argc, char** argv) {
         return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
     const double none = median(cases[0].ms);
-    std::printf("%s, %dx%d, %s, median of %d interleaved rounds: no tool %.1f ms/frame\n", argv[1], size, size,
-                ctx.info().renderer.c_str(), frames, none);
+    std::printf("%s, %dx%d, %s, tf %s at %g of its opacity, median of %d interleaved rounds: no tool %.1f ms/frame\n",
+                argv[1], size, size, ctx.info().renderer.c_str(), preset.c_str(), opacity, frames, none);
     for (std::size_t i = 1; i < cases.size(); ++i) {
         const double ms = median(cases[i].ms);
         std::printf("  %-40s %.1f ms/frame (%+.0f%%)\n", cases[i].name.c_str(), ms, (ms / none - 1.0) * 100.0);
