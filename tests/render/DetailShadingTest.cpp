@@ -14,7 +14,7 @@
 #include "render/GpuRayCaster.h"
 #include "tests/support/ImageCompare.h"
 #include "tests/support/MemoryVoxelSource.h"
-#include "tests/support/OctreeScene.h"
+#include "tests/support/PhantomScene.h"
 
 using namespace hvx;
 
@@ -50,13 +50,10 @@ test::MemoryVoxelSource flatBoundary() {
 }  // namespace
 
 TEST(DetailShading, GpuEqualsCpuAndStrengthZeroChangesNothing) {
-    core::PhantomVoxelSource phantom({96, 96, 80});
-    test::OctreeScene s(phantom);
-    const auto& g = s.reader->geometry();
-    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, g.rescaleSlope,
-                                                   g.rescaleIntercept, s.ws->space().minSpacing);
-    const auto view = core::View::orbit(s.centre(), 700.0, 30.0, 20.0, 128, 128);
-    s.ws->converge({view}, tf);
+    test::PhantomScene s;
+    const auto& tf = s.tf;
+    const auto& view = s.view;
+    s.converge();
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
     for (auto mode : {core::RenderSettings::Mode::Dvr, core::RenderSettings::Mode::Iso}) {
@@ -122,13 +119,10 @@ TEST(DetailShading, AFlatBoundaryHasNothingToEnhance) {
 // back to the leaf's own brick at twice its spacing. Both agree with the CPU reference, and the
 // two coarser scales draw different images.
 TEST(DetailShading, TheCoarserScaleIsTheParentLevelsGradient) {
-    core::PhantomVoxelSource phantom({96, 96, 80});
-    test::OctreeScene s(phantom);
-    const auto& g = s.reader->geometry();
-    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, g.rescaleSlope,
-                                                   g.rescaleIntercept, s.ws->space().minSpacing);
-    const auto view = core::View::orbit(s.centre(), 700.0, 30.0, 20.0, 128, 128);
-    s.ws->converge({view}, tf);
+    test::PhantomScene s;
+    const auto& tf = s.tf;
+    const auto& view = s.view;
+    s.converge();
     const auto& linked = s.ws->index();
     std::size_t withParent = 0;
     for (const auto& lv : linked.levels) withParent += lv.x != core::SpatialIndex::kNone;

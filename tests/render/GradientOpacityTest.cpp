@@ -10,7 +10,7 @@
 #include "render/EglOffscreenContext.h"
 #include "render/GpuRayCaster.h"
 #include "tests/support/ImageCompare.h"
-#include "tests/support/OctreeScene.h"
+#include "tests/support/PhantomScene.h"
 
 using namespace hvx;
 
@@ -23,12 +23,9 @@ double meanAlpha(const core::RenderImage& img) {
 }  // namespace
 
 TEST(GradientOpacity, GpuEqualsCpuAndAFlatCurveChangesNothing) {
-    core::PhantomVoxelSource phantom({96, 96, 80});
-    test::OctreeScene s(phantom);
+    test::PhantomScene s;
     const auto& g = s.reader->geometry();
-    const auto space = s.ws->space();
-    const auto plain = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, g.rescaleSlope,
-                                                      g.rescaleIntercept, space.minSpacing);
+    const auto& plain = s.tf;
     auto flat = plain;
     flat.setGradientOpacity({{0, 1}, {500, 1}});
     EXPECT_FALSE(flat.hasGradientOpacity());
@@ -39,8 +36,8 @@ TEST(GradientOpacity, GpuEqualsCpuAndAFlatCurveChangesNothing) {
     EXPECT_NEAR(edges.gradientScale(50.0 / g.rescaleSlope), 0.5, 0.01);
     EXPECT_DOUBLE_EQ(edges.gradientScale(500.0), 1.0);
 
-    const auto view = core::View::orbit(s.centre(), 700.0, 30.0, 20.0, 128, 128);
-    s.ws->converge({view}, plain);
+    const auto& view = s.view;
+    s.converge();
     const core::RenderSettings rs;
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;

@@ -20,6 +20,7 @@
 #include "tests/support/ImageCompare.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/OctreeScene.h"
+#include "tests/support/PhantomScene.h"
 
 using namespace hvx;
 
@@ -174,11 +175,8 @@ TEST(Multilevel, ARampMeetsItsCoarserLevelWithoutASeam) {
 }
 
 TEST(Multilevel, ThePhantomMeetsItsCoarserLevelWithoutASeam) {
-    core::PhantomVoxelSource phantom({96, 96, 80});
-    test::OctreeScene s(phantom);
-    const auto& g = s.reader->geometry();
-    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, g.rescaleSlope,
-                                                   g.rescaleIntercept, s.ws->space().minSpacing);
+    test::PhantomScene s;
+    const auto& tf = s.tf;
     const auto e = edgeOn(s, 384);
     s.ws->converge({e.view}, tf, splitAccuracy(s));
     render::EglOffscreenContext ctx;
@@ -190,12 +188,9 @@ TEST(Multilevel, ThePhantomMeetsItsCoarserLevelWithoutASeam) {
 }
 
 TEST(Multilevel, GpuEqualsTheCpuReferenceInDvrAndOneLevelIsUnchanged) {
-    core::PhantomVoxelSource phantom({96, 96, 80});
-    test::OctreeScene s(phantom);
-    const auto& g = s.reader->geometry();
-    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, g.rescaleSlope,
-                                                   g.rescaleIntercept, s.ws->space().minSpacing);
-    const auto view = core::View::orbit(s.centre(), 700.0, 30.0, 20.0, 128, 128);
+    test::PhantomScene s;
+    const auto& tf = s.tf;
+    const auto& view = s.view;
     render::EglOffscreenContext ctx;
     core::RenderSettings rs;
     // A cut of two levels, seen in DVR with shading: samples and gradients blend.

@@ -18,6 +18,7 @@
 #include "tests/support/ImageCompare.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/OctreeScene.h"
+#include "tests/support/PhantomScene.h"
 
 using namespace hvx;
 
@@ -125,13 +126,11 @@ TEST(Refraction, ASlabOffsetsTheMarkerBehindItAsSnellsLawPredicts) {
 }
 
 TEST(Refraction, GpuEqualsTheCpuReferenceAndAnIndexOfOneIsNoRefraction) {
-    core::PhantomVoxelSource phantom({96, 96, 80});
-    test::OctreeScene s(phantom);
+    test::PhantomScene s;
     const auto& g = s.reader->geometry();
-    const auto plain = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, g.rescaleSlope,
-                                                      g.rescaleIntercept, s.ws->space().minSpacing);
-    const auto view = core::View::orbit(s.centre(), 700.0, 30.0, 20.0, 128, 128);
-    s.ws->converge({view}, plain);
+    const auto& plain = s.tf;
+    const auto& view = s.view;
+    s.converge();
     render::EglOffscreenContext ctx;
     render::GpuRayCaster gpu;
     core::RenderSettings rs;
