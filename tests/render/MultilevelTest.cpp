@@ -206,6 +206,15 @@ TEST(Multilevel, GpuEqualsTheCpuReferenceInDvrAndOneLevelIsUnchanged) {
                 blended, dvrDb, change);
     EXPECT_GT(dvrDb, 80.0);
     EXPECT_LT(change, 80.0) << "multilevel sampling changes the leaves beside coarser ones";
+    // With the detail shading too: the blended field's gradient against the parent level's.
+    auto detailed = rs;
+    detailed.normalUnsharp = 2.0;
+    detailed.exaggeratedShading = 0.5;
+    const auto both = renderBoth(s, tf, detailed, view);
+    const double detailDb = test::psnr(both.cpuOn, both.gpuOn);
+    std::printf("phantom DVR, two levels, with unsharp masking 2 and exaggerated shading 0.5: multilevel GPU vs CPU %.1f dB\n",
+                detailDb);
+    EXPECT_GT(detailDb, 80.0);
     // One level everywhere: no leaf blends, the image is bitwise the one without multilevel sampling.
     auto one = s.ws->options();
     one.finestLevel = 1;
