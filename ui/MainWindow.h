@@ -36,7 +36,8 @@ class VolumeView;
 /// The workstation's main window. It arranges the docks (study browser, PACS, jobs, transfer
 /// function, render controls, slices, and the tool and light-field docks) around the 3D view,
 /// wires them together, and keeps the layout and preferences in QSettings. The docks implement
-/// themselves; this class only connects them.
+/// themselves; this class only connects them. Opening volumes (files, octrees, DICOM series,
+/// time points) lives in ui/MainWindowOpen.cpp.
 ///
 /// Threading: GUI thread only.
 class MainWindow : public QMainWindow {
