@@ -175,21 +175,26 @@ float CpuRayCaster::trilinear(const float* data, int e, float scale, const glm::
     return (c00 * (1 - f.y) + c10 * f.y) * (1 - f.z) + (c01 * (1 - f.y) + c11 * f.y) * f.z;
 }
 
-glm::vec3 CpuRayCaster::gradient(const Leaf& L, const glm::vec3& p, float spread) const {
-    const float h = spread / L.scale;
-    return glm::vec3(linear(L, p + glm::vec3(h, 0, 0)) - linear(L, p - glm::vec3(h, 0, 0)),
-                     linear(L, p + glm::vec3(0, h, 0)) - linear(L, p - glm::vec3(0, h, 0)),
-                     linear(L, p + glm::vec3(0, 0, h)) - linear(L, p - glm::vec3(0, 0, h))) /
+namespace {
+/// Central differences of `f` at p, `h` apart, in the float operations of brick_sampling.glsl's
+/// centralDifference.
+template <class F>
+glm::vec3 centralDifference(const F& f, const glm::vec3& p, float h) {
+    return glm::vec3(f(p + glm::vec3(h, 0, 0)) - f(p - glm::vec3(h, 0, 0)), f(p + glm::vec3(0, h, 0)) - f(p - glm::vec3(0, h, 0)),
+                     f(p + glm::vec3(0, 0, h)) - f(p - glm::vec3(0, 0, h))) /
            (2.0f * h);
+}
+}  // namespace
+
+glm::vec3 CpuRayCaster::gradient(const Leaf& L, const glm::vec3& p, float spread) const {
+    return centralDifference([&](const glm::vec3& q) { return linear(L, q); }, p, spread / L.scale);
 }
 
 glm::vec3 CpuRayCaster::coarserGradient(const Leaf& L, const glm::vec3& p) const {
     if (!L.parent) return gradient(L, p, 2.0f);
-    const float h = 1.0f / L.parentScale;  // one voxel of the parent's level
-    auto up = [&](const glm::vec3& q) { return trilinear(L.parent, L.edge, L.parentScale, L.parentOrigin, q); };
-    return glm::vec3(up(p + glm::vec3(h, 0, 0)) - up(p - glm::vec3(h, 0, 0)), up(p + glm::vec3(0, h, 0)) - up(p - glm::vec3(0, h, 0)),
-                     up(p + glm::vec3(0, 0, h)) - up(p - glm::vec3(0, 0, h))) /
-           (2.0f * h);
+    // one voxel of the parent's level apart
+    return centralDifference([&](const glm::vec3& q) { return trilinear(L.parent, L.edge, L.parentScale, L.parentOrigin, q); },
+                             p, 1.0f / L.parentScale);
 }
 
 double CpuRayCaster::scaleByGradient(double a, double len) const {

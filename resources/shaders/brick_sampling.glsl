@@ -146,13 +146,24 @@ float leafSample(LeafSampler L, vec3 p) {
 #endif
 }
 
-// Central differences `spread` voxels apart (2: the smoothed normal of relief shading).
-vec3 leafGradientSpread(LeafSampler L, vec3 p, float spread) {
-    float h = L.h * spread;
-    return vec3(leafSampleLinear(L, p + vec3(h, 0, 0)) - leafSampleLinear(L, p - vec3(h, 0, 0)),
-                leafSampleLinear(L, p + vec3(0, h, 0)) - leafSampleLinear(L, p - vec3(0, h, 0)),
-                leafSampleLinear(L, p + vec3(0, 0, h)) - leafSampleLinear(L, p - vec3(0, 0, h))) / (2.0 * h);
+// A sample of one of the leaf's levels: its own (blended where multilevel), or its parent's.
+float levelSample(LeafSampler L, vec3 p, bool parent) {
+#if HVX_MULTILEVEL || HVX_DETAIL_PARENT
+    if (parent) return parentSampleLinear(L, p);
+#endif
+    return leafSampleLinear(L, p);
 }
+
+// Central differences of a level, `h` apart (octree units).
+vec3 centralDifference(LeafSampler L, vec3 p, float h, bool parent) {
+    return vec3(levelSample(L, p + vec3(h, 0, 0), parent) - levelSample(L, p - vec3(h, 0, 0), parent),
+                levelSample(L, p + vec3(0, h, 0), parent) - levelSample(L, p - vec3(0, h, 0), parent),
+                levelSample(L, p + vec3(0, 0, h), parent) - levelSample(L, p - vec3(0, 0, h), parent)) /
+           (2.0 * h);
+}
+
+// Central differences `spread` voxels apart (2: the smoothed normal of relief shading).
+vec3 leafGradientSpread(LeafSampler L, vec3 p, float spread) { return centralDifference(L, p, L.h * spread, false); }
 
 vec3 leafGradient(LeafSampler L, vec3 p) { return leafGradientSpread(L, p, 1.0); }
 
@@ -161,12 +172,7 @@ vec3 leafGradient(LeafSampler L, vec3 p) { return leafGradientSpread(L, p, 1.0);
 // parent is resident); otherwise the leaf's own at twice its spacing.
 vec3 leafCoarserGradient(LeafSampler L, vec3 p) {
 #if HVX_DETAIL_PARENT
-    if (L.hasParent) {
-        float h = 2.0 * L.h;
-        return vec3(parentSampleLinear(L, p + vec3(h, 0, 0)) - parentSampleLinear(L, p - vec3(h, 0, 0)),
-                    parentSampleLinear(L, p + vec3(0, h, 0)) - parentSampleLinear(L, p - vec3(0, h, 0)),
-                    parentSampleLinear(L, p + vec3(0, 0, h)) - parentSampleLinear(L, p - vec3(0, 0, h))) / (2.0 * h);
-    }
+    if (L.hasParent) return centralDifference(L, p, 2.0 * L.h, true);
 #endif
     return leafGradientSpread(L, p, 2.0);
 }

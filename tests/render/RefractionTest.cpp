@@ -33,16 +33,11 @@ test::MemoryVoxelSource slabAndMarker() {
     g.dims = {96, 96, 96};
     g.valueMin = -150;
     g.valueMax = 300;
-    test::DenseVolume v;
-    v.dims = g.dims;
-    for (std::uint32_t k = 0; k < 96; ++k)
-        for (std::uint32_t j = 0; j < 96; ++j)
-            for (std::uint32_t i = 0; i < 96; ++i) {
-                const bool slab = k >= 30 && k < 50;
-                const bool marker = i >= 46 && i < 50 && k >= 70 && k < 74 && j >= 20 && j < 76;
-                v.values.push_back(marker ? 200.0 : slab ? -100.0 : 0.0);
-            }
-    return test::MemoryVoxelSource(g, v);
+    return test::MemoryVoxelSource(g, test::generatedVolume(g.dims, [](std::uint32_t i, std::uint32_t j, std::uint32_t k) {
+                                       const bool slab = k >= 30 && k < 50;
+                                       const bool marker = i >= 46 && i < 50 && k >= 70 && k < 74 && j >= 20 && j < 76;
+                                       return marker ? 200.0 : slab ? -100.0 : 0.0;
+                                   }));
 }
 
 /// Transparent air and slab, an opaque white marker; the slab's values refract by `nu`.

@@ -31,6 +31,18 @@ private:
     DenseVolume v_;
 };
 
+/// A volume of `dims` whose voxel (i, j, k) holds value(i, j, k), i varying fastest.
+template <class F>
+DenseVolume generatedVolume(std::array<std::uint32_t, 3> dims, F value) {
+    DenseVolume v;
+    v.dims = dims;
+    v.values.reserve(std::size_t(dims[0]) * dims[1] * dims[2]);
+    for (std::uint32_t k = 0; k < dims[2]; ++k)
+        for (std::uint32_t j = 0; j < dims[1]; ++j)
+            for (std::uint32_t i = 0; i < dims[0]; ++i) v.values.push_back(double(value(i, j, k)));
+    return v;
+}
+
 /// Random values representable in `type` (labels: 0..labels-1 when labels > 0).
 inline DenseVolume randomVolume(std::array<std::uint32_t, 3> dims, core::ScalarType type, unsigned seed,
                                 int labels = 0) {
