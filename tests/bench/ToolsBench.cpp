@@ -48,13 +48,21 @@ int main(int argc, char** argv) {
     const glm::dvec3 corner(space.octreeToPatient * glm::dvec4(0, 0, 0, 1.0));
     const double radius = glm::length(centre - corner);
     const auto view = core::View::orbit(centre, radius / std::tan(glm::radians(15.0)) * 1.05, 30, 15, size, size);
+    if (!(opacity > 0.0 && opacity <= 1.0)) {
+        std::fprintf(stderr, "--opacity scales the preset's opacity: a number above 0 and at most 1\n");
+        return 2;
+    }
     if (preset.empty()) preset = g.modality == "CT" ? "ct-soft-tissue" : "mr-default";
-    const auto tf = [&] {
+    core::TransferFunction tf({{g.valueMin, glm::dvec4(0.0)}, {g.valueMax, glm::dvec4(0.0)}}, g.valueMin, g.valueMax);
+    try {
         auto spec = core::TransferFunctionSpec::from(core::TransferFunction::preset(
             preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept, space.minSpacing));
         for (auto& p : spec.opacity) p.alpha *= opacity;
-        return spec.build(g.valueMin, g.valueMax, space.minSpacing);
-    }();
+        tf = spec.build(g.valueMin, g.valueMax, space.minSpacing);
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "%s: %s\n", argv[0], e.what());
+        return 2;
+    }
     core::BrickCache cache(2ull << 30);
     core::BrickLoader loader(*reader, cache);
     core::WorkingSetOptions options;
