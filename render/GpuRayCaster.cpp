@@ -416,8 +416,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     if (gradient) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, buffers_[12]);
     if (refract) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, buffers_[13]);
     if (multilevel || detailParent) {
-        static_assert(sizeof(glm::uvec2) == 8, "std430 layout of uvec2");
-        glNamedBufferData(buffers_[14], GLsizeiptr(index.levels.size() * sizeof(glm::uvec2)), index.levels.data(),
+        static_assert(sizeof(core::SpatialIndex::LevelLink) == 48, "std430 layout of HvxLevelLink");
+        glNamedBufferData(buffers_[14], GLsizeiptr(index.levels.size() * sizeof(core::SpatialIndex::LevelLink)), index.levels.data(),
                           GL_STREAM_DRAW);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, buffers_[14]);
     }

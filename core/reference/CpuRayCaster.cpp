@@ -115,18 +115,24 @@ CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafL
     // outside the leaf read its border).
     L.origin = glm::floor(leafLo * float(1u << depth) + 0.5f) * float(reader_.brickSize()) - float(reader_.border());
     if (levels && (multilevel_ || detailParents_) && depth > 0 && node < index_.levels.size()) {
-        const glm::uvec2 lv = index_.levels[node];
-        const bool blends = multilevel_ && lv.y != 0u;
-        if (lv.x != SpatialIndex::kNone && (blends || detailParents_) && lv.x < slots_.size() && slots_[lv.x]) {
-            L.parent = slots_[lv.x]->data();
+        const auto& lv = index_.levels[node];
+        const bool blends = multilevel_ && lv.blends != 0u;
+        if (lv.parent != SpatialIndex::kNone && (blends || detailParents_) && lv.parent < slots_.size() && slots_[lv.parent]) {
+            L.parent = slots_[lv.parent]->data();
             L.parentScale = L.scale * 0.5f;
-            // the parent's box corner: the leaf's, rounded down to the parent's grid (exact in float)
+            // the ancestors' box corners: the leaf's, rounded down to their grids (exact in float)
             const float up = float(1u << (depth - 1));
             L.parentOrigin = glm::floor(leafLo * up + 0.25f) * float(reader_.brickSize()) - float(reader_.border());
             if (blends) {
-                L.corners = lv.y;
+                L.blends = true;
+                std::copy(std::begin(lv.coarser), std::end(lv.coarser), std::begin(L.coarser));
                 L.lo = leafLo;
                 L.size = 1.0f / float(1u << depth);
+                if (lv.grandparent != SpatialIndex::kNone && lv.grandparent < slots_.size() && slots_[lv.grandparent]) {
+                    L.grandparent = slots_[lv.grandparent]->data();
+                    const float up2 = float(1u << (depth - 2));
+                    L.grandparentOrigin = glm::floor(leafLo * up2 + 0.125f) * float(reader_.brickSize()) - float(reader_.border());
+                }
             }
         }
     }
@@ -143,20 +149,23 @@ float CpuRayCaster::nearest(const Leaf& L, const glm::vec3& p) const {
     return L.data[(std::size_t(i.z) * std::size_t(e) + std::size_t(i.y)) * std::size_t(e) + std::size_t(i.x)];
 }
 
-float CpuRayCaster::levelWeight(const Leaf& L, const glm::vec3& p) {
+float CpuRayCaster::levelOffset(const Leaf& L, const glm::vec3& p) {
     const glm::vec3 u = glm::clamp((p - L.lo) / L.size, glm::vec3(0.0f), glm::vec3(1.0f));
-    float w = 0.0f;
+    float f = 0.0f;
     for (std::uint32_t c = 0; c < 8; ++c)
-        if (L.corners & (1u << c))
-            w += ((c & 1u) ? u.x : 1.0f - u.x) * ((c & 2u) ? u.y : 1.0f - u.y) * ((c & 4u) ? u.z : 1.0f - u.z);
-    return w;
+        f += L.coarser[c] * (((c & 1u) ? u.x : 1.0f - u.x) * ((c & 2u) ? u.y : 1.0f - u.y) * ((c & 4u) ? u.z : 1.0f - u.z));
+    return f;
 }
 
 float CpuRayCaster::linear(const Leaf& L, const glm::vec3& p) const {
     const float own = trilinear(L.data, L.edge, L.scale, L.origin, p);
-    if (L.corners == 0u) return own;
-    const float w = levelWeight(L, p);
-    return own * (1.0f - w) + trilinear(L.parent, L.edge, L.parentScale, L.parentOrigin, p) * w;
+    if (!L.blends) return own;
+    // Quadrilinear: trilinear at the two levels around the field's, blended.
+    const float f = levelOffset(L, p);
+    const float parent = trilinear(L.parent, L.edge, L.parentScale, L.parentOrigin, p);
+    if (f <= 1.0f || !L.grandparent) return own * (1.0f - f) + parent * f;
+    const float grandparent = trilinear(L.grandparent, L.edge, L.parentScale * 0.5f, L.grandparentOrigin, p);
+    return parent * (2.0f - f) + grandparent * (f - 1.0f);
 }
 
 float CpuRayCaster::trilinear(const float* data, int e, float scale, const glm::vec3& origin, const glm::vec3& p) {

@@ -65,13 +65,17 @@ private:
         glm::vec3 origin{};  // the brick's first sample, in level voxels, less the border
         int edge = 0;
         // The parent's brick, its scale and origin: for multilevel sampling
-        // (RenderSettings::multilevel) where a coarser leaf touches this one (corners != 0), with
-        // the corners touched (SpatialIndex::levels) and the leaf's box (corner, size); and for
-        // the detail shading's coarser gradient wherever the parent is resident.
+        // (RenderSettings::multilevel) where the level field is coarser than the leaf (blends),
+        // with the grandparent's where it reaches past the parent, the field at the corners
+        // (SpatialIndex::LevelLink::coarser) and the leaf's box (corner, size); and for the
+        // detail shading's coarser gradient wherever the parent is resident.
         const float* parent = nullptr;
         float parentScale = 1.0f;
         glm::vec3 parentOrigin{};
-        std::uint32_t corners = 0;
+        const float* grandparent = nullptr;
+        glm::vec3 grandparentOrigin{};
+        bool blends = false;
+        float coarser[8] = {};
         glm::vec3 lo{};
         float size = 1.0f;
     };
@@ -82,8 +86,8 @@ private:
     float linear(const Leaf& leaf, const glm::vec3& p) const;
     /// Trilinear in one brick of `edge`^3 samples.
     static float trilinear(const float* data, int edge, float scale, const glm::vec3& origin, const glm::vec3& p);
-    /// How much of the parent a leaf's sample at p takes: the corners' bits, interpolated trilinearly.
-    static float levelWeight(const Leaf& leaf, const glm::vec3& p);
+    /// How many levels coarser than the leaf the level field is at p: the corners' values, interpolated trilinearly.
+    static float levelOffset(const Leaf& leaf, const glm::vec3& p);
     float nearest(const Leaf& leaf, const glm::vec3& p) const;
     /// The average f (k, tau) of the segment from value a to b: pre-integrated, or for labels
     /// the entry of b; segmentExtinction: its tau alone.
@@ -109,7 +113,7 @@ private:
     /// A leaf's cells that may show: all of them where it blends with its parent, whose values
     /// its own brick's ranges do not bound.
     std::uint64_t leafCells(const Leaf& leaf, std::uint32_t slot) const {
-        return leaf.corners != 0u ? ~std::uint64_t(0) : visibleCells(slot);  // a blending leaf: the parent's values are not bounded by its cells
+        return leaf.blends ? ~std::uint64_t(0) : visibleCells(slot);  // a blending leaf: the parent's values are not bounded by its cells
     }
 
     const OctreeReader& reader_;

@@ -17,23 +17,38 @@ class OctreeReader;
 ///
 /// Threading: a value type; build on one thread, read from many.
 struct SpatialIndex {
+    static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+    static constexpr std::uint32_t kLeafBit = 0x100u;
+
     std::vector<glm::uvec4> nodes;      ///< see IndexTraversal.glsl
     std::vector<std::uint32_t> ropes;   ///< 6 per node
     std::vector<glm::vec2> ranges;      ///< min, max of the node's values
-    /// Multilevel sampling (thesis §3.2.2, Fig. 3.6), per node, filled by linkParents(): x = the
-    /// pool slot of a leaf's parent (kNone: no parent, not resident, or not linked); y = which of
-    /// the leaf's eight corners (bit x + 2y + 4z, 1 = the high side) a coarser leaf with a brick
-    /// touches. Empty until linked: every leaf samples its own level.
-    std::vector<glm::uvec2> levels;
-    /// How many leaves `levels` has blend with their parent (none: multilevel sampling draws
-    /// what sampling each leaf's own level draws, and the ray casters skip it).
+    /// Multilevel sampling (thesis §3.2.2, Fig. 3.6): where a leaf samples which level. The cut
+    /// defines a continuous level field over the volume: at a corner of leaves, the level of the
+    /// coarsest leaf with a brick touching it, or, where that corner lies inside a face or an
+    /// edge of the coarsest leaf, that leaf's field there (a hanging corner); trilinear inside
+    /// each leaf. So two leaves sharing a face see the same field on it, whatever their levels. A
+    /// sample where the field is f levels coarser than the leaf blends the two levels around it
+    /// (quadrilinear): the leaf's own with its parent's for f <= 1, the parent's with the
+    /// grandparent's up to f = kLevelSpan. Laid out as std430 for the shader (binding 12).
+    struct LevelLink {
+        std::uint32_t parent = kNone;       ///< the pool slot of the leaf's parent (kNone: none, not resident, not linked)
+        std::uint32_t grandparent = kNone;  ///< its grandparent's, where the field reaches past the parent
+        std::uint32_t blends = 0;           ///< 1 where the field is coarser than the leaf somewhere
+        std::uint32_t clamped = 0;          ///< 1 where the field reaches further than the leaf samples (steepLeaves)
+        float coarser[8] = {};  ///< per corner (x + 2y + 4z, 1 = the high side): how many levels coarser the field is
+        bool operator==(const LevelLink& o) const;
+    };
+    /// How many levels coarser than its leaf the field may reach: the leaf samples its parent and grandparent.
+    static constexpr float kLevelSpan = 2.0f;
+    /// Per node, filled by linkParents(); empty until linked: every leaf samples its own level.
+    std::vector<LevelLink> levels;
+    /// How many leaves blend (none: multilevel sampling draws what sampling each leaf's own
+    /// level draws, and the ray casters skip it).
     std::size_t blendingLeaves = 0;
-    /// Of those, how many touch a leaf two or more levels coarser: the blend reaches their
-    /// parent's level there, not the neighbour's (a seam of one level remains).
+    /// Of those, how many the field reaches further than they can follow (more than kLevelSpan
+    /// levels coarser, or a grandparent not resident): clamped there, a seam remains.
     std::size_t steepLeaves = 0;
-
-    static constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-    static constexpr std::uint32_t kLeafBit = 0x100u;
 
     /// Builds the index of a cut. `cut` lists .hvo node ids forming the leaves; `slotOf(id)`
     /// gives each leaf's brick slot (kNone for an empty leaf). Regions outside the volume or not
@@ -46,7 +61,7 @@ struct SpatialIndex {
     std::size_t leafCount() const;
     /// Fills `levels`: `slotOf(.hvo node id)` gives the pool slot holding a node's brick
     /// (kNone when none does). The working set keeps every refined node resident, so a cut leaf's
-    /// parent has a slot.
+    /// ancestors have slots.
     void linkParents(const OctreeReader& reader, const std::function<std::uint32_t(std::uint32_t)>& slotOf);
 };
 

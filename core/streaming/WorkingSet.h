@@ -66,8 +66,8 @@ public:
     struct FrameStats {
         double refineMs = 0;
         double levelsMs = 0;  ///< of refineMs, linking each leaf to its parent (SpatialIndex::linkParents)
-        std::size_t blendingLeaves = 0;  ///< leaves that blend with their parent (SpatialIndex::blendingLeaves)
-        std::size_t steepLeaves = 0;  ///< of those, touching a leaf two or more levels coarser (SpatialIndex::steepLeaves)
+        std::size_t blendingLeaves = 0;  ///< leaves that blend with coarser levels (SpatialIndex::blendingLeaves)
+        std::size_t steepLeaves = 0;  ///< of those, where the level field reaches past what they sample (SpatialIndex::steepLeaves)
         bool indexRebuilt = false;  ///< the cut, a slot or a parent's slot changed: the index was built anew
         std::size_t cutNodes = 0, emptyLeaves = 0, requested = 0, uploads = 0, uploadBytes = 0, slotsUsed = 0;
         bool complete = false;  ///< every cut node met the target (nothing waited for data)
@@ -112,7 +112,7 @@ private:
     SpatialIndex index_;
     std::vector<std::uint32_t> cut_;
     // What index_ was built from: (cut node, its slot, its parent's slot) by node id.
-    std::vector<glm::uvec3> indexKey_;
+    std::vector<glm::uvec4> indexKey_;
     bool indexBuilt_ = false;
     std::vector<std::uint32_t> slotNode_;
     std::vector<std::uint64_t> slotStamp_;

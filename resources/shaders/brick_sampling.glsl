@@ -13,7 +13,7 @@ struct LeafSampler {
     float cell;
 #if HVX_MULTILEVEL || HVX_DETAIL_PARENT
     // The parent's placement in the pool and its decode: for multilevel sampling
-    // (core::RenderSettings::multilevel) where a coarser leaf touches this one (corners != 0),
+    // (core::RenderSettings::multilevel) where the level field is coarser than the leaf,
     // and for the detail shading's coarser gradient (HVX_DETAIL_PARENT) wherever it is resident.
     vec3 pScale;
     vec3 pOffset;
@@ -23,8 +23,17 @@ struct LeafSampler {
     bool hasParent;
 #endif
 #if HVX_MULTILEVEL
-    uint corners;   // core::SpatialIndex::levels' y: the corners a coarser leaf touches
+    bool blends;    // core::SpatialIndex::LevelLink: the level field is coarser than the leaf somewhere,
+    vec4 coarserLo; // by this many levels at corners 0-3 and 4-7
+    vec4 coarserHi;
     float size;
+    // The grandparent's placement, where the field reaches past the parent (hasGrandparent).
+    vec3 gScale;
+    vec3 gOffset;
+    vec3 gTexLo;
+    vec3 gTexHi;
+    vec2 gDecode;
+    bool hasGrandparent;
 #endif
 };
 
@@ -76,21 +85,32 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
     L.leafLo = leafLo;
     L.cell = 0.25 / float(1u << depth);
 #if HVX_MULTILEVEL || HVX_DETAIL_PARENT
-    uvec2 lv = hvxLevels[node];
+    HvxLevelLink lv = hvxLevels[node];
     L.hasParent = false;
 #if HVX_MULTILEVEL
-    L.corners = 0u;
+    L.blends = false;
+    L.hasGrandparent = false;
 #endif
-    if (depth > 0u && lv.x != HVX_NONE && (HVX_DETAIL_PARENT != 0 || lv.y != 0u)) {
-        // the parent's corner: the leaf's, rounded down to the parent's grid (exact in float)
-        slotPlacement(lv.x, depth - 1u, floor(leafLo * float(1u << (depth - 1u)) + 0.25), L.pScale, L.pOffset, L.pTexLo,
+    if (depth > 0u && lv.parent != HVX_NONE && (HVX_DETAIL_PARENT != 0 || lv.blends != 0u)) {
+        // the ancestors' corners: the leaf's, rounded down to their grids (exact in float)
+        slotPlacement(lv.parent, depth - 1u, floor(leafLo * float(1u << (depth - 1u)) + 0.25), L.pScale, L.pOffset, L.pTexLo,
                       L.pTexHi);
-        L.pDecode = slotRecords[lv.x].decode;
+        L.pDecode = slotRecords[lv.parent].decode;
         L.hasParent = true;
 #if HVX_MULTILEVEL
-        L.corners = lv.y;
-        L.size = 1.0 / float(1u << depth);
-        if (lv.y != 0u) L.visible = uvec2(0xFFFFFFFFu);  // the parent's values are not bounded by the leaf's cells
+        if (lv.blends != 0u) {
+            L.blends = true;
+            L.coarserLo = vec4(lv.coarser[0], lv.coarser[1], lv.coarser[2], lv.coarser[3]);
+            L.coarserHi = vec4(lv.coarser[4], lv.coarser[5], lv.coarser[6], lv.coarser[7]);
+            L.size = 1.0 / float(1u << depth);
+            L.visible = uvec2(0xFFFFFFFFu);  // the ancestors' values are not bounded by the leaf's cells
+            if (lv.grandparent != HVX_NONE) {
+                slotPlacement(lv.grandparent, depth - 2u, floor(leafLo * float(1u << (depth - 2u)) + 0.125), L.gScale, L.gOffset,
+                              L.gTexLo, L.gTexHi);
+                L.gDecode = slotRecords[lv.grandparent].decode;
+                L.hasGrandparent = true;
+            }
+        }
 #endif
     }
 #endif
@@ -98,15 +118,20 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
 }
 
 #if HVX_MULTILEVEL
-// How much of the parent a sample at p takes: the corners' bits, interpolated trilinearly
-// (core::CpuRayCaster::levelWeight).
-float levelWeight(LeafSampler L, vec3 p) {
+// How many levels coarser than the leaf the level field is at p: the corners' values,
+// interpolated trilinearly (core::CpuRayCaster::levelOffset).
+float levelOffset(LeafSampler L, vec3 p) {
     vec3 u = clamp((p - L.leafLo) / L.size, vec3(0.0), vec3(1.0));
-    float w = 0.0;
+    float f = 0.0;
     for (uint c = 0u; c < 8u; ++c)
-        if ((L.corners & (1u << c)) != 0u)
-            w += ((c & 1u) != 0u ? u.x : 1.0 - u.x) * ((c & 2u) != 0u ? u.y : 1.0 - u.y) * ((c & 4u) != 0u ? u.z : 1.0 - u.z);
-    return w;
+        f += (c < 4u ? L.coarserLo[c] : L.coarserHi[c - 4u]) *
+             (((c & 1u) != 0u ? u.x : 1.0 - u.x) * ((c & 2u) != 0u ? u.y : 1.0 - u.y) * ((c & 4u) != 0u ? u.z : 1.0 - u.z));
+    return f;
+}
+
+// Trilinear in the grandparent's brick (L.hasGrandparent).
+float grandparentSampleLinear(LeafSampler L, vec3 p) {
+    return texture(brickPool, clamp(p * L.gScale + L.gOffset, L.gTexLo, L.gTexHi)).r * L.gDecode.x + L.gDecode.y;
 }
 #endif
 
@@ -122,9 +147,11 @@ float parentSampleLinear(LeafSampler L, vec3 p) {
 float leafSampleLinear(LeafSampler L, vec3 p) {
     float own = texture(brickPool, clamp(p * L.scale + L.offset, L.texLo, L.texHi)).r * L.decode.x + L.decode.y;
 #if HVX_MULTILEVEL
-    if (L.corners != 0u) {  // quadrilinear: trilinear at the leaf's level and its parent's
-        float w = levelWeight(L, p);
-        own = own * (1.0 - w) + parentSampleLinear(L, p) * w;
+    if (L.blends) {  // quadrilinear: trilinear at the two levels around the field's, blended
+        float f = levelOffset(L, p);
+        float parent = parentSampleLinear(L, p);
+        if (f <= 1.0 || !L.hasGrandparent) own = own * (1.0 - f) + parent * f;
+        else own = parent * (2.0 - f) + grandparentSampleLinear(L, p) * (f - 1.0);
     }
 #endif
     return own;

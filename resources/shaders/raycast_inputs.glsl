@@ -52,8 +52,16 @@ layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per inde
 #define HVX_DETAIL_PARENT 0
 #endif
 #if HVX_MULTILEVEL || HVX_DETAIL_PARENT
-// core::SpatialIndex::levels: per index node, the parent's slot and the corners a coarser leaf touches.
-layout(std430, binding = 12) readonly buffer IndexLevels { uvec2 hvxLevels[]; };
+// core::SpatialIndex::LevelLink, per index node: the parent's and grandparent's slots, whether
+// the leaf blends, and how many levels coarser than the leaf the level field is at its corners.
+struct HvxLevelLink {
+    uint parent;
+    uint grandparent;
+    uint blends;
+    uint clamped;
+    float coarser[8];
+};
+layout(std430, binding = 12) readonly buffer IndexLevels { HvxLevelLink hvxLevels[]; };
 #endif
 #ifndef HVX_DETAIL
 #define HVX_DETAIL 0

@@ -189,13 +189,13 @@ int main(int argc, char** argv) {
             auto bent = tf;
             bent.setRefraction(tf.refractionByOpacity(1.3));
             time("refraction (what shows at index 1.3)", bent, {});
-            // Multilevel sampling: the leaves a coarser leaf touches also read their parent.
+            // Multilevel sampling: the leaves where the level field is coarser also read their ancestors.
             std::size_t blending = 0, bricks = 0;
             for (std::size_t i = 0; i < ws.index().levels.size(); ++i) {
-                blending += ws.index().levels[i].y != 0u;
+                blending += ws.index().levels[i].blends;
                 bricks += (ws.index().nodes[i].y & core::SpatialIndex::kLeafBit) && ws.index().nodes[i].x != core::SpatialIndex::kNone;
             }
-            std::printf("  breakdown: multilevel sampling: %zu of %zu leaves with a brick blend with their parent (levels %d-%d)\n",
+            std::printf("  breakdown: multilevel sampling: %zu of %zu leaves with a brick blend with coarser levels (levels %d-%d)\n",
                         blending, bricks, ws.stats().finestLevel, ws.stats().coarsestLevel);
             core::RenderSettings levels;
             levels.multilevel = true;

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -25,16 +26,18 @@
 using namespace hvx;
 
 namespace {
-/// 128×64×64 voxels of 1 mm: a ramp along i (8 a voxel) with a ripple of period 4 voxels and
-/// amplitude 60, which the coarser level (each sample the mean of two) all but averages away.
-test::MemoryVoxelSource rippledRamp() {
+/// Voxels of 1 mm: a ramp along i (8 a voxel) with a ripple of amplitude 60, its crest at voxel
+/// centre 63.5. Of period 4 voxels, the next coarser level (each sample the mean of two) all but
+/// averages it away; of period 8, at the voxels' shared face i = 64, the next level keeps 0.65
+/// of it and the one above none.
+test::MemoryVoxelSource rippledRamp(std::array<std::uint32_t, 3> dims = {128, 64, 64}, double period = 4.0) {
     core::VolumeGeometry g;
     g.scalarType = core::ScalarType::Float32;
-    g.dims = {128, 64, 64};
+    g.dims = dims;
     g.valueMin = -60;
     g.valueMax = 1076;
-    return test::MemoryVoxelSource(g, test::generatedVolume(g.dims, [](std::uint32_t i, std::uint32_t, std::uint32_t) {
-                                       return 8.0 * i + 60.0 * std::cos(2.0 * M_PI * (i - 63.5) / 4.0);
+    return test::MemoryVoxelSource(g, test::generatedVolume(g.dims, [period](std::uint32_t i, std::uint32_t, std::uint32_t) {
+                                       return 8.0 * i + 60.0 * std::cos(2.0 * M_PI * (i - 63.5) / period);
                                    }));
 }
 
@@ -129,15 +132,16 @@ Renders renderBoth(const test::OctreeScene& s, const core::TransferFunction& tf,
     return r;
 }
 
-/// Checks the cut holds two levels, and that the level face shows no seam with multilevel
-/// sampling, on the GPU and the CPU reference, and a smaller jump than without it; `seamWithout`:
-/// without it, the face jumps more than anything inside a brick (on smooth data).
+/// Checks the cut holds levels 0 to `coarsest`, and that the level face (octree x = 1/2) shows no
+/// seam with multilevel sampling, on the GPU and the CPU reference, and a smaller jump than
+/// without it; `seamWithout`: without it, the face jumps more than anything inside a brick (on
+/// smooth data). `brick`: the finest level's brick, in octree units.
 void expectNoSeam(const char* name, const test::OctreeScene& s, const core::TransferFunction& tf,
-                  const core::RenderSettings& rs, const EdgeOn& e, bool seamWithout) {
+                  const core::RenderSettings& rs, const EdgeOn& e, bool seamWithout, int coarsest = 1, double brick = 0.25) {
     ASSERT_EQ(s.ws->stats().finestLevel, 0);
-    ASSERT_EQ(s.ws->stats().coarsestLevel, 1);
+    ASSERT_EQ(s.ws->stats().coarsestLevel, coarsest);
     const auto r = renderBoth(s, tf, rs, e.view);
-    const double brick = 0.25, extentX = s.ws->space().extent.x;
+    const double extentX = s.ws->space().extent.x;
     const Seam gpuOff = seam(r.gpuOff, e, brick, extentX), gpuOn = seam(r.gpuOn, e, brick, extentX);
     const Seam cpuOff = seam(r.cpuOff, e, brick, extentX), cpuOn = seam(r.cpuOn, e, brick, extentX);
     std::printf("%s: largest jump at the level face / inside a brick: one level a leaf %.4f / %.4f (GPU), %.4f / %.4f "
@@ -177,6 +181,39 @@ TEST(Multilevel, ARampMeetsItsCoarserLevelWithoutASeam) {
     expectNoSeamInAverage("rippled ramp", s, tf, 512, true);
 }
 
+TEST(Multilevel, ARampMeetsALeafTwoLevelsCoarserAndABlendingNeighbourWithoutASeam) {
+    // 128³ voxels in bricks of 16 (four levels). The left half at full resolution; on the right,
+    // below octree y = 1/2 one level coarser, above it two. Where the face (x = 1/2) meets the
+    // upper right, the finer leaves' field reaches two levels (their grandparent's); below, the
+    // coarser leaves themselves blend towards the level above them near y = 1/2, and the finer
+    // leaves across the face follow (hanging corners). The view's rows straddle y = 1/2. A blend
+    // reaching one level only (the finer leaves' parent) leaves a seam: the ripple's 0.65 of the
+    // middle level against none of the top one.
+    auto source = rippledRamp({128, 128, 128}, 8.0);
+    core::BuildOptions options;
+    options.brickSize = 16;
+    test::OctreeScene s(source, options);
+    const core::TransferFunction tf({{-60, glm::dvec4(1, 1, 1, 0.01)}, {1076, glm::dvec4(1, 1, 1, 0.01)}}, -60, 1076);
+    const auto e = edgeOn(s, 512);
+    const auto space = s.ws->space();
+    const double voxel = space.voxelSize(0);
+    s.ws->converge({e.view}, tf, [space, voxel](const core::View&, const glm::dvec3& p) {
+        const glm::dvec3 o(space.patientToOctree * glm::dvec4(p, 1.0));
+        return o.x < 0.5 ? 0.5 * voxel : o.y < 0.5 ? 2.5 * voxel : 5.0 * voxel;
+    });
+    const auto& idx = s.ws->index();
+    std::size_t pastParent = 0;
+    for (const auto& lv : idx.levels) pastParent += lv.grandparent != core::SpatialIndex::kNone;
+    std::printf("three-level ramp: %zu leaves blend, %zu of them past their parent, %zu clamped\n", idx.blendingLeaves,
+                pastParent, idx.steepLeaves);
+    EXPECT_GT(pastParent, 0u);
+    EXPECT_EQ(idx.steepLeaves, 0u);
+    render::EglOffscreenContext ctx;
+    core::RenderSettings rs;
+    rs.mode = core::RenderSettings::Mode::Average;
+    expectNoSeam("three-level ramp", s, tf, rs, e, true, 2, 0.125);
+}
+
 TEST(Multilevel, ThePhantomMeetsItsCoarserLevelWithoutASeam) {
     test::PhantomScene s;
     // The phantom's own edges and noise jump more than the seam does (0.003 against 0.06
@@ -194,7 +231,7 @@ TEST(Multilevel, GpuEqualsTheCpuReferenceInDvrAndOneLevelIsUnchanged) {
     s.ws->converge({view}, tf, splitAccuracy(s));
     ASSERT_EQ(s.ws->stats().coarsestLevel, 1);
     std::size_t blended = 0;
-    for (const auto& lv : s.ws->index().levels) blended += lv.y != 0u;
+    for (const auto& lv : s.ws->index().levels) blended += lv.blends;
     EXPECT_GT(blended, 0u);
     const auto mixed = renderBoth(s, tf, rs, view);
     const double dvrDb = test::psnr(mixed.cpuOn, mixed.gpuOn), change = test::psnr(mixed.cpuOn, mixed.cpuOff);
@@ -219,7 +256,7 @@ TEST(Multilevel, GpuEqualsTheCpuReferenceInDvrAndOneLevelIsUnchanged) {
     s.ws->converge({view}, tf);
     ASSERT_EQ(s.ws->stats().finestLevel, 1);
     ASSERT_EQ(s.ws->stats().coarsestLevel, 1);
-    for (const auto& lv : s.ws->index().levels) EXPECT_EQ(lv.y, 0u);
+    for (const auto& lv : s.ws->index().levels) EXPECT_EQ(lv.blends, 0u);
     EXPECT_EQ(s.ws->index().blendingLeaves, 0u);
     const auto uniform = renderBoth(s, tf, rs, view);
     EXPECT_EQ(test::psnr(uniform.gpuOn, uniform.gpuOff), 99.0);

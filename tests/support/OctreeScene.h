@@ -23,9 +23,9 @@ struct OctreeScene {
     std::unique_ptr<core::BrickLoader> loader;
     std::unique_ptr<core::WorkingSet> ws;
 
-    explicit OctreeScene(core::VoxelSource& source) {
+    explicit OctreeScene(core::VoxelSource& source, const core::BuildOptions& options = {}) {
         core::JobContext job;
-        core::OctreeBuilder({}).build(source, dir.file("v.hvo"), job);
+        core::OctreeBuilder(options).build(source, dir.file("v.hvo"), job);
         reader = core::OctreeReader::open(dir.file("v.hvo"));
         cache = std::make_unique<core::BrickCache>(1u << 28);
         loader = std::make_unique<core::BrickLoader>(*reader, *cache);

@@ -1,10 +1,13 @@
 // SpatialIndex::linkParents (multilevel sampling, thesis §3.2.2): each leaf with a brick gets its
-// parent's slot and the corners a coarser leaf with a brick touches. Checked against the
-// definition by brute force — every pair of leaves, each corner tested against every other
-// leaf's closed box — on random cuts with random empty leaves and parents missing from the pool.
-// The working set builds and links the index anew only when the cut or a slot changes.
+// parent's slot and the level field at its corners. Checked by brute force on random cuts with
+// random empty leaves and parents missing from the pool: the field is coarser than a leaf
+// exactly at the corners a coarser leaf with a brick touches (every pair of leaves, each corner
+// against every other leaf's closed box); and, with every node resident, two leaves sharing a
+// face see the same field on it, at any pair of levels. The working set builds and links the
+// index anew only when the cut or a slot changes.
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <random>
 #include <tuple>
 
@@ -56,19 +59,33 @@ bool contains(const Box& b, const glm::dvec3& p) {
 std::uint32_t slotOf(std::uint32_t id, std::uint32_t seed) {
     return ((id + seed) * 2654435761u >> 9) % 7 == 0 ? core::SpatialIndex::kNone : id + 1;
 }
-}  // namespace
+/// The level field a leaf sees at p (a depth: coarser is smaller), from its corners.
+double fieldFrom(const core::SpatialIndex& idx, std::size_t leaf, const Box& box, const glm::dvec3& p) {
+    const glm::dvec3 u = (p - box.lo) / (box.hi - box.lo);
+    double f = 0.0;
+    for (std::uint32_t c = 0; c < 8; ++c)
+        f += idx.levels[leaf].coarser[c] * ((c & 1u) ? u.x : 1.0 - u.x) * ((c & 2u) ? u.y : 1.0 - u.y) * ((c & 4u) ? u.z : 1.0 - u.z);
+    return double(idx.nodes[leaf].y & 0xFFu) - f;
+}
 
-TEST(SpatialIndexLevels, ACornerIsMarkedExactlyWhereACoarserLeafWithABrickTouchesIt) {
-    test::TempDir dir;
+std::unique_ptr<core::OctreeReader> phantomOctree(const test::TempDir& dir) {
     core::PhantomVoxelSource phantom({70, 52, 45});
     core::BuildOptions options;
     options.brickSize = 4;  // five levels
     core::JobContext job;
     core::OctreeBuilder(options).build(phantom, dir.file("p.hvo"), job);
-    const auto reader = core::OctreeReader::open(dir.file("p.hvo"));
+    return core::OctreeReader::open(dir.file("p.hvo"));
+}
+
+bool withBrick(const glm::uvec4& nd) { return (nd.y & core::SpatialIndex::kLeafBit) && nd.x != core::SpatialIndex::kNone; }
+}  // namespace
+
+TEST(SpatialIndexLevels, TheFieldIsCoarserExactlyAtTheCornersACoarserLeafWithABrickTouches) {
+    test::TempDir dir;
+    const auto reader = phantomOctree(dir);
     ASSERT_GE(reader->levelCount(), 4u);
     std::mt19937 rng(21);
-    std::size_t linked = 0, blending = 0, marked = 0, steepTotal = 0;
+    std::size_t linked = 0, blending = 0, marked = 0, pastParent = 0, steepTotal = 0;
     for (std::uint32_t trial = 0; trial < 12; ++trial) {
         const auto cut = test::randomCut(*reader, rng, 0.55 + 0.03 * trial);
         std::vector<std::uint32_t> slots;
@@ -77,48 +94,108 @@ TEST(SpatialIndexLevels, ACornerIsMarkedExactlyWhereACoarserLeafWithABrickTouche
         idx.linkParents(*reader, [&](std::uint32_t id) { return slotOf(id, trial); });
         ASSERT_EQ(idx.levels.size(), idx.nodes.size());
         const auto boxes = leafBoxes(idx);
-        std::size_t blendingHere = 0, steepHere = 0;
+        std::size_t blendingHere = 0;
         for (std::size_t i = 0; i < idx.nodes.size(); ++i) {
             const auto& nd = idx.nodes[i];
-            const bool leaf = nd.y & core::SpatialIndex::kLeafBit;
-            const bool withParent = leaf && nd.x != core::SpatialIndex::kNone && nd.z != core::SpatialIndex::kNone &&
+            const auto& lv = idx.levels[i];
+            const bool withParent = withBrick(nd) && nd.z != core::SpatialIndex::kNone &&
                                     reader->nodes()[nd.z].parent != core::hvo::kNoNode &&
                                     slotOf(reader->nodes()[nd.z].parent, trial) != core::SpatialIndex::kNone;
             if (!withParent) {
-                EXPECT_EQ(idx.levels[i], glm::uvec2(core::SpatialIndex::kNone, 0u)) << "node " << i;
+                EXPECT_EQ(lv, core::SpatialIndex::LevelLink{}) << "node " << i;
                 continue;
             }
             ++linked;
-            EXPECT_EQ(idx.levels[i].x, slotOf(reader->nodes()[nd.z].parent, trial));
-            std::uint32_t want = 0;
-            bool steep = false;
+            EXPECT_EQ(lv.parent, slotOf(reader->nodes()[nd.z].parent, trial));
+            bool coarser = false, pastTheParent = false;
             for (std::uint32_t c = 0; c < 8; ++c) {
                 const glm::dvec3 corner = glm::mix(boxes[i].lo, boxes[i].hi, glm::dvec3(c & 1u, (c >> 1) & 1u, (c >> 2) & 1u));
-                for (std::size_t j = 0; j < idx.nodes.size(); ++j) {
-                    const auto& other = idx.nodes[j];
-                    if (!(other.y & core::SpatialIndex::kLeafBit) || other.x == core::SpatialIndex::kNone) continue;
-                    if ((other.y & 0xFFu) < (nd.y & 0xFFu) && contains(boxes[j], corner)) {
-                        want |= 1u << c;
-                        steep = steep || (other.y & 0xFFu) + 1 < (nd.y & 0xFFu);
-                    }
-                }
+                bool touched = false;
+                for (std::size_t j = 0; j < idx.nodes.size(); ++j)
+                    touched = touched || (withBrick(idx.nodes[j]) && (idx.nodes[j].y & 0xFFu) < (nd.y & 0xFFu) &&
+                                          contains(boxes[j], corner));
+                const float f = lv.coarser[c];
+                EXPECT_EQ(f > 0.0f, touched) << "trial " << trial << ", leaf " << i << ", corner " << c;
+                if (touched) EXPECT_GE(f, 1.0f) << "a coarser leaf's field is at least its level";
+                EXPECT_LE(f, core::SpatialIndex::kLevelSpan);
+                coarser = coarser || touched;
+                pastTheParent = pastTheParent || f > 1.0f;
+                marked += touched;
             }
-            EXPECT_EQ(idx.levels[i].y, want) << "trial " << trial << ", leaf " << i;
-            blendingHere += want != 0u;
-            steepHere += steep;
-            marked += std::uint32_t(__builtin_popcount(want));
+            EXPECT_EQ(lv.blends, coarser ? 1u : 0u);
+            if (pastTheParent) {
+                const auto grand = reader->nodes()[reader->nodes()[nd.z].parent].parent;
+                ASSERT_NE(grand, core::hvo::kNoNode);
+                EXPECT_EQ(lv.grandparent, slotOf(grand, trial));
+                EXPECT_NE(lv.grandparent, core::SpatialIndex::kNone) << "the field reaches past the parent without the grandparent";
+            }
+            blendingHere += coarser;
+            pastParent += pastTheParent;
         }
         EXPECT_EQ(idx.blendingLeaves, blendingHere);
-        EXPECT_EQ(idx.steepLeaves, steepHere);
+        std::size_t clampedHere = 0;
+        for (const auto& lv : idx.levels) clampedHere += lv.clamped;
+        EXPECT_EQ(idx.steepLeaves, clampedHere);
+        EXPECT_LE(idx.steepLeaves, blendingHere);
         blending += blendingHere;
-        steepTotal += steepHere;
+        steepTotal += idx.steepLeaves;
     }
-    std::printf("%zu leaves linked to their parents, %zu of them blending (%zu beside a leaf two or more levels coarser), "
-                "%zu corners marked\n",
-                linked, blending, steepTotal, marked);
-    EXPECT_GT(steepTotal, 10u);
+    std::printf("%zu leaves linked to their parents, %zu of them blending (%zu past the parent, %zu clamped), "
+                "%zu corners coarser\n",
+                linked, blending, pastParent, steepTotal, marked);
+    EXPECT_GT(pastParent, 10u);
     EXPECT_GT(blending, 100u);  // the cuts mix levels: the check has corners to find
     EXPECT_GT(linked, blending);  // and leaves with none
+}
+
+TEST(SpatialIndexLevels, LeavesSharingAFaceSeeTheSameFieldOnIt) {
+    test::TempDir dir;
+    const auto reader = phantomOctree(dir);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u01(0.0, 1.0);
+    std::size_t faces = 0, acrossLevels = 0, acrossTwo = 0, points = 0, clamped = 0;
+    double largest = 0.0;
+    for (std::uint32_t trial = 0; trial < 12; ++trial) {
+        const auto cut = test::randomCut(*reader, rng, 0.55 + 0.03 * trial);
+        std::vector<std::uint32_t> slots;
+        for (auto id : cut) slots.push_back(id + 1);  // every node resident, as the working set keeps them
+        auto idx = core::SpatialIndex::build(*reader, cut, slots);
+        idx.linkParents(*reader, [](std::uint32_t id) { return id + 1; });
+        const auto boxes = leafBoxes(idx);
+        for (std::size_t i = 0; i < idx.nodes.size(); ++i) {
+            if (!withBrick(idx.nodes[i]) || idx.nodes[i].z == 0) continue;
+            for (std::size_t j = i + 1; j < idx.nodes.size(); ++j) {
+                if (!withBrick(idx.nodes[j]) || idx.nodes[j].z == 0) continue;
+                const glm::dvec3 lo = glm::max(boxes[i].lo, boxes[j].lo), hi = glm::min(boxes[i].hi, boxes[j].hi);
+                const glm::dvec3 extent = hi - lo;
+                const int flat = (extent.x == 0.0) + (extent.y == 0.0) + (extent.z == 0.0);
+                if (flat != 1 || extent.x < 0.0 || extent.y < 0.0 || extent.z < 0.0) continue;  // not a shared face
+                if (idx.levels[i].clamped || idx.levels[j].clamped) {
+                    ++clamped;
+                    continue;
+                }
+                ++faces;
+                const auto di = idx.nodes[i].y & 0xFFu, dj = idx.nodes[j].y & 0xFFu;
+                acrossLevels += di != dj;
+                acrossTwo += di + 2 <= dj || dj + 2 <= di;
+                for (int k = 0; k < 9; ++k) {  // the face's four corners, then random points
+                    const glm::dvec3 t = k < 4 ? glm::dvec3(k & 1, (k >> 1) & 1, (k & 1) ^ ((k >> 1) & 1))
+                                               : glm::dvec3(u01(rng), u01(rng), u01(rng));
+                    const glm::dvec3 p = lo + t * extent;
+                    const double a = fieldFrom(idx, i, boxes[i], p), b = fieldFrom(idx, j, boxes[j], p);
+                    largest = std::max(largest, std::abs(a - b));
+                    EXPECT_NEAR(a, b, 1e-5) << "trial " << trial << ", leaves " << i << " (depth " << di << ") and " << j
+                                            << " (depth " << dj << ") at " << p.x << ", " << p.y << ", " << p.z;
+                    ++points;
+                }
+            }
+        }
+    }
+    std::printf("%zu shared faces (%zu between levels, %zu two or more apart; %zu beside a clamped leaf "
+                "left out), %zu points: largest difference %.3g levels\n",
+                faces, acrossLevels, acrossTwo, clamped, points, largest);
+    EXPECT_GT(acrossLevels, 200u);
+    EXPECT_GT(acrossTwo, 10u);
 }
 
 TEST(SpatialIndexLevels, TheWorkingSetRebuildsTheIndexOnlyWhenTheCutOrASlotChanges) {
