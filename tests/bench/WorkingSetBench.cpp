@@ -102,8 +102,8 @@ int main(int argc, char** argv) {
         loadsMax = std::max(loadsMax, loader.loadedCount() - l0);
     }
     std::printf("of which linking leaves to parents (multilevel sampling): %.3f ms/frame (max %.3f; the index built "
-                "anew in %zu of %d frames), %.1f of %.1f cut leaves blending per frame, %.1f of them beside a leaf two or more "
-                "levels coarser\n",
+                "anew in %zu of %d frames), %.1f of %.1f cut leaves blending per frame, %.1f of them clamped (the level field "
+                "more than two levels coarser: a seam remains)\n",
                 levelsSum / frames, levelsMax, rebuilt, frames, double(blendingSum) / frames, double(cutSum) / frames,
                 double(steepSum) / frames);
     struct rusage ru {};
