@@ -89,7 +89,7 @@ int lightFieldCommand(int argc, char** argv) {
         throw core::Error("usage: holovox-cli lightfield FILE.hvo --display PROFILE -o OUT [--format quilt|projectors|exr|stereo|dvi] "
                           "[--eta 0..1] [--view AZ,EL] [--zoom Z] [--true-depth] [--size WxH] [--observer X,Y,Z --simulate OUT.png] [--correction FILE.json] "
                           "[--overlay B.hvo[:lut=NAME,opacity=O,window=W/L] | --labels L.hvo [--lut FILE] [--label-opacity A]] [--refraction N|V:N,...] "
-                          "[--force-frame] [--cpu]");
+                          "[--force-frame] [--multilevel] [--cpu]");
     const auto display = core::DisplayModel::load(*args.value("display"));
     const std::string format = args.value("format").value_or(
         display.kind == core::DisplayModel::Kind::Lenticular ? "quilt"
@@ -136,8 +136,8 @@ int lightFieldCommand(int argc, char** argv) {
                                 "split-voxels, --mode mip, --overlay or --labels"
                               : "",
                           tf);
-    // --multilevel: a display's accuracy s(z) changes the level with depth; bricks of two levels
-    // meet without a seam where the finer blends with its parent (thesis §3.2.2, Fig. 3.6).
+    // --multilevel: a display's accuracy s(z) changes the level with depth; bricks of different
+    // levels meet without a seam where each samples the cut's level field (thesis §3.2.2, Fig. 3.6).
     settings.multilevel = args.flag("multilevel");
     if (settings.multilevel && (g.isLabel || reader->splitVoxels() || args.value("overlay") || args.value("labels")))
         throw core::Error("--multilevel blends an image's samples across levels: not with a label map, split-voxels, "

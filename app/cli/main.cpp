@@ -42,7 +42,7 @@ const char* const kUsage =
         "  render FILE.hvo [--cpu] [--view AZ,EL,ZOOM] [--mode dvr|iso|mip|minip|xray] [--tf PRESET]\n"
         "        [--boundary 0..1] [--view-transparency 0..1] [--unsharp 0..8] [--exaggerated 0..1] [--tools TOOLS.json]\n"
         "        [--iso HU] [--size WxH] [--budget BRICKS] [--accuracy VOXELS_PER_PIXEL] -o OUT.png|OUT.exr\n"
-        "        [--multilevel]   where bricks of two levels meet, blend the finer with its parent: no seam\n"
+        "        [--multilevel]   where bricks of different levels meet, blend levels (up to two coarser): no seam\n"
         "        [--refraction N | V:N,...]   rays bend by Snell's law: what the transfer function shows\n"
         "        refracts with index N (air with 1), or the index is N at value V (physical units)\n"
         "        [--lut FILE] [--label-opacity A]   a label map: each label in its table's colour, never\n"

@@ -1,10 +1,12 @@
-// Multilevel sampling (thesis §3.2.2, Fig. 3.6): where a cut puts bricks of two levels side by
-// side, each sample of the finer leaf near the coarser one blends its own level with its
-// parent's (quadrilinear), so the two meet without a seam. A cut with the left half of the
-// volume at full resolution and the right half one level coarser, seen edge-on in average
-// (X-ray) mode: with multilevel sampling the column where the levels meet jumps no more than
-// any column inside a brick (without it, on the ramp, it jumps more). On a ramp with a ripple finer than the coarse
-// level, and on the phantom; GPU equals the CPU reference; a cut of one level is unchanged.
+// Multilevel sampling (thesis §3.2.2, Fig. 3.6): where a cut puts bricks of different levels side
+// by side, each sample blends the two levels around the cut's level field there (quadrilinear),
+// so the levels meet without a seam. Cuts seen edge-on in average (X-ray) mode: with multilevel
+// sampling the column where the levels meet jumps no more than any column inside a brick
+// (without it, on the ramps, it jumps more). The left half of the volume at full resolution and
+// the right half one level coarser, on a ramp with a ripple finer than the coarse level and on the
+// phantom; and a ramp whose right half is one level coarser below y = 1/2 and two above (a leaf
+// two levels coarser, coarser leaves that blend themselves). GPU equals the CPU reference; a cut
+// of one level is unchanged.
 #include <gtest/gtest.h>
 
 #include <algorithm>
