@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -275,12 +276,15 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     const int detail = settings.detailShading() && !tools && !overlay && !split ? 1 : 0;
     // Multilevel sampling (core::RenderSettings::multilevel) where some leaf blends with its
     // parent; with none, the plain variant draws the same image (+30 % a frame spared on llvmpipe).
-    const int multilevel = settings.multilevel && !labels && !nearest && !split && !overlay && index.blendingLeaves > 0 ? 1 : 0;
+    // The variant's level: how far up the field reaches (1 the parent, 2 the grandparent, 3 any).
+    const int multilevel = settings.multilevel && !labels && !nearest && !split && !overlay && index.blendingLeaves > 0
+                               ? int(std::clamp(index.levelReach, 1u, 3u))
+                               : 0;
     // The detail shading's coarser gradient from the parent level, where the index links leaves to parents.
     const int detailParent = detail && !index.levels.empty() ? 1 : 0;
     auto& program = programs_[2 * (mode + 8 * tools) + labels + 4096 * fusion + 16384 * gradient + 32768 * split +
                               131072 * nearest + 262144 * detail + 524288 * refract + 1048576 * multilevel +
-                              2097152 * detailParent];
+                              4194304 * detailParent];
     if (!program)
         program = std::make_unique<ComputeProgram>(
             ShaderLibrary::embedded(), "raycast.comp.glsl",
@@ -416,7 +420,8 @@ std::vector<core::RenderImage> GpuRayCaster::renderViews(const core::OctreeReade
     if (gradient) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, buffers_[12]);
     if (refract) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, buffers_[13]);
     if (multilevel || detailParent) {
-        static_assert(sizeof(core::SpatialIndex::LevelLink) == 48, "std430 layout of HvxLevelLink");
+        static_assert(sizeof(core::SpatialIndex::LevelLink) == 64 && core::SpatialIndex::kLevelSpan == 6,
+                      "std430 layout of HvxLevelLink (raycast_inputs.glsl, HVX_LEVEL_SPAN)");
         glNamedBufferData(buffers_[14], GLsizeiptr(index.levels.size() * sizeof(core::SpatialIndex::LevelLink)), index.levels.data(),
                           GL_STREAM_DRAW);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 12, buffers_[14]);

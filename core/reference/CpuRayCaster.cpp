@@ -117,21 +117,25 @@ CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafL
     if (levels && (multilevel_ || detailParents_) && depth > 0 && node < index_.levels.size()) {
         const auto& lv = index_.levels[node];
         const bool blends = multilevel_ && lv.blends != 0u;
-        if (lv.parent != SpatialIndex::kNone && (blends || detailParents_) && lv.parent < slots_.size() && slots_[lv.parent]) {
-            L.parent = slots_[lv.parent]->data();
-            L.parentScale = L.scale * 0.5f;
+        auto slot = [&](std::uint32_t id) -> const float* {
+            return id != SpatialIndex::kNone && id < slots_.size() && slots_[id] ? slots_[id]->data() : nullptr;
+        };
+        if (slot(lv.ancestors[0]) && (blends || detailParents_)) {
             // the ancestors' box corners: the leaf's, rounded down to their grids (exact in float)
-            const float up = float(1u << (depth - 1));
-            L.parentOrigin = glm::floor(leafLo * up + 0.25f) * float(reader_.brickSize()) - float(reader_.border());
+            auto origin = [&](std::uint32_t up) {
+                return glm::floor(leafLo * float(1u << (depth - up)) + 0.5f / float(1u << up)) * float(reader_.brickSize()) -
+                       float(reader_.border());
+            };
+            L.ancestor[0] = slot(lv.ancestors[0]);
+            L.ancestorOrigin[0] = origin(1);
             if (blends) {
                 L.blends = true;
                 std::copy(std::begin(lv.coarser), std::end(lv.coarser), std::begin(L.coarser));
                 L.lo = leafLo;
                 L.size = 1.0f / float(1u << depth);
-                if (lv.grandparent != SpatialIndex::kNone && lv.grandparent < slots_.size() && slots_[lv.grandparent]) {
-                    L.grandparent = slots_[lv.grandparent]->data();
-                    const float up2 = float(1u << (depth - 2));
-                    L.grandparentOrigin = glm::floor(leafLo * up2 + 0.125f) * float(reader_.brickSize()) - float(reader_.border());
+                for (std::uint32_t k = 1; k < SpatialIndex::kLevelSpan && k < depth && slot(lv.ancestors[k]); ++k) {
+                    L.ancestor[k] = slot(lv.ancestors[k]);
+                    L.ancestorOrigin[k] = origin(k + 1);
                 }
             }
         }
@@ -162,10 +166,12 @@ float CpuRayCaster::linear(const Leaf& L, const glm::vec3& p) const {
     if (!L.blends) return own;
     // Quadrilinear: trilinear at the two levels around the field's, blended.
     const float f = levelOffset(L, p);
-    const float parent = trilinear(L.parent, L.edge, L.parentScale, L.parentOrigin, p);
-    if (f <= 1.0f || !L.grandparent) return own * (1.0f - f) + parent * f;
-    const float grandparent = trilinear(L.grandparent, L.edge, L.parentScale * 0.5f, L.grandparentOrigin, p);
-    return parent * (2.0f - f) + grandparent * (f - 1.0f);
+    auto ancestor = [&](std::uint32_t up) {  // trilinear in the ancestor `up` levels up (linkParents keeps f within those resident)
+        return trilinear(L.ancestor[up - 1], L.edge, L.scale / float(1u << up), L.ancestorOrigin[up - 1], p);
+    };
+    if (f <= 1.0f) return own * (1.0f - f) + ancestor(1) * f;
+    const float k = std::ceil(f) - 1.0f;  // between the ancestors k and k + 1 levels up
+    return ancestor(std::uint32_t(k)) * (k + 1.0f - f) + ancestor(std::uint32_t(k) + 1) * (f - k);
 }
 
 float CpuRayCaster::trilinear(const float* data, int e, float scale, const glm::vec3& origin, const glm::vec3& p) {
@@ -200,10 +206,11 @@ glm::vec3 CpuRayCaster::gradient(const Leaf& L, const glm::vec3& p, float spread
 }
 
 glm::vec3 CpuRayCaster::coarserGradient(const Leaf& L, const glm::vec3& p) const {
-    if (!L.parent) return gradient(L, p, 2.0f);
+    if (!L.ancestor[0]) return gradient(L, p, 2.0f);
     // one voxel of the parent's level apart
-    return centralDifference([&](const glm::vec3& q) { return trilinear(L.parent, L.edge, L.parentScale, L.parentOrigin, q); },
-                             p, 1.0f / L.parentScale);
+    const float parentScale = L.scale * 0.5f;
+    return centralDifference([&](const glm::vec3& q) { return trilinear(L.ancestor[0], L.edge, parentScale, L.ancestorOrigin[0], q); },
+                             p, 1.0f / parentScale);
 }
 
 double CpuRayCaster::scaleByGradient(double a, double len) const {

@@ -64,16 +64,13 @@ private:
         float scale = 1.0f;  // octree units -> level voxels
         glm::vec3 origin{};  // the brick's first sample, in level voxels, less the border
         int edge = 0;
-        // The parent's brick, its scale and origin: for multilevel sampling
-        // (RenderSettings::multilevel) where the level field is coarser than the leaf (blends),
-        // with the grandparent's where it reaches past the parent, the field at the corners
-        // (SpatialIndex::LevelLink::coarser) and the leaf's box (corner, size); and for the
-        // detail shading's coarser gradient wherever the parent is resident.
-        const float* parent = nullptr;
-        float parentScale = 1.0f;
-        glm::vec3 parentOrigin{};
-        const float* grandparent = nullptr;
-        glm::vec3 grandparentOrigin{};
+        // The ancestors' bricks and origins (0: the parent; its scale is half the leaf's, and so
+        // on up): for multilevel sampling (RenderSettings::multilevel) where the level field is
+        // coarser than the leaf (blends), as far up as the field reaches, with the field at the
+        // corners (SpatialIndex::LevelLink::coarser) and the leaf's box (corner, size); and the
+        // parent for the detail shading's coarser gradient wherever it is resident.
+        const float* ancestor[SpatialIndex::kLevelSpan] = {};
+        glm::vec3 ancestorOrigin[SpatialIndex::kLevelSpan] = {};
         bool blends = false;
         float coarser[8] = {};
         glm::vec3 lo{};
@@ -82,7 +79,7 @@ private:
     /// `levels`: with multilevel sampling on, blend with the parent (off in the fused march).
     Leaf leaf(std::uint32_t node, const glm::vec3& leafLo, bool levels = true) const;
     float sample(const Leaf& leaf, const glm::vec3& p) const;  ///< trilinear, or nearest for labels
-    /// Trilinear in the leaf's brick, blended with the parent's by the leaf's level weight.
+    /// Trilinear in the leaf's brick, blended with its ancestors' by the level field.
     float linear(const Leaf& leaf, const glm::vec3& p) const;
     /// Trilinear in one brick of `edge`^3 samples.
     static float trilinear(const float* data, int edge, float scale, const glm::vec3& origin, const glm::vec3& p);

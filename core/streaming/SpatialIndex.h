@@ -29,25 +29,29 @@ struct SpatialIndex {
     /// edge of the coarsest leaf, that leaf's field there (a hanging corner); trilinear inside
     /// each leaf. So two leaves sharing a face see the same field on it, whatever their levels. A
     /// sample where the field is f levels coarser than the leaf blends the two levels around it
-    /// (quadrilinear): the leaf's own with its parent's for f <= 1, the parent's with the
-    /// grandparent's up to f = kLevelSpan. Laid out as std430 for the shader (binding 12).
+    /// (quadrilinear): the leaf's own with its parent's for f <= 1, the k-th ancestor's with the
+    /// (k+1)-th's for k < f <= k + 1, up to f = kLevelSpan (every octree of up to kLevelSpan + 2
+    /// levels: 4096³ voxels in bricks of 32). Laid out as std430 for the shader (binding 12).
+    static constexpr std::uint32_t kLevelSpan = 6;
     struct LevelLink {
-        std::uint32_t parent = kNone;       ///< the pool slot of the leaf's parent (kNone: none, not resident, not linked)
-        std::uint32_t grandparent = kNone;  ///< its grandparent's, where the field reaches past the parent
-        std::uint32_t blends = 0;           ///< 1 where the field is coarser than the leaf somewhere
-        std::uint32_t clamped = 0;          ///< 1 where the field reaches further than the leaf samples (steepLeaves)
+        /// The pool slots of the leaf's parent (0), grandparent (1) and on, as far as the field
+        /// reaches (kNone past it; the parent's kNone: none, not resident or not linked).
+        std::uint32_t ancestors[kLevelSpan] = {kNone, kNone, kNone, kNone, kNone, kNone};
+        std::uint32_t blends = 0;   ///< 1 where the field is coarser than the leaf somewhere
+        std::uint32_t clamped = 0;  ///< 1 where the field reaches further than the leaf samples (steepLeaves)
         float coarser[8] = {};  ///< per corner (x + 2y + 4z, 1 = the high side): how many levels coarser the field is
         bool operator==(const LevelLink& o) const;
     };
-    /// How many levels coarser than its leaf the field may reach: the leaf samples its parent and grandparent.
-    static constexpr float kLevelSpan = 2.0f;
     /// Per node, filled by linkParents(); empty until linked: every leaf samples its own level.
     std::vector<LevelLink> levels;
     /// How many leaves blend (none: multilevel sampling draws what sampling each leaf's own
     /// level draws, and the ray casters skip it).
     std::size_t blendingLeaves = 0;
+    /// How many levels up the field reaches anywhere in the cut (the largest corner value, rounded
+    /// up): the ray casters' variant carries only the ancestors' code it needs.
+    std::uint32_t levelReach = 0;
     /// Of those, how many the field reaches further than they can follow (more than kLevelSpan
-    /// levels coarser, or a grandparent not resident): clamped there, a seam remains.
+    /// levels coarser, or an ancestor not resident): clamped there, a seam remains.
     std::size_t steepLeaves = 0;
 
     /// Builds the index of a cut. `cut` lists .hvo node ids forming the leaves; `slotOf(id)`

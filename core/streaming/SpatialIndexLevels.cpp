@@ -10,8 +10,8 @@
 namespace hvx::core {
 
 bool SpatialIndex::LevelLink::operator==(const LevelLink& o) const {
-    return parent == o.parent && grandparent == o.grandparent && blends == o.blends && clamped == o.clamped &&
-           std::equal(std::begin(coarser), std::end(coarser), std::begin(o.coarser));
+    return std::equal(std::begin(ancestors), std::end(ancestors), std::begin(o.ancestors)) && blends == o.blends &&
+           clamped == o.clamped && std::equal(std::begin(coarser), std::end(coarser), std::begin(o.coarser));
 }
 
 namespace {
@@ -38,6 +38,7 @@ void SpatialIndex::linkParents(const OctreeReader& reader, const std::function<s
     levels.assign(nodes.size(), LevelLink{});
     blendingLeaves = 0;
     steepLeaves = 0;
+    levelReach = 0;
     const auto& hn = reader.nodes();
     const int top = int(reader.levelCount()) - 1;
     std::vector<FieldLeaf> leaves;
@@ -90,18 +91,27 @@ void SpatialIndex::linkParents(const OctreeReader& reader, const std::function<s
         const auto& h = hn[nodes[L.node].z];
         if (h.parent == hvo::kNoNode) continue;
         LevelLink& link = levels[L.node];
-        link.parent = slotOf(h.parent);
-        if (link.parent == kNone) continue;
+        link.ancestors[0] = slotOf(h.parent);
+        if (link.ancestors[0] == kNone) continue;
         double reach = 0.0;
         for (std::uint32_t c = 0; c < 8; ++c) reach = std::max(reach, double(L.depth) - L.field[c]);
         if (reach <= 0.0) continue;
-        double span = std::min(double(kLevelSpan), double(L.depth));
-        if (reach > 1.0) {
-            const auto grand = hn[h.parent].parent;
-            link.grandparent = grand == hvo::kNoNode ? kNone : slotOf(grand);
-            if (link.grandparent == kNone) span = 1.0;
+        // The ancestors the field reaches (ancestors[k], k + 1 levels up, where f passes k), as far as they are resident.
+        const auto needed = std::uint32_t(std::ceil(std::min(reach, double(kLevelSpan))));
+        double span = double(needed);
+        auto up = h.parent;
+        for (std::uint32_t k = 1; k < needed; ++k) {
+            up = hn[up].parent;
+            link.ancestors[k] = up == hvo::kNoNode ? kNone : slotOf(up);
+            if (link.ancestors[k] == kNone) {
+                span = double(k);
+                break;
+            }
         }
-        for (std::uint32_t c = 0; c < 8; ++c) link.coarser[c] = float(std::min(double(L.depth) - L.field[c], span));
+        for (std::uint32_t c = 0; c < 8; ++c) {
+            link.coarser[c] = float(std::min(double(L.depth) - L.field[c], span));
+            levelReach = std::max(levelReach, std::uint32_t(std::ceil(link.coarser[c])));
+        }
         link.blends = 1;
         ++blendingLeaves;
         link.clamped = reach > span ? 1u : 0u;

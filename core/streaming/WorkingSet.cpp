@@ -224,18 +224,18 @@ const SpatialIndex& WorkingSet::update(const std::vector<View>& views, const Tra
     std::vector<std::uint32_t> slots;
     slots.reserve(cut_.size());
     for (auto id : cut_) slots.push_back(slotOf(id));
-    // The index depends on the set of cut nodes, their slots and their parents' and
-    // grandparents' slots, not on the order refinement found them in: a view whose cut stays
-    // keeps its index, and neither build nor linkParents runs.
-    auto ancestorSlot = [&](std::uint32_t id, int up) {
-        for (; up > 0 && id != hvo::kNoNode; --up) id = nodes[id].parent;
-        return id == hvo::kNoNode ? SpatialIndex::kNone : slotOf(id);
-    };
-    std::vector<glm::uvec4> key;
-    key.reserve(cut_.size());
-    for (std::size_t i = 0; i < cut_.size(); ++i)
-        key.push_back({cut_[i], slots[i], ancestorSlot(cut_[i], 1), ancestorSlot(cut_[i], 2)});
-    std::sort(key.begin(), key.end(), [](const glm::uvec4& a, const glm::uvec4& b) { return a.x < b.x; });
+    // The index depends on the set of cut nodes and their slots, and on their ancestors' slots
+    // (multilevel sampling), not on the order refinement found them in: a view whose cut stays
+    // keeps its index, and neither build nor linkParents runs. Key: (node, slot, 1) per cut
+    // node, (node, slot, 0) per ancestor of one, by node.
+    std::vector<glm::uvec3> key;
+    key.reserve(cut_.size() + cut_.size() / 4);
+    for (std::size_t i = 0; i < cut_.size(); ++i) key.push_back({cut_[i], slots[i], 1u});
+    keyAncestors_.clear();
+    for (auto id : cut_)
+        for (auto up = nodes[id].parent; up != hvo::kNoNode && keyAncestors_.insert(up).second; up = nodes[up].parent)
+            key.push_back({up, slotOf(up), 0u});
+    std::sort(key.begin(), key.end(), [](const glm::uvec3& a, const glm::uvec3& b) { return a.x < b.x; });
     stats_.levelsMs = 0.0;
     stats_.indexRebuilt = !indexBuilt_ || key != indexKey_;
     if (stats_.indexRebuilt) {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <set>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -112,7 +113,8 @@ private:
     SpatialIndex index_;
     std::vector<std::uint32_t> cut_;
     // What index_ was built from: (cut node, its slot, its parent's slot) by node id.
-    std::vector<glm::uvec4> indexKey_;
+    std::vector<glm::uvec3> indexKey_;
+    std::unordered_set<std::uint32_t> keyAncestors_;  // scratch of the key's ancestors, kept for its buckets
     bool indexBuilt_ = false;
     std::vector<std::uint32_t> slotNode_;
     std::vector<std::uint64_t> slotStamp_;

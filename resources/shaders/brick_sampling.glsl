@@ -27,13 +27,18 @@ struct LeafSampler {
     vec4 coarserLo; // by this many levels at corners 0-3 and 4-7
     vec4 coarserHi;
     float size;
-    // The grandparent's placement, where the field reaches past the parent (hasGrandparent).
+#if HVX_MULTILEVEL >= 3
+    uint node;      // the leaf's index node and depth: further ancestors' placements on demand
+    uint depth;
+#endif
+#if HVX_MULTILEVEL >= 2
+    // The grandparent's placement, where the field reaches past the parent.
     vec3 gScale;
     vec3 gOffset;
     vec3 gTexLo;
     vec3 gTexHi;
     vec2 gDecode;
-    bool hasGrandparent;
+#endif
 #endif
 };
 
@@ -89,13 +94,12 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
     L.hasParent = false;
 #if HVX_MULTILEVEL
     L.blends = false;
-    L.hasGrandparent = false;
 #endif
-    if (depth > 0u && lv.parent != HVX_NONE && (HVX_DETAIL_PARENT != 0 || lv.blends != 0u)) {
+    if (depth > 0u && lv.ancestors[0] != HVX_NONE && (HVX_DETAIL_PARENT != 0 || lv.blends != 0u)) {
         // the ancestors' corners: the leaf's, rounded down to their grids (exact in float)
-        slotPlacement(lv.parent, depth - 1u, floor(leafLo * float(1u << (depth - 1u)) + 0.25), L.pScale, L.pOffset, L.pTexLo,
-                      L.pTexHi);
-        L.pDecode = slotRecords[lv.parent].decode;
+        slotPlacement(lv.ancestors[0], depth - 1u, floor(leafLo * float(1u << (depth - 1u)) + 0.25), L.pScale, L.pOffset,
+                      L.pTexLo, L.pTexHi);
+        L.pDecode = slotRecords[lv.ancestors[0]].decode;
         L.hasParent = true;
 #if HVX_MULTILEVEL
         if (lv.blends != 0u) {
@@ -104,12 +108,17 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
             L.coarserHi = vec4(lv.coarser[4], lv.coarser[5], lv.coarser[6], lv.coarser[7]);
             L.size = 1.0 / float(1u << depth);
             L.visible = uvec2(0xFFFFFFFFu);  // the ancestors' values are not bounded by the leaf's cells
-            if (lv.grandparent != HVX_NONE) {
-                slotPlacement(lv.grandparent, depth - 2u, floor(leafLo * float(1u << (depth - 2u)) + 0.125), L.gScale, L.gOffset,
+#if HVX_MULTILEVEL >= 3
+            L.node = node;
+            L.depth = depth;
+#endif
+#if HVX_MULTILEVEL >= 2
+            if (lv.ancestors[1] != HVX_NONE) {
+                slotPlacement(lv.ancestors[1], depth - 2u, floor(leafLo * float(1u << (depth - 2u)) + 0.125), L.gScale, L.gOffset,
                               L.gTexLo, L.gTexHi);
-                L.gDecode = slotRecords[lv.grandparent].decode;
-                L.hasGrandparent = true;
+                L.gDecode = slotRecords[lv.ancestors[1]].decode;
             }
+#endif
         }
 #endif
     }
@@ -129,7 +138,10 @@ float levelOffset(LeafSampler L, vec3 p) {
     return f;
 }
 
-// Trilinear in the grandparent's brick (L.hasGrandparent).
+#endif
+
+#if HVX_MULTILEVEL >= 2
+// Trilinear in the grandparent's brick (where the field reaches past the parent).
 float grandparentSampleLinear(LeafSampler L, vec3 p) {
     return texture(brickPool, clamp(p * L.gScale + L.gOffset, L.gTexLo, L.gTexHi)).r * L.gDecode.x + L.gDecode.y;
 }
@@ -142,16 +154,46 @@ float parentSampleLinear(LeafSampler L, vec3 p) {
 }
 #endif
 
+#if HVX_MULTILEVEL >= 3
+// Trilinear in the brick of the leaf's ancestor k >= 3 levels up, one the level field reaches (a
+// leaf beside one three or more levels coarser, rare): its placement worked out here.
+float farAncestorSampleLinear(LeafSampler L, uint k, vec3 p) {
+    uint slot = hvxLevels[L.node].ancestors[k - 1u];
+    vec3 scale, offset, texLo, texHi;
+    slotPlacement(slot, L.depth - k, floor(L.leafLo * float(1u << (L.depth - k)) + 0.5 / float(1u << k)), scale, offset, texLo,
+                  texHi);
+    vec2 decode = slotRecords[slot].decode;
+    return texture(brickPool, clamp(p * scale + offset, texLo, texHi)).r * decode.x + decode.y;
+}
+#endif
+
 // Hardware trilinear filtering inside the slot (the border replicates the neighbours). The
 // decode is linear, so it applies after filtering.
 float leafSampleLinear(LeafSampler L, vec3 p) {
     float own = texture(brickPool, clamp(p * L.scale + L.offset, L.texLo, L.texHi)).r * L.decode.x + L.decode.y;
 #if HVX_MULTILEVEL
     if (L.blends) {  // quadrilinear: trilinear at the two levels around the field's, blended
+        // The variant knows how far the cut's field reaches (SpatialIndex::levelReach; within the
+        // resident ancestors): SIMD drivers run a branch's code for every lane, so the common
+        // cases do not carry the far ancestors' code.
         float f = levelOffset(L, p);
         float parent = parentSampleLinear(L, p);
-        if (f <= 1.0 || !L.hasGrandparent) own = own * (1.0 - f) + parent * f;
+#if HVX_MULTILEVEL == 1
+        own = own * (1.0 - f) + parent * f;
+#elif HVX_MULTILEVEL == 2
+        if (f <= 1.0) own = own * (1.0 - f) + parent * f;
         else own = parent * (2.0 - f) + grandparentSampleLinear(L, p) * (f - 1.0);
+#else
+        if (f <= 1.0) {
+            own = own * (1.0 - f) + parent * f;
+        } else if (f <= 2.0) {
+            own = parent * (2.0 - f) + grandparentSampleLinear(L, p) * (f - 1.0);
+        } else {  // between the ancestors k and k + 1 levels up
+            float k = ceil(f) - 1.0;
+            float lower = k == 2.0 ? grandparentSampleLinear(L, p) : farAncestorSampleLinear(L, uint(k), p);
+            own = lower * (k + 1.0 - f) + farAncestorSampleLinear(L, uint(k) + 1u, p) * (f - k);
+        }
+#endif
     }
 #endif
     return own;

@@ -52,11 +52,12 @@ layout(std430, binding = 6) buffer RayCounts { uint rayCounts[]; };  // per inde
 #define HVX_DETAIL_PARENT 0
 #endif
 #if HVX_MULTILEVEL || HVX_DETAIL_PARENT
-// core::SpatialIndex::LevelLink, per index node: the parent's and grandparent's slots, whether
-// the leaf blends, and how many levels coarser than the leaf the level field is at its corners.
+// core::SpatialIndex::LevelLink, per index node: the slots of the parent (0), grandparent (1)
+// and on, as far as the level field reaches; whether the leaf blends, and how many levels
+// coarser than the leaf the field is at its corners.
+#define HVX_LEVEL_SPAN 6u
 struct HvxLevelLink {
-    uint parent;
-    uint grandparent;
+    uint ancestors[HVX_LEVEL_SPAN];
     uint blends;
     uint clamped;
     float coarser[8];

@@ -125,7 +125,7 @@ TEST(DetailShading, TheCoarserScaleIsTheParentLevelsGradient) {
     s.converge();
     const auto& linked = s.ws->index();
     std::size_t withParent = 0;
-    for (const auto& lv : linked.levels) withParent += lv.parent != core::SpatialIndex::kNone;
+    for (const auto& lv : linked.levels) withParent += lv.ancestors[0] != core::SpatialIndex::kNone;
     auto unlinked = linked;
     unlinked.levels.clear();
     unlinked.blendingLeaves = 0;

@@ -5,14 +5,15 @@
 // (without it, on the ramps, it jumps more). The left half of the volume at full resolution and
 // the right half one level coarser, on a ramp with a ripple finer than the coarse level and on the
 // phantom; and a ramp whose right half is one level coarser below y = 1/2 and two above (a leaf
-// two levels coarser, coarser leaves that blend themselves). GPU equals the CPU reference; a cut
-// of one level is unchanged.
+// two levels coarser, coarser leaves that blend themselves), and one whose right half is three
+// levels coarser. GPU equals the CPU reference; a cut of one level is unchanged.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include <glm/geometric.hpp>
 
@@ -174,6 +175,40 @@ void expectNoSeamInAverage(const char* name, const test::OctreeScene& s, const c
     rs.mode = core::RenderSettings::Mode::Average;
     expectNoSeam(name, s, tf, rs, e, seamWithout);
 }
+
+/// A 128³ rippled ramp (`period`) in bricks of `brickSize`, its cut refined for an edge-on view by
+/// `accuracy` (finest voxels, by octree position) to levels 0 to `coarsest`: every leaf reaches
+/// the levels its field needs (none clamped, some past the parent), then expectNoSeam.
+void expectNoSeamAcrossLevels(const char* name, std::uint32_t brickSize, double period, int coarsest,
+                              std::function<double(const glm::dvec3&)> accuracy) {
+    auto source = rippledRamp({128, 128, 128}, period);
+    core::BuildOptions options;
+    options.brickSize = brickSize;
+    test::OctreeScene s(source, options);
+    const core::TransferFunction tf({{-60, glm::dvec4(1, 1, 1, 0.01)}, {1076, glm::dvec4(1, 1, 1, 0.01)}}, -60, 1076);
+    const auto e = edgeOn(s, 512);
+    const auto space = s.ws->space();
+    const double voxel = space.voxelSize(0);
+    s.ws->converge({e.view}, tf, [space, voxel, accuracy](const core::View&, const glm::dvec3& p) {
+        return accuracy(glm::dvec3(space.patientToOctree * glm::dvec4(p, 1.0))) * voxel;
+    });
+    const auto& idx = s.ws->index();
+    std::size_t pastParent = 0;
+    float farthest = 0.0f;
+    for (const auto& lv : idx.levels) {
+        pastParent += lv.ancestors[1] != core::SpatialIndex::kNone;
+        for (float f : lv.coarser) farthest = std::max(farthest, f);
+    }
+    std::printf("%s: %zu leaves blend, %zu of them past their parent, %zu clamped; the field reaches %.2f levels up\n", name,
+                idx.blendingLeaves, pastParent, idx.steepLeaves, farthest);
+    EXPECT_GT(pastParent, 0u);
+    EXPECT_EQ(idx.steepLeaves, 0u);
+    EXPECT_EQ(farthest, float(coarsest)) << "the finest leaves meet the coarsest";
+    render::EglOffscreenContext ctx;
+    core::RenderSettings rs;
+    rs.mode = core::RenderSettings::Mode::Average;
+    expectNoSeam(name, s, tf, rs, e, true, coarsest, double(brickSize) / 128.0);
+}
 }  // namespace
 
 TEST(Multilevel, ARampMeetsItsCoarserLevelWithoutASeam) {
@@ -191,29 +226,18 @@ TEST(Multilevel, ARampMeetsALeafTwoLevelsCoarserAndABlendingNeighbourWithoutASea
     // leaves across the face follow (hanging corners). The view's rows straddle y = 1/2. A blend
     // reaching one level only (the finer leaves' parent) leaves a seam: the ripple's 0.65 of the
     // middle level against none of the top one.
-    auto source = rippledRamp({128, 128, 128}, 8.0);
-    core::BuildOptions options;
-    options.brickSize = 16;
-    test::OctreeScene s(source, options);
-    const core::TransferFunction tf({{-60, glm::dvec4(1, 1, 1, 0.01)}, {1076, glm::dvec4(1, 1, 1, 0.01)}}, -60, 1076);
-    const auto e = edgeOn(s, 512);
-    const auto space = s.ws->space();
-    const double voxel = space.voxelSize(0);
-    s.ws->converge({e.view}, tf, [space, voxel](const core::View&, const glm::dvec3& p) {
-        const glm::dvec3 o(space.patientToOctree * glm::dvec4(p, 1.0));
-        return o.x < 0.5 ? 0.5 * voxel : o.y < 0.5 ? 2.5 * voxel : 5.0 * voxel;
+    expectNoSeamAcrossLevels("three-level ramp", 16, 8.0, 2, [](const glm::dvec3& o) {
+        return o.x < 0.5 ? 0.5 : o.y < 0.5 ? 2.5 : 5.0;
     });
-    const auto& idx = s.ws->index();
-    std::size_t pastParent = 0;
-    for (const auto& lv : idx.levels) pastParent += lv.grandparent != core::SpatialIndex::kNone;
-    std::printf("three-level ramp: %zu leaves blend, %zu of them past their parent, %zu clamped\n", idx.blendingLeaves,
-                pastParent, idx.steepLeaves);
-    EXPECT_GT(pastParent, 0u);
-    EXPECT_EQ(idx.steepLeaves, 0u);
-    render::EglOffscreenContext ctx;
-    core::RenderSettings rs;
-    rs.mode = core::RenderSettings::Mode::Average;
-    expectNoSeam("three-level ramp", s, tf, rs, e, true, 2, 0.125);
+}
+
+TEST(Multilevel, ARampMeetsALeafThreeLevelsCoarserWithoutASeam) {
+    // 128³ voxels in bricks of 8 (five levels). The left half at full resolution, the right half
+    // three levels coarser (8 voxels a sample): at the face, the finer leaves' field reaches
+    // their great-grandparent. A ripple of period 16: the level 4 voxels a sample keeps 0.64 of
+    // it, the level 8 voxels a sample samples it at its zero crossings (none left). A blend that
+    // stopped at the grandparent would leave that seam.
+    expectNoSeamAcrossLevels("four-level ramp", 8, 16.0, 3, [](const glm::dvec3& o) { return o.x < 0.5 ? 0.5 : 10.0; });
 }
 
 TEST(Multilevel, ThePhantomMeetsItsCoarserLevelWithoutASeam) {

@@ -1,12 +1,14 @@
 // SpatialIndex::linkParents (multilevel sampling, thesis §3.2.2): each leaf with a brick gets its
-// parent's slot and the level field at its corners. Checked by brute force on random cuts with
+// ancestors' slots, as far up as the level field reaches, and the field at its corners. Checked by brute force on random cuts with
 // random empty leaves and parents missing from the pool: the field is coarser than a leaf
 // exactly at the corners a coarser leaf with a brick touches (every pair of leaves, each corner
 // against every other leaf's closed box); and, with every node resident, two leaves sharing a
 // face see the same field on it, at any pair of levels. The working set builds and links the
-// index anew only when the cut or a slot changes.
+// index anew only when the cut, a slot or an ancestor's slot changes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <random>
 #include <tuple>
@@ -86,6 +88,7 @@ TEST(SpatialIndexLevels, TheFieldIsCoarserExactlyAtTheCornersACoarserLeafWithABr
     ASSERT_GE(reader->levelCount(), 4u);
     std::mt19937 rng(21);
     std::size_t linked = 0, blending = 0, marked = 0, pastParent = 0, steepTotal = 0;
+    float farthest = 0.0f;
     for (std::uint32_t trial = 0; trial < 12; ++trial) {
         const auto cut = test::randomCut(*reader, rng, 0.55 + 0.03 * trial);
         std::vector<std::uint32_t> slots;
@@ -95,6 +98,7 @@ TEST(SpatialIndexLevels, TheFieldIsCoarserExactlyAtTheCornersACoarserLeafWithABr
         ASSERT_EQ(idx.levels.size(), idx.nodes.size());
         const auto boxes = leafBoxes(idx);
         std::size_t blendingHere = 0;
+        float reachHere = 0.0f;
         for (std::size_t i = 0; i < idx.nodes.size(); ++i) {
             const auto& nd = idx.nodes[i];
             const auto& lv = idx.levels[i];
@@ -106,8 +110,9 @@ TEST(SpatialIndexLevels, TheFieldIsCoarserExactlyAtTheCornersACoarserLeafWithABr
                 continue;
             }
             ++linked;
-            EXPECT_EQ(lv.parent, slotOf(reader->nodes()[nd.z].parent, trial));
+            EXPECT_EQ(lv.ancestors[0], slotOf(reader->nodes()[nd.z].parent, trial));
             bool coarser = false, pastTheParent = false;
+            float reach = 0.0f;
             for (std::uint32_t c = 0; c < 8; ++c) {
                 const glm::dvec3 corner = glm::mix(boxes[i].lo, boxes[i].hi, glm::dvec3(c & 1u, (c >> 1) & 1u, (c >> 2) & 1u));
                 bool touched = false;
@@ -120,19 +125,30 @@ TEST(SpatialIndexLevels, TheFieldIsCoarserExactlyAtTheCornersACoarserLeafWithABr
                 EXPECT_LE(f, core::SpatialIndex::kLevelSpan);
                 coarser = coarser || touched;
                 pastTheParent = pastTheParent || f > 1.0f;
+                reach = std::max(reach, f);
                 marked += touched;
             }
             EXPECT_EQ(lv.blends, coarser ? 1u : 0u);
-            if (pastTheParent) {
-                const auto grand = reader->nodes()[reader->nodes()[nd.z].parent].parent;
-                ASSERT_NE(grand, core::hvo::kNoNode);
-                EXPECT_EQ(lv.grandparent, slotOf(grand, trial));
-                EXPECT_NE(lv.grandparent, core::SpatialIndex::kNone) << "the field reaches past the parent without the grandparent";
+            // Every ancestor the field reaches, resident (a missing one clamps the field below
+            // it); none beyond.
+            auto up = reader->nodes()[nd.z].parent;
+            for (std::uint32_t k = 0; k < core::SpatialIndex::kLevelSpan; ++k) {
+                if (k > 0 && k < std::uint32_t(std::ceil(reach))) {
+                    up = reader->nodes()[up].parent;
+                    ASSERT_NE(up, core::hvo::kNoNode);
+                    EXPECT_EQ(lv.ancestors[k], slotOf(up, trial)) << "trial " << trial << ", leaf " << i << ", " << k + 1 << " up";
+                    EXPECT_NE(lv.ancestors[k], core::SpatialIndex::kNone) << "the field reaches an ancestor not resident";
+                } else if (k > 0) {
+                    EXPECT_EQ(lv.ancestors[k], core::SpatialIndex::kNone) << "an ancestor past the field's reach";
+                }
             }
+            farthest = std::max(farthest, reach);
+            reachHere = std::max(reachHere, reach);
             blendingHere += coarser;
             pastParent += pastTheParent;
         }
         EXPECT_EQ(idx.blendingLeaves, blendingHere);
+        EXPECT_EQ(idx.levelReach, std::uint32_t(std::ceil(reachHere))) << "the cut's reach, for the shader's variant";
         std::size_t clampedHere = 0;
         for (const auto& lv : idx.levels) clampedHere += lv.clamped;
         EXPECT_EQ(idx.steepLeaves, clampedHere);
@@ -140,10 +156,11 @@ TEST(SpatialIndexLevels, TheFieldIsCoarserExactlyAtTheCornersACoarserLeafWithABr
         blending += blendingHere;
         steepTotal += idx.steepLeaves;
     }
-    std::printf("%zu leaves linked to their parents, %zu of them blending (%zu past the parent, %zu clamped), "
-                "%zu corners coarser\n",
-                linked, blending, pastParent, steepTotal, marked);
+    std::printf("%zu leaves linked to their parents, %zu of them blending (%zu past the parent, %zu clamped where an "
+                "ancestor is missing), %zu corners coarser; the field reaches %.2f levels up at most\n",
+                linked, blending, pastParent, steepTotal, marked, farthest);
     EXPECT_GT(pastParent, 10u);
+    EXPECT_GT(farthest, 2.0f) << "the cuts put leaves three levels apart";
     EXPECT_GT(blending, 100u);  // the cuts mix levels: the check has corners to find
     EXPECT_GT(linked, blending);  // and leaves with none
 }
@@ -170,7 +187,7 @@ TEST(SpatialIndexLevels, LeavesSharingAFaceSeeTheSameFieldOnIt) {
                 const glm::dvec3 extent = hi - lo;
                 const int flat = (extent.x == 0.0) + (extent.y == 0.0) + (extent.z == 0.0);
                 if (flat != 1 || extent.x < 0.0 || extent.y < 0.0 || extent.z < 0.0) continue;  // not a shared face
-                if (idx.levels[i].clamped || idx.levels[j].clamped) {
+                if (idx.levels[i].clamped || idx.levels[j].clamped) {  // none: every ancestor is resident
                     ++clamped;
                     continue;
                 }
@@ -196,6 +213,7 @@ TEST(SpatialIndexLevels, LeavesSharingAFaceSeeTheSameFieldOnIt) {
                 faces, acrossLevels, acrossTwo, clamped, points, largest);
     EXPECT_GT(acrossLevels, 200u);
     EXPECT_GT(acrossTwo, 10u);
+    EXPECT_EQ(clamped, 0u) << "with every node resident, the field reaches any level";
 }
 
 TEST(SpatialIndexLevels, TheWorkingSetRebuildsTheIndexOnlyWhenTheCutOrASlotChanges) {
