@@ -131,6 +131,7 @@ CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafL
             if (blends) {
                 L.blends = true;
                 std::copy(std::begin(lv.coarser), std::end(lv.coarser), std::begin(L.coarser));
+                L.top = std::ceil(*std::max_element(std::begin(lv.coarser), std::end(lv.coarser)));
                 L.lo = leafLo;
                 L.size = 1.0f / float(1u << depth);
                 for (std::uint32_t k = 1; k < SpatialIndex::kLevelSpan && k < depth && slot(lv.ancestors[k]); ++k) {
@@ -170,7 +171,9 @@ float CpuRayCaster::linear(const Leaf& L, const glm::vec3& p) const {
         return trilinear(L.ancestor[up - 1], L.edge, L.scale / float(1u << up), L.ancestorOrigin[up - 1], p);
     };
     if (f <= 1.0f) return own * (1.0f - f) + ancestor(1) * f;
-    const float k = std::ceil(f) - 1.0f;  // between the ancestors k and k + 1 levels up
+    // between the ancestors k and k + 1 levels up; the corners' largest value bounds k (the
+    // trilinear weights may sum to a rounding above 1)
+    const float k = std::min(std::ceil(f), L.top) - 1.0f;
     return ancestor(std::uint32_t(k)) * (k + 1.0f - f) + ancestor(std::uint32_t(k) + 1) * (f - k);
 }
 

@@ -73,6 +73,7 @@ private:
         glm::vec3 ancestorOrigin[SpatialIndex::kLevelSpan] = {};
         bool blends = false;
         float coarser[8] = {};
+        float top = 0.0f;  // the largest of them, rounded up: the farthest ancestor sampled
         glm::vec3 lo{};
         float size = 1.0f;
     };

@@ -30,6 +30,7 @@ struct LeafSampler {
 #if HVX_MULTILEVEL >= 3
     uint node;      // the leaf's index node and depth: further ancestors' placements on demand
     uint depth;
+    float top;      // the corners' largest value, rounded up: the farthest ancestor sampled
 #endif
 #if HVX_MULTILEVEL >= 2
     // The grandparent's placement, where the field reaches past the parent.
@@ -111,6 +112,8 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
 #if HVX_MULTILEVEL >= 3
             L.node = node;
             L.depth = depth;
+            L.top = ceil(max(max(max(L.coarserLo.x, L.coarserLo.y), max(L.coarserLo.z, L.coarserLo.w)),
+                             max(max(L.coarserHi.x, L.coarserHi.y), max(L.coarserHi.z, L.coarserHi.w))));
 #endif
 #if HVX_MULTILEVEL >= 2
             if (lv.ancestors[1] != HVX_NONE) {
@@ -188,8 +191,8 @@ float leafSampleLinear(LeafSampler L, vec3 p) {
             own = own * (1.0 - f) + parent * f;
         } else if (f <= 2.0) {
             own = parent * (2.0 - f) + grandparentSampleLinear(L, p) * (f - 1.0);
-        } else {  // between the ancestors k and k + 1 levels up
-            float k = ceil(f) - 1.0;
+        } else {  // between the ancestors k and k + 1 levels up (the weights may sum to a rounding above 1)
+            float k = min(ceil(f), L.top) - 1.0;
             float lower = k == 2.0 ? grandparentSampleLinear(L, p) : farAncestorSampleLinear(L, uint(k), p);
             own = lower * (k + 1.0 - f) + farAncestorSampleLinear(L, uint(k) + 1u, p) * (f - k);
         }
