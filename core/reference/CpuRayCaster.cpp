@@ -170,10 +170,10 @@ float CpuRayCaster::linear(const Leaf& L, const glm::vec3& p) const {
     auto ancestor = [&](std::uint32_t up) {  // trilinear in the ancestor `up` levels up (linkParents keeps f within those resident)
         return trilinear(L.ancestor[up - 1], L.edge, L.scale / float(1u << up), L.ancestorOrigin[up - 1], p);
     };
-    if (f <= 1.0f) return own * (1.0f - f) + ancestor(1) * f;
-    // between the ancestors k and k + 1 levels up; the corners' largest value bounds k (the
-    // trilinear weights may sum to a rounding above 1)
-    const float k = std::min(std::ceil(f), L.top) - 1.0f;
+    // The corners' largest value bounds the ancestors sampled: the trilinear weights may sum to a
+    // rounding above 1, and f with them past the ancestors linked.
+    if (f <= 1.0f || L.top <= 1.0f) return own * (1.0f - f) + ancestor(1) * f;
+    const float k = std::min(std::ceil(f), L.top) - 1.0f;  // between the ancestors k and k + 1 levels up
     return ancestor(std::uint32_t(k)) * (k + 1.0f - f) + ancestor(std::uint32_t(k) + 1) * (f - k);
 }
 

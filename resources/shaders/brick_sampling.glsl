@@ -27,10 +27,12 @@ struct LeafSampler {
     vec4 coarserLo; // by this many levels at corners 0-3 and 4-7
     vec4 coarserHi;
     float size;
+#if HVX_MULTILEVEL >= 2
+    float top;      // the corners' largest value, rounded up: the farthest ancestor sampled
+#endif
 #if HVX_MULTILEVEL >= 3
     uint node;      // the leaf's index node and depth: further ancestors' placements on demand
     uint depth;
-    float top;      // the corners' largest value, rounded up: the farthest ancestor sampled
 #endif
 #if HVX_MULTILEVEL >= 2
     // The grandparent's placement, where the field reaches past the parent.
@@ -112,8 +114,10 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
 #if HVX_MULTILEVEL >= 3
             L.node = node;
             L.depth = depth;
-            L.top = ceil(max(max(max(L.coarserLo.x, L.coarserLo.y), max(L.coarserLo.z, L.coarserLo.w)),
-                             max(max(L.coarserHi.x, L.coarserHi.y), max(L.coarserHi.z, L.coarserHi.w))));
+#endif
+#if HVX_MULTILEVEL >= 2
+            vec4 highest = max(L.coarserLo, L.coarserHi);
+            L.top = ceil(max(max(highest.x, highest.y), max(highest.z, highest.w)));
 #endif
 #if HVX_MULTILEVEL >= 2
             if (lv.ancestors[1] != HVX_NONE) {
@@ -179,19 +183,21 @@ float leafSampleLinear(LeafSampler L, vec3 p) {
         // The variant knows how far the cut's field reaches (SpatialIndex::levelReach; within the
         // resident ancestors): SIMD drivers run a branch's code for every lane, so the common
         // cases do not carry the far ancestors' code.
+        // The corners' largest value (top) bounds the ancestors sampled: the trilinear weights
+        // may sum to a rounding above 1, and f with them past the ancestors linked.
         float f = levelOffset(L, p);
         float parent = parentSampleLinear(L, p);
 #if HVX_MULTILEVEL == 1
         own = own * (1.0 - f) + parent * f;
 #elif HVX_MULTILEVEL == 2
-        if (f <= 1.0) own = own * (1.0 - f) + parent * f;
+        if (f <= 1.0 || L.top <= 1.0) own = own * (1.0 - f) + parent * f;
         else own = parent * (2.0 - f) + grandparentSampleLinear(L, p) * (f - 1.0);
 #else
-        if (f <= 1.0) {
+        if (f <= 1.0 || L.top <= 1.0) {
             own = own * (1.0 - f) + parent * f;
-        } else if (f <= 2.0) {
+        } else if (f <= 2.0 || L.top <= 2.0) {
             own = parent * (2.0 - f) + grandparentSampleLinear(L, p) * (f - 1.0);
-        } else {  // between the ancestors k and k + 1 levels up (the weights may sum to a rounding above 1)
+        } else {  // between the ancestors k and k + 1 levels up
             float k = min(ceil(f), L.top) - 1.0;
             float lower = k == 2.0 ? grandparentSampleLinear(L, p) : farAncestorSampleLinear(L, uint(k), p);
             own = lower * (k + 1.0 - f) + farAncestorSampleLinear(L, uint(k) + 1u, p) * (f - k);
