@@ -131,7 +131,7 @@ CpuRayCaster::Leaf CpuRayCaster::leaf(std::uint32_t node, const glm::vec3& leafL
             if (blends) {
                 L.blends = true;
                 std::copy(std::begin(lv.coarser), std::end(lv.coarser), std::begin(L.coarser));
-                L.top = std::ceil(*std::max_element(std::begin(lv.coarser), std::end(lv.coarser)));
+                L.highest = *std::max_element(std::begin(lv.coarser), std::end(lv.coarser));
                 L.lo = leafLo;
                 L.size = 1.0f / float(1u << depth);
                 for (std::uint32_t k = 1; k < SpatialIndex::kLevelSpan && k < depth && slot(lv.ancestors[k]); ++k) {
@@ -159,7 +159,7 @@ float CpuRayCaster::levelOffset(const Leaf& L, const glm::vec3& p) {
     float f = 0.0f;
     for (std::uint32_t c = 0; c < 8; ++c)
         f += L.coarser[c] * (((c & 1u) ? u.x : 1.0f - u.x) * ((c & 2u) ? u.y : 1.0f - u.y) * ((c & 4u) ? u.z : 1.0f - u.z));
-    return f;
+    return std::min(f, L.highest);
 }
 
 float CpuRayCaster::linear(const Leaf& L, const glm::vec3& p) const {
@@ -170,10 +170,8 @@ float CpuRayCaster::linear(const Leaf& L, const glm::vec3& p) const {
     auto ancestor = [&](std::uint32_t up) {  // trilinear in the ancestor `up` levels up (linkParents keeps f within those resident)
         return trilinear(L.ancestor[up - 1], L.edge, L.scale / float(1u << up), L.ancestorOrigin[up - 1], p);
     };
-    // The corners' largest value bounds the ancestors sampled: the trilinear weights may sum to a
-    // rounding above 1, and f with them past the ancestors linked.
-    if (f <= 1.0f || L.top <= 1.0f) return own * (1.0f - f) + ancestor(1) * f;
-    const float k = std::min(std::ceil(f), L.top) - 1.0f;  // between the ancestors k and k + 1 levels up
+    if (f <= 1.0f) return own * (1.0f - f) + ancestor(1) * f;
+    const float k = std::ceil(f) - 1.0f;  // between the ancestors k and k + 1 levels up
     return ancestor(std::uint32_t(k)) * (k + 1.0f - f) + ancestor(std::uint32_t(k) + 1) * (f - k);
 }
 

@@ -73,7 +73,7 @@ private:
         glm::vec3 ancestorOrigin[SpatialIndex::kLevelSpan] = {};
         bool blends = false;
         float coarser[8] = {};
-        float top = 0.0f;  // the largest of them, rounded up: the farthest ancestor sampled
+        float highest = 0.0f;  // the largest of them: the field's bound
         glm::vec3 lo{};
         float size = 1.0f;
     };
@@ -84,7 +84,9 @@ private:
     float linear(const Leaf& leaf, const glm::vec3& p) const;
     /// Trilinear in one brick of `edge`^3 samples.
     static float trilinear(const float* data, int edge, float scale, const glm::vec3& origin, const glm::vec3& p);
-    /// How many levels coarser than the leaf the level field is at p: the corners' values, interpolated trilinearly.
+    /// How many levels coarser than the leaf the level field is at p: the corners' values,
+    /// interpolated trilinearly, at most the largest of them (the eight weights may sum to a
+    /// rounding above 1, which would reach past the ancestors linked).
     static float levelOffset(const Leaf& leaf, const glm::vec3& p);
     float nearest(const Leaf& leaf, const glm::vec3& p) const;
     /// The average f (k, tau) of the segment from value a to b: pre-integrated, or for labels

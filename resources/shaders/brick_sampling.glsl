@@ -26,10 +26,8 @@ struct LeafSampler {
     bool blends;    // core::SpatialIndex::LevelLink: the level field is coarser than the leaf somewhere,
     vec4 coarserLo; // by this many levels at corners 0-3 and 4-7
     vec4 coarserHi;
+    float highest;  // the largest of them: the field's bound (the weights may sum to a rounding above 1)
     float size;
-#if HVX_MULTILEVEL >= 2
-    float top;      // the corners' largest value, rounded up: the farthest ancestor sampled
-#endif
 #if HVX_MULTILEVEL >= 3
     uint node;      // the leaf's index node and depth: further ancestors' placements on demand
     uint depth;
@@ -109,15 +107,13 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
             L.blends = true;
             L.coarserLo = vec4(lv.coarser[0], lv.coarser[1], lv.coarser[2], lv.coarser[3]);
             L.coarserHi = vec4(lv.coarser[4], lv.coarser[5], lv.coarser[6], lv.coarser[7]);
+            vec4 corner = max(L.coarserLo, L.coarserHi);
+            L.highest = max(max(corner.x, corner.y), max(corner.z, corner.w));
             L.size = 1.0 / float(1u << depth);
             L.visible = uvec2(0xFFFFFFFFu);  // the ancestors' values are not bounded by the leaf's cells
 #if HVX_MULTILEVEL >= 3
             L.node = node;
             L.depth = depth;
-#endif
-#if HVX_MULTILEVEL >= 2
-            vec4 highest = max(L.coarserLo, L.coarserHi);
-            L.top = ceil(max(max(highest.x, highest.y), max(highest.z, highest.w)));
 #endif
 #if HVX_MULTILEVEL >= 2
             if (lv.ancestors[1] != HVX_NONE) {
@@ -135,14 +131,15 @@ LeafSampler leafSampler(uint node, uvec4 nd, vec3 leafLo) {
 
 #if HVX_MULTILEVEL
 // How many levels coarser than the leaf the level field is at p: the corners' values,
-// interpolated trilinearly (core::CpuRayCaster::levelOffset).
+// interpolated trilinearly, at most the largest of them (core::CpuRayCaster::levelOffset): the
+// eight weights may sum to a rounding above 1, which would reach past the ancestors linked.
 float levelOffset(LeafSampler L, vec3 p) {
     vec3 u = clamp((p - L.leafLo) / L.size, vec3(0.0), vec3(1.0));
     float f = 0.0;
     for (uint c = 0u; c < 8u; ++c)
         f += (c < 4u ? L.coarserLo[c] : L.coarserHi[c - 4u]) *
              (((c & 1u) != 0u ? u.x : 1.0 - u.x) * ((c & 2u) != 0u ? u.y : 1.0 - u.y) * ((c & 4u) != 0u ? u.z : 1.0 - u.z));
-    return f;
+    return min(f, L.highest);
 }
 
 #endif
@@ -183,22 +180,20 @@ float leafSampleLinear(LeafSampler L, vec3 p) {
         // The variant knows how far the cut's field reaches (SpatialIndex::levelReach; within the
         // resident ancestors): SIMD drivers run a branch's code for every lane, so the common
         // cases do not carry the far ancestors' code.
-        // The corners' largest value (top) bounds the ancestors sampled: the trilinear weights
-        // may sum to a rounding above 1, and f with them past the ancestors linked.
         float f = levelOffset(L, p);
         float parent = parentSampleLinear(L, p);
 #if HVX_MULTILEVEL == 1
         own = own * (1.0 - f) + parent * f;
 #elif HVX_MULTILEVEL == 2
-        if (f <= 1.0 || L.top <= 1.0) own = own * (1.0 - f) + parent * f;
+        if (f <= 1.0) own = own * (1.0 - f) + parent * f;
         else own = parent * (2.0 - f) + grandparentSampleLinear(L, p) * (f - 1.0);
 #else
-        if (f <= 1.0 || L.top <= 1.0) {
+        if (f <= 1.0) {
             own = own * (1.0 - f) + parent * f;
-        } else if (f <= 2.0 || L.top <= 2.0) {
+        } else if (f <= 2.0) {
             own = parent * (2.0 - f) + grandparentSampleLinear(L, p) * (f - 1.0);
         } else {  // between the ancestors k and k + 1 levels up
-            float k = min(ceil(f), L.top) - 1.0;
+            float k = ceil(f) - 1.0;
             float lower = k == 2.0 ? grandparentSampleLinear(L, p) : farAncestorSampleLinear(L, uint(k), p);
             own = lower * (k + 1.0 - f) + farAncestorSampleLinear(L, uint(k) + 1u, p) * (f - k);
         }

@@ -1,10 +1,11 @@
 // SpatialIndex::linkParents (multilevel sampling, thesis §3.2.2): each leaf with a brick gets its
-// ancestors' slots, as far up as the level field reaches, and the field at its corners. Checked by brute force on random cuts with
-// random empty leaves and parents missing from the pool: the field is coarser than a leaf
-// exactly at the corners a coarser leaf with a brick touches (every pair of leaves, each corner
-// against every other leaf's closed box); and, with every node resident, two leaves sharing a
-// face see the same field on it, at any pair of levels. The working set builds and links the
-// index anew only when the cut, a slot or an ancestor's slot changes.
+// ancestors' slots, as far up as the level field reaches, and the field at its corners. Checked
+// by brute force on random cuts with random empty leaves and parents missing from the pool: the
+// field is coarser than a leaf exactly at the corners a coarser leaf with a brick touches (every
+// pair of leaves, each corner against every other leaf's closed box); and, with every node
+// resident, two leaves sharing a face see the same field on it, at any pair of levels. The
+// working set builds and links the index anew only when the cut, a slot or an ancestor's slot
+// changes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
