@@ -11,8 +11,12 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/octree/OctreeBuilder.h"
+#include "core/volume/PhantomVoxelSource.h"
+#include "dicom/DicomSeriesWriter.h"
 #include "tests/support/TempDir.h"
 #include "ui/JobManager.h"
 #include "ui/MainWindow.h"
@@ -34,6 +38,39 @@ inline void buildOctree(core::VoxelSource& source, const std::string& path, bool
     o.labels = labels;
     core::JobContext job;
     core::OctreeBuilder(o).build(source, path, job);
+}
+
+/// The CT phantom the reading tests measure and step through: 48³ voxels over 300 mm (6.25 mm
+/// apart), seed 5.
+inline core::PhantomVoxelSource readingCtPhantom() {
+    return core::PhantomVoxelSource({48, 48, 48}, 5, {300, 300, 300}, 5.0);
+}
+
+/// Writes a phantom series of 48 slices of 64² as DICOM files into `folder` for `patient` (also
+/// its ID, cut to 8 characters) and returns their paths.
+inline std::vector<std::string> writeSeries(const std::string& folder, const std::string& patient, unsigned seed,
+                                            const std::string& studyDate = {}) {
+    core::PhantomVoxelSource phantom({64, 64, 48}, seed, {400, 400, 400}, 5.0);
+    dicom::DicomWriteOptions o;
+    o.patientName = patient;
+    o.studyDate = studyDate;
+    o.patientId = patient.substr(0, 8);
+    o.studyDescription = "GUI test";
+    o.seriesDescription = "Phantom";
+    core::JobContext job;
+    return dicom::DicomSeriesWriter::write(phantom, folder, o, job);
+}
+
+/// PSNR (dB) of two RGB images of one size; 99 when equal.
+inline double psnr(const QImage& a, const QImage& b) {
+    double se = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) {
+            const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
+            for (const int d : {qRed(p) - qRed(q), qGreen(p) - qGreen(q), qBlue(p) - qBlue(q)}) se += double(d) * d;
+        }
+    const double mse = se / (3.0 * a.width() * a.height()) / (255.0 * 255.0);
+    return mse > 0 ? 10.0 * std::log10(1.0 / mse) : 99.0;
 }
 
 /// Fraction of pixels that are not black.

@@ -37,6 +37,7 @@
 #include "core/streaming/OctreeSpace.h"
 #include "core/streaming/WorkingSet.h"
 #include "core/volume/PhantomVoxelSource.h"
+#include "tests/gui/DialogAnswers.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "ui/GradientOpacityCanvas.h"
@@ -52,42 +53,8 @@
 using namespace hvx;
 
 namespace {
-/// PSNR (dB) of two RGB images of one size; 99 when equal.
-double psnr(const QImage& a, const QImage& b) {
-    double se = 0;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x) {
-            const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
-            for (const int d : {qRed(p) - qRed(q), qGreen(p) - qGreen(q), qBlue(p) - qBlue(q)}) se += double(d) * d;
-        }
-    const double mse = se / (3.0 * a.width() * a.height()) / (255.0 * 255.0);
-    return mse > 0 ? 10.0 * std::log10(1.0 / mse) : 99.0;
-}
-
-/// Answers the modal dialogs a click is about to open, one function per dialog in order, as a
-/// user would: each runs once a new modal widget is active (polled, since the click that opens
-/// it does not return until it closes).
-class DialogAnswers : public QObject {
-public:
-    explicit DialogAnswers(std::deque<std::function<void(QWidget*)>> answers) : answers_(std::move(answers)) {
-        timer_.setInterval(30);
-        connect(&timer_, &QTimer::timeout, this, [this] {
-            QWidget* w = QApplication::activeModalWidget();
-            if (!w || w == last_ || answers_.empty()) return;
-            last_ = w;
-            auto answer = std::move(answers_.front());
-            answers_.pop_front();
-            answer(w);
-        });
-        timer_.start();
-    }
-    bool done() const { return answers_.empty(); }
-
-private:
-    std::deque<std::function<void(QWidget*)>> answers_;
-    QTimer timer_;
-    QPointer<QWidget> last_;
-};
+using test::DialogAnswers;
+using test::psnr;
 
 QString opposite(const QString& label) {
     const QHash<QString, QString> o{{"L", "R"}, {"R", "L"}, {"A", "P"}, {"P", "A"}, {"S", "I"}, {"I", "S"}};
