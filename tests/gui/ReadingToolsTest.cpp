@@ -3,31 +3,12 @@
 // with their list, labels and statistics from level 0; a distance and a sphere on the 3D
 // view's surface. Screenshots under <build>/test-artifacts/gui/.
 #include <QApplication>
-#include <QCheckBox>
-#include <QTableWidget>
 #include <QComboBox>
-#include <QDoubleSpinBox>
-#include <QDir>
-#include <QElapsedTimer>
-#include <QLineEdit>
-#include <QMouseEvent>
-#include <QGroupBox>
-#include <QPushButton>
-#include <QSettings>
-#include <QSet>
-#include <QSlider>
-#include <QFile>
-#include <QMessageBox>
-#include <QClipboard>
 #include <QStatusBar>
+#include <QTableWidget>
+#include <QMouseEvent>
 #include <QtMath>
-#include <QSpinBox>
-#include <QSignalSpy>
-#include <QSurfaceFormat>
 #include <QTest>
-#include <QTreeWidget>
-#include <QTreeWidgetItemIterator>
-#include <QWheelEvent>
 
 #include <cmath>
 #include <filesystem>
@@ -36,29 +17,16 @@
 #include "core/octree/OctreeReader.h"
 #include "core/reference/RegionStatistics.h"
 #include "core/volume/PhantomVoxelSource.h"
-#include "dicom/DicomSeriesWriter.h"
 #include "tests/support/MemoryVoxelSource.h"
-#include "tests/support/PacsPeer.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
 #include "tests/gui/GuiTestSupport.h"
 #include "ui/JobManager.h"
-#include "ui/JobsPanel.h"
-#include "ui/LightFieldPanel.h"
-#include "ui/LightFieldWindow.h"
 #include "ui/MainWindow.h"
-#include "ui/CropControls.h"
 #include "ui/MeasurementsPanel.h"
-#include "ui/PacsNodeDialog.h"
-#include "ui/PacsPanel.h"
-#include "ui/RenderControls.h"
 #include "ui/SliceScroller.h"
 #include "ui/SliceView.h"
-#include "ui/StudyBrowser.h"
-#include "ui/ToolsPanel.h"
 #include "core/base/Error.h"
-#include "ui/TransferFunctionCanvas.h"
-#include "ui/TransferFunctionEditor.h"
 #include "ui/VolumeView.h"
 
 using namespace hvx;
