@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "core/appearance/TransferFunction.h"
 #include "core/image/RenderImage.h"
@@ -12,7 +13,7 @@ namespace hvx::test {
 
 /// The angle between two directions, in degrees.
 inline double degreesBetween(const glm::dvec3& a, const glm::dvec3& b) {
-    return std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)) * 180.0 / 3.14159265358979323846;
+    return glm::degrees(std::acos(std::clamp(glm::dot(glm::normalize(a), glm::normalize(b)), -1.0, 1.0)));
 }
 
 /// 128³: a sphere (radius 44 voxels) cut by an oblique plane into 100 and 200, in air (0).
