@@ -1,5 +1,7 @@
 #include "dicom/IncomingFiler.h"
 
+#include <chrono>
+#include <set>
 #include <utility>
 
 #include "core/base/Error.h"
@@ -13,6 +15,8 @@ IncomingFiler::IncomingFiler(IncomingStore& store, int threads) : store_(store) 
 IncomingFiler::~IncomingFiler() {
     {
         std::unique_lock lock(mutex_);
+        ++waiting_;
+        changed_.notify_all();
         changed_.wait(lock, [this] { return undone_ == 0; });
         stopping_ = true;
     }
@@ -23,22 +27,30 @@ IncomingFiler::~IncomingFiler() {
 void IncomingFiler::submit(std::string temporary, const std::function<void(const DicomInstance&)>& onStored) {
     std::unique_lock lock(mutex_);
     deliverDone(lock, onStored);
-    while (undone_ >= kMaxPending) {  // the disk is slower than the network: wait for it
-        changed_.wait(lock);
-        deliverDone(lock, onStored);
+    if (undone_ >= kMaxPending) {  // the disk is slower than the network: wait for it
+        ++waiting_;
+        changed_.notify_all();
+        while (undone_ >= kMaxPending) {
+            changed_.wait(lock);
+            deliverDone(lock, onStored);
+        }
+        --waiting_;
     }
-    items_.push_back(Item{std::move(temporary), false, {}, {}});
+    items_.push_back(Item{std::move(temporary), false, {}, {}, {}});
     ++undone_;
     changed_.notify_all();
 }
 
 void IncomingFiler::finish(const std::function<void(const DicomInstance&)>& onStored) {
     std::unique_lock lock(mutex_);
+    ++waiting_;
+    changed_.notify_all();
     for (;;) {
         deliverDone(lock, onStored);
         if (undone_ == 0) break;
         changed_.wait(lock);
     }
+    --waiting_;
     if (!firstError_.empty()) throw core::Error(std::exchange(firstError_, std::string()));
 }
 
@@ -61,27 +73,64 @@ void IncomingFiler::deliverDone(std::unique_lock<std::mutex>& lock,
 void IncomingFiler::work() {
     std::unique_lock lock(mutex_);
     for (;;) {
-        changed_.wait(lock, [this] { return stopping_ || next_ < first_ + items_.size(); });
-        if (next_ >= first_ + items_.size()) return;  // stopping, nothing left to take
+        const bool woken = changed_.wait_for(lock, kFlushDelay, [this] {
+            return stopping_ || next_ < first_ + items_.size() || flushDue();
+        });
+        if (flushDue() || (!woken && !flushing_ && !unflushed_.empty())) {  // due, or idle for kFlushDelay
+            flushFolders(lock);
+            continue;
+        }
+        if (next_ >= first_ + items_.size()) {
+            if (stopping_) return;
+            continue;
+        }
         const std::uint64_t seq = next_++;
         const std::string temporary = items_[std::size_t(seq - first_)].temporary;
         lock.unlock();
-        DicomInstance in;
+        IncomingStore::Placed placed;
         std::string error;
         try {
-            in = store_.finalize(temporary);  // flushes, renames without replacing, flushes the folder
+            placed = store_.place(temporary);  // flushes, renames without replacing
         } catch (const std::exception& e) {
             error = e.what();
         }
         lock.lock();
         // Only delivered (done) items leave the front, and this one is not done yet: still here.
         Item& item = items_[std::size_t(seq - first_)];
-        item.instance = std::move(in);
+        item.instance = std::move(placed.instance);
+        item.folder = std::move(placed.folder);
         item.error = std::move(error);
-        item.done = true;
-        --undone_;
-        changed_.notify_all();
+        if (item.error.empty())
+            unflushed_.push_back(seq);
+        else
+            markDone(item);
     }
+}
+
+bool IncomingFiler::flushDue() const {
+    // Renames gather into rounds of kFlushRound, unless someone waits for them.
+    return !flushing_ && !unflushed_.empty() && (unflushed_.size() >= kFlushRound || waiting_ > 0);
+}
+
+void IncomingFiler::flushFolders(std::unique_lock<std::mutex>& lock) {
+    // One worker at a time flushes the folders of every instance renamed so far; the others go
+    // on filing.
+    flushing_ = true;
+    const std::vector<std::uint64_t> batch = std::exchange(unflushed_, {});
+    std::set<std::string> folders;
+    for (const std::uint64_t seq : batch) folders.insert(items_[std::size_t(seq - first_)].folder);
+    lock.unlock();
+    for (const std::string& folder : folders) IncomingStore::flushFolder(folder);
+    lock.lock();
+    for (const std::uint64_t seq : batch) markDone(items_[std::size_t(seq - first_)]);
+    flushing_ = false;
+    changed_.notify_all();
+}
+
+void IncomingFiler::markDone(Item& item) {
+    item.done = true;
+    --undone_;
+    changed_.notify_all();
 }
 
 }  // namespace hvx::dicom

@@ -126,6 +126,14 @@ std::string IncomingStore::temporaryFile(int& fd) {
 }
 
 DicomInstance IncomingStore::finalize(const std::string& temporary) {
+    Placed placed = place(temporary);
+    flushFolder(placed.folder);
+    return std::move(placed.instance);
+}
+
+void IncomingStore::flushFolder(const std::string& folder) { fsyncPath(folder, O_RDONLY | O_DIRECTORY); }
+
+IncomingStore::Placed IncomingStore::place(const std::string& temporary) {
     DicomInstance in;
     try {
         if (DicomHeaderReader::read(temporary, in) != DicomHeaderReader::Kind::Dicom)
@@ -137,19 +145,21 @@ DicomInstance IncomingStore::finalize(const std::string& temporary) {
     const fs::path folder = fs::path(dir_) / UidPath::component(in.studyInstanceUid) /
                             UidPath::component(in.seriesInstanceUid);
     std::error_code ec;
-    fs::create_directories(folder, ec);
+    if (fs::create_directories(folder, ec)) {  // new folders: their names are on disk too
+        fsyncPath(folder.parent_path().string(), O_RDONLY | O_DIRECTORY);
+        fsyncPath(dir_, O_RDONLY | O_DIRECTORY);
+    }
     const fs::path target = folder / (UidPath::component(in.sopInstanceUid) + ".dcm");
     fsyncPath(temporary, O_RDONLY);  // the bytes are on disk before the name points at them
     if (!ec && renameNoReplace(temporary, target.string()) == 0) {
-        fsyncPath(folder.string(), O_RDONLY | O_DIRECTORY);  // and the name is on disk too
         in.path = target.string();
-        return in;
+        return Placed{std::move(in), folder.string()};  // the name is on disk once the folder is flushed
     }
     if (!ec && errno == EEXIST) {
         if (sameDataset(temporary, target.string())) {  // the same instance again: nothing to do
             std::remove(temporary.c_str());
             in.path = target.string();
-            return in;
+            return Placed{std::move(in), folder.string()};  // (another thread's rename may not be flushed yet)
         }
         // Another object under the same SOP Instance UID: never replace what is stored.
         const fs::path aside = fs::path(dir_) / ".conflicts";

@@ -31,7 +31,19 @@ public:
     std::uint64_t freeBytes() const;
     /// Moves a completely received temporary file into place and returns its header (path set
     /// to the final file). Throws core::Error (and removes the file) when it is not valid DICOM.
+    /// place() then flushFolder(): the name is on disk when it returns.
     DicomInstance finalize(const std::string& temporary);
+    /// An instance moved into place, its bytes on disk; its name is on disk once `folder` has
+    /// been flushed.
+    struct Placed {
+        DicomInstance instance;
+        std::string folder;
+    };
+    /// As finalize() without the folder's flush, so that one flush can cover many renames
+    /// (IncomingFiler); the instance must not be reported before flushFolder(placed.folder).
+    Placed place(const std::string& temporary);
+    /// Flushes a folder's entries to disk (fsync of the folder).
+    static void flushFolder(const std::string& folder);
     const std::string& storageDir() const { return dir_; }
 
 private:

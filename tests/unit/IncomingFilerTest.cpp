@@ -1,7 +1,8 @@
 // The filer that stores a WADO-RS transfer's instances while the next ones arrive: every
 // instance is filed byte for byte and reported once, in the order it arrived, on the receiving
 // thread; more than the pending limit at once wait rather than pile up; a part that is not
-// DICOM is removed and reported at the end without losing the others.
+// DICOM is removed and reported at the end without losing the others; a slow transfer is reported
+// instance by instance.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -98,4 +99,25 @@ TEST(IncomingFiler, DestroyedMidTransferLeavesNothingHalfDone) {
         for (const auto& f : files) filer.submit(receive(store, bytesOf(f)), {});
     }
     EXPECT_TRUE(fs::is_empty(fs::path(dir.file("rx")) / ".incoming"));
+}
+
+// Renames wait for one folder flush in rounds (IncomingFiler::kFlushRound) only while files
+// keep coming: in a slow transfer each instance is still reported as the next one arrives, so
+// the progress never lags a round behind.
+TEST(IncomingFiler, ASlowTransferIsReportedInstanceByInstance) {
+    test::TempDir src, dir;
+    core::PhantomVoxelSource phantom({16, 16, 3}, 7);
+    core::JobContext job;
+    const auto files = dicom::DicomSeriesWriter::write(phantom, src.file("s"), {}, job);
+    dicom::IncomingStore store(dir.file("rx"));
+    std::size_t reported = 0;
+    const auto onStored = [&](const dicom::DicomInstance&) { ++reported; };
+    dicom::IncomingFiler filer(store);
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        filer.submit(receive(store, bytesOf(files[i])), onStored);
+        EXPECT_EQ(reported, i) << "reported when instance " << i + 1 << " arrived";
+        std::this_thread::sleep_for(dicom::IncomingFiler::kFlushDelay * 50);  // the network is slow
+    }
+    filer.finish(onStored);
+    EXPECT_EQ(reported, files.size());
 }
