@@ -73,9 +73,12 @@ void IncomingFiler::deliverDone(std::unique_lock<std::mutex>& lock,
 void IncomingFiler::work() {
     std::unique_lock lock(mutex_);
     for (;;) {
-        const bool woken = changed_.wait_for(lock, kFlushDelay, [this] {
-            return stopping_ || next_ < first_ + items_.size() || flushDue();
-        });
+        const auto ready = [this] { return stopping_ || next_ < first_ + items_.size() || flushDue(); };
+        bool woken = true;
+        if (unflushed_.empty())  // nothing to flush: sleep until a file comes
+            changed_.wait(lock, ready);
+        else  // (the worker that renamed last waits here, so a rename never waits longer)
+            woken = changed_.wait_for(lock, kFlushDelay, ready);
         if (flushDue() || (!woken && !flushing_ && !unflushed_.empty())) {  // due, or idle for kFlushDelay
             flushFolders(lock);
             continue;
