@@ -21,7 +21,8 @@ namespace hvx::dicom {
 /// files at once share the disk's cache flushes (500 files of 128 KiB: 0.8 s one after the
 /// other, 0.2 s four at a time, on this machine's ext4). One folder flush covers every rename
 /// done before it began (a group commit: a WADO-RS of 500 instances from Orthanc on loopback
-/// made 79 folder flushes instead of 500). At most kMaxPending files wait; submit() then waits.
+/// made 79 to 116 folder flushes instead of 500). At most kMaxPending files wait; submit() then
+/// waits.
 ///
 /// Threading: submit() and finish() from one thread (the receiving one), which is where
 /// onStored runs.
