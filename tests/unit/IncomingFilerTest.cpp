@@ -38,13 +38,18 @@ std::string receive(dicom::IncomingStore& store, const std::string& bytes) {
     ::close(fd);
     return tmp;
 }
+
+/// A phantom series of `slices` instances written as DICOM files under `dir`.
+std::vector<std::string> phantomSeries(test::TempDir& dir, std::uint32_t slices, std::uint64_t seed) {
+    core::PhantomVoxelSource phantom({16, 16, slices}, seed);
+    core::JobContext job;
+    return dicom::DicomSeriesWriter::write(phantom, dir.file("s"), {}, job);
+}
 }  // namespace
 
 TEST(IncomingFiler, FilesEveryInstanceInOrderAndReportsABadPartAtTheEnd) {
     test::TempDir src, dir;
-    core::PhantomVoxelSource phantom({16, 16, 150}, 5);
-    core::JobContext job;
-    const auto files = dicom::DicomSeriesWriter::write(phantom, src.file("s"), {}, job);
+    const auto files = phantomSeries(src, 150, 5);
     ASSERT_EQ(files.size(), 150u);  // more than IncomingFiler::kMaxPending: submit() must wait
     dicom::IncomingStore store(dir.file("rx"));
     std::vector<std::string> sent, reported;
@@ -90,9 +95,7 @@ TEST(IncomingFiler, FilesEveryInstanceInOrderAndReportsABadPartAtTheEnd) {
 // took: nothing is left half-moved in .incoming.
 TEST(IncomingFiler, DestroyedMidTransferLeavesNothingHalfDone) {
     test::TempDir src, dir;
-    core::PhantomVoxelSource phantom({16, 16, 40}, 6);
-    core::JobContext job;
-    const auto files = dicom::DicomSeriesWriter::write(phantom, src.file("s"), {}, job);
+    const auto files = phantomSeries(src, 40, 6);
     dicom::IncomingStore store(dir.file("rx"));
     {
         dicom::IncomingFiler filer(store);
@@ -106,9 +109,7 @@ TEST(IncomingFiler, DestroyedMidTransferLeavesNothingHalfDone) {
 // the progress never lags a round behind.
 TEST(IncomingFiler, ASlowTransferIsReportedInstanceByInstance) {
     test::TempDir src, dir;
-    core::PhantomVoxelSource phantom({16, 16, 3}, 7);
-    core::JobContext job;
-    const auto files = dicom::DicomSeriesWriter::write(phantom, src.file("s"), {}, job);
+    const auto files = phantomSeries(src, 3, 7);
     dicom::IncomingStore store(dir.file("rx"));
     std::size_t reported = 0;
     const auto onStored = [&](const dicom::DicomInstance&) { ++reported; };
