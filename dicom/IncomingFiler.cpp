@@ -73,13 +73,13 @@ void IncomingFiler::deliverDone(std::unique_lock<std::mutex>& lock,
 void IncomingFiler::work() {
     std::unique_lock lock(mutex_);
     for (;;) {
-        const auto ready = [this] { return stopping_ || next_ < first_ + items_.size() || flushDue(); };
+        const auto ready = [this] { return stopping_ || next_ < first_ + items_.size() || flushDue(false); };
         bool woken = true;
         if (unflushed_.empty())  // nothing to flush: sleep until a file comes
             changed_.wait(lock, ready);
         else  // (the worker that renamed last waits here, so a rename never waits longer)
             woken = changed_.wait_for(lock, kFlushDelay, ready);
-        if (flushDue() || (!woken && !flushing_ && !unflushed_.empty())) {  // due, or idle for kFlushDelay
+        if (flushDue(!woken)) {
             flushFolders(lock);
             continue;
         }
@@ -110,9 +110,10 @@ void IncomingFiler::work() {
     }
 }
 
-bool IncomingFiler::flushDue() const {
-    // Renames gather into rounds of kFlushRound, unless someone waits for them.
-    return !flushing_ && !unflushed_.empty() && (unflushed_.size() >= kFlushRound || waiting_ > 0);
+bool IncomingFiler::flushDue(bool idle) const {
+    // Renames gather into rounds of kFlushRound, unless someone waits for them or no file came
+    // for kFlushDelay.
+    return !flushing_ && !unflushed_.empty() && (idle || unflushed_.size() >= kFlushRound || waiting_ > 0);
 }
 
 void IncomingFiler::flushFolders(std::unique_lock<std::mutex>& lock) {

@@ -55,8 +55,9 @@ private:
         std::string error;
     };
     void work();
-    /// Whether the renamed instances' folders should be flushed now; with the lock held.
-    bool flushDue() const;
+    /// Whether the renamed instances' folders should be flushed now (`idle`: the worker waited
+    /// kFlushDelay for nothing); with the lock held.
+    bool flushDue(bool idle) const;
     /// Flushes the folders of the renamed instances and marks them done; called with `lock`
     /// held and no other worker flushing, released during the flushes.
     void flushFolders(std::unique_lock<std::mutex>& lock);
