@@ -6,17 +6,18 @@
 
 namespace hvx::core {
 
-/// Reads NIfTI (.nii, .nii.gz), MetaImage (.mha, .mhd), legacy VTK (.vtk) and VTK XML image
-/// (.vti) files through VTK's readers, requesting slabs of slices by update extent so that
-/// readers which can stream do. NIfTI orientation (qform, else sform) is converted from RAS
-/// to LPS; MetaImage and VTK files follow the ITK convention and are taken as LPS.
+/// Reads MetaImage (.mha, .mhd), legacy VTK (.vtk) and VTK XML image (.vti) files through
+/// VTK's readers, requesting slabs of slices by update extent so that readers which can stream
+/// do. MetaImage and VTK files follow the ITK convention and are taken as LPS.
 ///
-/// VTK stays private to this class: no VTK type appears in the header.
+/// VTK itself is in the reader module that VtkReaderLibrary loads on first use: the first
+/// VtkImageSource (or libraryVersion()) loads it, and throws core::Error when it cannot.
 class VtkImageSource final : public VoxelSource {
 public:
     /// Opens the file and reads its information; throws core::Error naming it.
     explicit VtkImageSource(std::string path);
-    /// VTK's version as linked ("9.1.0").
+    /// VTK's version as the reader module links it ("9.1.0"), or a sentence when the module
+    /// cannot be loaded.
     static std::string libraryVersion();
     ~VtkImageSource() override;
 

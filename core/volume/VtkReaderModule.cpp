@@ -1,0 +1,158 @@
+// The VTK reader module (libhvx_vtk_reader.so): VTK's MetaImage, VTK XML image and legacy VTK
+// readers behind the C interface of VtkReaderAbi.h. Built as a module of its own and loaded by
+// VtkReaderLibrary on first use; nothing else in Holovox links VTK.
+
+#include <vtkAlgorithm.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkMetaImageReader.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStructuredPointsReader.h>
+#include <vtkVersion.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <new>
+
+#include "core/volume/VtkReaderAbi.h"
+
+struct HvxVtkReader {
+    vtkSmartPointer<vtkAlgorithm> reader;
+    int extent[6] = {0, -1, 0, -1, 0, -1};
+    int voxelType = HvxVtkUnsupported;
+    int converted = 0;
+};
+
+namespace {
+
+/// Writes `message` into the caller's buffer; returns `result`.
+template <class T>
+T fail(char* error, std::size_t size, const char* message, T result) {
+    if (size > 0) std::snprintf(error, size, "%s", message);
+    return result;
+}
+
+/// The voxel type a VTK scalar type is delivered as, and whether that widens it.
+int voxelTypeOf(int vtkType, int& converted) {
+    converted = 0;
+    switch (vtkType) {
+    case VTK_UNSIGNED_CHAR: return HvxVtkUInt8;
+    case VTK_SHORT: return HvxVtkInt16;
+    case VTK_UNSIGNED_SHORT: return HvxVtkUInt16;
+    case VTK_FLOAT: return HvxVtkFloat32;
+    case VTK_SIGNED_CHAR:
+    case VTK_CHAR: converted = 1; return HvxVtkInt16;  // exact
+    case VTK_DOUBLE: converted = 1; return HvxVtkFloat32;
+    default: return HvxVtkUnsupported;
+    }
+}
+
+vtkSmartPointer<vtkAlgorithm> makeReader(const char* path, int format, char* error, std::size_t size) {
+    if (format == HvxVtkMetaImage) {
+        auto r = vtkSmartPointer<vtkMetaImageReader>::New();
+        if (!r->CanReadFile(path)) return fail(error, size, "not a MetaImage file", nullptr);
+        r->SetFileName(path);
+        return r;
+    }
+    if (format == HvxVtkXmlImage) {
+        auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
+        if (!r->CanReadFile(path)) return fail(error, size, "not a VTK XML image file", nullptr);
+        r->SetFileName(path);
+        return r;
+    }
+    if (format == HvxVtkLegacyImage) {
+        auto r = vtkSmartPointer<vtkStructuredPointsReader>::New();
+        r->SetFileName(path);
+        if (!r->IsFileStructuredPoints()) return fail(error, size, "not a legacy VTK structured-points file", nullptr);
+        return r;
+    }
+    return fail(error, size, "unknown image file type", nullptr);
+}
+
+HvxVtkReader* openImage(const char* path, int format, HvxVtkHeader* header, char* error, std::size_t size) try {
+    auto reader = makeReader(path, format, error, size);
+    if (!reader) return nullptr;
+    *header = HvxVtkHeader{};
+    header->streams = format != HvxVtkLegacyImage;  // the legacy reader reads the whole file
+    reader->GlobalWarningDisplayOff();
+    reader->UpdateInformation();
+    if (reader->GetErrorCode() != 0) return fail(error, size, "cannot read the image header", nullptr);
+    vtkInformation* info = reader->GetOutputInformation(0);
+    info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), header->extent);
+    for (int a = 0; a < 3; ++a) header->spacing[a] = 1;
+    if (info->Has(vtkDataObject::SPACING())) info->Get(vtkDataObject::SPACING(), header->spacing);
+    if (info->Has(vtkDataObject::ORIGIN())) info->Get(vtkDataObject::ORIGIN(), header->origin);
+    header->hasDirection = info->Has(vtkDataObject::DIRECTION()) ? 1 : 0;
+    if (header->hasDirection) info->Get(vtkDataObject::DIRECTION(), header->direction);
+    vtkInformation* scalars = vtkDataObject::GetActiveFieldInformation(
+        info, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+    header->hasScalars = scalars ? 1 : 0;
+    auto* out = new HvxVtkReader;
+    out->reader = reader;
+    std::memcpy(out->extent, header->extent, sizeof out->extent);
+    if (scalars) {
+        header->components = scalars->Has(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS())
+                                  ? scalars->Get(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS()) : 1;
+        const int vtkType = scalars->Get(vtkDataObject::FIELD_ARRAY_TYPE());
+        header->voxelType = voxelTypeOf(vtkType, header->converted);
+        std::snprintf(header->scalarTypeName, sizeof header->scalarTypeName, "%s", vtkImageScalarTypeNameMacro(vtkType));
+        out->voxelType = header->voxelType;
+        out->converted = header->converted;
+    }
+    return out;
+} catch (const std::bad_alloc&) {
+    return fail(error, size, "out of memory reading the image header", nullptr);
+}
+
+int readSlices(HvxVtkReader* r, int k0, int k1, void* dst, std::size_t dstBytes, char* error, std::size_t size) try {
+    if (r->voxelType == HvxVtkUnsupported) return fail(error, size, "unsupported voxel type", 1);
+    int ext[6] = {r->extent[0], r->extent[1], r->extent[2], r->extent[3], k0, k1};
+    r->reader->UpdateExtent(ext);
+    auto* image = vtkImageData::SafeDownCast(r->reader->GetOutputDataObject(0));
+    if (r->reader->GetErrorCode() != 0 || !image || !image->GetPointData()->GetScalars())
+        return fail(error, size, "cannot read voxel data (file truncated or corrupt?)", 1);
+    int got[6];
+    image->GetExtent(got);
+    vtkDataArray* arr = image->GetPointData()->GetScalars();
+    const vtkIdType sliceVoxels = vtkIdType(ext[1] - ext[0] + 1) * vtkIdType(ext[3] - ext[2] + 1);
+    const vtkIdType need = sliceVoxels * (k1 - k0 + 1);
+    const vtkIdType offset = vtkIdType(k0 - got[4]) * sliceVoxels;
+    const std::size_t width = r->voxelType == HvxVtkUInt8 ? 1 : r->voxelType == HvxVtkFloat32 ? 4 : 2;
+    if (got[0] != ext[0] || got[1] != ext[1] || got[2] != ext[2] || got[3] != ext[3] || got[4] > k0 || got[5] < k1 ||
+        arr->GetNumberOfTuples() < offset + need)
+        return fail(error, size, "reader returned fewer voxels than the header promises (truncated file?)", 1);
+    if (dstBytes != std::size_t(need) * width) return fail(error, size, "wrong buffer size for the slices asked for", 1);
+    auto* out = static_cast<unsigned char*>(dst);
+    if (!r->converted) {
+        std::memcpy(out, static_cast<unsigned char*>(arr->GetVoidPointer(0)) + std::size_t(offset) * width, dstBytes);
+        return 0;
+    }
+    for (vtkIdType i = 0; i < need; ++i) {
+        const double v = arr->GetComponent(offset + i, 0);
+        if (r->voxelType == HvxVtkInt16) {
+            const auto x = std::int16_t(v);
+            std::memcpy(out + std::size_t(i) * 2, &x, 2);
+        } else {
+            const auto x = float(v);
+            std::memcpy(out + std::size_t(i) * 4, &x, 4);
+        }
+    }
+    return 0;
+} catch (const std::bad_alloc&) {
+    return fail(error, size, "out of memory reading voxel data", 1);
+}
+
+void closeImage(HvxVtkReader* r) { delete r; }
+
+const char* version() { return vtkVersion::GetVTKVersion(); }
+
+const HvxVtkReaderApi kApi{kHvxVtkReaderAbiVersion, openImage, readSlices, closeImage, version};
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) const HvxVtkReaderApi* hvxVtkReaderApi() { return &kApi; }
