@@ -7,15 +7,18 @@
 #     same 500 files, which Holovox must store as files); a 5-series study (5 x 100) by C-GET
 #     with one association and with three at once;
 #   - dcmqrscp: the same series by C-GET (getscu vs holovox).
-# Prints instances/s and MB/s per row and the ratios.
+# Prints instances/s and MB/s per row and the ratios. The WADO-RS rows, a fraction of a second
+# each and at the mercy of the disk's flushes, are the median of --repeat runs (default 7), the
+# three kinds alternating.
 #
-#   bash tests/bench/bench_pacs.sh [--cli PATH] [--instances 500] [--only store|get|move|wado|study|dcmqrscp]
+#   bash tests/bench/bench_pacs.sh [--cli PATH] [--instances 500] [--repeat 7] [--only store|get|move|wado|study|dcmqrscp]
 set -euo pipefail
 cli=build/release/app/holovox-cli
 count=500
+repeat=7
 only=
 while [ $# -gt 0 ]; do
-  case $1 in --cli) cli=$2; shift 2 ;; --instances) count=$2; shift 2 ;; --only) only=$2; shift 2 ;; *) echo "unknown option $1" >&2; exit 2 ;; esac
+  case $1 in --cli) cli=$2; shift 2 ;; --instances) count=$2; shift 2 ;; --only) only=$2; shift 2 ;; --repeat) repeat=$2; shift 2 ;; *) echo "unknown option $1" >&2; exit 2 ;; esac
 done
 [ -x "$cli" ] || { echo "build first: cmake --workflow --preset release (or pass --cli)" >&2; exit 2; }
 cli=$(realpath "$cli")
@@ -70,7 +73,7 @@ export HOLOVOX_PACS_CONFIG="$work/pacs.json" HOLOVOX_DB="$work/db.sqlite"
 "$cli" pacs add web --dicomweb "http://127.0.0.1:$http/dicom-web" >/dev/null
 "$cli" pacs add qr --ae DCMQR --host 127.0.0.1 --port $qr >/dev/null
 t() { local s e; s=$(date +%s.%N); "$@" >"$work/last.log" 2>&1 || { cat "$work/last.log" >&2; exit 1; }; e=$(date +%s.%N); echo "$e - $s" | bc -l; }
-row() { printf '  %-40s %7.2f s  %7.1f inst/s  %6.1f MB/s\n' "$1" "$2" "$(echo "$3 / $2" | bc -l)" "$(echo "$4 / 1000000 / $2" | bc -l)"; }
+row() { printf '  %-40s %7.3f s  %7.1f inst/s  %6.1f MB/s\n' "$1" "$2" "$(echo "$3 / $2" | bc -l)" "$(echo "$4 / 1000000 / $2" | bc -l)"; }
 ratio() { printf '  %-40s %.2fx\n' "$1" "$(echo "$2 / $3" | bc -l)"; }
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
 fresh() { rm -rf "$work/rx" "$work/db.sqlite"* "$work/g"; mkdir -p "$work/g"; }
@@ -107,14 +110,21 @@ if want move; then
   ratio "holovox / movescu throughput" "$m1" "$h2"
 fi
 if want wado; then
-  fresh; c1=$(t curl -s -o "$work/g/all.multipart" -H 'Accept: multipart/related; type="application/dicom"; transfer-syntax=*' "http://127.0.0.1:$http/dicom-web/studies/$study/series/$series")
-  row "curl of the WADO-RS multipart URL" "$c1" $count "$(stat -c %s "$work/g/all.multipart")"
-  fresh; w1=$(t "$cli" pacs get web $study --no-build)
-  row "holovox pacs get (WADO-RS)" "$w1" $count $bytes
-  ratio "holovox / curl time (target <= 1.2)" "$w1" "$c1"
   # The plain cost of what Holovox must do besides the transfer: store the instances as 500
   # files, flushed (curl writes one file, unflushed).
-  fresh; k1=$(t sh -c "cp -r '$work/series' '$work/g/copy' && sync -f '$work/g/copy/IMG00001.dcm'")
+  c=(); w=(); k=()
+  for r in $(seq 1 "$repeat"); do
+    fresh; c+=("$(t curl -s -o "$work/g/all.multipart" -H 'Accept: multipart/related; type="application/dicom"; transfer-syntax=*' "http://127.0.0.1:$http/dicom-web/studies/$study/series/$series")")
+    multipart=$(stat -c %s "$work/g/all.multipart")
+    fresh; w+=("$(t "$cli" pacs get web $study --no-build)")
+    fresh; k+=("$(t sh -c "cp -r '$work/series' '$work/g/copy' && sync -f '$work/g/copy/IMG00001.dcm'")")
+  done
+  median() { printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
+  c1=$(median "${c[@]}"); w1=$(median "${w[@]}"); k1=$(median "${k[@]}")
+  echo "  (median of $repeat runs each, alternating)"
+  row "curl of the WADO-RS multipart URL" "$c1" $count "$multipart"
+  row "holovox pacs get (WADO-RS)" "$w1" $count $bytes
+  ratio "holovox / curl time (target <= 1.2)" "$w1" "$c1"
   row "cp of the 500 files + syncfs" "$k1" $count $bytes
   ratio "holovox / (curl + cp + syncfs) time" "$w1" "$(echo "$c1 + $k1" | bc -l)"
 fi
