@@ -1,8 +1,10 @@
 #include "core/volume/VoxelSourceFactory.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "core/base/Error.h"
+#include "core/volume/MetaImageHeader.h"
 #include "core/volume/NiftiVoxelSource.h"
 #include "core/volume/NrrdHeader.h"
 #include "core/volume/PhantomVoxelSource.h"
@@ -64,6 +66,28 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
     }
     if (NiftiVoxelSource::handles(input)) return std::make_unique<NiftiVoxelSource>(input, volume);
     if (volume > 0) throw Error(input + ": --volume applies to 4D NIfTI files only");
+    if (VtkImageSource::isMetaImage(input)) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(p, ec)) throw Error(input + ": no such file");
+        const MetaImageHeader h = MetaImageHeader::read(input);
+        if (h.streamReason.empty()) {  // streamed by Holovox, the file's size checked
+            RawVoxelSource::Options o;
+            o.dims = h.geometry.dims;
+            o.type = h.geometry.scalarType;
+            o.bigEndian = h.bigEndian && scalarSize(o.type) > 1;
+            o.headerBytes = h.dataOffset;
+            o.spacing = h.geometry.spacing;
+            o.origin = h.geometry.origin;
+            o.direction = h.geometry.direction;
+            o.warnings = h.warnings;
+            return std::make_unique<RawVoxelSource>(h.dataFile, o);
+        }
+        // VTK's reader does not notice compressed data cut short: its declared size is checked here.
+        const auto size = std::filesystem::file_size(h.dataFile, ec);
+        if (h.compressed && h.compressedBytes > 0 && !ec && size < h.dataOffset + h.compressedBytes)
+            throw Error(h.dataFile + ": truncated: its MetaImage header promises " + std::to_string(h.compressedBytes) +
+                        " bytes of compressed data, the file holds " + std::to_string(size - std::min(size, h.dataOffset)));
+    }
     if (VtkImageSource::handles(input)) return std::make_unique<VtkImageSource>(input);
     if (raw.dims[0] == 0) {
         std::error_code ec;

@@ -3,14 +3,13 @@
 #include <algorithm>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 #include "core/base/Error.h"
+#include "core/volume/MetaImageHeader.h"
 #include "core/volume/VtkReaderLibrary.h"
 
 namespace hvx::core {
@@ -21,32 +20,6 @@ bool endsWith(const std::string& s, const std::string& suffix) {
                                                    [](char a, char b) { return std::tolower(a) == b; });
 }
 
-/// The direction cosines of a MetaImage header (TransformMatrix, or its aliases Rotation and
-/// Orientation): row a of the nine numbers is axis a's direction in LPS, as ITK writes it.
-/// Identity when the header has none; refused when it is not three independent unit vectors.
-glm::dmat3 metaImageDirection(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string line;
-    glm::dmat3 m(1.0);
-    for (int n = 0; n < 200 && std::getline(in, line); ++n) {
-        const auto eq = line.find('=');
-        if (eq == std::string::npos) continue;
-        std::string key = line.substr(0, eq);
-        key.erase(key.find_last_not_of(" \t") + 1);
-        if (key == "ElementDataFile") break;
-        if (key != "TransformMatrix" && key != "Rotation" && key != "Orientation") continue;
-        std::istringstream v(line.substr(eq + 1));
-        double d[9];
-        for (double& x : d)
-            if (!(v >> x)) throw Error(path + ": its " + key + " is not nine numbers");
-        for (int a = 0; a < 3; ++a) m[a] = glm::dvec3(d[3 * a], d[3 * a + 1], d[3 * a + 2]);
-        for (int a = 0; a < 3; ++a)
-            if (std::abs(glm::length(m[a]) - 1.0) > 1e-3)
-                throw Error(path + ": its " + key + " row " + std::to_string(a) + " is not a unit direction");
-        if (std::abs(glm::determinant(m)) < 1e-3) throw Error(path + ": its " + key + " has dependent directions");
-    }
-    return m;
-}
 }  // namespace
 
 struct VtkImageSource::Impl {
@@ -59,6 +32,8 @@ struct VtkImageSource::Impl {
         if (reader) api.close(reader);
     }
 };
+
+bool VtkImageSource::isMetaImage(const std::string& path) { return endsWith(path, ".mha") || endsWith(path, ".mhd"); }
 
 bool VtkImageSource::handles(const std::string& path) {
     for (const char* ext : {".mha", ".mhd", ".vtk", ".vti"})
@@ -79,7 +54,7 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)) {
         format = HvxVtkXmlImage;
     else if (endsWith(path_, ".vtk"))
         format = HvxVtkLegacyImage;
-    else if (!endsWith(path_, ".mha") && !endsWith(path_, ".mhd"))
+    else if (!isMetaImage(path_))
         throw Error(path_ + ": unknown image file type");
     const HvxVtkHeader& h = impl_->header;
     char error[256] = "";
@@ -103,7 +78,7 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)) {
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c) toPatient[c][r] = h.direction[3 * r + c];
     }
-    if (endsWith(path_, ".mha") || endsWith(path_, ".mhd")) toPatient = glm::dmat4(metaImageDirection(path_));
+    if (isMetaImage(path_)) toPatient = glm::dmat4(MetaImageHeader::read(path_).geometry.direction);
     glm::dvec3 first;
     for (int a = 0; a < 3; ++a) first[a] = h.extent[2 * a] * h.spacing[a];
     geometry_.origin = glm::dvec3(h.origin[0], h.origin[1], h.origin[2]) + glm::dmat3(toPatient) * first;
@@ -125,15 +100,18 @@ void VtkImageSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, v
     auto* out = static_cast<unsigned char*>(dst);
     for (std::uint32_t s = firstSlice; s < firstSlice + count; ++s) {
         if (s < impl_->cacheFirst || s >= impl_->cacheFirst + impl_->cacheCount) {
-            const std::uint32_t chunk = impl_->header.streams ? std::min<std::uint32_t>(32, geometry_.dims[2] - s)
-                                                              : geometry_.dims[2] - s;
-            const int k0 = impl_->header.extent[4] + int(s);
+            // A reader that cannot stream is always asked for the whole image (VTK's MetaImage
+            // reader writes all of it whatever extent it is asked for).
+            const bool streams = impl_->header.streams != 0;
+            const std::uint32_t from = streams ? s : 0;
+            const std::uint32_t chunk = streams ? std::min<std::uint32_t>(32, geometry_.dims[2] - s) : geometry_.dims[2];
+            const int k0 = impl_->header.extent[4] + int(from);
             impl_->cache.resize(sliceVoxels * chunk * outWidth);
             char error[256] = "";
             if (impl_->api.read(impl_->reader, k0, k0 + int(chunk) - 1, impl_->cache.data(), impl_->cache.size(), error,
                                 sizeof error) != 0)
                 throw Error(path_ + ": " + error);
-            impl_->cacheFirst = s;
+            impl_->cacheFirst = from;
             impl_->cacheCount = chunk;
         }
         std::memcpy(out, impl_->cache.data() + (s - impl_->cacheFirst) * sliceVoxels * outWidth, sliceVoxels * outWidth);

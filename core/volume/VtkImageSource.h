@@ -7,8 +7,10 @@
 namespace hvx::core {
 
 /// Reads MetaImage (.mha, .mhd), legacy VTK (.vtk) and VTK XML image (.vti) files through
-/// VTK's readers, requesting slabs of slices by update extent so that readers which can stream
-/// do. MetaImage and VTK files follow the ITK convention and are taken as LPS.
+/// VTK's readers, requesting slabs of slices by update extent from the one that can stream (the
+/// XML reader); the others are read whole, once. MetaImage and VTK files follow the ITK
+/// convention and are taken as LPS. (VoxelSourceFactory streams plain MetaImage files itself,
+/// as raw data: see MetaImageHeader.)
 ///
 /// VTK itself is in the reader module that VtkReaderLibrary loads on first use: the first
 /// VtkImageSource (or libraryVersion()) loads it, and throws core::Error when it cannot.
@@ -27,6 +29,8 @@ public:
 
     /// True for the file name extensions this source reads.
     static bool handles(const std::string& path);
+    /// True for a MetaImage's extensions (.mha, .mhd), whatever their case.
+    static bool isMetaImage(const std::string& path);
 
 private:
     struct Impl;

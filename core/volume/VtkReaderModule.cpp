@@ -78,7 +78,11 @@ HvxVtkReader* openImage(const char* path, int format, HvxVtkHeader* header, char
     auto reader = makeReader(path, format, error, size);
     if (!reader) return nullptr;
     *header = HvxVtkHeader{};
-    header->streams = format != HvxVtkLegacyImage;  // the legacy reader reads the whole file
+    // Only the XML reader honours an update extent smaller than the image. The legacy reader
+    // reads the whole file; VTK 9.1's MetaImage reader reads the whole image into a buffer sized
+    // for the extent asked for (a heap overflow: holovox-cli aborted in free() on any MetaImage
+    // of more than 32 slices), so both are read whole, once.
+    header->streams = format == HvxVtkXmlImage;
     reader->GlobalWarningDisplayOff();
     reader->UpdateInformation();
     if (reader->GetErrorCode() != 0) return fail(error, size, "cannot read the image header", nullptr);

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds the .deb and .tar.gz with CPack, unpacks the .deb into a temporary root and runs the
-# installed holovox-cli from there: it must build and describe an octree, and read a MetaImage
+# installed holovox-cli from there: it must build and describe an octree, and read a VTK image
 # through the VTK reader module beside it, which no executable links (VTK is loaded on demand).
-# Without the module it must refuse a MetaImage with a sentence and read everything else.
+# Without the module it must refuse a VTK image with a sentence and read everything else.
 set -euo pipefail
 build=${1:?build dir}
 work=$(mktemp -d)
@@ -29,20 +29,27 @@ for exe in holovox-cli holovox; do
 done
 module=$(find "$work/root/usr/lib" -name libhvx_vtk_reader.so)
 [ -n "$module" ] || { echo "missing from .deb: the VTK reader module"; exit 1; }
-# A 4x3x2 int16 MetaImage whose voxel values are 0..23.
+# A 4x3x2 legacy VTK image (read through VTK) and the same as a plain MetaImage (streamed by
+# Holovox itself, no VTK needed), voxel values 0..23.
+{ printf '# vtk DataFile Version 3.0\nhand written\nASCII\nDATASET STRUCTURED_POINTS\n'
+  printf 'DIMENSIONS 4 3 2\nORIGIN 0 0 0\nSPACING 1 1 2\nPOINT_DATA 24\nSCALARS v short 1\nLOOKUP_TABLE default\n'
+  seq 0 23; } > "$work/s.vtk"
 { printf 'ObjectType = Image\nNDims = 3\nBinaryData = True\nBinaryDataByteOrderMSB = False\n'
   printf 'DimSize = 4 3 2\nElementType = MET_SHORT\nElementSpacing = 1 1 2\nElementDataFile = LOCAL\n'
   for v in $(seq 0 23); do printf "\\x$(printf %02x "$v")\\x00"; done; } > "$work/m.mha"
 "$work/root/usr/bin/holovox-cli" version | grep -E "VTK +9\." || { echo "installed holovox-cli names no VTK version"; exit 1; }
-"$work/root/usr/bin/holovox-cli" build "$work/m.mha" -o "$work/m.hvo" --quiet
-out=$("$work/root/usr/bin/holovox-cli" info "$work/m.hvo" --verify); grep -q "4 x 3 x 2\|4x3x2" <<<"$out" || { echo "$out"; exit 1; }
-echo "installed holovox-cli read a MetaImage through $(basename "$module")"
+for f in s.vtk m.mha; do
+  "$work/root/usr/bin/holovox-cli" build "$work/$f" -o "$work/$f.hvo" --quiet
+  out=$("$work/root/usr/bin/holovox-cli" info "$work/$f.hvo" --verify); grep -q "4 x 3 x 2\|4x3x2" <<<"$out" || { echo "$out"; exit 1; }
+done
+echo "installed holovox-cli read a legacy VTK image through $(basename "$module"), and a MetaImage"
 rm "$module"
-if err=$("$work/root/usr/bin/holovox-cli" build "$work/m.mha" -o "$work/m2.hvo" --quiet 2>&1); then
-  echo "a MetaImage was read without the VTK reader module"; exit 1
+if err=$("$work/root/usr/bin/holovox-cli" build "$work/s.vtk" -o "$work/s2.hvo" --quiet 2>&1); then
+  echo "a VTK image was read without the VTK reader module"; exit 1
 fi
-grep -q "cannot load Holovox's VTK reader module" <<<"$err" || { echo "unclear refusal: $err"; exit 1; }
-[ ! -e "$work/m2.hvo" ] || { echo "a refused build left an output"; exit 1; }
+grep -q "s.vtk: cannot load Holovox's VTK reader module" <<<"$err" || { echo "unclear refusal: $err"; exit 1; }
+[ ! -e "$work/s2.hvo" ] || { echo "a refused build left an output"; exit 1; }
 "$work/root/usr/bin/holovox-cli" version | grep -q "VTK.*unavailable" || { echo "version hides the missing module"; exit 1; }
+"$work/root/usr/bin/holovox-cli" build "$work/m.mha" -o "$work/m2.hvo" --quiet
 "$work/root/usr/bin/holovox-cli" phantom --size 24x20x16 -o "$work/p2.hvo" --quiet
-echo "without the module: a MetaImage refused ($err); a phantom still built"
+echo "without the module: a VTK image refused ($err); a plain MetaImage and a phantom still built"

@@ -1,0 +1,159 @@
+#include "core/volume/MetaImageHeader.h"
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "core/base/Error.h"
+
+namespace hvx::core {
+
+namespace {
+std::string trim(const std::string& s) {
+    const auto b = s.find_first_not_of(" \t\r");
+    const auto e = s.find_last_not_of(" \t\r");
+    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
+}
+
+bool isTrue(const std::string& v) { return v == "True" || v == "true" || v == "TRUE" || v == "1"; }
+
+/// n numbers from a field's value, or an error naming the field.
+template <int N>
+std::array<double, N> numbers(const std::string& value, const std::string& key, const std::string& path) {
+    std::istringstream in(value);
+    std::array<double, N> out{};
+    for (double& x : out)
+        if (!(in >> x) || !std::isfinite(x))
+            throw Error(path + ": its " + key + " is not " + std::to_string(N) + " numbers");
+    return out;
+}
+}  // namespace
+
+MetaImageHeader MetaImageHeader::read(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open");
+    MetaImageHeader h;
+    VolumeGeometry& g = h.geometry;
+    int ndims = 0;
+    bool dims = false, spacing = false, binary = false, dataFileSeen = false;
+    std::string elementType;
+    std::int64_t headerSize = 0;
+    int channels = 1;
+    glm::dvec3 elementSize(0.0);
+    std::string line;
+    for (int n = 0; n < 200 && !dataFileSeen && std::getline(in, line); ++n) {
+        const auto eq = line.find('=');
+        if (eq == std::string::npos) {
+            if (n == 0) throw Error(path + ": not a MetaImage header (no 'key = value' line first)");
+            continue;
+        }
+        const std::string key = trim(line.substr(0, eq));
+        const std::string value = trim(line.substr(eq + 1));
+        if (key == "ObjectType") {
+            if (value != "Image") throw Error(path + ": a MetaImage '" + value + "' object, not an image");
+        } else if (key == "NDims") {
+            ndims = std::atoi(value.c_str());
+        } else if (key == "DimSize") {
+            const auto d = numbers<3>(value, key, path);
+            for (int a = 0; a < 3; ++a) {
+                if (!(d[std::size_t(a)] >= 1 && d[std::size_t(a)] <= (1u << 20)) || d[std::size_t(a)] != std::floor(d[std::size_t(a)]))
+                    throw Error(path + ": its DimSize '" + value + "' is not three sizes of 1 to 1048576");
+                g.dims[std::size_t(a)] = std::uint32_t(d[std::size_t(a)]);
+            }
+            dims = true;
+        } else if (key == "ElementType") {
+            elementType = value;
+        } else if (key == "ElementSpacing") {
+            const auto s = numbers<3>(value, key, path);
+            g.spacing = glm::dvec3(s[0], s[1], s[2]);
+            spacing = true;
+        } else if (key == "ElementSize") {
+            const auto s = numbers<3>(value, key, path);
+            elementSize = glm::dvec3(s[0], s[1], s[2]);
+        } else if (key == "Offset" || key == "Origin" || key == "Position") {
+            const auto o = numbers<3>(value, key, path);
+            g.origin = glm::dvec3(o[0], o[1], o[2]);
+        } else if (key == "TransformMatrix" || key == "Rotation" || key == "Orientation") {
+            const auto d = numbers<9>(value, key, path);
+            glm::dmat3 m;
+            for (int a = 0; a < 3; ++a) m[a] = glm::dvec3(d[std::size_t(3 * a)], d[std::size_t(3 * a + 1)], d[std::size_t(3 * a + 2)]);
+            for (int a = 0; a < 3; ++a)
+                if (std::abs(glm::length(m[a]) - 1.0) > 1e-3)
+                    throw Error(path + ": its " + key + " row " + std::to_string(a) + " is not a unit direction");
+            if (std::abs(glm::determinant(m)) < 1e-3) throw Error(path + ": its " + key + " has dependent directions");
+            g.direction = m;
+        } else if (key == "AnatomicalOrientation") {
+            if (value != "RAI" && value.find('?') == std::string::npos)
+                h.warnings.push_back(path + ": its AnatomicalOrientation is " + value +
+                                     ", not ITK's RAI (LPS); like ITK, Holovox places the axes by the "
+                                     "TransformMatrix alone and takes them as LPS");
+        } else if (key == "BinaryData") {
+            binary = isTrue(value);
+        } else if (key == "BinaryDataByteOrderMSB" || key == "ElementByteOrderMSB") {
+            h.bigEndian = isTrue(value);
+        } else if (key == "CompressedData") {
+            h.compressed = isTrue(value);
+        } else if (key == "CompressedDataSize") {
+            h.compressedBytes = std::strtoull(value.c_str(), nullptr, 10);
+        } else if (key == "ElementNumberOfChannels") {
+            channels = std::atoi(value.c_str());
+        } else if (key == "HeaderSize") {
+            headerSize = std::strtoll(value.c_str(), nullptr, 10);
+        } else if (key == "ElementDataFile") {
+            dataFileSeen = true;  // the last field: the data (LOCAL) follows it
+            if (value == "LOCAL") {
+                h.dataFile = path;
+                h.dataOffset = std::uint64_t(in.tellg());
+            } else if (value == "LIST" || value.find(' ') != std::string::npos || value.find('%') != std::string::npos) {
+                h.streamReason = "its data is a list of files";
+                h.dataFile = path;
+            } else {
+                h.dataFile = (std::filesystem::path(path).parent_path() / value).string();
+            }
+        }
+    }
+    if (!dataFileSeen) throw Error(path + ": not a MetaImage header (no ElementDataFile field)");
+    if (!dims) throw Error(path + ": MetaImage header has no DimSize");
+    if (!spacing && elementSize != glm::dvec3(0.0)) g.spacing = elementSize;
+    auto notStreamable = [&](const std::string& why) {
+        if (h.streamReason.empty()) h.streamReason = why;
+    };
+    if (ndims != 3) notStreamable("it has NDims = " + std::to_string(ndims));
+    if (!binary) notStreamable("its data is not binary");
+    if (h.compressed) notStreamable("its data is compressed");
+    if (channels != 1) notStreamable("it has " + std::to_string(channels) + " channels");
+    if (elementType == "MET_UCHAR")
+        g.scalarType = ScalarType::UInt8;
+    else if (elementType == "MET_SHORT")
+        g.scalarType = ScalarType::Int16;
+    else if (elementType == "MET_USHORT")
+        g.scalarType = ScalarType::UInt16;
+    else if (elementType == "MET_FLOAT")
+        g.scalarType = ScalarType::Float32;
+    else
+        notStreamable("its ElementType is " + elementType);
+    if (h.streamReason.empty()) {
+        const std::uint64_t bytes = std::uint64_t(g.dims[0]) * g.dims[1] * g.dims[2] * scalarSize(g.scalarType);
+        if (h.dataFile != path && headerSize > 0) h.dataOffset = std::uint64_t(headerSize);
+        if (headerSize == -1) {  // the data is the end of its file
+            std::error_code ec;
+            const auto size = std::filesystem::file_size(h.dataFile, ec);
+            if (ec) throw Error(h.dataFile + ": cannot read the MetaImage data file (" + ec.message() + ")");
+            if (size < bytes)
+                throw Error(h.dataFile + ": " + std::to_string(size) + " bytes, fewer than the " + std::to_string(bytes) +
+                            " its MetaImage header describes");
+            h.dataOffset = size - bytes;
+        } else if (h.dataFile == path && headerSize != 0) {
+            notStreamable("it gives a HeaderSize for local data");
+        }
+    }
+    return h;
+}
+
+}  // namespace hvx::core

@@ -1,0 +1,36 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/volume/VolumeGeometry.h"
+
+namespace hvx::core {
+
+/// The fields of a MetaImage header (.mha, .mhd; ITK's MetaIO) that describe and place a volume:
+/// DimSize, ElementType, ElementSpacing (else ElementSize), Offset (or Origin, Position), the
+/// direction cosines (TransformMatrix, or Rotation, Orientation: row a is axis a's direction in
+/// LPS, as ITK writes it), byte order, compression and where the data lies (ElementDataFile,
+/// HeaderSize). MetaImage files follow the ITK convention and are taken as LPS.
+///
+/// A plain file (3-D, binary, uncompressed, one channel of uint8, int16, uint16 or float32, in
+/// one data file) is streamed by RawVoxelSource, which checks its size; anything else (compressed
+/// data, a list of slice files, int8 or float64, ...) goes to VTK's reader (VtkImageSource), and
+/// streamReason says why.
+class MetaImageHeader {
+public:
+    VolumeGeometry geometry;      ///< dims, spacing, origin, direction; scalarType when streamable
+    bool bigEndian = false;
+    std::string dataFile;         ///< the file that holds the voxels (the header's own for LOCAL)
+    std::uint64_t dataOffset = 0; ///< where they begin in it
+    bool compressed = false;
+    std::uint64_t compressedBytes = 0;  ///< CompressedDataSize, 0 when not given
+    std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
+    /// Empty when RawVoxelSource can stream the data; otherwise why it cannot ("compressed data").
+    std::string streamReason;
+
+    /// Parses the header; throws core::Error naming the file and the bad field.
+    static MetaImageHeader read(const std::string& path);
+};
+
+}  // namespace hvx::core
