@@ -3,10 +3,15 @@
 // VtkReaderLibrary on first use; nothing else in Holovox links VTK.
 
 #include <vtkAlgorithm.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
+#include <vtkLogger.h>
 #include <vtkMetaImageReader.h>
+#include <vtkNew.h>
+#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkSmartPointer.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
@@ -17,18 +22,72 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <new>
+#include <string>
 
 #include "core/volume/VtkReaderAbi.h"
 
 struct HvxVtkReader {
     vtkSmartPointer<vtkAlgorithm> reader;
+    vtkNew<vtkCallbackCommand> observer;  // catches the reader's errors and warnings
+    std::string complaint;                // the first of them since the last read began
     int extent[6] = {0, -1, 0, -1, 0, -1};
     int voxelType = HvxVtkUnsupported;
     int converted = 0;
 };
 
 namespace {
+
+/// VTK's readers report a file cut short (the legacy reader: "Error reading binary data!") as a
+/// warning or an error event, and deliver the voxels they did not read as zeros: every such
+/// event fails the read.
+void complain(vtkObject*, unsigned long, void* clientData, void* callData) {
+    auto* r = static_cast<HvxVtkReader*>(clientData);
+    if (r->complaint.empty()) r->complaint = callData ? static_cast<const char*>(callData) : "unknown";
+}
+
+/// The reader reading on this thread, for the complaints that VTK's helpers send to its output
+/// window rather than to the reader (the legacy reader's "Error reading binary data!").
+thread_local HvxVtkReader* reading = nullptr;
+
+void complainToCurrent(vtkObject*, unsigned long, void*, void* callData) {
+    if (reading) complain(nullptr, 0, reading, callData);
+}
+
+/// Sets `reading` for a scope, the output window's observer installed once.
+class Reading {
+public:
+    explicit Reading(HvxVtkReader* r) {
+        static const bool installed = [] {
+            static vtkNew<vtkCallbackCommand> observer;
+            observer->SetCallback(complainToCurrent);
+            vtkOutputWindow::GetInstance()->AddObserver(vtkCommand::ErrorEvent, observer);
+            vtkOutputWindow::GetInstance()->AddObserver(vtkCommand::WarningEvent, observer);
+            // The complaints become Holovox's own sentences; VTK need not print them too.
+            vtkOutputWindow::GetInstance()->SetDisplayModeToNever();
+            vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+            return true;
+        }();
+        (void)installed;
+        reading = r;
+    }
+    ~Reading() { reading = nullptr; }
+    Reading(const Reading&) = delete;
+    Reading& operator=(const Reading&) = delete;
+};
+
+/// ": VTK's reader says "..."" for a complaint, without the source file, line and object VTK
+/// puts before it; empty for none.
+std::string vtkSays(std::string m) {
+    if (m.empty()) return m;
+    while (!m.empty() && (m.back() == '\n' || m.back() == ' ')) m.pop_back();
+    const auto line = m.rfind('\n');  // "In FILE, line N\n[vtkClass (0x...): ]message"
+    if (line != std::string::npos) m = m.substr(line + 1);
+    const auto object = m.find("): ");
+    if (m.rfind("vtk", 0) == 0 && object != std::string::npos) m = m.substr(object + 3);
+    return ": VTK's reader says \"" + m + "\"";
+}
 
 /// Writes `message` into the caller's buffer; returns `result`.
 template <class T>
@@ -83,9 +142,23 @@ HvxVtkReader* openImage(const char* path, int format, HvxVtkHeader* header, char
     // for the extent asked for (a heap overflow: holovox-cli aborted in free() on any MetaImage
     // of more than 32 slices), so both are read whole, once.
     header->streams = format == HvxVtkXmlImage;
-    reader->GlobalWarningDisplayOff();
-    reader->UpdateInformation();
-    if (reader->GetErrorCode() != 0) return fail(error, size, "cannot read the image header", nullptr);
+    auto out = std::make_unique<HvxVtkReader>();
+    out->reader = reader;
+    out->observer->SetCallback(complain);
+    out->observer->SetClientData(out.get());
+    reader->AddObserver(vtkCommand::ErrorEvent, out->observer);
+    reader->AddObserver(vtkCommand::WarningEvent, out->observer);
+    // On, so that VTK raises warnings as events: the reader's own reach the observer rather than
+    // the terminal.
+    vtkObject::GlobalWarningDisplayOn();
+    {
+        Reading scope(out.get());
+        reader->UpdateInformation();
+    }
+    if (reader->GetErrorCode() != 0 || !out->complaint.empty()) {
+        const std::string m = "cannot read the image header" + vtkSays(out->complaint);
+        return fail(error, size, m.c_str(), nullptr);
+    }
     vtkInformation* info = reader->GetOutputInformation(0);
     info->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), header->extent);
     for (int a = 0; a < 3; ++a) header->spacing[a] = 1;
@@ -96,8 +169,6 @@ HvxVtkReader* openImage(const char* path, int format, HvxVtkHeader* header, char
     vtkInformation* scalars = vtkDataObject::GetActiveFieldInformation(
         info, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
     header->hasScalars = scalars ? 1 : 0;
-    auto* out = new HvxVtkReader;
-    out->reader = reader;
     std::memcpy(out->extent, header->extent, sizeof out->extent);
     if (scalars) {
         header->components = scalars->Has(vtkDataObject::FIELD_NUMBER_OF_COMPONENTS())
@@ -108,7 +179,7 @@ HvxVtkReader* openImage(const char* path, int format, HvxVtkHeader* header, char
         out->voxelType = header->voxelType;
         out->converted = header->converted;
     }
-    return out;
+    return out.release();
 } catch (const std::bad_alloc&) {
     return fail(error, size, "out of memory reading the image header", nullptr);
 }
@@ -116,8 +187,16 @@ HvxVtkReader* openImage(const char* path, int format, HvxVtkHeader* header, char
 int readSlices(HvxVtkReader* r, int k0, int k1, void* dst, std::size_t dstBytes, char* error, std::size_t size) try {
     if (r->voxelType == HvxVtkUnsupported) return fail(error, size, "unsupported voxel type", 1);
     int ext[6] = {r->extent[0], r->extent[1], r->extent[2], r->extent[3], k0, k1};
-    r->reader->UpdateExtent(ext);
+    r->complaint.clear();
+    {
+        Reading scope(r);
+        r->reader->UpdateExtent(ext);
+    }
     auto* image = vtkImageData::SafeDownCast(r->reader->GetOutputDataObject(0));
+    if (!r->complaint.empty()) {
+        const std::string m = "cannot read voxel data (truncated or corrupt?)" + vtkSays(r->complaint);
+        return fail(error, size, m.c_str(), 1);
+    }
     if (r->reader->GetErrorCode() != 0 || !image || !image->GetPointData()->GetScalars())
         return fail(error, size, "cannot read voxel data (file truncated or corrupt?)", 1);
     int got[6];

@@ -167,3 +167,24 @@ TEST(VtkImageSource, TruncatedDataIsAnErrorNotZeros) {
     EXPECT_NE(e.find(dir.file("t.mha")), std::string::npos) << e;
     EXPECT_FALSE(e.empty());
 }
+
+TEST(VtkImageSource, ATruncatedLegacyFileIsAnErrorNotZeros) {
+    // VTK's legacy reader warns "Error reading binary data!" through its output window and hands
+    // back zeros for what it could not read: the module turns the warning into a refusal.
+    test::TempDir dir;
+    {
+        std::ofstream f(dir.file("b.vtk"), std::ios::binary);
+        f << "# vtk DataFile Version 3.0\nhand written\nBINARY\nDATASET STRUCTURED_POINTS\n"
+             "DIMENSIONS 4 4 4\nORIGIN 0 0 0\nSPACING 1 1 1\nPOINT_DATA 64\nSCALARS v short 1\nLOOKUP_TABLE default\n";
+        for (int i = 0; i < 40; ++i) {  // 40 of the 64 big-endian values
+            const char be[2] = {char(0), char(i + 1)};
+            f.write(be, 2);
+        }
+    }
+    const std::string e = errorOf([&] {
+        auto src = core::VoxelSourceFactory::open(dir.file("b.vtk"));
+        readAll<std::int16_t>(*src);
+    });
+    EXPECT_EQ(e.rfind(dir.file("b.vtk") + ": cannot read voxel data", 0), 0u) << e;
+    EXPECT_NE(e.find("Error reading binary data"), std::string::npos) << e;
+}
