@@ -11,16 +11,11 @@
 #include <glm/matrix.hpp>
 
 #include "core/base/Error.h"
+#include "core/base/Trim.h"
 
 namespace hvx::core {
 
 namespace {
-std::string trim(const std::string& s) {
-    const auto b = s.find_first_not_of(" \t\r");
-    const auto e = s.find_last_not_of(" \t\r");
-    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
-
 bool isTrue(const std::string& v) { return v == "True" || v == "true" || v == "TRUE" || v == "1"; }
 
 /// n numbers from a field's value, or an error naming the field.
@@ -53,8 +48,8 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
             if (n == 0) throw Error(path + ": not a MetaImage header (no 'key = value' line first)");
             continue;
         }
-        const std::string key = trim(line.substr(0, eq));
-        const std::string value = trim(line.substr(eq + 1));
+        const std::string key = trimBlanks(line.substr(0, eq));
+        const std::string value = trimBlanks(line.substr(eq + 1));
         if (key == "ObjectType") {
             if (value != "Image") throw Error(path + ": a MetaImage '" + value + "' object, not an image");
         } else if (key == "NDims") {

@@ -6,16 +6,11 @@
 #include <vector>
 
 #include "core/base/Error.h"
+#include "core/base/Trim.h"
 
 namespace hvx::core {
 
 namespace {
-std::string trim(const std::string& s) {
-    const auto b = s.find_first_not_of(" \t\r");
-    const auto e = s.find_last_not_of(" \t\r");
-    return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
-
 std::vector<glm::dvec3> parseVectors(const std::string& text, const std::string& path) {
     std::vector<glm::dvec3> out;
     std::size_t pos = 0;
@@ -47,12 +42,12 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     std::string space;
     std::vector<glm::dvec3> dirs;
     while (std::getline(in, line)) {
-        if (trim(line).empty()) break;
+        if (trimBlanks(line).empty()) break;
         if (line[0] == '#') continue;
         const auto colon = line.find(':');
         if (colon == std::string::npos) continue;
-        std::string key = trim(line.substr(0, colon));
-        std::string value = trim(line.substr(colon + 1 + (colon + 1 < line.size() && line[colon + 1] == '=')));
+        std::string key = trimBlanks(line.substr(0, colon));
+        std::string value = trimBlanks(line.substr(colon + 1 + (colon + 1 < line.size() && line[colon + 1] == '=')));
         std::istringstream v(value);
         if (key == "dimension") {
             v >> dimension;

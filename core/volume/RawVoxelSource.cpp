@@ -19,6 +19,21 @@ void swapBytes(void* data, std::size_t count, std::size_t width) {
 }
 }  // namespace
 
+RawVoxelSource::Options RawVoxelSource::described(const VolumeGeometry& g, bool bigEndian, std::uint64_t headerBytes,
+                                                  std::vector<std::string> warnings) {
+    Options o;
+    o.dims = g.dims;
+    o.type = g.scalarType;
+    o.bigEndian = bigEndian && scalarSize(o.type) > 1;
+    o.headerBytes = headerBytes;
+    o.spacing = g.spacing;
+    o.origin = g.origin;
+    o.direction = g.direction;
+    o.modality = g.modality;
+    o.warnings = std::move(warnings);
+    return o;
+}
+
 RawVoxelSource::RawVoxelSource(std::string path, const Options& options)
     : path_(std::move(path)), options_(options) {
     geometry_.dims = options.dims;

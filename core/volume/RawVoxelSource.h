@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/volume/VoxelSource.h"
 
@@ -21,6 +22,10 @@ public:
         std::string modality = "OT";
         std::vector<std::string> warnings;  ///< passed on by warnings() (e.g. from a NRRD header)
     };
+    /// Options for data that a header describes (NRRD, MetaImage): its geometry (modality
+    /// included), byte order (ignored for single bytes), offset and warnings.
+    static Options described(const VolumeGeometry& g, bool bigEndian, std::uint64_t headerBytes,
+                             std::vector<std::string> warnings);
     /// Opens the file and checks that its size matches the dimensions; throws core::Error.
     RawVoxelSource(std::string path, const Options& options);
     ~RawVoxelSource() override;

@@ -50,19 +50,10 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
         const NrrdHeader h = NrrdHeader::read(input);
         if (h.encoding != "raw")
             throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (use raw)");
-        RawVoxelSource::Options o;
-        o.dims = h.geometry.dims;
-        o.type = h.geometry.scalarType;
-        o.bigEndian = h.bigEndian && scalarSize(o.type) > 1;
-        o.headerBytes = h.headerBytes;
-        o.spacing = h.geometry.spacing;
-        o.origin = h.geometry.origin;
-        o.direction = h.geometry.direction;
-        o.modality = h.geometry.modality;
-        o.warnings = h.warnings;
         std::string data = input;
         if (!h.dataFile.empty()) data = (p.parent_path() / h.dataFile).string();
-        return std::make_unique<RawVoxelSource>(data, o);
+        return std::make_unique<RawVoxelSource>(
+            data, RawVoxelSource::described(h.geometry, h.bigEndian, h.headerBytes, h.warnings));
     }
     if (NiftiVoxelSource::handles(input)) return std::make_unique<NiftiVoxelSource>(input, volume);
     if (volume > 0) throw Error(input + ": --volume applies to 4D NIfTI files only");
@@ -70,18 +61,9 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
         std::error_code ec;
         if (!std::filesystem::is_regular_file(p, ec)) throw Error(input + ": no such file");
         const MetaImageHeader h = MetaImageHeader::read(input);
-        if (h.streamReason.empty()) {  // streamed by Holovox, the file's size checked
-            RawVoxelSource::Options o;
-            o.dims = h.geometry.dims;
-            o.type = h.geometry.scalarType;
-            o.bigEndian = h.bigEndian && scalarSize(o.type) > 1;
-            o.headerBytes = h.dataOffset;
-            o.spacing = h.geometry.spacing;
-            o.origin = h.geometry.origin;
-            o.direction = h.geometry.direction;
-            o.warnings = h.warnings;
-            return std::make_unique<RawVoxelSource>(h.dataFile, o);
-        }
+        if (h.streamReason.empty())  // streamed by Holovox, the file's size checked
+            return std::make_unique<RawVoxelSource>(
+                h.dataFile, RawVoxelSource::described(h.geometry, h.bigEndian, h.dataOffset, h.warnings));
         // VTK's reader does not notice compressed data cut short: its declared size is checked here.
         const auto size = std::filesystem::file_size(h.dataFile, ec);
         if (h.compressed && h.compressedBytes > 0 && !ec && size < h.dataOffset + h.compressedBytes)

@@ -7,6 +7,15 @@
 
 namespace hvx::test {
 
+/// Every voxel of a source as stored, read in one go; T must be its scalar type.
+template <class T>
+std::vector<T> readAll(core::VoxelSource& s) {
+    const auto& d = s.geometry().dims;
+    std::vector<T> v(static_cast<std::size_t>(d[0]) * d[1] * d[2]);
+    s.readSlices(0, d[2], v.data());
+    return v;
+}
+
 inline std::vector<double> voxelValues(core::VoxelSource& s, bool physical = false) {
     const auto& g = s.geometry();
     const std::size_t n = std::size_t(g.dims[0]) * g.dims[1] * g.dims[2];

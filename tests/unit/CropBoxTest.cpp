@@ -10,20 +10,14 @@
 #include "core/reference/CpuRayCaster.h"
 #include "core/volume/CropBox.h"
 #include "core/volume/PhantomVoxelSource.h"
+#include "tests/support/ErrorOf.h"
 #include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/OctreeScene.h"
 
 using namespace hvx;
 
 namespace {
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const core::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::errorOf;
 
 /// A tilted, anisotropic volume of smooth values (the phantom's), held in memory.
 test::MemoryVoxelSource phantom(std::array<std::uint32_t, 3> dims) {

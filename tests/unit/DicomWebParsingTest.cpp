@@ -16,6 +16,7 @@ using namespace std::string_literals;
 #include "dicom/DicomWebUrl.h"
 #include "dicom/MultipartReader.h"
 #include "dicom/PacsSettings.h"
+#include "tests/support/ErrorOf.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;
@@ -34,14 +35,7 @@ struct Collect : dicom::MultipartReader::Sink {
     void endPart() override { open = false; }
 };
 
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const core::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::errorOf;
 }  // namespace
 
 TEST(MultipartReader, PartsAreExactWhereverTheBodyIsSplit) {

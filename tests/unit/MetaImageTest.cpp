@@ -13,19 +13,14 @@
 #include "core/base/Error.h"
 #include "core/volume/MetaImageHeader.h"
 #include "core/volume/VoxelSourceFactory.h"
+#include "tests/support/ErrorOf.h"
 #include "tests/support/TempDir.h"
+#include "tests/support/VoxelValues.h"
 
 using namespace hvx;
 
 namespace {
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const core::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::errorOf;
 
 std::vector<std::int16_t> ramp(std::size_t n) {
     std::vector<std::int16_t> v(n);
@@ -40,12 +35,6 @@ std::string bytesOf(const std::vector<std::int16_t>& v, bool bigEndian = false) 
     return out;
 }
 
-std::vector<std::int16_t> readAll(core::VoxelSource& s) {
-    const auto& d = s.geometry().dims;
-    std::vector<std::int16_t> v(static_cast<std::size_t>(d[0]) * d[1] * d[2]);
-    s.readSlices(0, d[2], v.data());
-    return v;
-}
 
 const char* kHead = "ObjectType = Image\nNDims = 3\nBinaryData = True\nDimSize = 6 5 40\nElementType = MET_SHORT\n"
                     "ElementSpacing = 0.5 0.5 2\nOffset = -10 20 -30\n";
@@ -66,7 +55,7 @@ TEST(MetaImage, LocalDataIsStreamedExactlyWithItsGeometry) {
     EXPECT_EQ(g.origin, glm::dvec3(-10, 20, -30));
     EXPECT_EQ(g.direction[0], glm::dvec3(0, 1, 0));  // row 0 of TransformMatrix: axis i's direction
     EXPECT_EQ(g.direction[1], glm::dvec3(-1, 0, 0));
-    EXPECT_EQ(readAll(*src), v);
+    EXPECT_EQ(test::readAll<std::int16_t>(*src), v);
 }
 
 TEST(MetaImage, DetachedDataWithHeaderSizeMinusOneSkipsItsPreamble) {
@@ -75,7 +64,7 @@ TEST(MetaImage, DetachedDataWithHeaderSizeMinusOneSkipsItsPreamble) {
     std::ofstream(dir.file("b.mhd")) << kHead << "HeaderSize = -1\nElementDataFile = b.raw\n";
     std::ofstream(dir.file("b.raw"), std::ios::binary) << std::string(77, 'x') << bytesOf(v);
     auto src = core::VoxelSourceFactory::open(dir.file("b.mhd"));
-    EXPECT_EQ(readAll(*src), v);
+    EXPECT_EQ(test::readAll<std::int16_t>(*src), v);
 }
 
 TEST(MetaImage, CompressedDataIsReadThroughVtk) {
@@ -91,7 +80,7 @@ TEST(MetaImage, CompressedDataIsReadThroughVtk) {
     EXPECT_EQ(core::MetaImageHeader::read(dir.file("c.mha")).streamReason, "its data is compressed");
     auto src = core::VoxelSourceFactory::open(dir.file("c.mha"));
     EXPECT_EQ(src->geometry().origin, glm::dvec3(-10, 20, -30));
-    EXPECT_EQ(readAll(*src), v);
+    EXPECT_EQ(test::readAll<std::int16_t>(*src), v);
 
     // Cut short: VTK's reader would not notice, the declared size does.
     std::ofstream(dir.file("d.mha"), std::ios::binary)
@@ -124,7 +113,7 @@ TEST(MetaImage, BrokenHeadersAndDataAreRefusedNamingTheFile) {
         std::ofstream(dir.file(c.name), std::ios::binary) << c.text;
         const std::string e = errorOf([&] {
             auto src = core::VoxelSourceFactory::open(dir.file(c.name));
-            readAll(*src);
+            test::readAll<std::int16_t>(*src);
         });
         EXPECT_NE(e.find(c.expect), std::string::npos) << c.name << ": " << e;
         EXPECT_NE(e.find(c.name == "missing.mhd" ? "gone.raw" : c.name), std::string::npos) << c.name << ": " << e;

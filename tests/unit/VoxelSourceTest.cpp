@@ -8,27 +8,15 @@
 #include "core/volume/PhantomVoxelSource.h"
 #include "core/volume/RawVoxelSource.h"
 #include "core/volume/VoxelSourceFactory.h"
+#include "tests/support/ErrorOf.h"
 #include "tests/support/TempDir.h"
+#include "tests/support/VoxelValues.h"
 
 using namespace hvx;
 
 namespace {
-template <class T>
-std::vector<T> readAll(core::VoxelSource& s) {
-    const auto& d = s.geometry().dims;
-    std::vector<T> v(static_cast<std::size_t>(d[0]) * d[1] * d[2]);
-    s.readSlices(0, d[2], v.data());
-    return v;
-}
 
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const core::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::errorOf;
 
 glm::dvec3 patientOf(const core::VolumeGeometry& g, std::size_t linear) {
     const std::size_t i = linear % g.dims[0], j = linear / g.dims[0] % g.dims[1], k = linear / g.dims[0] / g.dims[1];
@@ -83,7 +71,7 @@ TEST(RawVoxelSource, ReadsBigEndianAndRejectsWrongSizes) {
     o.type = core::ScalarType::Int16;
     o.bigEndian = true;
     core::RawVoxelSource src(dir.file("v.raw"), o);
-    const auto v = readAll<std::int16_t>(src);
+    const auto v = test::readAll<std::int16_t>(src);
     for (int i = 0; i < 60; ++i) ASSERT_EQ(v[std::size_t(i)], std::int16_t(i * 300 - 2000));
 
     o.dims = {5, 4, 4};
@@ -105,7 +93,7 @@ TEST(NrrdWriter, PhantomRoundTripsThroughNrrdWithGeometry) {
         EXPECT_DOUBLE_EQ(g.origin[a], p.geometry().origin[a]);
     }
     EXPECT_EQ(g.direction, glm::dmat3(1.0));
-    EXPECT_EQ(readAll<std::int16_t>(*src), readAll<std::int16_t>(p));
+    EXPECT_EQ(test::readAll<std::int16_t>(*src), test::readAll<std::int16_t>(p));
 }
 
 TEST(VtkImageSource, NiftiSformIsConvertedFromRasToLps) {
@@ -114,7 +102,7 @@ TEST(VtkImageSource, NiftiSformIsConvertedFromRasToLps) {
     writeNifti(dir.file("s.nii"), {4, 3, 2}, {1, 2, 1}, 1.0f, {2.0f, 1.5f, 3.0f}, true,
                {-2, 0, 0, 10, 0, 0, 3, 20, 0, 1.5f, 0, 30}, {0, 0, 0});
     auto src = core::VoxelSourceFactory::open(dir.file("s.nii"));
-    const auto v = readAll<std::uint8_t>(*src);
+    const auto v = test::readAll<std::uint8_t>(*src);
     const auto lps = patientOf(src->geometry(), markerIndex(v));
     // RAS of voxel (1,2,1) = (-2+10, 3+20, 3+30) -> LPS (-8, -23, 33).
     EXPECT_NEAR(lps.x, -8.0, 1e-4);
@@ -126,7 +114,7 @@ TEST(VtkImageSource, NiftiQformWithNegativeQfacKeepsLeftAndRight) {
     test::TempDir dir;
     writeNifti(dir.file("q.nii"), {5, 4, 3}, {2, 1, 1}, -1.0f, {1.0f, 1.0f, 2.0f}, false, {}, {5, 6, 7});
     auto src = core::VoxelSourceFactory::open(dir.file("q.nii"));
-    const auto v = readAll<std::uint8_t>(*src);
+    const auto v = test::readAll<std::uint8_t>(*src);
     const auto lps = patientOf(src->geometry(), markerIndex(v));
     // RAS = (2 + 5, 1 + 6, -1 * 2 * 1 + 7) = (7, 7, 5) -> LPS (-7, -7, 5).
     EXPECT_NEAR(lps.x, -7.0, 1e-4);
@@ -152,7 +140,7 @@ TEST(VtkImageSource, MetaImageOriginSpacingAndValues) {
     EXPECT_EQ(g.spacing, glm::dvec3(0.5, 0.75, 2.0));
     EXPECT_EQ(g.origin, glm::dvec3(1, 2, 3));
     EXPECT_EQ(g.scalarType, core::ScalarType::Int16);
-    const auto v = readAll<std::int16_t>(*src);
+    const auto v = test::readAll<std::int16_t>(*src);
     for (int i = 0; i < 24; ++i) EXPECT_EQ(v[std::size_t(i)], i * 10 - 100);
 }
 
@@ -187,8 +175,8 @@ TEST(VoxelSourceFactory, ClearErrorsForUnknownOrMissingInput) {
 
 TEST(PhantomVoxelSource, DeterministicHounsfieldAnatomyWithHeartOnThePatientsLeft) {
     core::PhantomVoxelSource a({100, 100, 100}, 11), b({100, 100, 100}, 11), c({100, 100, 100}, 12);
-    EXPECT_EQ(readAll<std::int16_t>(a), readAll<std::int16_t>(b));
-    EXPECT_NE(readAll<std::int16_t>(a), readAll<std::int16_t>(c));
+    EXPECT_EQ(test::readAll<std::int16_t>(a), test::readAll<std::int16_t>(b));
+    EXPECT_NE(test::readAll<std::int16_t>(a), test::readAll<std::int16_t>(c));
     EXPECT_EQ(a.geometry().modality, "CT");
     EXPECT_LT(a.voxel(1, 1, 50), -900);              // air outside the body
     EXPECT_GT(a.voxel(56, 43, 61), 180);             // contrast-filled heart at +x (patient's left)

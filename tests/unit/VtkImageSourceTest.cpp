@@ -12,19 +12,14 @@
 #include "core/base/Error.h"
 #include "core/volume/VoxelSourceFactory.h"
 #include "core/volume/VtkImageSource.h"
+#include "tests/support/ErrorOf.h"
 #include "tests/support/TempDir.h"
+#include "tests/support/VoxelValues.h"
 
 using namespace hvx;
 
 namespace {
-std::string errorOf(const std::function<void()>& f) {
-    try {
-        f();
-    } catch (const core::Error& e) {
-        return e.what();
-    }
-    return "";
-}
+using test::errorOf;
 
 /// A MetaImage of dims nx x ny x nz, its header `extra` lines, then `bytes` of data.
 void writeMha(const std::string& path, int nx, int ny, int nz, const std::string& elementType,
@@ -41,13 +36,6 @@ std::string bytesOf(const std::vector<T>& v) {
     return std::string(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
 }
 
-template <class T>
-std::vector<T> readAll(core::VoxelSource& s) {
-    const auto& d = s.geometry().dims;
-    std::vector<T> v(static_cast<std::size_t>(d[0]) * d[1] * d[2]);
-    s.readSlices(0, d[2], v.data());
-    return v;
-}
 }  // namespace
 
 TEST(VtkImageSource, SignedBytesAreWidenedExactlyToInt16) {
@@ -57,7 +45,7 @@ TEST(VtkImageSource, SignedBytesAreWidenedExactlyToInt16) {
     writeMha(dir.file("c.mha"), 4, 3, 2, "MET_CHAR", bytesOf(v));
     auto src = core::VoxelSourceFactory::open(dir.file("c.mha"));
     ASSERT_EQ(src->geometry().scalarType, core::ScalarType::Int16);
-    const auto got = readAll<std::int16_t>(*src);
+    const auto got = test::readAll<std::int16_t>(*src);
     for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(got[i], v[i]) << "voxel " << i;
 }
 
@@ -68,7 +56,7 @@ TEST(VtkImageSource, DoublesBecomeFloats) {
     writeMha(dir.file("d.mha"), 3, 2, 2, "MET_DOUBLE", bytesOf(v));
     auto src = core::VoxelSourceFactory::open(dir.file("d.mha"));
     ASSERT_EQ(src->geometry().scalarType, core::ScalarType::Float32);
-    const auto got = readAll<float>(*src);
+    const auto got = test::readAll<float>(*src);
     for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(got[i], float(v[i])) << "voxel " << i;
 }
 
@@ -131,7 +119,7 @@ TEST(VtkImageSource, LegacyStructuredPointsGeometryAndValues) {
     EXPECT_EQ(g.spacing, glm::dvec3(0.5, 1.5, 2.5));
     EXPECT_EQ(g.origin, glm::dvec3(10, -20, 30));
     ASSERT_EQ(g.scalarType, core::ScalarType::Int16);
-    const auto got = readAll<std::int16_t>(*src);
+    const auto got = test::readAll<std::int16_t>(*src);
     for (int i = 0; i < 12; ++i) EXPECT_EQ(got[std::size_t(i)], i * 100 - 600);
 }
 
@@ -162,7 +150,7 @@ TEST(VtkImageSource, TruncatedDataIsAnErrorNotZeros) {
     writeMha(dir.file("t.mha"), 4, 4, 8, "MET_SHORT", data);
     const std::string e = errorOf([&] {
         auto src = core::VoxelSourceFactory::open(dir.file("t.mha"));
-        readAll<std::int16_t>(*src);
+        test::readAll<std::int16_t>(*src);
     });
     EXPECT_NE(e.find(dir.file("t.mha")), std::string::npos) << e;
     EXPECT_FALSE(e.empty());
@@ -183,7 +171,7 @@ TEST(VtkImageSource, ATruncatedLegacyFileIsAnErrorNotZeros) {
     }
     const std::string e = errorOf([&] {
         auto src = core::VoxelSourceFactory::open(dir.file("b.vtk"));
-        readAll<std::int16_t>(*src);
+        test::readAll<std::int16_t>(*src);
     });
     EXPECT_EQ(e.rfind(dir.file("b.vtk") + ": cannot read voxel data", 0), 0u) << e;
     EXPECT_NE(e.find("Error reading binary data"), std::string::npos) << e;
