@@ -121,7 +121,6 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     };
     if (ndims != 3) notStreamable("it has NDims = " + std::to_string(ndims));
     if (!binary) notStreamable("its data is not binary");
-    if (h.compressed) notStreamable("its data is compressed");
     if (channels != 1) notStreamable("it has " + std::to_string(channels) + " channels");
     if (elementType == "MET_UCHAR")
         g.scalarType = ScalarType::UInt8;
@@ -134,9 +133,13 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     else
         notStreamable("its ElementType is " + elementType);
     if (h.streamReason.empty()) {
-        const std::uint64_t bytes = std::uint64_t(g.dims[0]) * g.dims[1] * g.dims[2] * scalarSize(g.scalarType);
+        // The bytes the data takes in its file: the voxels, or the compressed size when given.
+        const std::uint64_t bytes = h.compressed ? h.compressedBytes
+                                                 : std::uint64_t(g.dims[0]) * g.dims[1] * g.dims[2] * scalarSize(g.scalarType);
         if (h.dataFile != path && headerSize > 0) h.dataOffset = std::uint64_t(headerSize);
-        if (headerSize == -1) {  // the data is the end of its file
+        if (headerSize == -1 && bytes == 0) {
+            notStreamable("it gives HeaderSize = -1 for compressed data of no stated size");
+        } else if (headerSize == -1) {  // the data is the end of its file
             std::error_code ec;
             const auto size = std::filesystem::file_size(h.dataFile, ec);
             if (ec) throw Error(h.dataFile + ": cannot read the MetaImage data file (" + ec.message() + ")");

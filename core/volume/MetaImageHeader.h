@@ -13,10 +13,10 @@ namespace hvx::core {
 /// LPS, as ITK writes it), byte order, compression and where the data lies (ElementDataFile,
 /// HeaderSize). MetaImage files follow the ITK convention and are taken as LPS.
 ///
-/// A plain file (3-D, binary, uncompressed, one channel of uint8, int16, uint16 or float32, in
-/// one data file) is streamed by RawVoxelSource, which checks its size; anything else (compressed
-/// data, a list of slice files, int8 or float64, ...) goes to VTK's reader (VtkImageSource), and
-/// streamReason says why.
+/// A plain file (3-D, binary, one channel of uint8, int16, uint16 or float32, in one data file)
+/// is streamed by Holovox: RawVoxelSource, which checks its size, or InflatedVoxelSource when
+/// its data is compressed. Anything else (a list of slice files, int8 or float64, ...) goes to
+/// VTK's reader (VtkImageSource), and streamReason says why.
 class MetaImageHeader {
 public:
     VolumeGeometry geometry;      ///< dims, spacing, origin, direction; scalarType when streamable
@@ -26,7 +26,7 @@ public:
     bool compressed = false;
     std::uint64_t compressedBytes = 0;  ///< CompressedDataSize, 0 when not given
     std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
-    /// Empty when RawVoxelSource can stream the data; otherwise why it cannot ("compressed data").
+    /// Empty when Holovox streams the data itself; otherwise why not ("its ElementType is MET_INT").
     std::string streamReason;
 
     /// Parses the header; throws core::Error naming the file and the bad field.

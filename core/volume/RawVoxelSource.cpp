@@ -19,6 +19,17 @@ void swapBytes(void* data, std::size_t count, std::size_t width) {
 }
 }  // namespace
 
+VolumeGeometry RawVoxelSource::Options::geometry() const {
+    VolumeGeometry g;
+    g.dims = dims;
+    g.scalarType = type;
+    g.spacing = spacing;
+    g.origin = origin;
+    g.direction = direction;
+    g.modality = modality;
+    return g;
+}
+
 RawVoxelSource::Options RawVoxelSource::described(const VolumeGeometry& g, bool bigEndian, std::uint64_t headerBytes,
                                                   std::vector<std::string> warnings) {
     Options o;
@@ -35,13 +46,7 @@ RawVoxelSource::Options RawVoxelSource::described(const VolumeGeometry& g, bool 
 }
 
 RawVoxelSource::RawVoxelSource(std::string path, const Options& options)
-    : path_(std::move(path)), options_(options) {
-    geometry_.dims = options.dims;
-    geometry_.scalarType = options.type;
-    geometry_.spacing = options.spacing;
-    geometry_.origin = options.origin;
-    geometry_.direction = options.direction;
-    geometry_.modality = options.modality;
+    : path_(std::move(path)), options_(options), geometry_(options.geometry()) {
     geometry_.validate(path_);
     fd_ = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd_ < 0) throw Error(path_ + ": cannot open (" + std::strerror(errno) + ")");

@@ -21,6 +21,8 @@ public:
         glm::dmat3 direction{1.0};         ///< LPS direction cosines (columns)
         std::string modality = "OT";
         std::vector<std::string> warnings;  ///< passed on by warnings() (e.g. from a NRRD header)
+        /// The volume these options describe (not yet validated).
+        VolumeGeometry geometry() const;
     };
     /// Options for data that a header describes (NRRD, MetaImage): its geometry (modality
     /// included), byte order (ignored for single bytes), offset and warnings.

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/base/Error.h"
+#include "core/volume/InflatedVoxelSource.h"
 #include "core/volume/MetaImageHeader.h"
 #include "core/volume/NiftiVoxelSource.h"
 #include "core/volume/NrrdHeader.h"
@@ -48,12 +49,14 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
     const std::string ext = p.extension().string();
     if (ext == ".nrrd" || ext == ".nhdr") {
         const NrrdHeader h = NrrdHeader::read(input);
-        if (h.encoding != "raw")
-            throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (use raw)");
+        const bool gzip = h.encoding == "gzip" || h.encoding == "gz";
+        if (h.encoding != "raw" && !gzip)
+            throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (raw and gzip are)");
         std::string data = input;
         if (!h.dataFile.empty()) data = (p.parent_path() / h.dataFile).string();
-        return std::make_unique<RawVoxelSource>(
-            data, RawVoxelSource::described(h.geometry, h.bigEndian, h.headerBytes, h.warnings));
+        const auto o = RawVoxelSource::described(h.geometry, h.bigEndian, h.headerBytes, h.warnings);
+        if (gzip) return std::make_unique<InflatedVoxelSource>(data, o);
+        return std::make_unique<RawVoxelSource>(data, o);
     }
     if (NiftiVoxelSource::handles(input)) return std::make_unique<NiftiVoxelSource>(input, volume);
     if (volume > 0) throw Error(input + ": --volume applies to 4D NIfTI files only");
@@ -61,14 +64,15 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
         std::error_code ec;
         if (!std::filesystem::is_regular_file(p, ec)) throw Error(input + ": no such file");
         const MetaImageHeader h = MetaImageHeader::read(input);
-        if (h.streamReason.empty())  // streamed by Holovox, the file's size checked
-            return std::make_unique<RawVoxelSource>(
-                h.dataFile, RawVoxelSource::described(h.geometry, h.bigEndian, h.dataOffset, h.warnings));
-        // VTK's reader does not notice compressed data cut short: its declared size is checked here.
         const auto size = std::filesystem::file_size(h.dataFile, ec);
         if (h.compressed && h.compressedBytes > 0 && !ec && size < h.dataOffset + h.compressedBytes)
             throw Error(h.dataFile + ": truncated: its MetaImage header promises " + std::to_string(h.compressedBytes) +
                         " bytes of compressed data, the file holds " + std::to_string(size - std::min(size, h.dataOffset)));
+        if (h.streamReason.empty()) {  // streamed by Holovox: the size of plain data checked
+            const auto o = RawVoxelSource::described(h.geometry, h.bigEndian, h.dataOffset, h.warnings);
+            if (h.compressed) return std::make_unique<InflatedVoxelSource>(h.dataFile, o);
+            return std::make_unique<RawVoxelSource>(h.dataFile, o);
+        }
     }
     if (VtkImageSource::handles(input)) return std::make_unique<VtkImageSource>(input);
     if (raw.dims[0] == 0) {

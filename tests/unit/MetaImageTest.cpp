@@ -1,6 +1,6 @@
 // MetaImage files, written here by hand: the plain ones streamed by Holovox as raw data (local
-// and detached data, HeaderSize -1, big-endian), compressed ones through VTK's reader, and the
-// broken ones refused with a sentence that names the file.
+// and detached data, HeaderSize -1, big-endian), compressed ones inflated as they are read, and
+// the broken ones refused with a sentence that names the file.
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -67,27 +67,64 @@ TEST(MetaImage, DetachedDataWithHeaderSizeMinusOneSkipsItsPreamble) {
     EXPECT_EQ(test::readAll<std::int16_t>(*src), v);
 }
 
-TEST(MetaImage, CompressedDataIsReadThroughVtk) {
+namespace {
+std::string deflated(const std::string& raw) {
+    std::vector<unsigned char> z(compressBound(uLong(raw.size())));
+    uLongf size = uLongf(z.size());
+    EXPECT_EQ(compress2(z.data(), &size, reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), 6), Z_OK);
+    return std::string(reinterpret_cast<const char*>(z.data()), size);
+}
+}  // namespace
+
+TEST(MetaImage, CompressedDataIsInflatedAsItIsRead) {
     test::TempDir dir;
     const auto v = ramp(6 * 5 * 40);
-    const std::string raw = bytesOf(v);
-    std::vector<unsigned char> z(compressBound(uLong(raw.size())));
-    uLongf zSize = uLongf(z.size());
-    ASSERT_EQ(compress2(z.data(), &zSize, reinterpret_cast<const Bytef*>(raw.data()), uLong(raw.size()), 6), Z_OK);
+    const std::string z = deflated(bytesOf(v, true));
     std::ofstream(dir.file("c.mha"), std::ios::binary)
-        << kHead << "CompressedData = True\nCompressedDataSize = " << zSize << "\nElementDataFile = LOCAL\n"
-        << std::string(reinterpret_cast<const char*>(z.data()), zSize);
-    EXPECT_EQ(core::MetaImageHeader::read(dir.file("c.mha")).streamReason, "its data is compressed");
+        << kHead << "BinaryDataByteOrderMSB = True\nCompressedData = True\nCompressedDataSize = " << z.size()
+        << "\nElementDataFile = LOCAL\n" << z;
+    EXPECT_EQ(core::MetaImageHeader::read(dir.file("c.mha")).streamReason, "");
     auto src = core::VoxelSourceFactory::open(dir.file("c.mha"));
     EXPECT_EQ(src->geometry().origin, glm::dvec3(-10, 20, -30));
     EXPECT_EQ(test::readAll<std::int16_t>(*src), v);
+    // Slabs forwards, then one before them (the stream starts again).
+    const std::size_t slice = 6 * 5;
+    std::vector<std::int16_t> slab(slice * 3);
+    for (std::uint32_t first : {5u, 20u, 37u, 2u}) {
+        src->readSlices(first, 3, slab.data());
+        for (std::size_t i = 0; i < slab.size(); ++i) ASSERT_EQ(slab[i], v[first * slice + i]) << "slab at " << first;
+    }
+}
 
-    // Cut short: VTK's reader would not notice, the declared size does.
-    std::ofstream(dir.file("d.mha"), std::ios::binary)
-        << kHead << "CompressedData = True\nCompressedDataSize = " << zSize << "\nElementDataFile = LOCAL\n"
-        << std::string(reinterpret_cast<const char*>(z.data()), zSize / 2);
-    const std::string e = errorOf([&] { core::VoxelSourceFactory::open(dir.file("d.mha")); });
-    EXPECT_NE(e.find(dir.file("d.mha") + ": truncated"), std::string::npos) << e;
+TEST(MetaImage, CompressedDataCutShortOrCorruptIsRefused) {
+    test::TempDir dir;
+    const auto v = ramp(6 * 5 * 40);
+    const std::string z = deflated(bytesOf(v));
+    auto write = [&](const std::string& name, const std::string& extra, const std::string& data) {
+        std::ofstream(dir.file(name), std::ios::binary)
+            << kHead << "CompressedData = True\n" << extra << "ElementDataFile = LOCAL\n" << data;
+        return errorOf([&] {
+            auto src = core::VoxelSourceFactory::open(dir.file(name));
+            test::readAll<std::int16_t>(*src);
+        });
+    };
+    // Shorter than its CompressedDataSize: refused before any voxel is read.
+    std::string e = write("short.mha", "CompressedDataSize = " + std::to_string(z.size()) + "\n", z.substr(0, z.size() / 2));
+    EXPECT_NE(e.find(dir.file("short.mha") + ": truncated"), std::string::npos) << e;
+    // No size given and cut short: the stream runs out at a slice.
+    e = write("cut.mha", "", z.substr(0, z.size() / 2));
+    EXPECT_NE(e.find(dir.file("cut.mha") + ": its compressed data ends at slice"), std::string::npos) << e;
+    // Bytes changed in the middle of the stream.
+    std::string bad = z;
+    for (std::size_t i = bad.size() / 3; i < bad.size() / 3 + 40; ++i) bad[i] = char(bad[i] ^ 0x5a);
+    e = write("bad.mha", "", bad);
+    EXPECT_NE(e.find(dir.file("bad.mha") + ": its compressed data"), std::string::npos) << e;
+    // A stream of more voxels than DimSize: not a plausible volume of the wrong size.
+    e = write("many.mha", "", deflated(bytesOf(v) + std::string(1000, '\0')));
+    EXPECT_NE(e.find("more voxels than its header describes"), std::string::npos) << e;
+    // A stream of fewer voxels than DimSize.
+    e = write("few.mha", "", deflated(bytesOf(v).substr(0, 1000)));
+    EXPECT_NE(e.find("fewer voxels than its header describes"), std::string::npos) << e;
 }
 
 TEST(MetaImage, BrokenHeadersAndDataAreRefusedNamingTheFile) {
