@@ -3,7 +3,10 @@
 #  - dicom_fuzzer, seeded with pydicom's real-world test files (big endian, implicit VR, deflate,
 #    RLE, JPEG, JPEG-LS, JPEG 2000, truncated files, DICOMDIRs) and tests/fuzz/regressions/;
 #  - hvo_fuzzer, seeded with small .hvo files of every type and codec (hvo_seeds), its inputs'
-#    checksums made valid so that it explores forged files, not checksum failures.
+#    checksums made valid so that it explores forged files, not checksum failures;
+#  - volume_fuzzer, seeded with tests/fuzz/volume_seeds/ (MetaImage plain, big-endian and
+#    zlib-compressed, NRRD raw and gzip, NIfTI plain, gzip and float64; the first byte of each
+#    picks the format).
 # Every seed is executed under the sanitizers first, then mutated.
 # -malloc_limit_mb is above 4 GiB because DCMTK must read deflated streams eagerly and asks
 # (nothrow) for an element's declared length, up to 4 GiB, before finding the data short;
@@ -11,7 +14,8 @@
 #
 #   bash tests/fuzz/run_fuzz.sh [SECONDS]     explore each fuzzer for SECONDS (default 30)
 #   bash tests/fuzz/run_fuzz.sh --ci          the test suite's run: fixed seed and 6000 inputs
-#                                             for DICOM, 3000 for .hvo, so CI is reproducible
+#                                             for DICOM, 3000 for .hvo and for volume files,
+#                                             so CI is reproducible
 #                                             (new findings come from exploration runs and land
 #                                             in regressions/)
 # A missing corpus is a failure, not a pass. Crashing inputs are kept in build/fuzz/artifacts/.
@@ -20,20 +24,22 @@ cd "$(dirname "$0")/../.."
 seconds=${1:-30}
 dicomLimits="-max_total_time=$seconds"
 hvoLimits="-max_total_time=$seconds"
-if [ "$seconds" = "--ci" ]; then dicomLimits="-seed=1 -runs=6000"; hvoLimits="-seed=1 -runs=3000"; fi
+volumeLimits="-max_total_time=$seconds"
+if [ "$seconds" = "--ci" ]; then dicomLimits="-seed=1 -runs=6000"; hvoLimits="-seed=1 -runs=3000"; volumeLimits="-seed=1 -runs=3000"; fi
 cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz --target dicom_fuzzer hvo_fuzzer hvo_seeds >/dev/null
+cmake --build --preset fuzz --target dicom_fuzzer hvo_fuzzer hvo_seeds volume_fuzzer >/dev/null
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export HVX_FUZZ_SCRATCH="$work"
 artifacts=build/fuzz/artifacts
-mkdir -p "$work/dicom" "$work/hvo" "$artifacts"
+mkdir -p "$work/dicom" "$work/hvo" "$work/volume" "$artifacts"
 corpus=/usr/lib/python3/dist-packages/pydicom/data/test_files
 [ -d "$corpus" ] || { echo "no seed corpus: $corpus is missing (python3-pydicom)"; exit 1; }
 find "$corpus" -type f -size -2M -exec cp {} "$work/dicom/" \;
 cp tests/fuzz/regressions/* "$work/dicom/"  # inputs that once crashed
 build/fuzz/tests/fuzz/hvo_seeds "$work/hvo" >/dev/null
-for seeds in dicom hvo; do
+cp tests/fuzz/volume_seeds/* "$work/volume/"
+for seeds in dicom hvo volume; do
   n=$(ls "$work/$seeds" | wc -l)
   [ "$n" -ge 9 ] || { echo "$seeds seed corpus has only $n files"; exit 1; }
 done
@@ -59,5 +65,6 @@ run() { # name binary limits corpus
 }
 run dicom build/fuzz/tests/fuzz/dicom_fuzzer "$dicomLimits" "$work/dicom"
 run hvo build/fuzz/tests/fuzz/hvo_fuzzer "$hvoLimits" "$work/hvo"
+run volume build/fuzz/tests/fuzz/volume_fuzzer "$volumeLimits" "$work/volume"
 [ $fail -eq 0 ] && echo "no crash, no sanitizer report"
 exit $fail
