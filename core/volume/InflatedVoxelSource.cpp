@@ -17,6 +17,14 @@ struct InflatedVoxelSource::Stream {
     bool started = false;
     bool ended = false;  // inflate reached the stream's end (its check verified)
     std::vector<unsigned char> in = std::vector<unsigned char>(1u << 18);
+    /// Gives inflate more input; false at the end of the file.
+    bool refill() {
+        if (z.avail_in > 0) return true;
+        const std::size_t got = std::fread(in.data(), 1, in.size(), file);
+        z.next_in = in.data();
+        z.avail_in = uInt(got);
+        return got > 0;
+    }
     ~Stream() {
         if (started) inflateEnd(&z);
         if (file) std::fclose(file);
@@ -59,13 +67,7 @@ void InflatedVoxelSource::inflateInto(unsigned char* dst, std::uint64_t bytes) {
         s.z.next_out = dst ? dst : scratch;
         s.z.avail_out = uInt(step);
         while (s.z.avail_out > 0) {
-            if (s.z.avail_in == 0) {
-                const std::size_t got = std::fread(s.in.data(), 1, s.in.size(), s.file);
-                if (got == 0)
-                    throw Error(path_ + ": its compressed data ends" + where() + " (the file is truncated)");
-                s.z.next_in = s.in.data();
-                s.z.avail_in = uInt(got);
-            }
+            if (!s.refill()) throw Error(path_ + ": its compressed data ends" + where() + " (the file is truncated)");
             const uInt before = s.z.avail_out;
             const int r = inflate(&s.z, Z_NO_FLUSH);
             position_ += before - s.z.avail_out;
@@ -87,12 +89,7 @@ void InflatedVoxelSource::checkEnd() {
     Stream& s = *stream_;
     unsigned char extra[1];
     while (!s.ended) {
-        if (s.z.avail_in == 0) {
-            const std::size_t got = std::fread(s.in.data(), 1, s.in.size(), s.file);
-            if (got == 0) throw Error(path_ + ": its compressed data ends before its check (the file is truncated)");
-            s.z.next_in = s.in.data();
-            s.z.avail_in = uInt(got);
-        }
+        if (!s.refill()) throw Error(path_ + ": its compressed data ends before its check (the file is truncated)");
         s.z.next_out = extra;
         s.z.avail_out = 1;
         const int r = inflate(&s.z, Z_NO_FLUSH);
@@ -112,10 +109,7 @@ void InflatedVoxelSource::readSlices(std::uint32_t firstSlice, std::uint32_t cou
     inflateInto(nullptr, at - position_);
     inflateInto(static_cast<unsigned char*>(dst), sliceBytes * count);
     if (position_ == sliceBytes * geometry_.dims[2]) checkEnd();
-    if (options_.bigEndian && width > 1) {
-        auto* p = static_cast<unsigned char*>(dst);
-        for (std::uint64_t i = 0; i < sliceBytes * count; i += width) std::reverse(p + i, p + i + width);
-    }
+    if (options_.bigEndian && width > 1) swapByteOrder(dst, std::size_t(sliceBytes * count / width), width);
 }
 
 }  // namespace hvx::core

@@ -100,7 +100,7 @@ void NiftiVoxelSource::readSlices(std::uint32_t firstSlice, std::uint32_t count,
         const std::size_t voxels = std::size_t(sliceVoxels * n);
         const int w = header_.bytesPerVoxel;
         if (header_.bigEndian != (std::endian::native == std::endian::big) && w > 1)
-            for (std::size_t i = 0; i < voxels; ++i) std::reverse(buffer_.data() + i * std::size_t(w), buffer_.data() + (i + 1) * std::size_t(w));
+            swapByteOrder(buffer_.data(), voxels, std::size_t(w));
         unsigned char* o = out + std::size_t(done) * std::size_t(sliceVoxels) * outWidth;
         const unsigned char* in = buffer_.data();
         switch (header_.dataType) {

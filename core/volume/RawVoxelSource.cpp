@@ -12,13 +12,6 @@
 
 namespace hvx::core {
 
-namespace {
-void swapBytes(void* data, std::size_t count, std::size_t width) {
-    auto* p = static_cast<unsigned char*>(data);
-    for (std::size_t n = 0; n < count; ++n, p += width) std::reverse(p, p + width);
-}
-}  // namespace
-
 VolumeGeometry RawVoxelSource::Options::geometry() const {
     VolumeGeometry g;
     g.dims = dims;
@@ -85,7 +78,7 @@ void RawVoxelSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, v
         offset += std::uint64_t(got);
         remaining -= std::uint64_t(got);
     }
-    if (options_.bigEndian && width > 1) swapBytes(dst, std::size_t(sliceBytes * count / width), width);
+    if (options_.bigEndian && width > 1) swapByteOrder(dst, std::size_t(sliceBytes * count / width), width);
 }
 
 }  // namespace hvx::core

@@ -1,8 +1,15 @@
 #include "core/volume/ScalarType.h"
 
+#include <algorithm>
+
 #include "core/base/Error.h"
 
 namespace hvx::core {
+
+void swapByteOrder(void* data, std::size_t count, std::size_t width) {
+    auto* p = static_cast<unsigned char*>(data);
+    for (std::size_t n = 0; n < count; ++n, p += width) std::reverse(p, p + width);
+}
 
 std::size_t scalarSize(ScalarType t) {
     switch (t) {

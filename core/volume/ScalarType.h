@@ -17,6 +17,9 @@ std::string_view scalarName(ScalarType t);
 ScalarType parseScalarType(std::string_view name);
 /// True for a value the enum defines (used to validate file headers).
 bool isValidScalarType(std::uint32_t raw);
+/// Reverses the byte order of `count` values of `width` bytes each, in place (files written
+/// with the other endianness).
+void swapByteOrder(void* data, std::size_t count, std::size_t width);
 
 /// Calls f with a default-constructed value of the C++ type that matches t, so templated code
 /// can dispatch once per volume rather than per voxel.
