@@ -40,7 +40,7 @@ int buildCommand(int argc, char** argv) {
 
     core::RawVoxelSource::Options raw;
     if (const auto d = args.value("dims")) raw.dims = core::VoxelSourceFactory::parseDims(*d);
-    if (const auto t = args.value("type")) raw.type = core::parseScalarType(*t);
+    if (const auto t = args.value("type")) raw.element = core::parseFileElement(*t);
     if (const auto e = args.value("endian")) {
         if (*e != "little" && *e != "big") throw core::Error("--endian must be little or big");
         raw.bigEndian = *e == "big";

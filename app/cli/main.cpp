@@ -13,7 +13,7 @@ const char* const kUsage =
         "  build INPUT -o OUT.hvo [--brick N] [--border N] [--empty-below V] [--labels]\n"
         "        [--codec zstd|lz4|none] [--level N] [--lossy8] [--volume N]  (N: 1-based, 4D NIfTI)\n"
         "        [--split-voxels [--split-n 2] [--split-overlap 2] [--split-threshold V]]  (thesis ch. 4)\n"
-        "        [--dims XxYxZ --type uint8|int16|uint16|float32 --endian little|big\n"
+        "        [--dims XxYxZ --type uint8|int8|int16|uint16|int32|uint32|int64|uint64|float32|float64 --endian little|big\n"
         "         --header-bytes N --spacing SX,SY,SZ]            (raw input)\n"
         "      INPUT: .nii/.nii.gz, .nrrd/.nhdr, .mha/.mhd, .vtk, .vti, .raw, or phantom:XxYxZ[:seed];\n"
         "      a DICOM SEG (a label map), or an RTSTRUCT with --grid IMAGE.hvo (drawn onto its grid)\n"

@@ -58,7 +58,7 @@ void InflatedVoxelSource::restart() {
 void InflatedVoxelSource::inflateInto(unsigned char* dst, std::uint64_t bytes) {
     Stream& s = *stream_;
     unsigned char scratch[1u << 16];
-    const std::uint64_t sliceBytes = std::uint64_t(geometry_.dims[0]) * geometry_.dims[1] * scalarSize(geometry_.scalarType);
+    const std::uint64_t sliceBytes = std::uint64_t(geometry_.dims[0]) * geometry_.dims[1] * elementSize(options_.element);
     auto where = [&] {
         return " at slice " + std::to_string(position_ / sliceBytes) + " of " + std::to_string(geometry_.dims[2]);
     };
@@ -102,14 +102,15 @@ void InflatedVoxelSource::checkEnd() {
 }
 
 void InflatedVoxelSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) {
-    const std::size_t width = scalarSize(geometry_.scalarType);
-    const std::uint64_t sliceBytes = std::uint64_t(geometry_.dims[0]) * geometry_.dims[1] * width;
+    const std::uint64_t sliceBytes = std::uint64_t(geometry_.dims[0]) * geometry_.dims[1] * elementSize(options_.element);
     const std::uint64_t at = sliceBytes * firstSlice;
     if (at < position_) restart();
     inflateInto(nullptr, at - position_);
-    inflateInto(static_cast<unsigned char*>(dst), sliceBytes * count);
-    if (position_ == sliceBytes * geometry_.dims[2]) checkEnd();
-    if (options_.bigEndian && width > 1) swapByteOrder(dst, std::size_t(sliceBytes * count / width), width);
+    decodeSlices(options_.element, options_.bigEndian, std::uint64_t(geometry_.dims[0]) * geometry_.dims[1], firstSlice,
+                 count, buffer_, dst, [&](unsigned char* into, std::uint64_t bytes) {
+                     inflateInto(into, bytes);
+                     if (position_ == sliceBytes * geometry_.dims[2]) checkEnd();
+                 }, path_);
 }
 
 }  // namespace hvx::core

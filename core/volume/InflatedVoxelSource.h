@@ -13,7 +13,7 @@ namespace hvx::core {
 /// apart by their header, inflated forward as the slices are asked for; a slice before the last
 /// one read starts the stream again. Data that ends or is corrupt before the voxels the header
 /// promises is an error naming the file and the slice, never zeros; once the last slice is read
-/// the stream must end, and its checksum must hold.
+/// the stream must end, and its checksum must hold. Elements are converted as RawVoxelSource's.
 class InflatedVoxelSource final : public VoxelSource {
 public:
     /// Opens the file at options.headerBytes; throws core::Error naming it.
@@ -40,6 +40,7 @@ private:
     VolumeGeometry geometry_;
     std::unique_ptr<Stream> stream_;
     std::uint64_t position_ = 0;  // bytes of voxel data inflated so far
+    std::vector<unsigned char> buffer_;  // file elements of a slab being converted
 };
 
 }  // namespace hvx::core

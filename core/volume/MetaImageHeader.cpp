@@ -1,5 +1,6 @@
 #include "core/volume/MetaImageHeader.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -122,20 +123,25 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     if (ndims != 3) notStreamable("it has NDims = " + std::to_string(ndims));
     if (!binary) notStreamable("its data is not binary");
     if (channels != 1) notStreamable("it has " + std::to_string(channels) + " channels");
-    if (elementType == "MET_UCHAR")
-        g.scalarType = ScalarType::UInt8;
-    else if (elementType == "MET_SHORT")
-        g.scalarType = ScalarType::Int16;
-    else if (elementType == "MET_USHORT")
-        g.scalarType = ScalarType::UInt16;
-    else if (elementType == "MET_FLOAT")
-        g.scalarType = ScalarType::Float32;
-    else
+    // MetaIO's element types (metaTypes.h: MET_LONG is 32 bits, MET_LONG_LONG 64).
+    static const std::pair<const char*, FileElement> kTypes[] = {
+        {"MET_CHAR", FileElement::Int8},        {"MET_UCHAR", FileElement::UInt8},
+        {"MET_SHORT", FileElement::Int16},      {"MET_USHORT", FileElement::UInt16},
+        {"MET_INT", FileElement::Int32},        {"MET_UINT", FileElement::UInt32},
+        {"MET_LONG", FileElement::Int32},       {"MET_ULONG", FileElement::UInt32},
+        {"MET_LONG_LONG", FileElement::Int64},  {"MET_ULONG_LONG", FileElement::UInt64},
+        {"MET_FLOAT", FileElement::Float32},    {"MET_DOUBLE", FileElement::Float64}};
+    const auto* type = std::find_if(std::begin(kTypes), std::end(kTypes), [&](const auto& t) { return elementType == t.first; });
+    if (type == std::end(kTypes)) {
         notStreamable("its ElementType is " + elementType);
+    } else {
+        h.element = type->second;
+        g.scalarType = storedTypeOf(h.element);
+    }
     if (h.streamReason.empty()) {
         // The bytes the data takes in its file: the voxels, or the compressed size when given.
         const std::uint64_t bytes = h.compressed ? h.compressedBytes
-                                                 : std::uint64_t(g.dims[0]) * g.dims[1] * g.dims[2] * scalarSize(g.scalarType);
+                                                 : std::uint64_t(g.dims[0]) * g.dims[1] * g.dims[2] * core::elementSize(h.element);
         if (h.dataFile != path && headerSize > 0) h.dataOffset = std::uint64_t(headerSize);
         if (headerSize == -1 && bytes == 0) {
             notStreamable("it gives HeaderSize = -1 for compressed data of no stated size");

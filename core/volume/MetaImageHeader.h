@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "core/volume/FileElement.h"
 #include "core/volume/VolumeGeometry.h"
 
 namespace hvx::core {
@@ -13,20 +14,21 @@ namespace hvx::core {
 /// LPS, as ITK writes it), byte order, compression and where the data lies (ElementDataFile,
 /// HeaderSize). MetaImage files follow the ITK convention and are taken as LPS.
 ///
-/// A plain file (3-D, binary, one channel of uint8, int16, uint16 or float32, in one data file)
-/// is streamed by Holovox: RawVoxelSource, which checks its size, or InflatedVoxelSource when
-/// its data is compressed. Anything else (a list of slice files, int8 or float64, ...) goes to
-/// VTK's reader (VtkImageSource), and streamReason says why.
+/// A plain file (3-D, binary, one channel of any integer or float type, in one data file) is
+/// streamed by Holovox: RawVoxelSource, which checks its size, or InflatedVoxelSource when its
+/// data is compressed. Anything else (a list of slice files, ASCII data, several channels, ...)
+/// goes to VTK's reader (VtkImageSource), and streamReason says why.
 class MetaImageHeader {
 public:
     VolumeGeometry geometry;      ///< dims, spacing, origin, direction; scalarType when streamable
+    FileElement element = FileElement::UInt8;  ///< ElementType, when streamable
     bool bigEndian = false;
     std::string dataFile;         ///< the file that holds the voxels (the header's own for LOCAL)
     std::uint64_t dataOffset = 0; ///< where they begin in it
     bool compressed = false;
     std::uint64_t compressedBytes = 0;  ///< CompressedDataSize, 0 when not given
     std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
-    /// Empty when Holovox streams the data itself; otherwise why not ("its ElementType is MET_INT").
+    /// Empty when Holovox streams the data itself; otherwise why not ("its data is not binary").
     std::string streamReason;
 
     /// Parses the header; throws core::Error naming the file and the bad field.

@@ -126,23 +126,22 @@ NiftiHeader NiftiHeader::parse(const unsigned char* bytes, std::size_t size, con
 
     h.dataType = f.get<std::int16_t>(70);
     switch (h.dataType) {
-    case Uint8: h.bytesPerVoxel = 1; h.geometry.scalarType = ScalarType::UInt8; break;
-    case Int8: h.bytesPerVoxel = 1; h.geometry.scalarType = ScalarType::Int16; break;
-    case Int16: h.bytesPerVoxel = 2; h.geometry.scalarType = ScalarType::Int16; break;
-    case Uint16: h.bytesPerVoxel = 2; h.geometry.scalarType = ScalarType::UInt16; break;
-    case Float32: h.bytesPerVoxel = 4; h.geometry.scalarType = ScalarType::Float32; break;
-    case Int32:
-    case Uint32: h.bytesPerVoxel = 4; h.geometry.scalarType = ScalarType::Float32; break;
-    case Float64: h.bytesPerVoxel = 8; h.geometry.scalarType = ScalarType::Float32; break;
-    case Int64:
-    case Uint64: h.bytesPerVoxel = 8; h.geometry.scalarType = ScalarType::Float32; break;
+    case Uint8: h.element = FileElement::UInt8; break;
+    case Int8: h.element = FileElement::Int8; break;
+    case Int16: h.element = FileElement::Int16; break;
+    case Uint16: h.element = FileElement::UInt16; break;
+    case Float32: h.element = FileElement::Float32; break;
+    case Int32: h.element = FileElement::Int32; break;
+    case Uint32: h.element = FileElement::UInt32; break;
+    case Float64: h.element = FileElement::Float64; break;
+    case Int64: h.element = FileElement::Int64; break;
+    case Uint64: h.element = FileElement::UInt64; break;
     default:
         throw Error(what + ": NIfTI datatype " + std::to_string(h.dataType) +
                     " (RGB, complex or unknown) is not supported; supported: integers and floats");
     }
-    if (h.dataType == Int32 || h.dataType == Uint32 || h.dataType == Int64 || h.dataType == Uint64)
-        h.warnings.push_back("its " + std::to_string(8 * h.bytesPerVoxel) +
-                             "-bit integers are kept as 32-bit floats (exact up to 16777216 in magnitude)");
+    h.geometry.scalarType = storedTypeOf(h.element);
+    if (const auto w = conversionWarning(h.element); !w.empty()) h.warnings.push_back(w);
 
     const float voxOffset = f.get<float>(108);
     if (!(voxOffset >= 348.0f) || voxOffset > 1e12f)

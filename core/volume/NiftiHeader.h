@@ -6,6 +6,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "core/volume/FileElement.h"
 #include "core/volume/VolumeGeometry.h"
 
 namespace hvx::core {
@@ -28,7 +29,7 @@ struct NiftiHeader {
 
     VolumeGeometry geometry;            ///< placement, stored type and rescale of one 3D volume
     std::int16_t dataType = 0;          ///< the file's datatype code
-    int bytesPerVoxel = 0;              ///< in the file
+    FileElement element = FileElement::UInt8;  ///< the file's element type (kept as geometry.scalarType)
     bool bigEndian = false;             ///< the file's byte order (from sizeof_hdr)
     std::uint64_t voxOffset = 352;      ///< byte offset of the voxel data
     std::uint32_t volumes = 1;          ///< dim[4]: 3D volumes in the file (time points)

@@ -17,15 +17,6 @@ bool endsWith(const std::string& s, const std::string& suffix) {
            std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) { return std::tolower(a) == b; });
 }
 
-template <class From, class To>
-void convert(const unsigned char* in, std::size_t n, unsigned char* out) {
-    for (std::size_t i = 0; i < n; ++i) {
-        From v;
-        std::memcpy(&v, in + i * sizeof(From), sizeof(From));
-        const To t = To(v);
-        std::memcpy(out + i * sizeof(To), &t, sizeof(To));
-    }
-}
 }  // namespace
 
 struct NiftiVoxelSource::Gz {
@@ -53,7 +44,7 @@ NiftiVoxelSource::NiftiVoxelSource(std::string path, std::uint32_t volume)
                     std::to_string(volume_ + 1) + " does not exist");
     if (!endsWith(path_, ".gz")) {  // uncompressed: the size is known, check it now
         const std::uint64_t need = header_.voxOffset + std::uint64_t(header_.volumes) *
-                                                           header_.geometry.voxelCount() * std::uint64_t(header_.bytesPerVoxel);
+                                                           header_.geometry.voxelCount() * std::uint64_t(elementSize(header_.element));
         const auto size = std::filesystem::file_size(path_, ec);
         if (!ec && size < need)
             throw Error(path_ + ": is truncated: its header needs " + std::to_string(need) + " bytes, the file has " +
@@ -76,44 +67,25 @@ void NiftiVoxelSource::readSlices(std::uint32_t firstSlice, std::uint32_t count,
     const auto& g = header_.geometry;
     if (std::uint64_t(firstSlice) + count > g.dims[2]) throw Error(path_ + ": slices beyond the volume requested");
     const std::uint64_t sliceVoxels = std::uint64_t(g.dims[0]) * g.dims[1];
-    const std::uint64_t fileSlice = sliceVoxels * std::uint64_t(header_.bytesPerVoxel);
+    const std::uint64_t fileSlice = sliceVoxels * elementSize(header_.element);
     const std::uint64_t offset =
         header_.voxOffset + (std::uint64_t(volume_) * g.dims[2] + firstSlice) * fileSlice;
     // gzseek goes forward by decompressing; backwards it rewinds. Slices come in order.
     if (gzseek64(gz_->file, z_off64_t(offset), SEEK_SET) != z_off64_t(offset))
         throw Error(path_ + ": is truncated or corrupt before slice " + std::to_string(firstSlice));
-    const std::size_t outWidth = scalarSize(g.scalarType);
-    auto* out = static_cast<unsigned char*>(dst);
-    const std::uint32_t chunkSlices = std::max<std::uint32_t>(1, std::uint32_t((64u << 20) / std::max<std::uint64_t>(1, fileSlice)));
-    for (std::uint32_t done = 0; done < count;) {
-        const std::uint32_t n = std::min(chunkSlices, count - done);
-        const std::uint64_t bytes = fileSlice * n;
-        buffer_.resize(std::size_t(bytes));
-        for (std::uint64_t at = 0; at < bytes;) {
-            const unsigned step = unsigned(std::min<std::uint64_t>(bytes - at, 1u << 30));
-            const int got = gzread(gz_->file, buffer_.data() + at, step);
-            if (got <= 0)
-                throw Error(path_ + ": is truncated or corrupt at slice " + std::to_string(firstSlice + done) + " of " +
-                            std::to_string(g.dims[2]));
-            at += std::uint64_t(got);
-        }
-        const std::size_t voxels = std::size_t(sliceVoxels * n);
-        const int w = header_.bytesPerVoxel;
-        if (header_.bigEndian != (std::endian::native == std::endian::big) && w > 1)
-            swapByteOrder(buffer_.data(), voxels, std::size_t(w));
-        unsigned char* o = out + std::size_t(done) * std::size_t(sliceVoxels) * outWidth;
-        const unsigned char* in = buffer_.data();
-        switch (header_.dataType) {
-        case NiftiHeader::Int8: convert<std::int8_t, std::int16_t>(in, voxels, o); break;
-        case NiftiHeader::Int32: convert<std::int32_t, float>(in, voxels, o); break;
-        case NiftiHeader::Uint32: convert<std::uint32_t, float>(in, voxels, o); break;
-        case NiftiHeader::Int64: convert<std::int64_t, float>(in, voxels, o); break;
-        case NiftiHeader::Uint64: convert<std::uint64_t, float>(in, voxels, o); break;
-        case NiftiHeader::Float64: convert<double, float>(in, voxels, o); break;
-        default: std::memcpy(o, in, voxels * outWidth); break;
-        }
-        done += n;
-    }
+    std::uint32_t slice = firstSlice;  // the next slice to read, for messages
+    decodeSlices(header_.element, header_.bigEndian, sliceVoxels, firstSlice, count, buffer_, dst,
+                 [&](unsigned char* into, std::uint64_t bytes) {
+                     for (std::uint64_t at = 0; at < bytes;) {
+                         const unsigned step = unsigned(std::min<std::uint64_t>(bytes - at, 1u << 30));
+                         const int got = gzread(gz_->file, into + at, step);
+                         if (got <= 0)
+                             throw Error(path_ + ": is truncated or corrupt at slice " +
+                                         std::to_string(slice + at / fileSlice) + " of " + std::to_string(g.dims[2]));
+                         at += std::uint64_t(got);
+                     }
+                     slice += std::uint32_t(bytes / fileSlice);
+                 }, path_);
 }
 
 }  // namespace hvx::core

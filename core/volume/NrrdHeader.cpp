@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <vector>
 
@@ -28,6 +29,27 @@ std::vector<glm::dvec3> parseVectors(const std::string& text, const std::string&
     }
     return out;
 }
+
+// The element type of a NRRD "type" field (teem's names, nrrdTypeStr and its synonyms).
+FileElement elementOf(const std::string& v, const std::string& path) {
+    auto any = [&](std::initializer_list<const char*> names) {
+        for (const char* n : names)
+            if (v == n) return true;
+        return false;
+    };
+    if (any({"signed char", "int8", "int8_t"})) return FileElement::Int8;
+    if (any({"uchar", "unsigned char", "uint8", "uint8_t"})) return FileElement::UInt8;
+    if (any({"short", "short int", "signed short", "signed short int", "int16", "int16_t"})) return FileElement::Int16;
+    if (any({"ushort", "unsigned short", "unsigned short int", "uint16", "uint16_t"})) return FileElement::UInt16;
+    if (any({"int", "signed int", "int32", "int32_t"})) return FileElement::Int32;
+    if (any({"uint", "unsigned int", "uint32", "uint32_t"})) return FileElement::UInt32;
+    if (any({"longlong", "long long", "long long int", "signed long long", "signed long long int", "int64", "int64_t"}))
+        return FileElement::Int64;
+    if (any({"ulonglong", "unsigned long long", "unsigned long long int", "uint64", "uint64_t"})) return FileElement::UInt64;
+    if (v == "float") return FileElement::Float32;
+    if (v == "double") return FileElement::Float64;
+    throw Error(path + ": unsupported NRRD type '" + v + "'");
+}
 }  // namespace
 
 NrrdHeader NrrdHeader::read(const std::string& path) {
@@ -38,7 +60,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     NrrdHeader h;
     VolumeGeometry& g = h.geometry;
     int dimension = 0;
-    bool sizes = false;
+    bool sizes = false, typed = false;
     std::string space;
     std::vector<glm::dvec3> dirs;
     while (std::getline(in, line)) {
@@ -55,18 +77,9 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
         } else if (key == "sizes") {
             sizes = bool(v >> g.dims[0] >> g.dims[1] >> g.dims[2]);
         } else if (key == "type") {
-            if (value == "uchar" || value == "unsigned char" || value == "uint8" || value == "uint8_t")
-                g.scalarType = ScalarType::UInt8;
-            else if (value == "short" || value == "signed short" || value == "int16" || value == "int16_t" ||
-                     value == "short int" || value == "signed short int")
-                g.scalarType = ScalarType::Int16;
-            else if (value == "ushort" || value == "unsigned short" || value == "uint16" || value == "uint16_t" ||
-                     value == "unsigned short int")
-                g.scalarType = ScalarType::UInt16;
-            else if (value == "float")
-                g.scalarType = ScalarType::Float32;
-            else
-                throw Error(path + ": unsupported NRRD type '" + value + "'");
+            h.element = elementOf(value, path);
+            typed = true;
+            g.scalarType = storedTypeOf(h.element);
         } else if (key == "encoding") {
             h.encoding = value;
         } else if (key == "endian") {
@@ -87,6 +100,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
         }
     }
     if (!sizes) throw Error(path + ": NRRD header has no sizes");
+    if (!typed) throw Error(path + ": NRRD header has no type");
     if (dirs.size() == 3) {
         for (int a = 0; a < 3; ++a) {
             const double len = std::sqrt(glm::dot(dirs[std::size_t(a)], dirs[std::size_t(a)]));

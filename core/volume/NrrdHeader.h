@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "core/volume/FileElement.h"
 #include "core/volume/VolumeGeometry.h"
 
 namespace hvx::core {
@@ -12,7 +13,8 @@ namespace hvx::core {
 /// phantom and to recover orientation that VTK's NRRD reader ignores.
 class NrrdHeader {
 public:
-    VolumeGeometry geometry;
+    VolumeGeometry geometry;  ///< scalarType: storedTypeOf(element)
+    FileElement element = FileElement::Int16;  ///< the file's type
     std::string encoding = "raw";
     bool bigEndian = false;
     std::string dataFile;  ///< detached data file, empty when attached

@@ -15,7 +15,7 @@ namespace hvx::core {
 VolumeGeometry RawVoxelSource::Options::geometry() const {
     VolumeGeometry g;
     g.dims = dims;
-    g.scalarType = type;
+    g.scalarType = storedTypeOf(element);
     g.spacing = spacing;
     g.origin = origin;
     g.direction = direction;
@@ -23,18 +23,20 @@ VolumeGeometry RawVoxelSource::Options::geometry() const {
     return g;
 }
 
-RawVoxelSource::Options RawVoxelSource::described(const VolumeGeometry& g, bool bigEndian, std::uint64_t headerBytes,
-                                                  std::vector<std::string> warnings) {
+RawVoxelSource::Options RawVoxelSource::described(const VolumeGeometry& g, FileElement element, bool bigEndian,
+                                                  std::uint64_t headerBytes, std::vector<std::string> warnings,
+                                                  const std::string& file) {
     Options o;
     o.dims = g.dims;
-    o.type = g.scalarType;
-    o.bigEndian = bigEndian && scalarSize(o.type) > 1;
+    o.element = element;
+    o.bigEndian = bigEndian && elementSize(element) > 1;
     o.headerBytes = headerBytes;
     o.spacing = g.spacing;
     o.origin = g.origin;
     o.direction = g.direction;
     o.modality = g.modality;
     o.warnings = std::move(warnings);
+    if (const auto w = conversionWarning(element); !w.empty()) o.warnings.push_back(file + ": " + w);
     return o;
 }
 
@@ -48,12 +50,12 @@ RawVoxelSource::RawVoxelSource(std::string path, const Options& options)
         ::close(fd_);
         throw Error(path_ + ": not a regular file");
     }
-    const std::uint64_t need = options.headerBytes + geometry_.byteSize();
+    const std::uint64_t need = options.headerBytes + geometry_.voxelCount() * elementSize(options.element);
     if (std::uint64_t(st.st_size) != need) {
         ::close(fd_);
         throw Error(path_ + ": dimensions " + std::to_string(options.dims[0]) + "x" +
                     std::to_string(options.dims[1]) + "x" + std::to_string(options.dims[2]) + " " +
-                    std::string(scalarName(options.type)) + " need " + std::to_string(need) +
+                    std::string(elementName(options.element)) + " need " + std::to_string(need) +
                     " bytes but the file has " + std::to_string(st.st_size));
     }
 }
@@ -63,22 +65,26 @@ RawVoxelSource::~RawVoxelSource() {
 }
 
 void RawVoxelSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) {
-    const std::size_t width = scalarSize(geometry_.scalarType);
-    const std::uint64_t sliceBytes = std::uint64_t(geometry_.dims[0]) * geometry_.dims[1] * width;
-    std::uint64_t offset = options_.headerBytes + sliceBytes * firstSlice;
-    std::uint64_t remaining = sliceBytes * count;
-    auto* out = static_cast<char*>(dst);
-    while (remaining > 0) {
-        const std::size_t chunk = std::size_t(std::min<std::uint64_t>(remaining, 1u << 30));
+    const std::uint64_t sliceVoxels = std::uint64_t(geometry_.dims[0]) * geometry_.dims[1];
+    std::uint64_t offset = options_.headerBytes + sliceVoxels * elementSize(options_.element) * firstSlice;
+    decodeSlices(options_.element, options_.bigEndian, sliceVoxels, firstSlice, count, buffer_, dst,
+                 [&](unsigned char* into, std::uint64_t bytes) {
+                     readBytes(offset, bytes, into);
+                     offset += bytes;
+                 }, path_);
+}
+
+void RawVoxelSource::readBytes(std::uint64_t offset, std::uint64_t bytes, unsigned char* out) {
+    while (bytes > 0) {
+        const std::size_t chunk = std::size_t(std::min<std::uint64_t>(bytes, 1u << 30));
         const ssize_t got = ::pread(fd_, out, chunk, off_t(offset));
         if (got < 0 && errno == EINTR) continue;
         if (got < 0) throw Error(path_ + ": read failed (" + std::strerror(errno) + ")");
         if (got == 0) throw Error(path_ + ": file is truncated at byte " + std::to_string(offset));
         out += got;
         offset += std::uint64_t(got);
-        remaining -= std::uint64_t(got);
+        bytes -= std::uint64_t(got);
     }
-    if (options_.bigEndian && width > 1) swapByteOrder(dst, std::size_t(sliceBytes * count / width), width);
 }
 
 }  // namespace hvx::core

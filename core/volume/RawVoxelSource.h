@@ -3,17 +3,21 @@
 #include <string>
 #include <vector>
 
+#include "core/volume/FileElement.h"
 #include "core/volume/VoxelSource.h"
 
 namespace hvx::core {
 
 /// Reads a headerless raw voxel file (i fastest, then j, then k), as described on the command
-/// line: dimensions, scalar type, byte order and an optional header offset to skip.
+/// line or by a header (NRRD, MetaImage): dimensions, element type, byte order and an optional
+/// header offset to skip. Elements Holovox does not store as they are (int8, 32- and 64-bit
+/// integers, float64) are converted slab by slab (core::decodeElements); a float64 beyond
+/// float32's range is an error naming the file and the slice.
 class RawVoxelSource final : public VoxelSource {
 public:
     struct Options {
         std::array<std::uint32_t, 3> dims{0, 0, 0};
-        ScalarType type = ScalarType::Int16;
+        FileElement element = FileElement::Int16;  ///< in the file; kept as storedTypeOf(element)
         bool bigEndian = false;
         std::uint64_t headerBytes = 0;
         glm::dvec3 spacing{1.0, 1.0, 1.0};
@@ -25,9 +29,10 @@ public:
         VolumeGeometry geometry() const;
     };
     /// Options for data that a header describes (NRRD, MetaImage): its geometry (modality
-    /// included), byte order (ignored for single bytes), offset and warnings.
-    static Options described(const VolumeGeometry& g, bool bigEndian, std::uint64_t headerBytes,
-                             std::vector<std::string> warnings);
+    /// included), element type, byte order (ignored for single bytes), offset and warnings, to
+    /// which the conversion's (core::conversionWarning) is added, naming `file`.
+    static Options described(const VolumeGeometry& g, FileElement element, bool bigEndian, std::uint64_t headerBytes,
+                             std::vector<std::string> warnings, const std::string& file);
     /// Opens the file and checks that its size matches the dimensions; throws core::Error.
     RawVoxelSource(std::string path, const Options& options);
     ~RawVoxelSource() override;
@@ -40,10 +45,13 @@ public:
     std::vector<std::string> warnings() const override { return options_.warnings; }
 
 private:
+    /// Reads exactly `bytes` from `offset`; a short file is an error naming the byte.
+    void readBytes(std::uint64_t offset, std::uint64_t bytes, unsigned char* out);
     std::string path_;
     Options options_;
     VolumeGeometry geometry_;
     int fd_ = -1;
+    std::vector<unsigned char> buffer_;  // file elements of a slab being converted
 };
 
 }  // namespace hvx::core

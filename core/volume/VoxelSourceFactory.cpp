@@ -54,7 +54,7 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
             throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (raw and gzip are)");
         std::string data = input;
         if (!h.dataFile.empty()) data = (p.parent_path() / h.dataFile).string();
-        const auto o = RawVoxelSource::described(h.geometry, h.bigEndian, h.headerBytes, h.warnings);
+        const auto o = RawVoxelSource::described(h.geometry, h.element, h.bigEndian, h.headerBytes, h.warnings, input);
         if (gzip) return std::make_unique<InflatedVoxelSource>(data, o);
         return std::make_unique<RawVoxelSource>(data, o);
     }
@@ -69,7 +69,7 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
             throw Error(h.dataFile + ": truncated: its MetaImage header promises " + std::to_string(h.compressedBytes) +
                         " bytes of compressed data, the file holds " + std::to_string(size - std::min(size, h.dataOffset)));
         if (h.streamReason.empty()) {  // streamed by Holovox: the size of plain data checked
-            const auto o = RawVoxelSource::described(h.geometry, h.bigEndian, h.dataOffset, h.warnings);
+            const auto o = RawVoxelSource::described(h.geometry, h.element, h.bigEndian, h.dataOffset, h.warnings, input);
             if (h.compressed) return std::make_unique<InflatedVoxelSource>(h.dataFile, o);
             return std::make_unique<RawVoxelSource>(h.dataFile, o);
         }

@@ -56,11 +56,11 @@ TEST(CliBadInput, TruncatedNiftiInput) {
 TEST(CliBadInput, UnsupportedScalarType) {
     test::TempDir dir;
     writeBytes(dir.file("v.raw"), 4000);
-    expectCleanFailure("build " + dir.file("v.raw") + " --dims 10x10x10 --type int32 -o " + dir.file("o.hvo"), dir,
-                       "int32", {"v.raw"}, "unsupported");
+    expectCleanFailure("build " + dir.file("v.raw") + " --dims 10x10x10 --type complex64 -o " + dir.file("o.hvo"), dir,
+                       "complex64", {"v.raw"}, "unsupported");
     {
         std::ofstream f(dir.file("d.nrrd"));
-        f << "NRRD0004\ntype: double\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n" << std::string(64, '\0');
+        f << "NRRD0004\ntype: block\nblock size: 8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n\n" << std::string(64, '\0');
     }
     expectCleanFailure("build " + dir.file("d.nrrd") + " -o " + dir.file("o.hvo"), dir, dir.file("d.nrrd"),
                        {"d.nrrd", "v.raw"}, "unsupported NRRD type");

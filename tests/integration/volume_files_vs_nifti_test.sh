@@ -2,6 +2,9 @@
 # The MRI template (mricron-data) as nibabel places it, written as a plain MetaImage, a
 # zlib-compressed one and a gzip-encoded NRRD (3D Slicer's default), all streamed by Holovox:
 # each must build the same geometry as the NIfTI and render bit for bit the same CPU image.
+# Then the same volume as float64 and as int32 (which Holovox keeps as float32), written by
+# nibabel as NIfTI and here as MetaImage and NRRD (big- and little-endian, plain and
+# compressed): each the geometry and the image of nibabel's NIfTI of the same type.
 # Until 2026-12-06 a MetaImage of more than 32 slices came back as its first 32 slices over and
 # over (or aborted), and a gzip NRRD was refused.
 set -euo pipefail
@@ -36,14 +39,50 @@ nrrd = ("NRRD0004\ntype: uint8\ndimension: 3\nspace: left-posterior-superior\nsi
         "space directions: " + " ".join(vec(L[:, a]) for a in range(3)) + "\nkinds: domain domain domain\n" +
         "encoding: gzip\nspace origin: " + vec(o) + "\n\n").encode()
 open(sys.argv[2] + "/gzip.nrrd", "wb").write(nrrd + gzip.compress(raw, 6))
+# The wide types: nibabel's NIfTI, and MetaImage and NRRD written here from the same array.
+f64 = data.astype(np.float64) * 1.5 - 20.25
+i32 = data.astype(np.int32) * 1000 - 5000        # beyond int16
+for name, arr in (("f64", f64), ("i32", i32)):
+    out = nib.Nifti1Image(arr, A)
+    out.set_data_dtype(arr.dtype)
+    out.to_filename(sys.argv[2] + "/" + name + ".nii.gz")
+def mha(arr, met, big, zipped):
+    raw = arr.astype(arr.dtype.newbyteorder(">" if big else "<")).tobytes(order="F")
+    extra = "BinaryDataByteOrderMSB = %s\n" % big
+    if zipped:
+        raw = zlib.compress(raw, 6)
+        extra += "CompressedData = True\nCompressedDataSize = %d\n" % len(raw)
+    return header(extra).replace(b"MET_UCHAR", met.encode()).replace(b"BinaryDataByteOrderMSB = False\n", b"", 1) + raw
+def nrrd_of(arr, typ, big, zipped):
+    raw = arr.astype(arr.dtype.newbyteorder(">" if big else "<")).tobytes(order="F")
+    head = nrrd.replace(b"type: uint8", ("type: " + typ).encode())
+    head = head.replace(b"encoding: gzip", ("encoding: %s\nendian: %s" % ("gzip" if zipped else "raw", "big" if big else "little")).encode())
+    return head + (gzip.compress(raw, 6) if zipped else raw)
+open(sys.argv[2] + "/f64-msb.mha", "wb").write(mha(f64, "MET_DOUBLE", True, False))
+open(sys.argv[2] + "/f64-gzip.nrrd", "wb").write(nrrd_of(f64, "double", False, True))
+open(sys.argv[2] + "/i32-zlib.mha", "wb").write(mha(i32, "MET_INT", False, True))
+open(sys.argv[2] + "/i32-msb.nrrd", "wb").write(nrrd_of(i32, "int", True, False))
 PY
 "$cli" build "$nii" -o "$work/nii.hvo" --quiet
 "$cli" render "$work/nii.hvo" --cpu --size 192x192 --tf mr-default -o "$work/nii.png" >/dev/null
 geometry() { "$cli" info "$1" | grep -E "^ *(volume|spacing|origin|direction)" | sed "s/, [A-Z]*$//"; }  # not the modality
-for f in plain.mha zipped.mha gzip.nrrd; do
-  "$cli" build "$work/$f" -o "$work/$f.hvo" --quiet
-  diff <(geometry "$work/nii.hvo") <(geometry "$work/$f.hvo") || { echo "$f: another geometry than the NIfTI's"; exit 1; }
-  "$cli" render "$work/$f.hvo" --cpu --size 192x192 --tf mr-default -o "$work/$f.png" >/dev/null
-  cmp "$work/nii.png" "$work/$f.png" || { echo "$f renders unlike the NIfTI"; exit 1; }
-  echo "$f: the NIfTI's geometry and the same image"
+# same FILE REFERENCE: FILE builds REFERENCE's geometry and renders its image bit for bit
+same() {
+  "$cli" build "$work/$1" -o "$work/$1.hvo" --quiet
+  diff <(geometry "$work/$2.hvo") <(geometry "$work/$1.hvo") || { echo "$1: another geometry than $2's"; exit 1; }
+  "$cli" render "$work/$1.hvo" --cpu --size 192x192 --tf mr-default -o "$work/$1.png" >/dev/null
+  cmp "$work/$2.png" "$work/$1.png" || { echo "$1 renders unlike $2"; exit 1; }
+  echo "$1: the geometry and the image of $2"
+}
+for f in plain.mha zipped.mha gzip.nrrd; do same "$f" nii; done
+for t in f64 i32; do
+  "$cli" build "$work/$t.nii.gz" -o "$work/$t.hvo" --quiet
+  "$cli" render "$work/$t.hvo" --cpu --size 192x192 --tf mr-default -o "$work/$t.png" >/dev/null
+  grep -q "float32" <<<"$("$cli" info "$work/$t.hvo")" || { echo "$t: not kept as float32"; exit 1; }
 done
+for f in f64-msb.mha f64-gzip.nrrd; do same "$f" f64; done
+for f in i32-zlib.mha i32-msb.nrrd; do same "$f" i32; done
+# the float64 MetaImage is streamed by Holovox, and says what it keeps
+said=$("$cli" build "$work/f64-msb.mha" -o "$work/again.hvo" 2>&1)
+grep -q "f64-msb.mha: its 64-bit floats are kept as 32-bit floats" <<<"$said" ||
+  { echo "f64-msb.mha: no warning that its float64 values are kept as float32: $said"; exit 1; }

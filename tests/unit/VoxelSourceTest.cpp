@@ -68,7 +68,7 @@ TEST(RawVoxelSource, ReadsBigEndianAndRejectsWrongSizes) {
     std::ofstream(dir.file("v.raw"), std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), 120);
     core::RawVoxelSource::Options o;
     o.dims = {5, 4, 3};
-    o.type = core::ScalarType::Int16;
+    o.element = core::FileElement::Int16;
     o.bigEndian = true;
     core::RawVoxelSource src(dir.file("v.raw"), o);
     const auto v = test::readAll<std::int16_t>(src);

@@ -1,5 +1,6 @@
 // MetaImage and legacy VTK files read through the VTK reader module (loaded on first use): the
 // types it widens exactly, the ones it refuses, slabs across its 32-slice reads, and broken files.
+// (The factory streams plain MetaImage files itself, FileElementTest; these open the module.)
 // Each file is written here by hand, so the expected voxels are known without Holovox or VTK.
 
 #include <gtest/gtest.h>
@@ -7,6 +8,7 @@
 #include <cstdint>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "core/base/Error.h"
@@ -43,7 +45,7 @@ TEST(VtkImageSource, SignedBytesAreWidenedExactlyToInt16) {
     std::vector<std::int8_t> v(4 * 3 * 2);
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::int8_t(int(i) * 11 - 128);
     writeMha(dir.file("c.mha"), 4, 3, 2, "MET_CHAR", bytesOf(v));
-    auto src = core::VoxelSourceFactory::open(dir.file("c.mha"));
+    auto src = std::make_unique<core::VtkImageSource>(dir.file("c.mha"));
     ASSERT_EQ(src->geometry().scalarType, core::ScalarType::Int16);
     const auto got = test::readAll<std::int16_t>(*src);
     for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(got[i], v[i]) << "voxel " << i;
@@ -54,7 +56,7 @@ TEST(VtkImageSource, DoublesBecomeFloats) {
     std::vector<double> v(3 * 2 * 2);
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = -1000.25 + double(i) * 0.5;
     writeMha(dir.file("d.mha"), 3, 2, 2, "MET_DOUBLE", bytesOf(v));
-    auto src = core::VoxelSourceFactory::open(dir.file("d.mha"));
+    auto src = std::make_unique<core::VtkImageSource>(dir.file("d.mha"));
     ASSERT_EQ(src->geometry().scalarType, core::ScalarType::Float32);
     const auto got = test::readAll<float>(*src);
     for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(got[i], float(v[i])) << "voxel " << i;
@@ -65,8 +67,8 @@ TEST(VtkImageSource, MetaImageSlabsAreExactInAnyOrder) {
     const int nx = 5, ny = 4, nz = 70;  // more than the 32 slices of a streamed read
     std::vector<std::int8_t> v(std::size_t(nx) * ny * nz);
     for (std::size_t i = 0; i < v.size(); ++i) v[i] = std::int8_t(int(i * 7 % 251) - 125);
-    writeMha(dir.file("u.mha"), nx, ny, nz, "MET_CHAR", bytesOf(v));  // int8: read by VTK
-    auto src = core::VoxelSourceFactory::open(dir.file("u.mha"));
+    writeMha(dir.file("u.mha"), nx, ny, nz, "MET_CHAR", bytesOf(v));
+    auto src = std::make_unique<core::VtkImageSource>(dir.file("u.mha"));
     ASSERT_EQ(src->geometry().scalarType, core::ScalarType::Int16);
     const std::size_t slice = std::size_t(nx) * ny;
     std::vector<std::int16_t> slab(slice * 9);
@@ -76,7 +78,7 @@ TEST(VtkImageSource, MetaImageSlabsAreExactInAnyOrder) {
     }
     // A source whose first read starts inside the volume (VTK's MetaImage reader cannot read a
     // slab alone: asked for one, it overflowed its buffer and the program aborted).
-    auto late = core::VoxelSourceFactory::open(dir.file("u.mha"));
+    auto late = std::make_unique<core::VtkImageSource>(dir.file("u.mha"));
     late->readSlices(40, 9, slab.data());
     for (std::size_t i = 0; i < slab.size(); ++i) ASSERT_EQ(slab[i], v[40 * slice + i]);
 }
