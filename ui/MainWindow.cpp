@@ -408,6 +408,11 @@ void MainWindow::showError(const QString& message) {
     statusBar()->showMessage(message, 15000);
 }
 
+void MainWindow::showNotice(const QString& message) {
+    lastNotice_ = message;
+    statusBar()->showMessage(message, 30000);
+}
+
 void MainWindow::updateReadouts() {
     const auto& r = view_->readouts();
     readouts_->setText(tr("%1 fps \u2022 %2 bricks \u2022 cache %3/%4 MiB%5")

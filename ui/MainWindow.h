@@ -94,6 +94,8 @@ public:
     ToolsPanel* toolsPanel(int i) const { return toolPanels_[i]; }
     /// The last error shown in the status bar.
     QString lastError() const { return lastError_; }
+    /// The last notice shown in the status bar: what an opened file leaves open or assumes.
+    QString lastNotice() const { return lastNotice_; }
     /// Help > About's text: the version, the libraries and OpenGL in use, and the data folders.
     QString aboutText() const;
 
@@ -112,6 +114,8 @@ private:
     void applyTools();
     void placeTool(const glm::dvec3& patient, bool alt);
     void showError(const QString& message);
+    /// Shows what an opened file leaves open or assumes (its source's warnings) in the status bar.
+    void showNotice(const QString& message);
     void updateReadouts();
     void saveScreenshot();
     void chooseImport();
@@ -145,7 +149,7 @@ private:
     QLabel* readouts_;
     std::shared_ptr<const core::OctreeReader> reader_;
     double referenceLength_ = 1.0;
-    QString openLabel_, lastError_;
+    QString openLabel_, lastError_, lastNotice_;
     QString openPath_;  // the open octree's key in the session: a hash of its absolute path
     QString dbPath_, pacsConfigPath_;  // in use, for Help > About
     QList<QDockWidget*> docks_;

@@ -343,16 +343,21 @@ bool MainWindow::openVolumeFile(const QString& path, int volume) {
                         QString::fromLatin1(key.toHex().left(20)) + ".hvo";
     if (QFileInfo::exists(out)) return openOctree(out, label);
     QPointer<MainWindow> self(this);
+    auto warnings = std::make_shared<std::vector<std::string>>();  // what the file leaves open: said once shown
     jobs_->start(
         tr("Build octree: %1").arg(label),
-        [file, volume, out](core::JobContext& job) {
+        [file, volume, out, warnings](core::JobContext& job) {
             auto source = core::VoxelSourceFactory::open(file, {}, std::uint32_t(volume - 1));
+            *warnings = source->warnings();
             std::filesystem::create_directories(std::filesystem::path(out.toStdString()).parent_path());
             core::OctreeBuilder(core::BuildOptions{}).build(*source, out.toStdString(), job);
             return out;
         },
-        [self, label](const QString& built) {
-            if (self) self->openOctree(built, label);
+        [self, label, warnings](const QString& built) {
+            if (!self || !self->openOctree(built, label) || warnings->empty()) return;
+            QStringList lines;
+            for (const auto& w : *warnings) lines << QString::fromStdString(w);
+            self->showNotice(lines.join("; "));
         });
     statusBar()->showMessage(tr("Building the octree of %1 in the background\u2026").arg(label), 5000);
     return true;

@@ -46,7 +46,13 @@ int buildCommand(int argc, char** argv) {
         raw.bigEndian = *e == "big";
     }
     raw.headerBytes = std::uint64_t(args.integer("header-bytes", 0, 0, 1L << 40));
-    if (const auto s = args.value("spacing")) raw.spacing = parseSpacing(*s);
+    if (const auto s = args.value("spacing")) {
+        raw.spacing = parseSpacing(*s);
+        raw.spacingAssumed = false;
+    }
+    const std::string input = args.positional()[0];
+    raw.warnings.push_back(input + ": a raw file holds no orientation: its axes are taken as L, P and S, and the views draw \"?\" for them");
+    if (raw.spacingAssumed) raw.warnings.push_back(input + ": no --spacing for a raw file: 1 mm assumed, lengths are not millimetres");
 
     core::BuildOptions opt;
     opt.brickSize = std::uint32_t(args.integer("brick", 32, 4, 256));

@@ -117,6 +117,10 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     if (!dataFileSeen) throw Error(path + ": not a MetaImage header (no ElementDataFile field)");
     if (!dims) throw Error(path + ": MetaImage header has no DimSize");
     if (!spacing && elementSize != glm::dvec3(0.0)) g.spacing = elementSize;
+    if (!spacing && elementSize == glm::dvec3(0.0)) {  // MetaIO's default, 1, is not a measurement
+        g.spacingAssumed = true;
+        h.warnings.push_back(path + ": MetaImage header gives no ElementSpacing: 1 mm assumed, lengths are not millimetres");
+    }
     auto notStreamable = [&](const std::string& why) {
         if (h.streamReason.empty()) h.streamReason = why;
     };

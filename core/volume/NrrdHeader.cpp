@@ -60,7 +60,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     NrrdHeader h;
     VolumeGeometry& g = h.geometry;
     int dimension = 0;
-    bool sizes = false, typed = false;
+    bool sizes = false, typed = false, spaced = false;
     std::string space;
     std::vector<glm::dvec3> dirs;
     while (std::getline(in, line)) {
@@ -92,7 +92,9 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
             auto o = parseVectors(value, path);
             if (o.size() == 1) g.origin = o[0];
         } else if (key == "spacings") {
-            v >> g.spacing.x >> g.spacing.y >> g.spacing.z;
+            if (!(v >> g.spacing.x >> g.spacing.y >> g.spacing.z))
+                throw Error(path + ": NRRD spacings '" + value + "' are not three numbers");
+            spaced = true;
         } else if (key == "data file" || key == "datafile") {
             h.dataFile = value;
         } else if (key == "modality") {
@@ -108,6 +110,11 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
             g.spacing[a] = len;
             g.direction[a] = dirs[std::size_t(a)] / len;
         }
+        spaced = true;
+    }
+    if (!spaced) {  // the views and measurements say so (VolumeGeometry::spacingAssumed)
+        g.spacingAssumed = true;
+        h.warnings.push_back(path + ": NRRD header gives no spacings or space directions: 1 mm assumed, lengths are not millimetres");
     }
     // The patient spaces NRRD names, turned into LPS by the axes they flip; anything else cannot
     // be placed in the patient and is refused.
@@ -123,6 +130,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
         if (dirs.size() == 3)
             throw Error(path + ": NRRD header has space directions but no space, so they cannot be placed");
         h.warnings.push_back(path + ": NRRD header has no space: orientation unknown, the axes taken as L, P and S");
+        g.orientationAssumed = true;  // the views draw "?" for the orientation letters
     } else {
         throw Error(path + ": NRRD space '" + space + "' is not a patient space Holovox can place (LPS, RAS, LAS, scanner-xyz)");
     }

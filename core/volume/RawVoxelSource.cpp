@@ -20,6 +20,8 @@ VolumeGeometry RawVoxelSource::Options::geometry() const {
     g.origin = origin;
     g.direction = direction;
     g.modality = modality;
+    g.orientationAssumed = orientationAssumed;
+    g.spacingAssumed = spacingAssumed;
     return g;
 }
 
@@ -35,6 +37,8 @@ RawVoxelSource::Options RawVoxelSource::described(const VolumeGeometry& g, FileE
     o.origin = g.origin;
     o.direction = g.direction;
     o.modality = g.modality;
+    o.orientationAssumed = g.orientationAssumed;
+    o.spacingAssumed = g.spacingAssumed;
     o.warnings = std::move(warnings);
     if (const auto w = conversionWarning(element); !w.empty()) o.warnings.push_back(file + ": " + w);
     return o;

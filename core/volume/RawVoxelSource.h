@@ -24,6 +24,10 @@ public:
         glm::dvec3 origin{0.0, 0.0, 0.0};  ///< LPS
         glm::dmat3 direction{1.0};         ///< LPS direction cosines (columns)
         std::string modality = "OT";
+        /// A raw file says nothing of the patient: its axes are taken as L, P and S and the
+        /// views draw "?" for them; its spacing is 1 mm unless given (VolumeGeometry's flags).
+        bool orientationAssumed = true;
+        bool spacingAssumed = true;
         std::vector<std::string> warnings;  ///< passed on by warnings() (e.g. from a NRRD header)
         /// The volume these options describe (not yet validated).
         VolumeGeometry geometry() const;

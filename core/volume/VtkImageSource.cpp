@@ -78,7 +78,12 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)) {
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c) toPatient[c][r] = h.direction[3 * r + c];
     }
-    if (isMetaImage(path_)) toPatient = glm::dmat4(MetaImageHeader::read(path_).geometry.direction);
+    if (isMetaImage(path_)) {
+        const MetaImageHeader mh = MetaImageHeader::read(path_);
+        toPatient = glm::dmat4(mh.geometry.direction);
+        geometry_.spacingAssumed = mh.geometry.spacingAssumed;
+        warnings_ = mh.warnings;
+    }
     glm::dvec3 first;
     for (int a = 0; a < 3; ++a) first[a] = h.extent[2 * a] * h.spacing[a];
     geometry_.origin = glm::dvec3(h.origin[0], h.origin[1], h.origin[2]) + glm::dmat3(toPatient) * first;

@@ -1,6 +1,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/volume/VoxelSource.h"
 
@@ -26,6 +27,8 @@ public:
     const VolumeGeometry& geometry() const override { return geometry_; }
     void readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) override;
     std::string describe() const override { return path_; }
+    /// A MetaImage header's (MetaImageHeader::warnings).
+    std::vector<std::string> warnings() const override { return warnings_; }
 
     /// True for the file name extensions this source reads.
     static bool handles(const std::string& path);
@@ -36,6 +39,7 @@ private:
     struct Impl;
     std::string path_;
     VolumeGeometry geometry_;
+    std::vector<std::string> warnings_;
     std::unique_ptr<Impl> impl_;
 };
 

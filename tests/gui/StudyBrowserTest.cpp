@@ -21,6 +21,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include "core/octree/OctreeBuilder.h"
 #include "core/volume/PhantomVoxelSource.h"
@@ -312,6 +313,24 @@ private slots:
         const double centre = window_->slice(0)->windowCentre();
         QVERIFY2(centre > 1000 && centre < 1050, qPrintable(QString::number(centre)));
         QCOMPARE(view()->orientationLabels(), (QStringList{"R", "L", "S", "I"}));
+        QVERIFY2(window_->lastNotice().contains("a 4D file of 3 volumes; this is volume 2"), qPrintable(window_->lastNotice()));
+    }
+
+    // A NRRD without a space (written here by hand) cannot be placed in the patient: the views
+    // draw "?" for the orientation letters, and the status bar says why once it is shown.
+    void aNrrdWithoutSpaceShowsNoOrientationLetters() {
+        const std::string nrrd = dir_.file("nospace.nrrd");
+        {
+            std::ofstream f(nrrd, std::ios::binary);
+            f << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 16 16 16\nspacings: 1 1 1\nencoding: raw\n\n";
+            for (int i = 0; i < 16 * 16 * 16; ++i) f.put(char(i % 16 < 8 ? 40 : 200));
+        }
+        QVERIFY(window_->openVolumeFile(QString::fromStdString(nrrd), 1));
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        QTRY_VERIFY_WITH_TIMEOUT(window_->openLabel() == "nospace.nrrd", 10000);
+        QCOMPARE(view()->orientationLabels(), (QStringList{"?", "?", "?", "?"}));
+        QVERIFY2(window_->lastNotice().contains("orientation unknown"), qPrintable(window_->lastNotice()));
+        saveArtifact("nrrd-without-space.png");
     }
 
     void cleanupTestCase() { close(); }

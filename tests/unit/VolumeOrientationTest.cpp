@@ -10,6 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/base/Error.h"
+#include "core/volume/RawVoxelSource.h"
 #include "core/volume/VoxelSourceFactory.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
@@ -126,6 +127,12 @@ TEST(VolumeOrientation, EveryNrrdPatientSpaceBecomesLps) {
     }
     auto none = core::VoxelSourceFactory::open(write("none.nrrd", ""));
     EXPECT_TRUE(mentions(none->warnings(), "no space: orientation unknown"));
+    EXPECT_TRUE(none->geometry().orientationAssumed);  // the views draw "?" for its letters
+    EXPECT_TRUE(none->geometry().spacingAssumed);      // nor any spacing: 1 mm is not a measurement
+    EXPECT_TRUE(mentions(none->warnings(), "no spacings or space directions: 1 mm assumed"));
+    auto placed = core::VoxelSourceFactory::open(dir.file("LPS.nrrd"));
+    EXPECT_FALSE(placed->geometry().orientationAssumed);
+    EXPECT_FALSE(placed->geometry().spacingAssumed);
     for (const char* space : {"3D-right-handed", "right-anterior-superior-time", "scanner-xyz-time"})
         EXPECT_NE(refusal(write("r.nrrd", space)).find("not a patient space"), std::string::npos) << space;
 }
@@ -156,4 +163,33 @@ TEST(VolumeGeometry, GridDifferenceNamesWhatDiffers) {
     b = a;
     b.rescaleSlope = 2.0;
     EXPECT_NE(a.gridDifference(b).find("another rescale"), std::string::npos);
+}
+
+// What a file does not say is never shown as known: a MetaImage without ElementSpacing, a NRRD
+// whose spacings are not numbers, a raw file (no orientation ever; spacing unless given).
+TEST(VolumeOrientation, WhatAFileLeavesOpenIsFlaggedNotAssumedSilently) {
+    test::TempDir dir;
+    std::ofstream(dir.file("a.mha"), std::ios::binary)
+        << "ObjectType = Image\nNDims = 3\nBinaryData = True\nDimSize = 2 2 2\nElementType = MET_UCHAR\n"
+           "ElementDataFile = LOCAL\n"
+        << std::string(8, '\0');
+    auto mha = core::VoxelSourceFactory::open(dir.file("a.mha"));
+    EXPECT_TRUE(mha->geometry().spacingAssumed);
+    EXPECT_FALSE(mha->geometry().orientationAssumed);  // MetaImage is LPS by ITK's convention
+    EXPECT_TRUE(mentions(mha->warnings(), "no ElementSpacing: 1 mm assumed"));
+
+    std::ofstream(dir.file("nan.nrrd"), std::ios::binary)
+        << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nspacings: 1 nan 1\nencoding: raw\n\n"
+        << std::string(8, '\0');
+    EXPECT_NE(refusal(dir.file("nan.nrrd")).find("spacings '1 nan 1' are not three numbers"), std::string::npos)
+        << refusal(dir.file("nan.nrrd"));
+
+    std::ofstream(dir.file("v.raw"), std::ios::binary) << std::string(8, '\0');
+    core::RawVoxelSource::Options o;
+    o.dims = {2, 2, 1};
+    o.element = core::FileElement::UInt16;
+    EXPECT_TRUE(core::RawVoxelSource(dir.file("v.raw"), o).geometry().orientationAssumed);
+    EXPECT_TRUE(core::RawVoxelSource(dir.file("v.raw"), o).geometry().spacingAssumed);
+    o.spacingAssumed = false;  // --spacing given
+    EXPECT_FALSE(core::RawVoxelSource(dir.file("v.raw"), o).geometry().spacingAssumed);
 }
