@@ -20,6 +20,7 @@
 
 #include <filesystem>
 
+#include "core/base/AtomicFileWriter.h"
 #include "core/base/Error.h"
 #include "core/octree/OctreeBuilder.h"
 #include "core/volume/NiftiVoxelSource.h"
@@ -70,6 +71,7 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
     try {
         std::shared_ptr<const core::OctreeReader> reader = core::OctreeReader::open(path.toStdString());
         reader_ = reader;
+        lastNotice_.clear();  // a notice belongs to the file it was shown for
         const auto& g = reader->geometry();
         const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
         referenceLength_ = space.minSpacing;
@@ -341,23 +343,39 @@ bool MainWindow::openVolumeFile(const QString& path, int volume) {
         QCryptographicHash::Sha1);
     const QString out = QFileInfo(browser_->databasePath()).absolutePath() + "/octrees/files/" +
                         QString::fromLatin1(key.toHex().left(20)) + ".hvo";
-    if (QFileInfo::exists(out)) return openOctree(out, label);
+    // What the file leaves open or assumes (its source's warnings) is kept beside its octree and
+    // said each time the octree opens, built now or found built.
+    auto opened = [this, label](const QString& octree) {
+        if (!openOctree(octree, label)) return false;
+        QFile notes(octree + ".warnings");
+        if (notes.open(QIODevice::ReadOnly)) {
+            const QStringList lines = QString::fromUtf8(notes.readAll()).split('\n', Qt::SkipEmptyParts);
+            if (!lines.isEmpty()) showNotice(lines.join("; "));
+        }
+        return true;
+    };
+    if (QFileInfo::exists(out)) return opened(out);
     QPointer<MainWindow> self(this);
-    auto warnings = std::make_shared<std::vector<std::string>>();  // what the file leaves open: said once shown
     jobs_->start(
         tr("Build octree: %1").arg(label),
-        [file, volume, out, warnings](core::JobContext& job) {
+        [file, volume, out](core::JobContext& job) {
             auto source = core::VoxelSourceFactory::open(file, {}, std::uint32_t(volume - 1));
-            *warnings = source->warnings();
             std::filesystem::create_directories(std::filesystem::path(out.toStdString()).parent_path());
+            const std::string notes = out.toStdString() + ".warnings";  // written before the octree it describes
+            std::error_code ec;
+            std::filesystem::remove(notes, ec);
+            if (const auto warnings = source->warnings(); !warnings.empty()) {
+                std::string text;
+                for (const auto& w : warnings) text += w + "\n";
+                core::AtomicFileWriter writer(notes);
+                writer.append(text.data(), text.size());
+                writer.commit();
+            }
             core::OctreeBuilder(core::BuildOptions{}).build(*source, out.toStdString(), job);
             return out;
         },
-        [self, label, warnings](const QString& built) {
-            if (!self || !self->openOctree(built, label) || warnings->empty()) return;
-            QStringList lines;
-            for (const auto& w : *warnings) lines << QString::fromStdString(w);
-            self->showNotice(lines.join("; "));
+        [self, opened](const QString& built) {
+            if (self) opened(built);
         });
     statusBar()->showMessage(tr("Building the octree of %1 in the background\u2026").arg(label), 5000);
     return true;

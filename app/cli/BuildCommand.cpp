@@ -53,6 +53,7 @@ int buildCommand(int argc, char** argv) {
     const std::string input = args.positional()[0];
     raw.warnings.push_back(input + ": a raw file holds no orientation: its axes are taken as L, P and S, and the views draw \"?\" for them");
     if (raw.spacingAssumed) raw.warnings.push_back(input + ": no --spacing for a raw file: 1 mm assumed, lengths are not millimetres");
+    if (const auto w = core::conversionWarning(raw.element); !w.empty()) raw.warnings.push_back(input + ": " + w);
 
     core::BuildOptions opt;
     opt.brickSize = std::uint32_t(args.integer("brick", 32, 4, 256));

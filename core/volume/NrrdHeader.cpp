@@ -60,7 +60,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     NrrdHeader h;
     VolumeGeometry& g = h.geometry;
     int dimension = 0;
-    bool sizes = false, typed = false, spaced = false;
+    bool sizes = false, typed = false, spaced = false, endian = false;
     std::string space;
     std::vector<glm::dvec3> dirs;
     while (std::getline(in, line)) {
@@ -83,14 +83,20 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
         } else if (key == "encoding") {
             h.encoding = value;
         } else if (key == "endian") {
+            if (value != "big" && value != "little")
+                throw Error(path + ": NRRD endian '" + value + "' is neither little nor big");
             h.bigEndian = value == "big";
+            endian = true;
         } else if (key == "space") {
             space = value;
         } else if (key == "space directions") {
             dirs = parseVectors(value, path);
+            if (dirs.size() != 3)  // a "none" axis is not spatial: not a volume Holovox can place
+                throw Error(path + ": NRRD space directions '" + value + "' are not three vectors");
         } else if (key == "space origin") {
             auto o = parseVectors(value, path);
-            if (o.size() == 1) g.origin = o[0];
+            if (o.size() != 1) throw Error(path + ": NRRD space origin '" + value + "' is not one vector");
+            g.origin = o[0];
         } else if (key == "spacings") {
             if (!(v >> g.spacing.x >> g.spacing.y >> g.spacing.z))
                 throw Error(path + ": NRRD spacings '" + value + "' are not three numbers");
@@ -103,6 +109,9 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     }
     if (!sizes) throw Error(path + ": NRRD header has no sizes");
     if (!typed) throw Error(path + ": NRRD header has no type");
+    if (!endian && elementSize(h.element) > 1 && h.encoding != "ascii" && h.encoding != "text" && h.encoding != "txt")
+        throw Error(path + ": NRRD header gives no endian for its " + std::to_string(elementSize(h.element)) +
+                    "-byte type, so its values cannot be read (teem refuses it too)");
     if (dirs.size() == 3) {
         for (int a = 0; a < 3; ++a) {
             const double len = std::sqrt(glm::dot(dirs[std::size_t(a)], dirs[std::size_t(a)]));

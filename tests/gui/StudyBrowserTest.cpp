@@ -331,6 +331,14 @@ private slots:
         QCOMPARE(view()->orientationLabels(), (QStringList{"?", "?", "?", "?"}));
         QVERIFY2(window_->lastNotice().contains("orientation unknown"), qPrintable(window_->lastNotice()));
         saveArtifact("nrrd-without-space.png");
+        // Another file's octree opens without the notice; the first, found built, says it again.
+        QVERIFY(window_->openVolumeFile(QString::fromStdString(dir_.file("fourd.nii.gz")), 1));
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        QTRY_VERIFY_WITH_TIMEOUT(window_->openLabel() == "fourd.nii.gz \u2014 volume 1 of 3", 10000);
+        QVERIFY2(!window_->lastNotice().contains("orientation unknown"), qPrintable(window_->lastNotice()));
+        QVERIFY(window_->openVolumeFile(QString::fromStdString(nrrd), 1));
+        QCOMPARE(window_->openLabel(), QString("nospace.nrrd"));  // at once: no build
+        QVERIFY2(window_->lastNotice().contains("orientation unknown"), qPrintable(window_->lastNotice()));
     }
 
     void cleanupTestCase() { close(); }

@@ -80,6 +80,25 @@ TEST(CliBuild, NrrdAndRawInputsWithOptions) {
     EXPECT_TRUE(contains(r.output, "lossy error RMS")) << r.output;
 }
 
+// A raw file says nothing of the patient: what Holovox assumes or converts for it is said, and
+// what the command line gives is not said to be assumed.
+TEST(CliBuild, RawFilesSayWhatIsAssumedAndConverted) {
+    test::TempDir dir;
+    std::ofstream(dir.file("v.raw"), std::ios::binary) << std::string(8 * 8 * 8 * 4, '\x01');
+    auto r = test::runCommand(cli + " build " + dir.file("v.raw") + " --dims 8x8x8 --type int32 -o " + dir.file("a.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "warning: " + dir.file("v.raw") + ": a raw file holds no orientation")) << r.output;
+    EXPECT_TRUE(contains(r.output, "no --spacing for a raw file: 1 mm assumed")) << r.output;
+    EXPECT_TRUE(contains(r.output, "its 32-bit integers are kept as 32-bit floats")) << r.output;
+    std::ofstream(dir.file("s.raw"), std::ios::binary) << std::string(8 * 8 * 8 * 2, '\x01');
+    r = test::runCommand(cli + " build " + dir.file("s.raw") + " --dims 8x8x8 --type int16 --spacing 0.5,0.5,2 -o " +
+                         dir.file("b.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "a raw file holds no orientation")) << r.output;
+    EXPECT_FALSE(contains(r.output, "1 mm assumed")) << r.output;
+    EXPECT_FALSE(contains(r.output, "kept as")) << r.output;
+}
+
 TEST(CliBuild, KilledBuildNeverLeavesAFileThatLooksComplete) {
     test::TempDir dir;
     const std::string out = dir.file("big.hvo");
