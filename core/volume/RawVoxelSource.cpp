@@ -55,7 +55,7 @@ RawVoxelSource::RawVoxelSource(std::string path, const Options& options)
         throw Error(path_ + ": not a regular file");
     }
     const std::uint64_t need = options.headerBytes + geometry_.voxelCount() * elementSize(options.element);
-    if (std::uint64_t(st.st_size) != need) {
+    if (std::uint64_t(st.st_size) < need || (!options.trailingBytes && std::uint64_t(st.st_size) != need)) {
         ::close(fd_);
         throw Error(path_ + ": dimensions " + std::to_string(options.dims[0]) + "x" +
                     std::to_string(options.dims[1]) + "x" + std::to_string(options.dims[2]) + " " +

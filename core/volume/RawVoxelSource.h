@@ -29,6 +29,9 @@ public:
         bool orientationAssumed = true;
         bool spacingAssumed = true;
         std::vector<std::string> warnings;  ///< passed on by warnings() (e.g. from a NRRD header)
+        /// The voxels may be followed by more bytes (a legacy VTK file's newline and other
+        /// attributes); otherwise the file must end with them.
+        bool trailingBytes = false;
         /// The volume these options describe (not yet validated).
         VolumeGeometry geometry() const;
     };
@@ -37,7 +40,8 @@ public:
     /// which the conversion's (core::conversionWarning) is added, naming `file`.
     static Options described(const VolumeGeometry& g, FileElement element, bool bigEndian, std::uint64_t headerBytes,
                              std::vector<std::string> warnings, const std::string& file);
-    /// Opens the file and checks that its size matches the dimensions; throws core::Error.
+    /// Opens the file and checks that its size matches the dimensions (or, with trailingBytes, holds
+    /// them); throws core::Error.
     RawVoxelSource(std::string path, const Options& options);
     ~RawVoxelSource() override;
     RawVoxelSource(const RawVoxelSource&) = delete;

@@ -5,6 +5,7 @@
 
 #include "core/base/Error.h"
 #include "core/volume/InflatedVoxelSource.h"
+#include "core/volume/LegacyVtkHeader.h"
 #include "core/volume/MetaImageHeader.h"
 #include "core/volume/NiftiVoxelSource.h"
 #include "core/volume/NrrdHeader.h"
@@ -72,6 +73,16 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
             const auto o = RawVoxelSource::described(h.geometry, h.element, h.bigEndian, h.dataOffset, h.warnings, input);
             if (h.compressed) return std::make_unique<InflatedVoxelSource>(h.dataFile, o);
             return std::make_unique<RawVoxelSource>(h.dataFile, o);
+        }
+    }
+    if (VtkImageSource::isLegacyVtk(input)) {
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(p, ec)) throw Error(input + ": no such file");
+        const LegacyVtkHeader h = LegacyVtkHeader::read(input);
+        if (h.streamReason.empty()) {  // streamed by Holovox: big-endian, and the file must hold the voxels
+            auto o = RawVoxelSource::described(h.geometry, h.element, true, h.dataOffset, h.warnings, input);
+            o.trailingBytes = true;
+            return std::make_unique<RawVoxelSource>(input, o);
         }
     }
     if (VtkImageSource::handles(input)) return std::make_unique<VtkImageSource>(input);

@@ -9,6 +9,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/base/Error.h"
+#include "core/volume/LegacyVtkHeader.h"
 #include "core/volume/MetaImageHeader.h"
 #include "core/volume/VtkReaderLibrary.h"
 
@@ -34,6 +35,8 @@ struct VtkImageSource::Impl {
 };
 
 bool VtkImageSource::isMetaImage(const std::string& path) { return endsWith(path, ".mha") || endsWith(path, ".mhd"); }
+
+bool VtkImageSource::isLegacyVtk(const std::string& path) { return endsWith(path, ".vtk"); }
 
 bool VtkImageSource::handles(const std::string& path) {
     for (const char* ext : {".mha", ".mhd", ".vtk", ".vti"})
@@ -83,6 +86,12 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)) {
         toPatient = glm::dmat4(mh.geometry.direction);
         geometry_.spacingAssumed = mh.geometry.spacingAssumed;
         warnings_ = mh.warnings;
+    } else if (format == HvxVtkLegacyImage) {
+        const LegacyVtkHeader lh = LegacyVtkHeader::read(path_);
+        geometry_.spacingAssumed = lh.geometry.spacingAssumed;
+        warnings_ = lh.warnings;
+    } else {
+        warnings_.push_back(path_ + ": a VTK file names no patient axes: taken as LPS, as ITK writes them");
     }
     glm::dvec3 first;
     for (int a = 0; a < 3; ++a) first[a] = h.extent[2 * a] * h.spacing[a];

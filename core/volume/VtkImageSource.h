@@ -10,8 +10,8 @@ namespace hvx::core {
 /// Reads MetaImage (.mha, .mhd), legacy VTK (.vtk) and VTK XML image (.vti) files through
 /// VTK's readers, requesting slabs of slices by update extent from the one that can stream (the
 /// XML reader); the others are read whole, once. MetaImage and VTK files follow the ITK
-/// convention and are taken as LPS. (VoxelSourceFactory streams plain MetaImage files itself,
-/// as raw data: see MetaImageHeader.)
+/// convention and are taken as LPS. (VoxelSourceFactory streams plain MetaImage and legacy VTK
+/// files itself, as raw data: see MetaImageHeader and LegacyVtkHeader.)
 ///
 /// VTK itself is in the reader module that VtkReaderLibrary loads on first use: the first
 /// VtkImageSource (or libraryVersion()) loads it, and throws core::Error when it cannot.
@@ -27,13 +27,16 @@ public:
     const VolumeGeometry& geometry() const override { return geometry_; }
     void readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) override;
     std::string describe() const override { return path_; }
-    /// A MetaImage header's (MetaImageHeader::warnings).
+    /// What the file leaves open (MetaImageHeader's and LegacyVtkHeader's warnings; for a VTK
+    /// file, that it names no patient axes).
     std::vector<std::string> warnings() const override { return warnings_; }
 
     /// True for the file name extensions this source reads.
     static bool handles(const std::string& path);
     /// True for a MetaImage's extensions (.mha, .mhd), whatever their case.
     static bool isMetaImage(const std::string& path);
+    /// True for a legacy VTK file's extension (.vtk), whatever its case.
+    static bool isLegacyVtk(const std::string& path);
 
 private:
     struct Impl;

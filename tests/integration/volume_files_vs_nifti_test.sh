@@ -4,7 +4,8 @@
 # each must build the same geometry as the NIfTI and render bit for bit the same CPU image.
 # Then the same volume as float64 and as int32 (which Holovox keeps as float32), written by
 # nibabel as NIfTI and here as MetaImage and NRRD (big- and little-endian, plain and
-# compressed): each the geometry and the image of nibabel's NIfTI of the same type.
+# compressed): each the geometry and the image of nibabel's NIfTI of the same type. Last, VTK's
+# own legacy writer's files, which Holovox streams, against nibabel's NIfTI of that grid.
 # Until 2026-12-06 a MetaImage of more than 32 slices came back as its first 32 slices over and
 # over (or aborted), and a gzip NRRD was refused.
 set -euo pipefail
@@ -62,6 +63,29 @@ open(sys.argv[2] + "/f64-msb.mha", "wb").write(mha(f64, "MET_DOUBLE", True, Fals
 open(sys.argv[2] + "/f64-gzip.nrrd", "wb").write(nrrd_of(f64, "double", False, True))
 open(sys.argv[2] + "/i32-zlib.mha", "wb").write(mha(i32, "MET_INT", False, True))
 open(sys.argv[2] + "/i32-msb.nrrd", "wb").write(nrrd_of(i32, "int", True, False))
+# VTK's own legacy writer (binary STRUCTURED_POINTS, no direction: the axes are LPS's), and
+# nibabel's NIfTI of the same array with the affine such a file means.
+import vtk
+from vtk.util import numpy_support
+o_lps = flip @ A[:3, 3]
+lps = np.eye(4)
+lps[:3, :3], lps[:3, 3] = flip @ np.diag(sp), flip @ o_lps   # RAS affine of an LPS-aligned grid
+for name, arr in (("u8", data), ("f64", f64), ("i32", i32)):
+    ref = nib.Nifti1Image(arr, lps)
+    ref.set_data_dtype(arr.dtype)
+    ref.to_filename(sys.argv[2] + "/lps-" + name + ".nii.gz")
+    im = vtk.vtkImageData()
+    im.SetDimensions(*arr.shape)
+    im.SetSpacing(*sp)
+    im.SetOrigin(*o_lps)
+    scalars = numpy_support.numpy_to_vtk(np.ascontiguousarray(arr.ravel(order="F")), deep=1)
+    scalars.SetName("v")
+    im.GetPointData().SetScalars(scalars)
+    w = vtk.vtkStructuredPointsWriter()
+    w.SetInputData(im)
+    w.SetFileTypeToBinary()
+    w.SetFileName(sys.argv[2] + "/vtk-" + name + ".vtk")
+    if w.Write() != 1: sys.exit("VTK could not write vtk-" + name + ".vtk")
 PY
 "$cli" build "$nii" -o "$work/nii.hvo" --quiet
 "$cli" render "$work/nii.hvo" --cpu --size 192x192 --tf mr-default -o "$work/nii.png" >/dev/null
@@ -75,13 +99,14 @@ same() {
   echo "$1: the geometry and the image of $2"
 }
 for f in plain.mha zipped.mha gzip.nrrd; do same "$f" nii; done
-for t in f64 i32; do
+for t in f64 i32 lps-u8 lps-f64 lps-i32; do
   "$cli" build "$work/$t.nii.gz" -o "$work/$t.hvo" --quiet
   "$cli" render "$work/$t.hvo" --cpu --size 192x192 --tf mr-default -o "$work/$t.png" >/dev/null
-  grep -q "float32" <<<"$("$cli" info "$work/$t.hvo")" || { echo "$t: not kept as float32"; exit 1; }
+  [[ $t == *u8 ]] || grep -q "float32" <<<"$("$cli" info "$work/$t.hvo")" || { echo "$t: not kept as float32"; exit 1; }
 done
 for f in f64-msb.mha f64-gzip.nrrd; do same "$f" f64; done
 for f in i32-zlib.mha i32-msb.nrrd; do same "$f" i32; done
+for t in u8 f64 i32; do same "vtk-$t.vtk" "lps-$t"; done
 # the float64 MetaImage is streamed by Holovox, and says what it keeps
 said=$("$cli" build "$work/f64-msb.mha" -o "$work/again.hvo" 2>&1)
 grep -q "f64-msb.mha: its 64-bit floats are kept as 32-bit floats" <<<"$said" ||

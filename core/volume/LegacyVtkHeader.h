@@ -1,0 +1,35 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/volume/FileElement.h"
+#include "core/volume/VolumeGeometry.h"
+
+namespace hvx::core {
+
+/// The header of a legacy VTK file (.vtk) that holds an image: `DATASET STRUCTURED_POINTS` with
+/// DIMENSIONS, SPACING (or ASPECT_RATIO), ORIGIN and, as newer VTK writes it, DIRECTION (nine
+/// numbers, row by row: column a is axis a's direction), then POINT_DATA and its SCALARS.
+/// VTK files name no patient axes; like ITK, which writes them, Holovox takes them as LPS.
+///
+/// A plain image (BINARY, point data whose first attribute is one-component SCALARS of any
+/// integer or float type but `long`, whose size is the platform's) is streamed by Holovox
+/// (RawVoxelSource: VTK's binary data is big-endian, x fastest, and its size is checked).
+/// Anything else (ASCII data, cell data, field data, several components, ...) goes to VTK's own
+/// reader (VtkImageSource), which reads the whole image, and streamReason says why.
+class LegacyVtkHeader {
+public:
+    VolumeGeometry geometry;  ///< scalarType: storedTypeOf(element) when streamable
+    FileElement element = FileElement::UInt8;  ///< the SCALARS type, when streamable
+    std::uint64_t dataOffset = 0;  ///< where the voxels begin: after the LOOKUP_TABLE line
+    std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
+    /// Empty when Holovox streams the data itself; otherwise why not ("its data is ASCII").
+    std::string streamReason;
+
+    /// Parses the header (at most its first 64 KiB); throws core::Error naming the file and the
+    /// bad field for a header that is not a legacy VTK image or that contradicts itself.
+    static LegacyVtkHeader read(const std::string& path);
+};
+
+}  // namespace hvx::core
