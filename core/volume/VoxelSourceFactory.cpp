@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/base/Error.h"
+#include "core/volume/FiniteValueSource.h"
 #include "core/volume/InflatedVoxelSource.h"
 #include "core/volume/LegacyVtkHeader.h"
 #include "core/volume/MetaImageHeader.h"
@@ -33,6 +34,11 @@ std::array<std::uint32_t, 3> VoxelSourceFactory::parseDims(const std::string& te
 
 std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, const RawVoxelSource::Options& raw,
                                                       std::uint32_t volume) {
+    return FiniteValueSource::wrap(openFormat(input, raw, volume));
+}
+
+std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& input, const RawVoxelSource::Options& raw,
+                                                            std::uint32_t volume) {
     if (input.rfind("phantom:", 0) == 0) {
         std::string spec = input.substr(8);
         std::uint64_t seed = 1;

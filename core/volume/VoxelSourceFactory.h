@@ -15,11 +15,16 @@ namespace hvx::core {
 class VoxelSourceFactory {
 public:
     /// Opens `input`; `raw` describes headerless files (dims must be set for .raw); `volume`
-    /// picks one volume (0-based) of a 4D file. Throws core::Error naming the input.
+    /// picks one volume (0-based) of a 4D file. A float volume's values are checked as they are
+    /// read (FiniteValueSource). Throws core::Error naming the input.
     static std::unique_ptr<VoxelSource> open(const std::string& input, const RawVoxelSource::Options& raw = {},
                                              std::uint32_t volume = 0);
     /// Parses "XxYxZ" (each 1..2^20); throws core::Error otherwise.
     static std::array<std::uint32_t, 3> parseDims(const std::string& text);
+
+private:
+    static std::unique_ptr<VoxelSource> openFormat(const std::string& input, const RawVoxelSource::Options& raw,
+                                                   std::uint32_t volume);
 };
 
 }  // namespace hvx::core

@@ -5,7 +5,8 @@
 # Then the same volume as float64 and as int32 (which Holovox keeps as float32), written by
 # nibabel as NIfTI and here as MetaImage and NRRD (big- and little-endian, plain and
 # compressed): each the geometry and the image of nibabel's NIfTI of the same type. Last, VTK's
-# own legacy writer's files, which Holovox streams, against nibabel's NIfTI of that grid.
+# own legacy writer's files, which Holovox streams, against nibabel's NIfTI of that grid, and a
+# NIfTI with NaN outside a mask (SPM's, FSL's), which is refused where nibabel finds the first.
 # Until 2026-12-06 a MetaImage of more than 32 slices came back as its first 32 slices over and
 # over (or aborted), and a gzip NRRD was refused.
 set -euo pipefail
@@ -86,6 +87,13 @@ for name, arr in (("u8", data), ("f64", f64), ("i32", i32)):
     w.SetFileTypeToBinary()
     w.SetFileName(sys.argv[2] + "/vtk-" + name + ".vtk")
     if w.Write() != 1: sys.exit("VTK could not write vtk-" + name + ".vtk")
+# SPM's and FSL's way of saying "no value": NaN outside a mask. nibabel says where the first
+# such slice is and how many it holds.
+masked = data.astype(np.float32)
+masked[data < 30] = np.nan
+nib.Nifti1Image(masked, A).to_filename(sys.argv[2] + "/masked.nii.gz")
+k = next(k for k in range(masked.shape[2]) if np.isnan(masked[:, :, k]).any())
+open(sys.argv[2] + "/masked.expect", "w").write("slice %d holds %d NaN (not-a-number) values" % (k, np.isnan(masked[:, :, k]).sum()))
 PY
 "$cli" build "$nii" -o "$work/nii.hvo" --quiet
 "$cli" render "$work/nii.hvo" --cpu --size 192x192 --tf mr-default -o "$work/nii.png" >/dev/null
@@ -111,3 +119,10 @@ for t in u8 f64 i32; do same "vtk-$t.vtk" "lps-$t"; done
 said=$("$cli" build "$work/f64-msb.mha" -o "$work/again.hvo" 2>&1)
 grep -q "f64-msb.mha: its 64-bit floats are kept as 32-bit floats" <<<"$said" ||
   { echo "f64-msb.mha: no warning that its float64 values are kept as float32: $said"; exit 1; }
+# a float volume with NaN voxels is refused at the first such slice, and leaves no octree
+if said=$("$cli" build "$work/masked.nii.gz" -o "$work/masked.hvo" 2>&1); then
+  echo "masked.nii.gz: a volume with NaN voxels was built"; exit 1
+fi
+grep -qF "masked.nii.gz: $(cat "$work/masked.expect")" <<<"$said" || { echo "masked.nii.gz: not refused as nibabel counts: $said"; exit 1; }
+[ ! -e "$work/masked.hvo" ] || { echo "masked.nii.gz: an octree was left behind"; exit 1; }
+echo "masked.nii.gz: refused: $said"

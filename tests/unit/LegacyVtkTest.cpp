@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/base/Error.h"
+#include "core/volume/FiniteValueSource.h"
 #include "core/volume/LegacyVtkHeader.h"
 #include "core/volume/RawVoxelSource.h"
 #include "core/volume/VoxelSourceFactory.h"
@@ -98,7 +99,9 @@ TEST(LegacyVtk, EveryFixedSizeTypeIsStreamedAndWideOnesAreSaid) {
     }
     write(dir.file("i.vtk"), kHead + "POINT_DATA 120\nSCALARS v int 1\nLOOKUP_TABLE default\n" + data + "\n");
     const auto src = core::VoxelSourceFactory::open(dir.file("i.vtk"));
-    ASSERT_NE(dynamic_cast<core::RawVoxelSource*>(src.get()), nullptr);
+    const auto* checked = dynamic_cast<core::FiniteValueSource*>(src.get());  // float32: its values checked
+    ASSERT_NE(checked, nullptr);
+    ASSERT_NE(dynamic_cast<const core::RawVoxelSource*>(&checked->inner()), nullptr);
     ASSERT_EQ(src->geometry().scalarType, core::ScalarType::Float32);
     const auto got = test::readAll<float>(*src);
     for (int i = 0; i < 120; ++i) ASSERT_EQ(got[std::size_t(i)], float(i * 100000 - 3000000)) << i;
