@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 #include "core/base/Error.h"
 
@@ -26,7 +28,24 @@ void VolumeGeometry::validate(const std::string& what) const {
             throw Error(what + ": voxel spacing must be positive and finite");
         double len = std::sqrt(direction[a][0] * direction[a][0] + direction[a][1] * direction[a][1] +
                                direction[a][2] * direction[a][2]);
-        if (std::abs(len - 1.0) > 1e-3) throw Error(what + ": direction cosines are not unit vectors");
+        if (!(std::abs(len - 1.0) <= 1e-3)) throw Error(what + ": direction cosines are not unit vectors");  // NaN too
+    }
+    // Axes less than about 0.06 degrees apart span no volume: a file's error, not a shear.
+    if (!(std::abs(glm::determinant(direction)) >= 1e-3))
+        throw Error(what + ": direction cosines are dependent (two axes are parallel)");
+    // A patient lies within metres of the scanner's origin; a kilometre away is a broken header.
+    const glm::dmat4 toPatient = indexToPatient();
+    for (int corner = 0; corner < 8; ++corner) {
+        const glm::dvec3 index((corner & 1) ? dims[0] - 1.0 : 0.0, (corner & 2) ? dims[1] - 1.0 : 0.0,
+                               (corner & 4) ? dims[2] - 1.0 : 0.0);
+        const glm::dvec3 p(toPatient * glm::dvec4(index, 1.0));
+        if (!(std::abs(p.x) <= kMaxPatientMm && std::abs(p.y) <= kMaxPatientMm && std::abs(p.z) <= kMaxPatientMm))
+        {
+            char at[96];
+            std::snprintf(at, sizeof at, "%.6g, %.6g, %.6g", p.x, p.y, p.z);
+            throw Error(what + ": its voxels lie more than 1 km from the patient coordinates' origin (one at " + at +
+                        " mm): not a patient's position");
+        }
     }
     if (!std::isfinite(rescaleSlope) || rescaleSlope == 0.0 || !std::isfinite(rescaleIntercept))
         throw Error(what + ": invalid rescale slope/intercept");

@@ -46,7 +46,10 @@ struct VolumeGeometry {
     std::uint64_t byteSize() const { return voxelCount() * scalarSize(scalarType); }
     /// 4×4 matrix mapping continuous voxel index (i, j, k, 1) to LPS millimetres.
     glm::dmat4 indexToPatient() const;
-    /// Throws core::Error (prefixed by `what`) when dims, spacing or direction are unusable.
+    /// How far from the patient coordinates' origin a voxel may lie (1 km, in mm).
+    static constexpr double kMaxPatientMm = 1e6;
+    /// Throws core::Error (prefixed by `what`) when dims, spacing or direction are unusable
+    /// (a NaN, dependent axes) or a voxel lies more than kMaxPatientMm from the origin.
     void validate(const std::string& what) const;
     /// What makes `other` not the same grid with the same rescale ("dimensions 64x64x6, not
     /// 64x64x8"), empty when it is: voxels at the same patient points (within a thousandth of

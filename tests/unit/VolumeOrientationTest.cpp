@@ -165,6 +165,42 @@ TEST(VolumeGeometry, GridDifferenceNamesWhatDiffers) {
     EXPECT_NE(a.gridDifference(b).find("another rescale"), std::string::npos);
 }
 
+TEST(VolumeGeometry, ValidationRefusesNanDirectionsParallelAxesAndFarOrigins) {
+    core::VolumeGeometry g;
+    g.dims = {64, 64, 8};
+    g.spacing = {0.8, 0.8, 3.0};
+    g.origin = {-25, -25, 10};
+    auto refusal = [](const core::VolumeGeometry& x) {
+        try {
+            x.validate("f.vtk");
+        } catch (const core::Error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(refusal(g), "");
+    auto b = g;
+    b.direction[1] = glm::dvec3(std::nan(""), 0, 0);
+    EXPECT_EQ(refusal(b), "f.vtk: direction cosines are not unit vectors");
+    b = g;
+    b.direction[2] = b.direction[0];
+    EXPECT_EQ(refusal(b), "f.vtk: direction cosines are dependent (two axes are parallel)");
+    b = g;
+    b.direction[1] = glm::normalize(glm::dvec3(1, 0.5, 0));  // sheared (a NIfTI sform may be): kept
+    EXPECT_EQ(refusal(b), "");
+    b = g;
+    b.origin.x = 1e308;
+    EXPECT_EQ(refusal(b).rfind("f.vtk: its voxels lie more than 1 km from the patient coordinates' origin", 0), 0u);
+    b = g;
+    b.origin.z = 999000;  // 999 m away, its last slice 21 mm further: within reach
+    EXPECT_EQ(refusal(b), "");
+    b.spacing.z = 200;  // its last slice 1.4 m further, beyond 1 km: refused
+    EXPECT_NE(refusal(b), "");
+    b = g;
+    b.origin.y = std::nan("");
+    EXPECT_NE(refusal(b), "");
+}
+
 // What a file does not say is never shown as known: a MetaImage without ElementSpacing, a NRRD
 // whose spacings are not numbers, a raw file (no orientation ever; spacing unless given).
 TEST(VolumeOrientation, WhatAFileLeavesOpenIsFlaggedNotAssumedSilently) {
