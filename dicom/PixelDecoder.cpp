@@ -8,7 +8,9 @@
 #include <dcmtk/dcmdata/dcpxitem.h>
 #include <dcmtk/dcmdata/dcxfer.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "core/base/Error.h"
 #include "dicom/DcmtkSetup.h"
@@ -38,6 +40,11 @@ PixelDecoder::PixelDecoder() : impl_(std::make_unique<Impl>()) { DcmtkSetup::ens
 PixelDecoder::~PixelDecoder() = default;
 
 namespace {
+
+/// "FILE: frame N holds " of a multi-frame object, "FILE: its pixels hold " of a single frame.
+std::string whatHolds(const DicomInstance& in, std::uint32_t frame) {
+    return in.path + (in.frames > 1 ? ": frame " + std::to_string(frame) + " holds " : ": its pixels hold ");
+}
 bool isJpeg2000(E_TransferSyntax x) {
     return x == EXS_JPEG2000LosslessOnly || x == EXS_JPEG2000 || x == EXS_JPEG2000MulticomponentLosslessOnly ||
            x == EXS_JPEG2000Multicomponent;
@@ -209,10 +216,32 @@ void PixelDecoder::decodeFloatFrame(const DicomInstance& in, std::uint32_t frame
         const Float64* v = nullptr;
         if (ds->findAndGetFloat64Array(DCM_DoubleFloatPixelData, v, &count).bad() || !v || count < first + pixels)
             throw core::Error(in.path + ": Double Float Pixel Data is shorter than its header promises (truncated file?)");
+        std::size_t beyond = 0;
         for (std::size_t i = 0; i < pixels; ++i) {
-            const float f = float(v[first + i]);  // volumes are stored as float32
+            const double d = v[first + i];
+            beyond += std::isfinite(d) && std::abs(d) > double(std::numeric_limits<float>::max());
+            const float f = float(d);  // volumes are stored as float32
             std::memcpy(&out[i], &f, sizeof f);
         }
+        if (beyond)
+            throw core::Error(whatHolds(in, frame) + std::to_string(beyond) +
+                              (beyond == 1 ? " value" : " values") + " beyond what a 32-bit float can hold");
+    }
+    // A float volume must hold numbers: the octree, the transfer functions and the measurements
+    // take every stored value as one (core::FiniteValueSource says the same of files).
+    std::size_t nan = 0, inf = 0;
+    for (const std::int32_t bits : out) {
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        nan += std::isnan(f);
+        inf += std::isinf(f);
+    }
+    if (nan || inf) {
+        std::string what;
+        if (nan) what = std::to_string(nan) + (nan == 1 ? " NaN (not-a-number) value" : " NaN (not-a-number) values");
+        if (inf) what += (nan ? " and " : "") + std::to_string(inf) + (inf == 1 ? " infinite value" : " infinite values");
+        throw core::Error(whatHolds(in, frame) + what +
+                          ": Holovox reads only volumes whose every voxel is a number");
     }
 }
 

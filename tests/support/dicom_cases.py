@@ -206,6 +206,23 @@ def extras(out):
             r, c = np.mgrid[0:ROWS, 0:COLS]
             setattr(ds, element, (0.125 * c - 0.5 * r + 1000.25 * s - 3.75).astype(dtype).tobytes())
             save(ds, os.path.join(out, name, f'IM{s}'))
+    # A parametric map's "no value" (NaN) in the float series' second slice, and a float64
+    # beyond what a float32 holds in the double series' third.
+    for name, element, dtype, bits, slice_, bad in [('float-nan', 'FloatPixelData', '<f4', 32, 1, np.nan),
+                                                     ('double-huge', 'DoubleFloatPixelData', '<f8', 64, 2, 1e300)]:
+        uid = generate_uid()
+        for s in range(3):
+            ds = image(uid, study, frame, s + 1, s, 0, {})
+            del ds.PixelData
+            del ds.PixelRepresentation
+            del ds.BitsStored
+            del ds.HighBit
+            ds.BitsAllocated = bits
+            v = np.full((ROWS, COLS), 7.5, dtype=dtype)
+            if s == slice_:
+                v[3, 4] = v[5, 6] = bad
+            setattr(ds, element, v.tobytes())
+            save(ds, os.path.join(out, name, f'IM{s}'))
 
 
 def main(out):

@@ -318,6 +318,24 @@ TEST_F(PydicomSeries, DicomWindowsAreTheVolumesOwn) {
     EXPECT_TRUE(import("echo")[0].geometry.windows.empty());
 }
 
+TEST_F(PydicomSeries, FloatPixelsThatAreNotNumbersOrBeyondFloat32AreRefusedNamingTheFile) {
+    for (const auto& [name, file, said] :
+         {std::tuple<std::string, std::string, std::string>{"float-nan", "IM1", "its pixels hold 2 NaN (not-a-number) values"},
+          {"double-huge", "IM2", "its pixels hold 2 values beyond what a 32-bit float can hold"}}) {
+        SCOPED_TRACE(name);
+        const auto volumes = import(name);
+        ASSERT_EQ(volumes.size(), 1u);
+        dicom::DicomSeriesSource src(volumes[0]);
+        std::string e;
+        try {
+            physical(src);
+        } catch (const core::Error& x) {
+            e = x.what();
+        }
+        EXPECT_NE(e.find(file + ": " + said), std::string::npos) << e;
+    }
+}
+
 TEST_F(PydicomSeries, NmMultiFrameIsRefusedNotStackedInFileOrder) {
     std::vector<std::string> notes;
     const auto volumes = import("nm", &notes);
