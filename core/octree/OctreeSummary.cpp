@@ -64,13 +64,15 @@ std::string OctreeSummary::format(const OctreeReader& reader) const {
     std::snprintf(buf, sizeof buf, "  volume      %u x %u x %u %s, %s%s\n", source[0], source[1], source[2],
                   std::string(scalarName(g.scalarType)).c_str(), g.modality.c_str(), g.isLabel ? " (labels)" : "");
     o << buf;
-    std::snprintf(buf, sizeof buf, "  spacing     %.4g x %.4g x %.4g mm\n", spacing.x, spacing.y, spacing.z);
+    std::snprintf(buf, sizeof buf, "  spacing     %.4g x %.4g x %.4g mm%s\n", spacing.x, spacing.y, spacing.z,
+                  g.spacingAssumed ? " (not in the source: 1 mm assumed, lengths are not mm)" : "");
     o << buf;
     std::snprintf(buf, sizeof buf, "  origin      (%.2f, %.2f, %.2f) mm LPS\n", origin.x, origin.y, origin.z);
     o << buf;
-    std::snprintf(buf, sizeof buf, "  direction   i=(%.3f,%.3f,%.3f) j=(%.3f,%.3f,%.3f) k=(%.3f,%.3f,%.3f)\n",
+    std::snprintf(buf, sizeof buf, "  direction   i=(%.3f,%.3f,%.3f) j=(%.3f,%.3f,%.3f) k=(%.3f,%.3f,%.3f)%s\n",
                   g.direction[0].x, g.direction[0].y, g.direction[0].z, g.direction[1].x, g.direction[1].y,
-                  g.direction[1].z, g.direction[2].x, g.direction[2].y, g.direction[2].z);
+                  g.direction[1].z, g.direction[2].x, g.direction[2].y, g.direction[2].z,
+                  g.orientationAssumed ? " (not in the source: assumed, left and right unknown)" : "");
     o << buf;
     std::snprintf(buf, sizeof buf, "  values      stored [%g, %g], rescale %g * v + %g\n", g.valueMin, g.valueMax,
                   g.rescaleSlope, g.rescaleIntercept);

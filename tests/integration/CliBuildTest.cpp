@@ -90,6 +90,9 @@ TEST(CliBuild, RawFilesSayWhatIsAssumedAndConverted) {
     EXPECT_TRUE(contains(r.output, "warning: " + dir.file("v.raw") + ": a raw file holds no orientation")) << r.output;
     EXPECT_TRUE(contains(r.output, "no --spacing for a raw file: 1 mm assumed")) << r.output;
     EXPECT_TRUE(contains(r.output, "its 32-bit integers are kept as 32-bit floats")) << r.output;
+    r = test::runCommand(cli + " info " + dir.file("a.hvo"));  // and the octree says it ever after
+    EXPECT_TRUE(contains(r.output, "spacing     1 x 1 x 1 mm (not in the source: 1 mm assumed")) << r.output;
+    EXPECT_TRUE(contains(r.output, "k=(0.000,0.000,1.000) (not in the source: assumed, left and right unknown)")) << r.output;
     std::ofstream(dir.file("s.raw"), std::ios::binary) << std::string(8 * 8 * 8 * 2, '\x01');
     r = test::runCommand(cli + " build " + dir.file("s.raw") + " --dims 8x8x8 --type int16 --spacing 0.5,0.5,2 -o " +
                          dir.file("b.hvo"));
@@ -97,6 +100,9 @@ TEST(CliBuild, RawFilesSayWhatIsAssumedAndConverted) {
     EXPECT_TRUE(contains(r.output, "a raw file holds no orientation")) << r.output;
     EXPECT_FALSE(contains(r.output, "1 mm assumed")) << r.output;
     EXPECT_FALSE(contains(r.output, "kept as")) << r.output;
+    r = test::runCommand(cli + " info " + dir.file("b.hvo"));
+    EXPECT_TRUE(contains(r.output, "spacing     0.5 x 0.5 x 2 mm\n")) << r.output;
+    EXPECT_TRUE(contains(r.output, "left and right unknown")) << r.output;
 }
 
 TEST(CliBuild, KilledBuildNeverLeavesAFileThatLooksComplete) {
