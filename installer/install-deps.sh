@@ -20,7 +20,7 @@ PACKAGES=(
   # distributed light-field views
   libopenmpi-dev openmpi-bin
   # tests, peers and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev openexr orthanc orthanc-dicomweb dcm2niix python3-pydicom python3-nibabel python3-vtk9 dicom3tools mricron-data
+  libgtest-dev libgmock-dev libbenchmark-dev openexr orthanc orthanc-dicomweb dcm2niix python3-pydicom python3-nibabel python3-vtk9 dicom3tools mricron-data teem-apps
 )
 
 SUDO=""

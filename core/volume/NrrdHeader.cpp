@@ -1,8 +1,10 @@
 #include "core/volume/NrrdHeader.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -50,6 +52,34 @@ FileElement elementOf(const std::string& v, const std::string& path) {
     if (v == "double") return FileElement::Float64;
     throw Error(path + ": unsupported NRRD type '" + v + "'");
 }
+// Moves h.headerBytes past `lineSkip` lines and `byteSkip` bytes of the data file (teem's
+// order); a byte skip of -1 puts raw data at the file's end.
+void skipToData(NrrdHeader& h, const std::string& path, long long lineSkip, long long byteSkip) {
+    const std::string data = h.dataFile.empty() ? path : (std::filesystem::path(path).parent_path() / h.dataFile).string();
+    const bool raw = h.encoding == "raw";
+    if (byteSkip != 0 && !raw)  // teem skips those bytes of the decompressed data
+        throw Error(path + ": NRRD byte skip with " + h.encoding + " encoding is not read by Holovox");
+    std::ifstream in(data, std::ios::binary);
+    if (!in) throw Error(data + ": cannot open");
+    in.seekg(std::streamoff(h.headerBytes));
+    for (long long l = 0; l < lineSkip; ++l)
+        if (!in.ignore(std::numeric_limits<std::streamsize>::max(), '\n') || in.eof())
+            throw Error(path + ": NRRD line skip " + std::to_string(lineSkip) + " passes the end of " + data);
+    h.headerBytes = std::uint64_t(in.tellg());
+    if (byteSkip > 0) {
+        h.headerBytes += std::uint64_t(byteSkip);
+    } else if (byteSkip == -1) {
+        std::error_code ec;
+        const std::uint64_t size = std::filesystem::file_size(data, ec);
+        if (ec) throw Error(data + ": cannot tell its size (" + ec.message() + ")");
+        const std::uint64_t need = h.geometry.voxelCount() * elementSize(h.element);
+        if (size < h.headerBytes + need)
+            throw Error(path + ": dimensions " + std::to_string(h.geometry.dims[0]) + "x" + std::to_string(h.geometry.dims[1]) +
+                        "x" + std::to_string(h.geometry.dims[2]) + " need " + std::to_string(need) + " bytes at the end of " +
+                        data + " but it has " + std::to_string(size > h.headerBytes ? size - h.headerBytes : 0) + " after its header");
+        h.headerBytes = size - need;  // "byte skip: -1": the data are the file's last bytes
+    }
+}
 }  // namespace
 
 NrrdHeader NrrdHeader::read(const std::string& path) {
@@ -60,6 +90,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     NrrdHeader h;
     VolumeGeometry& g = h.geometry;
     int dimension = 0;
+    long long lineSkip = 0, byteSkip = 0;
     bool sizes = false, typed = false, spaced = false, endian = false;
     std::string space;
     std::vector<glm::dvec3> dirs;
@@ -102,7 +133,23 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
                 throw Error(path + ": NRRD spacings '" + value + "' are not three numbers");
             spaced = true;
         } else if (key == "data file" || key == "datafile") {
+            // Several data files (a LIST after the header, or a printf pattern with its range)
+            // are teem's too; Holovox reads one.
+            if (value.rfind("LIST", 0) == 0 || value.find('%') != std::string::npos)
+                throw Error(path + ": NRRD data in several files ('data file: " + value +
+                            "') is not read by Holovox: join them into one file or one .nrrd");
             h.dataFile = value;
+        } else if (key == "kinds") {
+            std::string kind;
+            while (v >> kind)  // every axis must be one of space: a colour or vector axis is not a slice
+                if (kind != "domain" && kind != "space" && kind != "???" && kind != "none")
+                    throw Error(path + ": NRRD axis kind '" + kind + "' is not spatial: only 3-D single-component volumes are read");
+        } else if (key == "line skip" || key == "lineskip") {
+            if (!(v >> lineSkip) || lineSkip < 0 || lineSkip > 1000000)
+                throw Error(path + ": NRRD line skip '" + value + "' is not a line count");
+        } else if (key == "byte skip" || key == "byteskip") {
+            if (!(v >> byteSkip) || byteSkip < -1 || byteSkip > (1LL << 50))
+                throw Error(path + ": NRRD byte skip '" + value + "' is not a byte count or -1");
         } else if (key == "modality") {
             g.modality = value;
         }
@@ -146,6 +193,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     g.origin *= flip;
     for (int a = 0; a < 3; ++a) g.direction[a] *= flip;
     h.headerBytes = h.dataFile.empty() ? std::uint64_t(in.tellg()) : 0;
+    if (lineSkip || byteSkip) skipToData(h, path, lineSkip, byteSkip);
     return h;
 }
 

@@ -18,7 +18,7 @@ public:
     std::string encoding = "raw";
     bool bigEndian = false;
     std::string dataFile;  ///< detached data file, empty when attached
-    std::uint64_t headerBytes = 0;  ///< bytes before attached data
+    std::uint64_t headerBytes = 0;  ///< bytes before the data in its file: the header (attached), line and byte skips
     std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
 
     /// Parses a .nrrd/.nhdr header; throws core::Error naming the file and the bad field.
