@@ -23,7 +23,6 @@
 #include "core/base/AtomicFileWriter.h"
 #include "core/base/Error.h"
 #include "core/octree/OctreeBuilder.h"
-#include "core/volume/NiftiVoxelSource.h"
 #include "core/volume/VoxelSourceFactory.h"
 #include "core/streaming/OctreeSpace.h"
 #include "core/reference/VolumeHistogram.h"
@@ -317,7 +316,7 @@ bool MainWindow::openVolumeFile(const QString& path, int volume) {
     const std::string file = info.absoluteFilePath().toStdString();
     int volumes = 1;
     try {
-        if (core::NiftiVoxelSource::handles(file)) volumes = int(core::NiftiVoxelSource(file).volumes());
+        volumes = int(core::VoxelSourceFactory::volumesIn(file));  // a 4-D NIfTI or NRRD asks which
     } catch (const core::Error& e) {
         showError(QString::fromStdString(e.what()));
         return false;

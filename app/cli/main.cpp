@@ -11,7 +11,7 @@ const char* const kUsage =
         "holovox-cli — Holovox command line\n"
         "\n"
         "  build INPUT -o OUT.hvo [--brick N] [--border N] [--empty-below V] [--labels]\n"
-        "        [--codec zstd|lz4|none] [--level N] [--lossy8] [--volume N]  (N: 1-based, 4D NIfTI)\n"
+        "        [--codec zstd|lz4|none] [--level N] [--lossy8] [--volume N]  (N: 1-based, 4D NIfTI or NRRD)\n"
         "        [--split-voxels [--split-n 2] [--split-overlap 2] [--split-threshold V]]  (thesis ch. 4)\n"
         "        [--dims XxYxZ --type uint8|int8|int16|uint16|int32|uint32|int64|uint64|float32|float64 --endian little|big\n"
         "         --header-bytes N --spacing SX,SY,SZ]            (raw input)\n"

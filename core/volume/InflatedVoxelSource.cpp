@@ -60,7 +60,11 @@ void InflatedVoxelSource::inflateInto(unsigned char* dst, std::uint64_t bytes) {
     unsigned char scratch[1u << 16];
     const std::uint64_t sliceBytes = std::uint64_t(geometry_.dims[0]) * geometry_.dims[1] * elementSize(options_.element);
     auto where = [&] {
-        return " at slice " + std::to_string(position_ / sliceBytes) + " of " + std::to_string(geometry_.dims[2]);
+        const std::uint64_t volumeBytes = sliceBytes * geometry_.dims[2];
+        const std::uint64_t at = position_ - options_.inflatedSkip;  // within this volume when reading it
+        if (options_.inflatedTotal && (position_ < options_.inflatedSkip || at >= volumeBytes))
+            return " in volume " + std::to_string(position_ / volumeBytes + 1);
+        return " at slice " + std::to_string(at / sliceBytes) + " of " + std::to_string(geometry_.dims[2]);
     };
     while (bytes > 0) {
         const std::uint64_t step = std::min<std::uint64_t>(bytes, dst ? (1u << 30) : sizeof scratch);
@@ -103,13 +107,15 @@ void InflatedVoxelSource::checkEnd() {
 
 void InflatedVoxelSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) {
     const std::uint64_t sliceBytes = std::uint64_t(geometry_.dims[0]) * geometry_.dims[1] * elementSize(options_.element);
-    const std::uint64_t at = sliceBytes * firstSlice;
+    const std::uint64_t skip = options_.inflatedSkip;  // the volumes before this one, in a 4-D file
+    const std::uint64_t total = options_.inflatedTotal ? options_.inflatedTotal : skip + sliceBytes * geometry_.dims[2];
+    const std::uint64_t at = skip + sliceBytes * firstSlice;
     if (at < position_) restart();
     inflateInto(nullptr, at - position_);
     decodeSlices(options_.element, options_.bigEndian, std::uint64_t(geometry_.dims[0]) * geometry_.dims[1], firstSlice,
                  count, buffer_, dst, [&](unsigned char* into, std::uint64_t bytes) {
                      inflateInto(into, bytes);
-                     if (position_ == sliceBytes * geometry_.dims[2]) checkEnd();
+                     if (position_ == total) checkEnd();  // the last volume's last slice: the stream's check follows
                  }, path_);
 }
 

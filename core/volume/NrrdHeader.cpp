@@ -72,7 +72,7 @@ void skipToData(NrrdHeader& h, const std::string& path, long long lineSkip, long
         std::error_code ec;
         const std::uint64_t size = std::filesystem::file_size(data, ec);
         if (ec) throw Error(data + ": cannot tell its size (" + ec.message() + ")");
-        const std::uint64_t need = h.geometry.voxelCount() * elementSize(h.element);
+        const std::uint64_t need = h.geometry.voxelCount() * elementSize(h.element) * h.volumes;
         if (size < h.headerBytes + need)
             throw Error(path + ": dimensions " + std::to_string(h.geometry.dims[0]) + "x" + std::to_string(h.geometry.dims[1]) +
                         "x" + std::to_string(h.geometry.dims[2]) + " need " + std::to_string(need) + " bytes at the end of " +
@@ -91,6 +91,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     VolumeGeometry& g = h.geometry;
     int dimension = 0;
     long long lineSkip = 0, byteSkip = 0;
+    bool listNamed = false;  // a 4-D file says its last axis lists volumes (kinds or space directions)
     bool sizes = false, typed = false, spaced = false, endian = false;
     std::string space;
     std::vector<glm::dvec3> dirs;
@@ -104,9 +105,11 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
         std::istringstream v(value);
         if (key == "dimension") {
             v >> dimension;
-            if (dimension != 3) throw Error(path + ": only 3-D single-component NRRD volumes are supported");
+            if (dimension != 3 && dimension != 4)
+                throw Error(path + ": only 3-D single-component NRRD volumes (and 4-D lists of them) are supported");
         } else if (key == "sizes") {
             sizes = bool(v >> g.dims[0] >> g.dims[1] >> g.dims[2]);
+            if (sizes && dimension == 4) sizes = bool(v >> h.volumes) && h.volumes > 0;
         } else if (key == "type") {
             h.element = elementOf(value, path);
             typed = true;
@@ -122,13 +125,18 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
             space = value;
         } else if (key == "space directions") {
             dirs = parseVectors(value, path);
-            if (dirs.size() != 3)  // a "none" axis is not spatial: not a volume Holovox can place
-                throw Error(path + ": NRRD space directions '" + value + "' are not three vectors");
+            // a "none" axis is not spatial: only a 4-D file's last axis may be one
+            const bool noneLast = value.size() > 4 && value.compare(value.size() - 4, 4, "none") == 0 &&
+                                  value.rfind(')') < value.size() - 4;
+            listNamed = listNamed || noneLast;
+            if (dirs.size() != 3 || (dimension == 4) != noneLast)
+                throw Error(path + ": NRRD space directions '" + value + "' are not three vectors" +
+                            (dimension == 4 ? " and a last 'none'" : ""));
         } else if (key == "space origin") {
             auto o = parseVectors(value, path);
             if (o.size() != 1) throw Error(path + ": NRRD space origin '" + value + "' is not one vector");
             g.origin = o[0];
-        } else if (key == "spacings") {
+        } else if (key == "spacings") {  // a 4-D file's fourth (NaN or a time step) is not a length
             if (!(v >> g.spacing.x >> g.spacing.y >> g.spacing.z))
                 throw Error(path + ": NRRD spacings '" + value + "' are not three numbers");
             spaced = true;
@@ -141,9 +149,15 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
             h.dataFile = value;
         } else if (key == "kinds") {
             std::string kind;
-            while (v >> kind)  // every axis must be one of space: a colour or vector axis is not a slice
-                if (kind != "domain" && kind != "space" && kind != "???" && kind != "none")
-                    throw Error(path + ": NRRD axis kind '" + kind + "' is not spatial: only 3-D single-component volumes are read");
+            for (int axis = 0; v >> kind; ++axis) {  // the three first axes are space; a fourth lists volumes
+                const bool spatial = kind == "domain" || kind == "space" || kind == "???" || kind == "none";
+                if (axis == 3 && (kind == "list" || kind == "time")) listNamed = true;
+                if (axis == 3 && (listNamed || spatial)) continue;
+                if (!spatial)
+                    throw Error(path + ": NRRD axis kind '" + kind + "' is not spatial" +
+                                (axis == 0 && dimension == 4 ? " (values interleaved per voxel, as a DWI's)" : "") +
+                                ": only 3-D single-component volumes, and 4-D files whose last axis lists volumes, are read");
+            }
         } else if (key == "line skip" || key == "lineskip") {
             if (!(v >> lineSkip) || lineSkip < 0 || lineSkip > 1000000)
                 throw Error(path + ": NRRD line skip '" + value + "' is not a line count");
@@ -155,6 +169,9 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
         }
     }
     if (!sizes) throw Error(path + ": NRRD header has no sizes");
+    if (dimension == 4 && !listNamed)
+        throw Error(path + ": a 4-D NRRD must say that its last axis lists volumes ('kinds: domain domain domain list' "
+                           "or space directions ending in 'none'): Holovox does not guess which axis is not space");
     if (!typed) throw Error(path + ": NRRD header has no type");
     if (!endian && elementSize(h.element) > 1 && h.encoding != "ascii" && h.encoding != "text" && h.encoding != "txt")
         throw Error(path + ": NRRD header gives no endian for its " + std::to_string(elementSize(h.element)) +

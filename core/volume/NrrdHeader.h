@@ -9,7 +9,7 @@
 namespace hvx::core {
 
 /// The parts of a NRRD header (teem's format) that place a volume in patient space: sizes,
-/// type, encoding, byte order, space, space directions and space origin. Used to write the
+/// type, encoding, byte order, space, space directions and space origin; a 4-D file's volumes. Used to write the
 /// phantom and to recover orientation that VTK's NRRD reader ignores.
 class NrrdHeader {
 public:
@@ -20,6 +20,9 @@ public:
     std::string dataFile;  ///< detached data file, empty when attached
     std::uint64_t headerBytes = 0;  ///< bytes before the data in its file: the header (attached), line and byte skips
     std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
+    /// Volumes in the file: a 4-D NRRD (a 3D Slicer sequence) whose fourth, non-spatial axis
+    /// lists them one after the other; 1 for a 3-D one.
+    std::uint32_t volumes = 1;
 
     /// Parses a .nrrd/.nhdr header; throws core::Error naming the file and the bad field.
     static NrrdHeader read(const std::string& path);

@@ -32,6 +32,10 @@ public:
         /// The voxels may be followed by more bytes (a legacy VTK file's newline and other
         /// attributes); otherwise the file must end with them.
         bool trailingBytes = false;
+        /// Compressed data (InflatedVoxelSource) of several volumes: the decompressed bytes
+        /// before this one, and all the stream holds (0: this volume alone).
+        std::uint64_t inflatedSkip = 0;
+        std::uint64_t inflatedTotal = 0;
         /// The volume these options describe (not yet validated).
         VolumeGeometry geometry() const;
     };

@@ -15,6 +15,13 @@
 
 namespace hvx::core {
 
+std::uint32_t VoxelSourceFactory::volumesIn(const std::string& input) {
+    if (NiftiVoxelSource::handles(input)) return NiftiVoxelSource(input).volumes();
+    const std::string ext = std::filesystem::path(input).extension().string();
+    if (ext == ".nrrd" || ext == ".nhdr") return NrrdHeader::read(input).volumes;
+    return 1;
+}
+
 std::array<std::uint32_t, 3> VoxelSourceFactory::parseDims(const std::string& text) {
     std::array<std::uint32_t, 3> d{};
     std::size_t pos = 0;
@@ -39,6 +46,11 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::open(const std::string& input, 
 
 std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& input, const RawVoxelSource::Options& raw,
                                                             std::uint32_t volume) {
+    const std::filesystem::path p(input);
+    const std::string ext = p.extension().string();
+    const bool fourD = NiftiVoxelSource::handles(input) || ext == ".nrrd" || ext == ".nhdr";
+    if (volume > 0 && !fourD)  // never a silent first volume
+        throw Error(input + ": holds one volume; a volume other than the first (--volume) is read from 4D NIfTI and NRRD files only");
     if (input.rfind("phantom:", 0) == 0) {
         std::string spec = input.substr(8);
         std::uint64_t seed = 1;
@@ -52,8 +64,6 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& i
         }
         return std::make_unique<PhantomVoxelSource>(parseDims(spec), seed);
     }
-    const std::filesystem::path p(input);
-    const std::string ext = p.extension().string();
     if (ext == ".nrrd" || ext == ".nhdr") {
         const NrrdHeader h = NrrdHeader::read(input);
         const bool gzip = h.encoding == "gzip" || h.encoding == "gz";
@@ -61,12 +71,33 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& i
             throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (raw and gzip are)");
         std::string data = input;
         if (!h.dataFile.empty()) data = (p.parent_path() / h.dataFile).string();
-        const auto o = RawVoxelSource::described(h.geometry, h.element, h.bigEndian, h.headerBytes, h.warnings, input);
+        if (volume >= h.volumes)
+            throw Error(input + ": holds " + std::to_string(h.volumes) + (h.volumes == 1 ? " volume" : " volumes") +
+                        "; there is no volume " + std::to_string(volume + 1));
+        const std::uint64_t volumeBytes = h.geometry.voxelCount() * elementSize(h.element);
+        auto o = RawVoxelSource::described(h.geometry, h.element, h.bigEndian, h.headerBytes, h.warnings, input);
+        if (h.volumes > 1) {  // a 4-D file: the volumes one after the other
+            o.warnings.push_back(input + ": a 4D file of " + std::to_string(h.volumes) + " volumes; this is volume " +
+                                 std::to_string(volume + 1));
+            if (gzip) {
+                o.inflatedSkip = volumeBytes * volume;
+                o.inflatedTotal = volumeBytes * h.volumes;
+            } else {
+                std::error_code ec;
+                const auto size = std::filesystem::file_size(data, ec);
+                const std::uint64_t need = h.headerBytes + volumeBytes * h.volumes;
+                if (ec || size != need)
+                    throw Error(data + ": " + std::to_string(h.volumes) + " volumes of " + std::to_string(volumeBytes) +
+                                " bytes need " + std::to_string(need) + " bytes but the file has " +
+                                (ec ? "none that can be read" : std::to_string(size)));
+                o.headerBytes += volumeBytes * volume;
+                o.trailingBytes = true;
+            }
+        }
         if (gzip) return std::make_unique<InflatedVoxelSource>(data, o);
         return std::make_unique<RawVoxelSource>(data, o);
     }
     if (NiftiVoxelSource::handles(input)) return std::make_unique<NiftiVoxelSource>(input, volume);
-    if (volume > 0) throw Error(input + ": --volume applies to 4D NIfTI files only");
     if (VtkImageSource::isMetaImage(input)) {
         std::error_code ec;
         if (!std::filesystem::is_regular_file(p, ec)) throw Error(input + ": no such file");

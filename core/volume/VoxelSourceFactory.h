@@ -19,6 +19,9 @@ public:
     /// read (FiniteValueSource). Throws core::Error naming the input.
     static std::unique_ptr<VoxelSource> open(const std::string& input, const RawVoxelSource::Options& raw = {},
                                              std::uint32_t volume = 0);
+    /// How many volumes `input` holds: a 4-D NIfTI's or NRRD's count, 1 for anything else.
+    /// Throws core::Error when the header cannot be read.
+    static std::uint32_t volumesIn(const std::string& input);
     /// Parses "XxYxZ" (each 1..2^20); throws core::Error otherwise.
     static std::array<std::uint32_t, 3> parseDims(const std::string& text);
 

@@ -316,6 +316,33 @@ private slots:
         QVERIFY2(window_->lastNotice().contains("a 4D file of 3 volumes; this is volume 2"), qPrintable(window_->lastNotice()));
     }
 
+    // A 3D Slicer sequence (a 4-D NRRD whose last axis lists volumes, gzip) opens volume by
+    // volume the same way.
+    void fourDimensionalNrrdOpensTheVolumeAsked() {
+        const std::string nrrd = dir_.file("sequence.seq.nrrd");
+        {
+            std::ofstream f(nrrd, std::ios::binary);
+            f << "NRRD0004\ntype: short\ndimension: 4\nspace: right-anterior-superior\nsizes: 24 24 24 3\n"
+                 "space directions: (1,0,0) (0,1,0) (0,0,1) none\nkinds: domain domain domain list\n"
+                 "endian: little\nencoding: raw\nspace origin: (0,0,0)\n\n";
+            for (int v = 0; v < 3; ++v)
+                for (int i = 0; i < 24 * 24 * 24; ++i) {
+                    const std::int16_t x = std::int16_t(1000 * v + (i % 24 + i / 24 % 24 + i / 576) % 50);
+                    f.write(reinterpret_cast<const char*>(&x), 2);
+                }
+        }
+        QVERIFY(!window_->openVolumeFile(QString::fromStdString(nrrd), 4));  // there are three
+        QVERIFY2(window_->lastError().contains("holds 3 volume(s)"), qPrintable(window_->lastError()));
+        QVERIFY(window_->openVolumeFile(QString::fromStdString(nrrd), 3));
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        QTRY_VERIFY_WITH_TIMEOUT(window_->openLabel() == "sequence.seq.nrrd \u2014 volume 3 of 3", 10000);
+        QVERIFY(window_->jobs()->waitIdle(60000));
+        const double centre = window_->slice(0)->windowCentre();  // volume 3 holds 2000..2049
+        QVERIFY2(centre > 2000 && centre < 2050, qPrintable(QString::number(centre)));
+        QCOMPARE(view()->orientationLabels(), (QStringList{"R", "L", "S", "I"}));
+        QVERIFY2(window_->lastNotice().contains("a 4D file of 3 volumes; this is volume 3"), qPrintable(window_->lastNotice()));
+    }
+
     // A NRRD without a space (written here by hand) cannot be placed in the patient: the views
     // draw "?" for the orientation letters, and the status bar says why once it is shown.
     void aNrrdWithoutSpaceShowsNoOrientationLetters() {

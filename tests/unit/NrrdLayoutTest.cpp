@@ -1,15 +1,18 @@
 // Where a NRRD's data begin and what its axes are: line skip, byte skip (−1: the data are the
-// file's last bytes), kinds and several data files. Each file Holovox reads is also read by
+// file's last bytes), kinds, several data files, and 4-D files (3D Slicer's sequences) whose
+// last axis lists volumes. Each file Holovox reads is also read by
 // teem itself (teem-unu, the NRRD format's reference), saved as a plain NRRD, and Holovox's
 // voxels of the two must be equal; what Holovox does not read is refused with a sentence.
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <cstdint>
 #include <fstream>
 #include <string>
 #include <vector>
 
+#include "core/volume/NrrdHeader.h"
 #include "core/volume/VoxelSourceFactory.h"
 #include "tests/support/ErrorOf.h"
 #include "tests/support/ProcessRunner.h"
@@ -78,4 +81,79 @@ TEST(NrrdLayout, WhatHolovoxDoesNotReadIsRefusedWithASentence) {
     EXPECT_TRUE(has(refusal(kHead + "encoding: raw\nbyte skip: -2\n\n" + voxels()), "is not a byte count or -1"));
     EXPECT_TRUE(has(refusal(kHead + "encoding: raw\nline skip: 3\n\n" + "one\ntwo\n"), "line skip 3 passes the end"));
     EXPECT_TRUE(has(refusal(kHead + "encoding: raw\nbyte skip: -1\n\n" + voxels().substr(2)), "need 120 bytes at the end"));
+}
+
+namespace {
+/// Three volumes of 5x4x3 int16 one after the other, each its own ramp.
+std::string threeVolumes() {
+    std::string out;
+    for (int v = 0; v < 3; ++v)
+        for (int i = 0; i < 60; ++i) {
+            const std::int16_t x = std::int16_t(v * 1000 + i * 7 - 200);
+            out.append(reinterpret_cast<const char*>(&x), 2);
+        }
+    return out;
+}
+
+const std::string kSequence = "NRRD0004\ntype: short\ndimension: 4\nspace: right-anterior-superior\nsizes: 5 4 3 3\n"
+                              "space directions: (0,-0.8,0) (0.9,0,0) (0,0,2.5) none\nkinds: domain domain domain list\n"
+                              "endian: little\nspace origin: (12,-30,40)\n";
+}  // namespace
+
+TEST(NrrdLayout, FourDimensionalFilesAreReadOneVolumeAtATimeAsTeemSlicesThem) {
+    test::TempDir dir;
+    std::ofstream(dir.file("seq.nrrd"), std::ios::binary) << kSequence << "encoding: raw\n\n" << threeVolumes();
+    std::ofstream(dir.file("seq-gz.nrrd"), std::ios::binary) << kSequence << "encoding: gzip\n\n";
+    {
+        gzFile f = gzopen(dir.file("seq-gz.nrrd").c_str(), "ab");
+        ASSERT_NE(f, nullptr);
+        const std::string data = threeVolumes();
+        ASSERT_EQ(gzwrite(f, data.data(), unsigned(data.size())), int(data.size()));
+        gzclose(f);
+    }
+    for (const char* file : {"seq.nrrd", "seq-gz.nrrd"}) {
+        SCOPED_TRACE(file);
+        EXPECT_EQ(core::VoxelSourceFactory::volumesIn(dir.file(file)), 3u);
+        for (std::uint32_t v : {2u, 0u, 1u}) {  // out of order: a gzip stream restarts
+            SCOPED_TRACE(v);
+            const std::string teem = dir.file("teem-" + std::to_string(v) + ".nrrd");
+            const auto r = test::runCommand("teem-unu slice -a 3 -p " + std::to_string(v) + " -i " + dir.file(file) + " -o " + teem);
+            ASSERT_EQ(r.exitCode, 0) << r.output;
+            auto ours = core::VoxelSourceFactory::open(dir.file(file), {}, v);
+            auto theirs = core::VoxelSourceFactory::open(teem);
+            const auto a = ours->geometry().indexToPatient(), b = theirs->geometry().indexToPatient();
+            for (int c = 0; c < 4; ++c)
+                for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[c][k], b[c][k], 1e-9) << "column " << c;
+            const auto got = test::readAll<std::int16_t>(*ours);
+            EXPECT_EQ(got, test::readAll<std::int16_t>(*theirs));
+            EXPECT_EQ(got[0], std::int16_t(v * 1000 - 200));
+        }
+    }
+    const std::string e = errorOf([&] { core::VoxelSourceFactory::open(dir.file("seq.nrrd"), {}, 3); });
+    EXPECT_EQ(e, dir.file("seq.nrrd") + ": holds 3 volumes; there is no volume 4");
+}
+
+TEST(NrrdLayout, FourDimensionalFilesThatDoNotListVolumesLastAreRefused) {
+    test::TempDir dir;
+    auto refusal = [&](const std::string& text, std::uint32_t volume = 0, const char* name = "r.nrrd") {
+        std::ofstream(dir.file(name), std::ios::binary) << text;
+        return errorOf([&] { test::readAll<std::int16_t>(*core::VoxelSourceFactory::open(dir.file(name), {}, volume)); });
+    };
+    auto has = [](const std::string& e, const char* part) { return e.find(part) != std::string::npos; };
+    const std::string plain4d = "NRRD0004\ntype: short\ndimension: 4\nsizes: 5 4 3 3\nendian: little\nencoding: raw\n";
+    EXPECT_TRUE(has(refusal(plain4d + "spacings: 1 1 1 nan\n\n" + threeVolumes()), "must say that its last axis lists volumes"));
+    EXPECT_TRUE(has(refusal(plain4d + "kinds: list domain domain domain\n\n" + threeVolumes()),
+                    "NRRD axis kind 'list' is not spatial (values interleaved per voxel, as a DWI's)"));
+    EXPECT_TRUE(has(refusal(plain4d + "space: LPS\nspace directions: none (1,0,0) (0,1,0) (0,0,1)\n\n" + threeVolumes()),
+                    "are not three vectors and a last 'none'"));
+    EXPECT_TRUE(has(refusal(kSequence + "encoding: raw\n\n" + threeVolumes().substr(10), 0),
+                    "3 volumes of 120 bytes need"));
+    EXPECT_TRUE(has(refusal("NRRD0004\ntype: short\ndimension: 5\n"), "only 3-D single-component NRRD volumes"));
+    // a volume other than the first of a file that holds one is refused, never the first shown
+    std::ofstream(dir.file("one.mha"), std::ios::binary)
+        << "ObjectType = Image\nNDims = 3\nDimSize = 5 4 3\nElementType = MET_SHORT\nElementDataFile = LOCAL\n"
+        << voxels();
+    const std::string e = errorOf([&] { core::VoxelSourceFactory::open(dir.file("one.mha"), {}, 1); });
+    EXPECT_TRUE(has(e, "one.mha: holds one volume; a volume other than the first")) << e;
+    EXPECT_TRUE(has(refusal(kHead + "encoding: raw\n\n" + voxels(), 1, "three.nrrd"), "holds 1 volume; there is no volume 2"));
 }
