@@ -5,7 +5,7 @@
 #  - hvo_fuzzer, seeded with small .hvo files of every type and codec (hvo_seeds), its inputs'
 #    checksums made valid so that it explores forged files, not checksum failures;
 #  - volume_fuzzer, seeded with tests/fuzz/volume_seeds/ (MetaImage plain, big-endian and
-#    zlib-compressed, NRRD raw and gzip, NIfTI plain, gzip and float64, legacy VTK short and
+#    zlib-compressed, NRRD raw, gzip, with skips and 4-D, NIfTI plain, gzip and float64, legacy VTK short and
 #    double; the first byte of each
 #    picks the format).
 # Every seed is executed under the sanitizers first, then mutated.

@@ -194,7 +194,8 @@ def extras(out):
     ds.NumberOfFrames = 4
     ds.PixelData = ds.PixelData * 4
     save(ds, os.path.join(out, 'nm', 'IM0'))
-    for name, element, dtype, bits in [('float', 'FloatPixelData', '<f4', 32), ('double', 'DoubleFloatPixelData', '<f8', 64)]:
+    def float_series(name, element, dtype, bits, pixels):
+        """Three slices of Float (32) or Double Float (64) Pixel Data, pixels(s) giving slice s."""
         uid = generate_uid()
         for s in range(3):
             ds = image(uid, study, frame, s + 1, s, 0, {})
@@ -203,26 +204,22 @@ def extras(out):
             del ds.BitsStored
             del ds.HighBit
             ds.BitsAllocated = bits
-            r, c = np.mgrid[0:ROWS, 0:COLS]
-            setattr(ds, element, (0.125 * c - 0.5 * r + 1000.25 * s - 3.75).astype(dtype).tobytes())
+            setattr(ds, element, pixels(s).astype(dtype).tobytes())
             save(ds, os.path.join(out, name, f'IM{s}'))
+    r, c = np.mgrid[0:ROWS, 0:COLS]
+    for name, element, dtype, bits in [('float', 'FloatPixelData', '<f4', 32), ('double', 'DoubleFloatPixelData', '<f8', 64)]:
+        float_series(name, element, dtype, bits, lambda s: 0.125 * c - 0.5 * r + 1000.25 * s - 3.75)
     # A parametric map's "no value" (NaN) in the float series' second slice, and a float64
     # beyond what a float32 holds in the double series' third.
-    for name, element, dtype, bits, slice_, bad in [('float-nan', 'FloatPixelData', '<f4', 32, 1, np.nan),
-                                                     ('double-huge', 'DoubleFloatPixelData', '<f8', 64, 2, 1e300)]:
-        uid = generate_uid()
-        for s in range(3):
-            ds = image(uid, study, frame, s + 1, s, 0, {})
-            del ds.PixelData
-            del ds.PixelRepresentation
-            del ds.BitsStored
-            del ds.HighBit
-            ds.BitsAllocated = bits
-            v = np.full((ROWS, COLS), 7.5, dtype=dtype)
+    def with_bad(slice_, bad):
+        def pixels(s):
+            v = np.full((ROWS, COLS), 7.5)
             if s == slice_:
                 v[3, 4] = v[5, 6] = bad
-            setattr(ds, element, v.tobytes())
-            save(ds, os.path.join(out, name, f'IM{s}'))
+            return v
+        return pixels
+    float_series('float-nan', 'FloatPixelData', '<f4', 32, with_bad(1, np.nan))
+    float_series('double-huge', 'DoubleFloatPixelData', '<f8', 64, with_bad(2, 1e300))
 
 
 def main(out):
