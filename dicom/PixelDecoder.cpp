@@ -13,6 +13,7 @@
 #include <limits>
 
 #include "core/base/Error.h"
+#include "core/volume/FiniteValueSource.h"
 #include "dicom/DcmtkSetup.h"
 #include "dicom/Jpeg2000Decoder.h"
 #include "dicom/RleDecoder.h"
@@ -207,42 +208,34 @@ void PixelDecoder::decodeFloatFrame(const DicomInstance& in, std::uint32_t frame
     const std::size_t first = pixels * frame;
     out.resize(pixels);
     unsigned long count = 0;
+    std::vector<float> converted;  // a double frame as the float32 it is stored as
+    const float* floats = nullptr;
     if (in.floatPixelBits == 32) {
         const Float32* v = nullptr;
         if (ds->findAndGetFloat32Array(DCM_FloatPixelData, v, &count).bad() || !v || count < first + pixels)
             throw core::Error(in.path + ": Float Pixel Data is shorter than its header promises (truncated file?)");
-        std::memcpy(out.data(), v + first, pixels * sizeof(float));  // float bits, read back as floats
+        floats = v + first;
     } else {
         const Float64* v = nullptr;
         if (ds->findAndGetFloat64Array(DCM_DoubleFloatPixelData, v, &count).bad() || !v || count < first + pixels)
             throw core::Error(in.path + ": Double Float Pixel Data is shorter than its header promises (truncated file?)");
         std::size_t beyond = 0;
+        converted.resize(pixels);
         for (std::size_t i = 0; i < pixels; ++i) {
             const double d = v[first + i];
             beyond += std::isfinite(d) && std::abs(d) > double(std::numeric_limits<float>::max());
-            const float f = float(d);  // volumes are stored as float32
-            std::memcpy(&out[i], &f, sizeof f);
+            converted[i] = float(d);
         }
         if (beyond)
             throw core::Error(whatHolds(in, frame) + std::to_string(beyond) +
                               (beyond == 1 ? " value" : " values") + " beyond what a 32-bit float can hold");
+        floats = converted.data();
     }
     // A float volume must hold numbers: the octree, the transfer functions and the measurements
-    // take every stored value as one (core::FiniteValueSource says the same of files).
-    std::size_t nan = 0, inf = 0;
-    for (const std::int32_t bits : out) {
-        float f;
-        std::memcpy(&f, &bits, sizeof f);
-        nan += std::isnan(f);
-        inf += std::isinf(f);
-    }
-    if (nan || inf) {
-        std::string what;
-        if (nan) what = std::to_string(nan) + (nan == 1 ? " NaN (not-a-number) value" : " NaN (not-a-number) values");
-        if (inf) what += (nan ? " and " : "") + std::to_string(inf) + (inf == 1 ? " infinite value" : " infinite values");
-        throw core::Error(whatHolds(in, frame) + what +
-                          ": Holovox reads only volumes whose every voxel is a number");
-    }
+    // take every stored value as one (as core::FiniteValueSource does for files).
+    if (const std::string what = core::FiniteValueSource::nonFinite(floats, pixels); !what.empty())
+        throw core::Error(whatHolds(in, frame) + what + ": Holovox reads only volumes whose every voxel is a number");
+    std::memcpy(out.data(), floats, pixels * sizeof(float));  // float bits, read back as floats
 }
 
 }  // namespace hvx::dicom

@@ -13,6 +13,9 @@ namespace hvx::core {
 /// Threading: as the wrapped source (one thread, increasing slices).
 class FiniteValueSource final : public VoxelSource {
 public:
+    /// "2 NaN (not-a-number) values and 1 infinite value" among `count` floats, empty when every
+    /// one is a number: the sentence every float reader (files, DICOM float pixels) refuses with.
+    static std::string nonFinite(const float* values, std::size_t count);
     /// Wraps `source` when its values are float32; returns it as it is otherwise.
     static std::unique_ptr<VoxelSource> wrap(std::unique_ptr<VoxelSource> source);
 

@@ -55,7 +55,7 @@ FileElement elementOf(const std::string& v, const std::string& path) {
 // Moves h.headerBytes past `lineSkip` lines and `byteSkip` bytes of the data file (teem's
 // order); a byte skip of -1 puts raw data at the file's end.
 void skipToData(NrrdHeader& h, const std::string& path, long long lineSkip, long long byteSkip) {
-    const std::string data = h.dataFile.empty() ? path : (std::filesystem::path(path).parent_path() / h.dataFile).string();
+    const std::string& data = h.dataPath;
     const bool raw = h.encoding == "raw";
     if (byteSkip != 0 && !raw)  // teem skips those bytes of the decompressed data
         throw Error(path + ": NRRD byte skip with " + h.encoding + " encoding is not read by Holovox");
@@ -210,6 +210,7 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     g.origin *= flip;
     for (int a = 0; a < 3; ++a) g.direction[a] *= flip;
     h.headerBytes = h.dataFile.empty() ? std::uint64_t(in.tellg()) : 0;
+    h.dataPath = h.dataFile.empty() ? path : (std::filesystem::path(path).parent_path() / h.dataFile).string();
     if (lineSkip || byteSkip) skipToData(h, path, lineSkip, byteSkip);
     return h;
 }

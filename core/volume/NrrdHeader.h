@@ -17,7 +17,8 @@ public:
     FileElement element = FileElement::Int16;  ///< the file's type
     std::string encoding = "raw";
     bool bigEndian = false;
-    std::string dataFile;  ///< detached data file, empty when attached
+    std::string dataFile;  ///< detached data file as the header names it, empty when attached
+    std::string dataPath;  ///< the file that holds the data: the header's own or dataFile beside it
     std::uint64_t headerBytes = 0;  ///< bytes before the data in its file: the header (attached), line and byte skips
     std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
     /// Volumes in the file: a 4-D NRRD (a 3D Slicer sequence) whose fourth, non-spatial axis

@@ -69,8 +69,7 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& i
         const bool gzip = h.encoding == "gzip" || h.encoding == "gz";
         if (h.encoding != "raw" && !gzip)
             throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (raw and gzip are)");
-        std::string data = input;
-        if (!h.dataFile.empty()) data = (p.parent_path() / h.dataFile).string();
+        const std::string& data = h.dataPath;
         if (volume >= h.volumes)
             throw Error(input + ": holds " + std::to_string(h.volumes) + (h.volumes == 1 ? " volume" : " volumes") +
                         "; there is no volume " + std::to_string(volume + 1));
