@@ -370,7 +370,12 @@ bool MainWindow::openVolumeFile(const QString& path, int volume) {
                 writer.append(text.data(), text.size());
                 writer.commit();
             }
-            core::OctreeBuilder(core::BuildOptions{}).build(*source, out.toStdString(), job);
+            try {
+                core::OctreeBuilder(core::BuildOptions{}).build(*source, out.toStdString(), job);
+            } catch (...) {  // no notes left beside an octree that was never written
+                std::filesystem::remove(notes, ec);
+                throw;
+            }
             return out;
         },
         [self, opened](const QString& built) {
