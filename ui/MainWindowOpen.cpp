@@ -23,6 +23,7 @@
 #include "core/base/AtomicFileWriter.h"
 #include "core/base/Error.h"
 #include "core/octree/OctreeBuilder.h"
+#include "core/volume/VolumeChoice.h"
 #include "core/volume/VoxelSourceFactory.h"
 #include "core/streaming/OctreeSpace.h"
 #include "core/reference/VolumeHistogram.h"
@@ -329,8 +330,9 @@ bool MainWindow::openVolumeFile(const QString& path, int volume) {
         if (!ok) return false;
     }
     volume = std::max(volume, 1);
-    if (volume > volumes) {
-        showError(tr("%1 holds %2 volume(s); there is no volume %3").arg(info.fileName()).arg(volumes).arg(volume));
+    const core::VolumeChoice choice{info.fileName().toStdString(), std::uint32_t(volumes), std::uint32_t(volume - 1)};
+    if (const std::string refusal = choice.refusal(); !refusal.empty()) {
+        showError(QString::fromStdString(refusal));
         return false;
     }
     const QString label = volumes > 1 ? tr("%1 \u2014 volume %2 of %3").arg(info.fileName()).arg(volume).arg(volumes)

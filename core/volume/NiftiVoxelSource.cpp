@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "core/base/Error.h"
+#include "core/volume/VolumeChoice.h"
 
 namespace hvx::core {
 
@@ -39,9 +40,7 @@ NiftiVoxelSource::NiftiVoxelSource(std::string path, std::uint32_t volume)
     const int got = gzread(gz_->file, raw, sizeof raw);
     if (got < 0) throw Error(path_ + ": not a readable NIfTI file (gzip data is corrupt)");
     header_ = NiftiHeader::parse(raw, std::size_t(got), path_);
-    if (volume_ >= header_.volumes)
-        throw Error(path_ + ": has " + std::to_string(header_.volumes) + " volume(s); volume " +
-                    std::to_string(volume_ + 1) + " does not exist");
+    VolumeChoice{path_, header_.volumes, volume_}.check();
     if (!endsWith(path_, ".gz")) {  // uncompressed: the size is known, check it now
         const std::uint64_t need = header_.voxOffset + std::uint64_t(header_.volumes) *
                                                            header_.geometry.voxelCount() * std::uint64_t(elementSize(header_.element));
@@ -57,9 +56,7 @@ NiftiVoxelSource::~NiftiVoxelSource() = default;
 std::vector<std::string> NiftiVoxelSource::warnings() const {
     std::vector<std::string> w;
     for (const auto& s : header_.warnings) w.push_back(path_ + ": " + s);
-    if (header_.volumes > 1)
-        w.push_back(path_ + ": a 4D file of " + std::to_string(header_.volumes) + " volumes; this is volume " +
-                    std::to_string(volume_ + 1));
+    if (header_.volumes > 1) w.push_back(VolumeChoice{path_, header_.volumes, volume_}.note());
     return w;
 }
 

@@ -11,6 +11,7 @@
 #include "core/volume/NiftiVoxelSource.h"
 #include "core/volume/NrrdHeader.h"
 #include "core/volume/PhantomVoxelSource.h"
+#include "core/volume/VolumeChoice.h"
 #include "core/volume/VtkImageSource.h"
 
 namespace hvx::core {
@@ -70,14 +71,12 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& i
         if (h.encoding != "raw" && !gzip)
             throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (raw and gzip are)");
         const std::string& data = h.dataPath;
-        if (volume >= h.volumes)
-            throw Error(input + ": holds " + std::to_string(h.volumes) + (h.volumes == 1 ? " volume" : " volumes") +
-                        "; there is no volume " + std::to_string(volume + 1));
+        const VolumeChoice choice{input, h.volumes, volume};
+        choice.check();
         const std::uint64_t volumeBytes = h.geometry.voxelCount() * elementSize(h.element);
         auto o = RawVoxelSource::described(h.geometry, h.element, h.bigEndian, h.headerBytes, h.warnings, input);
         if (h.volumes > 1) {  // a 4-D file: the volumes one after the other
-            o.warnings.push_back(input + ": a 4D file of " + std::to_string(h.volumes) + " volumes; this is volume " +
-                                 std::to_string(volume + 1));
+            o.warnings.push_back(choice.note());
             if (gzip) {
                 o.inflatedSkip = volumeBytes * volume;
                 o.inflatedTotal = volumeBytes * h.volumes;

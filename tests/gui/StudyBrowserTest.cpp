@@ -304,7 +304,7 @@ private slots:
         QVERIFY2(r.exitCode == 0, r.output.c_str());
         QVERIFY(ui::MainWindow::isVolumeFile(QString::fromStdString(nii)));
         QVERIFY(!window_->openVolumeFile(QString::fromStdString(nii), 4));  // there are three
-        QVERIFY2(window_->lastError().contains("holds 3 volume(s)"), qPrintable(window_->lastError()));
+        QVERIFY2(window_->lastError().contains("holds 3 volumes; there is no volume"), qPrintable(window_->lastError()));
         QVERIFY(window_->openVolumeFile(QString::fromStdString(nii), 2));
         QVERIFY(window_->jobs()->waitIdle(120000));
         QTRY_VERIFY_WITH_TIMEOUT(window_->openLabel() == "fourd.nii.gz \u2014 volume 2 of 3", 10000);
@@ -332,7 +332,7 @@ private slots:
                 }
         }
         QVERIFY(!window_->openVolumeFile(QString::fromStdString(nrrd), 4));  // there are three
-        QVERIFY2(window_->lastError().contains("holds 3 volume(s)"), qPrintable(window_->lastError()));
+        QVERIFY2(window_->lastError().contains("holds 3 volumes; there is no volume"), qPrintable(window_->lastError()));
         QVERIFY(window_->openVolumeFile(QString::fromStdString(nrrd), 3));
         QVERIFY(window_->jobs()->waitIdle(120000));
         QTRY_VERIFY_WITH_TIMEOUT(window_->openLabel() == "sequence.seq.nrrd \u2014 volume 3 of 3", 10000);
