@@ -214,7 +214,7 @@ int exportDicomCommand(int argc, char** argv) {
     const auto fromSeries = args.value("series-uid");
     if (args.positional().size() != (fromSeries ? 0u : 1u) || !out)
         throw core::Error("usage: holovox-cli export-dicom INPUT -o FOLDER [--syntax S] [--enhanced] [--patient NAME] "
-                          "[--modality CT|MR|PT|NM|OT]\n       holovox-cli export-dicom --series-uid UID [--db FILE] "
+                          "[--modality CT|MR|PT|NM|OT] [--volume N]\n       holovox-cli export-dicom --series-uid UID [--db FILE] "
                           "[--volume N] -o FOLDER   (an imported series, keeping its patient, study and frame of reference)");
     dicom::DicomWriteOptions o;
     std::unique_ptr<core::VoxelSource> source;
@@ -242,9 +242,11 @@ int exportDicomCommand(int argc, char** argv) {
         reopen = [volume] { return std::make_unique<dicom::DicomSeriesSource>(volume); };
     } else {
         input = args.positional()[0];
-        reopen = [input] { return core::VoxelSourceFactory::open(input); };
+        const auto volume = std::uint32_t(args.integer("volume", 1, 1, 1 << 20) - 1);  // 1-based, as build's
+        reopen = [input, volume] { return core::VoxelSourceFactory::open(input, {}, volume); };
     }
     source = reopen();
+    for (const auto& w : source->warnings()) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
     core::RescaledInt16Source* rescaled = nullptr;
     if (source->geometry().scalarType == core::ScalarType::Float32) {
         // DICOM images hold integers: a first pass finds the range, the second writes 16 bits

@@ -147,3 +147,41 @@ TEST(CliExport, ASeriesKeepsItsPatientStudyAndFrameOfReference) {
     }
     EXPECT_EQ(errorLines(dir.file("out/IMG00001.dcm")), 0u);
 }
+
+// A 4-D file exports the volume asked for (--volume had been accepted and ignored: volume 1
+// was written whatever N), and says which of how many it is.
+TEST(CliExport, AFourDimensionalFileExportsTheVolumeAsked) {
+    test::TempDir dir;
+    const int nx = 6, ny = 5, nz = 4, volumes = 3;
+    std::vector<std::int16_t> values;
+    for (int v = 0; v < volumes; ++v)
+        for (int i = 0; i < nx * ny * nz; ++i) values.push_back(std::int16_t(1000 * v + i));
+    {
+        std::ofstream f(dir.file("seq.nrrd"), std::ios::binary);
+        f << "NRRD0004\ntype: int16\ndimension: 4\nsizes: " << nx << " " << ny << " " << nz << " " << volumes
+          << "\nkinds: domain domain domain list\nspace: left-posterior-superior\n"
+             "space directions: (1,0,0) (0,1,0) (0,0,2) none\nspace origin: (0,0,0)\nendian: little\nencoding: raw\n\n";
+        f.write(reinterpret_cast<const char*>(values.data()), std::streamsize(values.size() * sizeof(std::int16_t)));
+    }
+    const auto r = test::runCommand(cli + " export-dicom " + dir.file("seq.nrrd") + " --volume 3 --modality MR -o " +
+                                    dir.file("out") + " 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("a 4D file of 3 volumes; this is volume 3"), std::string::npos) << r.output;
+    core::JobContext job;
+    const auto scan = dicom::DicomScanner::scan({dir.file("out")}, job);
+    std::vector<std::string> notes;
+    auto back = dicom::SeriesAssembler::assemble(scan.instances, notes);
+    ASSERT_EQ(back.size(), 1u);
+    dicom::DicomSeriesSource src(back[0]);
+    const auto& g = src.geometry();
+    ASSERT_EQ(g.voxelCount(), std::uint64_t(nx * ny * nz));
+    std::vector<std::int16_t> stored(g.voxelCount());
+    ASSERT_EQ(g.scalarType, core::ScalarType::Int16);
+    src.readSlices(0, g.dims[2], stored.data());
+    for (std::size_t i = 0; i < stored.size(); ++i)
+        ASSERT_EQ(stored[i] * g.rescaleSlope + g.rescaleIntercept, 2000.0 + double(i)) << "voxel " << i;
+    const auto past = test::runCommand(cli + " export-dicom " + dir.file("seq.nrrd") + " --volume 4 -o " +
+                                       dir.file("none") + " 2>&1");
+    EXPECT_NE(past.exitCode, 0);
+    EXPECT_NE(past.output.find("holds 3 volumes; there is no volume 4"), std::string::npos) << past.output;
+}
