@@ -54,7 +54,8 @@ void SliceView::showTimePoint(std::shared_ptr<const core::OctreeReader> reader) 
 double SliceView::valueAtPoint() const {
     if (!sampler_) return std::nan("");
     const auto& g = reader_->geometry();
-    return sampler_->valueAt(point_, 0) * g.rescaleSlope + g.rescaleIntercept;
+    // the voxel under the crosshair as stored, not a blend of its neighbours
+    return sampler_->valueAt(g.nearestVoxelCentre(point_), 0) * g.rescaleSlope + g.rescaleIntercept;
 }
 
 void SliceView::setVolume(std::shared_ptr<const core::OctreeReader> reader) {
@@ -157,6 +158,7 @@ core::SlicePlane SliceView::plane() const {
                                               std::max(1, height()));
     const glm::dvec3 normal = p.normal();
     p.centre = volumeCentre_ + glm::dot(point_ - volumeCentre_, normal) * normal;
+    if (reader_) p.centre = reader_->geometry().onNearestLayer(p.centre, normal);  // a native plane shows acquired voxels
     return p;
 }
 

@@ -48,7 +48,8 @@ public:
     /// Another time point of the same 4D series (the same grid): the plane, point, window and
     /// measurements stay; only the voxels change.
     void showTimePoint(std::shared_ptr<const core::OctreeReader> reader);
-    /// The physical value (HU for CT) at the crosshair's point, from level 0; NaN outside.
+    /// The physical value (HU for CT) of the voxel nearest the crosshair's point, as stored
+    /// (level 0, never interpolated); NaN outside.
     double valueAtPoint() const;
     /// Window centre and width in physical units (HU for CT); `name` is shown with it (a
     /// preset's), empty for a window dragged by hand.
@@ -80,6 +81,8 @@ public:
     void resetTilt();
     /// The plane's unit normal.
     glm::dvec3 normal() const;
+    /// The plane shown: through the point, on the nearest layer of voxels when it is native.
+    core::SlicePlane plane() const;
     /// Sets the plane's normal (the other views' crosshair rotation); zero: the standard plane.
     void setNormal(const glm::dvec3& normal);
     /// Whether the plane follows the 3D view's viewing direction (V toggles; O stops it): the
@@ -162,7 +165,6 @@ protected:
 
 private:
     friend class SliceMeasuring;
-    core::SlicePlane plane() const;
     void resample();
     /// Whether a point made on some slice lies on the current one (within half a voxel).
     bool onThisSlice(const glm::dvec3& patient) const;

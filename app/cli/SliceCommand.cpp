@@ -75,6 +75,9 @@ int sliceCommand(int argc, char** argv) {
         const auto n = CliArgs::numbers(planeName, 3, "--plane");
         plane = core::SlicePlane::oblique({n[0], n[1], n[2]}, at, pixel, width, height);
     }
+    // Without --at, through the volume's centre; a native plane there moves onto the nearest
+    // layer of voxels (with an even count of slices the centre lies between two).
+    if (!args.value("at")) plane.centre = g.onNearestLayer(plane.centre, plane.normal());
     const int level = args.value("level") ? int(args.integer("level", 0, 0, reader->levelCount() - 1)) : -1;
     const std::string m = args.value("slab-mode").value_or("mip");
     const auto mode = m == "mip" ? core::SlabMode::Mip : m == "minip" ? core::SlabMode::MinIp

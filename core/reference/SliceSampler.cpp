@@ -76,8 +76,12 @@ SliceSampler::SliceSampler(const OctreeReader& reader, BrickCache& cache)
       layout_(reader.geometry().dims, reader.brickSize()) {}
 
 int SliceSampler::levelFor(double pixelMm) const {
+    // A coarser level halves every axis: its voxel along the thickest one (the slice spacing of
+    // an anisotropic volume) is what a thin slice would average across.
+    const auto& s = reader_.geometry().spacing;
+    const double largest = std::max({s.x, s.y, s.z});
     int level = 0;
-    while (level + 1 < reader_.levelCount() && space_.minSpacing * std::pow(2.0, level + 1) <= pixelMm) ++level;
+    while (level + 1 < reader_.levelCount() && largest * std::pow(2.0, level + 1) <= pixelMm) ++level;
     return level;
 }
 

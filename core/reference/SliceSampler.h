@@ -60,7 +60,9 @@ struct SliceImage {
 class SliceSampler {
 public:
     SliceSampler(const OctreeReader& reader, BrickCache& cache);
-    /// The level whose voxel is closest to, and not larger than twice, `pixelMm`.
+    /// The coarsest level whose voxel is no larger than `pixelMm` along any axis, so that a thin
+    /// slice never averages acquired slices over more than a pixel's depth (an anisotropic
+    /// volume's thick axis decides).
     int levelFor(double pixelMm) const;
     /// The value at a patient point (LPS mm) at `level` (trilinear; a label map's nearest
     /// voxel), NaN outside the volume.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
@@ -18,6 +19,25 @@ glm::dmat4 VolumeGeometry::indexToPatient() const {
     }
     m[3] = glm::dvec4(origin, 1.0);
     return m;
+}
+
+glm::dvec3 VolumeGeometry::nearestVoxelCentre(const glm::dvec3& patient) const {
+    const glm::dmat4 toPatient = indexToPatient();
+    const glm::dvec3 index(glm::inverse(toPatient) * glm::dvec4(patient, 1.0));
+    return glm::dvec3(toPatient * glm::dvec4(glm::round(index), 1.0));
+}
+
+glm::dvec3 VolumeGeometry::onNearestLayer(const glm::dvec3& patient, const glm::dvec3& normal) const {
+    const glm::dmat4 toIndex = glm::inverse(indexToPatient());
+    const glm::dvec3 index(toIndex * glm::dvec4(patient, 1.0));
+    for (int a = 0; a < 3; ++a) {
+        // index a's gradient in patient space: the normal of the layers index a = const
+        const glm::dvec3 g(toIndex[0][a], toIndex[1][a], toIndex[2][a]);
+        const double along = glm::dot(g, normal);
+        if (std::abs(along) < (1.0 - 1e-9) * glm::length(g)) continue;
+        return patient + normal * ((std::round(index[a]) - index[a]) / along);
+    }
+    return patient;
 }
 
 void VolumeGeometry::validate(const std::string& what) const {

@@ -46,6 +46,14 @@ struct VolumeGeometry {
     std::uint64_t byteSize() const { return voxelCount() * scalarSize(scalarType); }
     /// 4×4 matrix mapping continuous voxel index (i, j, k, 1) to LPS millimetres.
     glm::dmat4 indexToPatient() const;
+    /// The centre of the voxel nearest to a patient point (each index rounded, in or out of the
+    /// grid): where a slice through it shows acquired voxels, not a blend of two layers.
+    glm::dvec3 nearestVoxelCentre(const glm::dvec3& patient) const;
+    /// A plane through `patient` with unit `normal`, moved along the normal onto the nearest
+    /// layer of voxel centres when the grid has layers facing that way (a native axial of an
+    /// axial acquisition): the slice shows acquired voxels, not a blend of two layers. Any other
+    /// plane (a reformat) is returned where it is.
+    glm::dvec3 onNearestLayer(const glm::dvec3& patient, const glm::dvec3& normal) const;
     /// How far from the patient coordinates' origin a voxel may lie (1 km, in mm).
     static constexpr double kMaxPatientMm = 1e6;
     /// Throws core::Error (prefixed by `what`) when dims, spacing or direction are unusable

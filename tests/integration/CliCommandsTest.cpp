@@ -104,6 +104,38 @@ TEST(CliCommands, MeasureAgreesWithNumpyOverVtksReadingOfTheSameFile) {
 // slice: an axial plane through voxel centres, windowed, read back by VTK's PNG reader, equals
 // numpy's windowing of the same voxels of the NRRD; a thick-slab MIP equals numpy's maximum over
 // the slab; the printed edge letters are the radiological ones.
+// slice without --at, through a volume of eight 3 mm slices whose centre lies between layers 3
+// and 4: the image is layer 4 as stored (numpy's own values through VTK's PNG reader), where it
+// had been the mean of the two layers at every pixel.
+TEST(CliCommands, SliceWithoutAtShowsAnAcquiredLayer) {
+    test::TempDir dir;
+    const std::string writer =
+        "import sys, numpy as np\n"
+        "a = (10 * np.arange(8)[:, None, None] + np.arange(16)[None, None, :] + 0 * np.arange(16)[None, :, None])"
+        ".astype('<i2')\n"  // z, y, x: 10 k + i
+        "open(sys.argv[1], 'wb').write(b'NRRD0004\\ntype: int16\\ndimension: 3\\nspace: left-posterior-superior\\n'\n"
+        "  b'sizes: 16 16 8\\nspace directions: (0.5,0,0) (0,0.8,0) (0,0,3)\\nspace origin: (0,0,0)\\n'\n"
+        "  b'endian: little\\nencoding: raw\\n\\n' + a.tobytes())\n";
+    auto w = python(dir, "write.py", writer, dir.file("v.nrrd"));
+    ASSERT_EQ(w.exitCode, 0) << w.output;
+    ASSERT_EQ(test::runCommand(cli + " build " + dir.file("v.nrrd") + " -o " + dir.file("v.hvo")).exitCode, 0);
+    auto r = test::runCommand(cli + " slice " + dir.file("v.hvo") + " --plane axial --size 16x1 --pixel 0.5 "
+                              "--window 255,127.5 -o " + dir.file("ax.png"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("through (3.75, 6, 12)"), std::string::npos) << r.output;
+    const std::string check =
+        "import sys, numpy as np\n"
+        "from vtkmodules.vtkIOImage import vtkPNGReader\n"
+        "from vtkmodules.util.numpy_support import vtk_to_numpy\n"
+        "p = vtkPNGReader(); p.SetFileName(sys.argv[1]); p.Update()\n"
+        "got = vtk_to_numpy(p.GetOutput().GetPointData().GetScalars()).reshape(-1).astype(int)\n"
+        "want = 40 + np.arange(16)\n"  // layer 4; i runs to the patient's left, the image's right
+        "print(int(np.abs(got - want).max()))\n";
+    const auto c = python(dir, "check.py", check, dir.file("ax.png"));
+    ASSERT_EQ(c.exitCode, 0) << c.output;
+    EXPECT_EQ(c.output, "0\n") << "largest grey difference from layer 4";
+}
+
 TEST(CliCommands, SliceAndSlabAgreeWithNumpyOnTheSameVoxels) {
     test::TempDir dir;
     const std::string writer =

@@ -90,16 +90,47 @@ TEST(SliceSampler, CoarsePixelsReadACoarseLevelThatAveragesTheSameValues) {
     Grid grid;
     core::BrickCache cache(64u << 20);
     const core::SliceSampler sampler(*grid.reader, cache);
+    // Slices 2.5 mm apart: a level-1 voxel is 5 mm deep, so only pixels of 5 mm read it.
     EXPECT_EQ(sampler.levelFor(0.8), 0);
-    EXPECT_EQ(sampler.levelFor(1.7), 1);
+    EXPECT_EQ(sampler.levelFor(4.9), 0);
+    EXPECT_EQ(sampler.levelFor(5.0), 1);
     EXPECT_EQ(sampler.levelFor(1000.0), grid.reader->levelCount() - 1);
     const glm::dvec3 centre(grid.g.indexToPatient() * glm::dvec4(24, 20, 15, 1.0));
-    const auto img = sampler.sample(core::SlicePlane::standard(core::SlicePlane::Orientation::Coronal, centre, 1.7, 16, 16));
+    const auto img = sampler.sample(core::SlicePlane::standard(core::SlicePlane::Orientation::Coronal, centre, 5.0, 16, 16));
     EXPECT_EQ(img.level, 1);
     // Averaging a linear function keeps it linear: level 1 still matches to within a voxel's step.
     const float v = img.values[8 * 16 + 8];
-    const glm::dvec3 p = centre + 0.5 * 1.7 * glm::dvec3(1, 0, 0) + 0.5 * 1.7 * glm::dvec3(0, 0, -1);
+    const glm::dvec3 p = centre + 0.5 * 5.0 * glm::dvec3(1, 0, 0) + 0.5 * 5.0 * glm::dvec3(0, 0, -1);
     EXPECT_NEAR(v, grid.expected(p), 0.5) << "level 1 of a linear function is the same function";
+}
+
+// An anisotropic volume (0.5 mm pixels, 3 mm slices, layers alternately 200 and 0): a thin
+// axial slice at 1 mm pixels reads level 0, one acquired layer, where choosing the level by the
+// pixel spacing alone had read level 1 and shown the mean of two layers (100).
+TEST(SliceSampler, AThinSliceOfThickSlicesNeverAveragesTwoOfThem) {
+    test::TempDir dir;
+    core::VolumeGeometry g;
+    g.scalarType = core::ScalarType::Float32;
+    g.spacing = {0.5, 0.5, 3.0};
+    test::DenseVolume v;
+    v.dims = {128, 128, 16};
+    v.values.resize(128 * 128 * 16);
+    for (std::size_t k = 0; k < 16; ++k)
+        for (std::size_t i = 0; i < 128 * 128; ++i) v.values[k * 128 * 128 + i] = k % 2 ? 0.0 : 200.0;
+    test::MemoryVoxelSource source(g, v);
+    core::BuildOptions o;
+    o.brickSize = 16;
+    core::JobContext job;
+    core::OctreeBuilder(o).build(source, dir.file("z.hvo"), job);
+    const auto reader = core::OctreeReader::open(dir.file("z.hvo"));
+    core::BrickCache cache(64u << 20);
+    const core::SliceSampler sampler(*reader, cache);
+    const glm::dvec3 layer4(g.indexToPatient() * glm::dvec4(64, 64, 4, 1.0));
+    for (const double pixel : {0.5, 1.0, 2.0}) {
+        const auto img = sampler.sample(core::SlicePlane::standard(core::SlicePlane::Orientation::Axial, layer4, pixel, 32, 32));
+        EXPECT_EQ(img.level, 0) << pixel << " mm pixels";
+        EXPECT_EQ(img.values[16 * 32 + 16], 200.0f) << pixel << " mm pixels";
+    }
 }
 
 #include "core/reference/VolumeHistogram.h"

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "core/base/Error.h"
 #include "core/volume/RawVoxelSource.h"
@@ -228,4 +230,38 @@ TEST(VolumeOrientation, WhatAFileLeavesOpenIsFlaggedNotAssumedSilently) {
     EXPECT_TRUE(core::RawVoxelSource(dir.file("v.raw"), o).geometry().spacingAssumed);
     o.spacingAssumed = false;  // --spacing given
     EXPECT_FALSE(core::RawVoxelSource(dir.file("v.raw"), o).geometry().spacingAssumed);
+}
+
+// A native plane lands on a layer of voxel centres: an axial through the middle of eight 3 mm
+// slices (between layers 3 and 4) moves to the nearest one; a gantry-tilted stack's layers are
+// found along their own normal; a reformat (an axial of a sagittal-tilted grid) stays put.
+TEST(VolumeGeometry, NativePlanesLandOnTheNearestLayerOfVoxels) {
+    core::VolumeGeometry g;
+    g.dims = {16, 16, 8};
+    g.spacing = {0.5, 0.8, 3.0};
+    g.origin = {-10, 4, 20};
+    const glm::dvec3 middle(g.indexToPatient() * glm::dvec4(7.5, 7.5, 3.5, 1.0));
+    const glm::dvec3 axial = g.onNearestLayer(middle, {0, 0, 1});
+    const glm::dvec3 index(glm::inverse(g.indexToPatient()) * glm::dvec4(axial, 1.0));
+    EXPECT_NEAR(index.z, 4.0, 1e-9) << "3.5 rounds to layer 4, as the slice readout rounds it";
+    EXPECT_NEAR(index.x, 7.5, 1e-9) << "only along the normal";
+    EXPECT_NEAR(glm::length(g.onNearestLayer(middle, {0, 0, -1}) - axial), 0.0, 1e-9) << "either side";
+    const glm::dvec3 centre = g.nearestVoxelCentre(middle);
+    EXPECT_NEAR(glm::length(centre - glm::dvec3(g.indexToPatient() * glm::dvec4(8, 8, 4, 1.0))), 0.0, 1e-9);
+
+    core::VolumeGeometry tilted = g;  // gantry tilt: k runs 15 degrees off the slice normal
+    const double t = glm::radians(15.0);
+    tilted.direction[2] = glm::dvec3(0, std::sin(t), std::cos(t));
+    const glm::dvec3 between(tilted.indexToPatient() * glm::dvec4(5, 5, 2.25, 1.0));
+    const glm::dvec3 landed = tilted.onNearestLayer(between, {0, 0, 1});  // the layers stay axial
+    const glm::dvec3 tIndex(glm::inverse(tilted.indexToPatient()) * glm::dvec4(landed, 1.0));
+    EXPECT_NEAR(tIndex.z, 2.0, 1e-9);
+    EXPECT_NEAR(landed.x, between.x, 1e-9);
+    EXPECT_NEAR(landed.y, between.y, 1e-9) << "moved along the plane's normal, not along k";
+
+    core::VolumeGeometry oblique = g;  // rows turned 20 degrees about y: no layer faces the axial
+    const double r = glm::radians(20.0);
+    oblique.direction[0] = glm::dvec3(std::cos(r), 0, -std::sin(r));
+    oblique.direction[2] = glm::dvec3(std::sin(r), 0, std::cos(r));
+    EXPECT_EQ(oblique.onNearestLayer(middle, {0, 0, 1}), middle);
 }
