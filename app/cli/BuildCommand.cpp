@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -32,7 +33,7 @@ glm::dvec3 parseSpacing(const std::string& text) {
 int buildCommand(int argc, char** argv) {
     const CliArgs args(argc, argv, 2,
                        {"o", "output", "brick", "border", "empty-below", "codec", "level", "dims", "type", "endian",
-                        "header-bytes", "spacing", "volume", "grid", "split-n", "split-overlap", "split-threshold"},
+                        "header-bytes", "spacing", "volume", "grid", "split-n", "split-overlap", "split-threshold", "modality"},
                        {"labels", "lossy8", "quiet", "split-voxels"});
     if (args.positional().size() != 1) throw core::Error("usage: holovox-cli build INPUT -o OUT.hvo [options]");
     const auto out = args.value("o") ? args.value("o") : args.value("output");
@@ -93,6 +94,17 @@ int buildCommand(int argc, char** argv) {
         : fromOctree ? std::make_unique<core::OctreeVoxelSource>(core::OctreeReader::open(args.positional()[0]))
                      : core::VoxelSourceFactory::open(args.positional()[0], raw, volume);
     for (const auto& w : source->warnings()) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
+    // --modality says what a file does not (a NIfTI, NRRD or raw file is "OT"); it never
+    // overrides a modality the source names.
+    if (const auto m = args.value("modality")) {
+        const bool code = m->size() >= 2 && m->size() <= 8 &&
+                          std::all_of(m->begin(), m->end(), [](char c) { return c >= 'A' && c <= 'Z'; });
+        if (!code) throw core::Error("--modality " + *m + " is not a DICOM modality code (CT, MR, PT, ...)");
+        const std::string& named = source->geometry().modality;
+        if (!named.empty() && named != "OT" && named != *m)
+            throw core::Error("--modality " + *m + ": " + args.positional()[0] + " says it is " + named);
+        opt.modality = *m;
+    }
     // Split-voxels (thesis ch. 4): two values and a plane per cell of N³ voxels, for sharp
     // boundaries and true colours at coarse levels; a file beside the volume's own octree.
     std::optional<core::SplitVoxelOptions> split;

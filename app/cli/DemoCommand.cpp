@@ -30,7 +30,8 @@ int demoCommand(int argc, char** argv) {
         std::printf("demo archive: %s\n", status.c_str());
         return status == "stopped" ? 3 : 0;  // as LSB's "status": 3 when not running
     }
-    std::string input = "/usr/share/mricron/templates/ch2better.nii.gz";
+    const std::string mriTemplate = "/usr/share/mricron/templates/ch2better.nii.gz";
+    std::string input = mriTemplate;
     if (const char* env = std::getenv("HOLOVOX_DEMO_DATA"); env && *env) input = env;
     if (const auto i = args.value("input")) input = *i;
     std::filesystem::path out = dataDir() / "demo" / "ch2better.hvo";
@@ -40,7 +41,9 @@ int demoCommand(int argc, char** argv) {
     if (ec) throw core::Error(out.parent_path().string() + ": cannot create directory (" + ec.message() + ")");
     std::printf("Holovox demo: building the out-of-core octree of the MRI template\n  %s\n", input.c_str());
     auto source = core::VoxelSourceFactory::open(input);
-    OctreeBuildRunner::run(*source, out.string(), core::BuildOptions{}, true);
+    core::BuildOptions options;
+    if (input == mriTemplate) options.modality = "MR";  // a T1 template, which its NIfTI cannot say
+    OctreeBuildRunner::run(*source, out.string(), options, true);
     if (args.flag("no-pacs")) return 0;
 
     std::printf("\nHolovox demo: starting the demo archive (a local Orthanc on loopback)\n");

@@ -32,7 +32,8 @@ FileHeader startHeader(const VolumeGeometry& g, const BuildOptions& opt, int lev
     h.rescaleSlope = g.rescaleSlope;
     h.rescaleIntercept = g.rescaleIntercept;
     h.emptyBelow = opt.emptyBelow ? *opt.emptyBelow : 0.0;
-    std::strncpy(h.modality, g.modality.c_str(), sizeof h.modality - 1);
+    const std::string& modality = opt.modality.empty() ? g.modality : opt.modality;
+    std::strncpy(h.modality, modality.c_str(), sizeof h.modality - 1);
     std::memcpy(h.frameOfReferenceUid, g.frameOfReferenceUid.data(),
                 std::min(g.frameOfReferenceUid.size(), sizeof h.frameOfReferenceUid));
     for (std::size_t i = 0; i < std::min<std::size_t>(4, g.windows.size()); ++i) {

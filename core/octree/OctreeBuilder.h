@@ -19,6 +19,9 @@ struct BuildOptions {
     bool lossy8 = false;  ///< store 8-bit bricks quantised to each node's value range
     hvo::Codec codec = hvo::Codec::Zstd;
     int codecLevel = 0;  ///< 0 = the codec's fast default
+    /// The DICOM modality code to record instead of the source's (a NIfTI names none: the user
+    /// says what it is); empty keeps the source's.
+    std::string modality;
 };
 
 /// What a finished build produced.

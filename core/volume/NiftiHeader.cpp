@@ -149,9 +149,12 @@ NiftiHeader NiftiHeader::parse(const unsigned char* bytes, std::size_t size, con
     h.voxOffset = std::uint64_t(voxOffset);
 
     const float slope = f.get<float>(112), inter = f.get<float>(116);
-    if (std::isfinite(slope) && slope != 0.0f) {
+    if (std::isfinite(slope) && slope != 0.0f) {  // a slope of 0 (or not a number) means no scaling
+        if (!std::isfinite(inter))
+            throw Error(what + ": scl_slope is " + std::to_string(slope) + " but scl_inter is not a number, so its "
+                        "values cannot be known (nibabel refuses it too)");
         h.geometry.rescaleSlope = slope;
-        h.geometry.rescaleIntercept = std::isfinite(inter) ? inter : 0.0;
+        h.geometry.rescaleIntercept = inter;
     }
 
     double unit = 1.0;  // to millimetres
@@ -163,18 +166,30 @@ NiftiHeader NiftiHeader::parse(const unsigned char* bytes, std::size_t size, con
 
     glm::dvec3 pixdim;
     for (int a = 0; a < 3; ++a) pixdim[a] = f.get<float>(80 + 4 * std::size_t(a));
-    double qfac = f.get<float>(76);
-    qfac = qfac < 0 ? -1.0 : 1.0;  // 0 (and anything else) is 1, as the standard says
+    const double pixdim0 = f.get<float>(76);
+    const double qfac = pixdim0 < 0 ? -1.0 : 1.0;  // 0 is 1, as the standard says
 
     h.qformCode = f.get<std::int16_t>(252);
     h.sformCode = f.get<std::int16_t>(254);
     if (h.qformCode > 0) {
-        for (int a = 0; a < 3; ++a)
+        // Why the qform cannot place the volume, if it cannot: a refusal when it is the one
+        // used, a note when the sform places the volume instead.
+        std::string unusable;
+        for (int a = 0; a < 3 && unusable.empty(); ++a)
             if (!(pixdim[a] > 0) || !std::isfinite(pixdim[a]))
-                throw Error(what + ": pixdim[" + std::to_string(a + 1) + "] = " + std::to_string(pixdim[a]) +
-                            " is not a voxel size, so the qform cannot place the volume");
-        const glm::dvec3 offset(f.get<float>(268), f.get<float>(272), f.get<float>(276));
-        h.qform = quaternionAffine(f.get<float>(256), f.get<float>(260), f.get<float>(264), offset, pixdim, qfac);
+                unusable = "pixdim[" + std::to_string(a + 1) + "] = " + std::to_string(pixdim[a]) + " is not a voxel size";
+        if (unusable.empty() && pixdim0 != 0 && pixdim0 != 1 && pixdim0 != -1)
+            unusable = "pixdim[0] (qfac) = " + std::to_string(pixdim0) + " is neither 1 nor -1 (nifti1_io takes it as " +
+                       (qfac < 0 ? "-1" : "1") + ", nibabel as 1: the slice order, and so the handedness, is not known)";
+        if (!unusable.empty() && h.sformCode <= 0)
+            throw Error(what + ": " + unusable + ", so the qform cannot place the volume");
+        if (!unusable.empty()) {
+            h.warnings.push_back("its qform is not used (" + unusable + "); the sform places the volume");
+            h.qformCode = 0;
+        } else {
+            const glm::dvec3 offset(f.get<float>(268), f.get<float>(272), f.get<float>(276));
+            h.qform = quaternionAffine(f.get<float>(256), f.get<float>(260), f.get<float>(264), offset, pixdim, qfac);
+        }
     }
     if (h.sformCode > 0) {
         for (int r = 0; r < 3; ++r)
@@ -190,7 +205,7 @@ NiftiHeader NiftiHeader::parse(const unsigned char* bytes, std::size_t size, con
             if (mirrored)
                 h.warnings.push_back("its qform and sform differ in handedness (one is the other mirrored); the sform "
                                      "is used, as nibabel, FSL and SPM do");
-            else if (apart > 0.01 * unit)
+            else if (apart * unit > 0.01)  // the file's unit: 0.01 mm
                 h.warnings.push_back("its qform and sform disagree by up to " + mm(apart * unit) +
                                      " mm; the sform is used, as nibabel, FSL and SPM do");
         }
@@ -224,7 +239,7 @@ NiftiHeader NiftiHeader::parse(const unsigned char* bytes, std::size_t size, con
     }
     if (!std::isfinite(h.geometry.origin.x) || !std::isfinite(h.geometry.origin.y) || !std::isfinite(h.geometry.origin.z))
         throw Error(what + ": its placement has a non-finite origin");
-    h.geometry.modality = "MR";
+    h.geometry.modality = "OT";  // a NIfTI names no modality (NiftiVoxelSource reads a BIDS sidecar's)
     h.geometry.validate(what);
     return h;
 }

@@ -36,6 +36,8 @@ struct NiftiHeader {
     std::vector<std::string> warnings;  ///< sentences about what was assumed or disagrees
     /// RAS+ millimetre affines of the two placements (identity when their code is 0).
     glm::dmat4 qform{1.0}, sform{1.0};
+    /// The codes as placed: a qform that cannot place the volume (a zero pixdim, a qfac other
+    /// than ±1) beside a usable sform counts as 0, with a warning.
     int qformCode = 0, sformCode = 0;
 
     /// Parses the first 348 bytes of a NIfTI-1 file; `what` names it in messages. Throws

@@ -6,6 +6,10 @@
 #include <bit>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <nlohmann/json.hpp>
 
 #include "core/base/Error.h"
 #include "core/volume/VolumeChoice.h"
@@ -16,6 +20,36 @@ namespace {
 bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() &&
            std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(), [](char a, char b) { return std::tolower(a) == b; });
+}
+
+// The modality a BIDS sidecar beside the file names (dcm2niix writes NAME.json beside
+// NAME.nii.gz with "Modality": "CT"), empty when there is none; a sidecar that cannot be read
+// is said in `warnings`.
+std::string sidecarModality(const std::string& path, std::vector<std::string>& warnings) {
+    const std::size_t cut = path.size() - (endsWith(path, ".nii.gz") ? 7 : 4);
+    const std::string json = path.substr(0, cut) + ".json";
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(json, ec)) return {};
+    const auto size = std::filesystem::file_size(json, ec);
+    std::ifstream in(json, std::ios::binary);
+    std::string text;
+    if (!ec && size <= (std::uint64_t(1) << 20) && in)
+        text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    const auto doc = nlohmann::json::parse(text, nullptr, false);
+    if (text.empty() || doc.is_discarded() || !doc.is_object()) {
+        warnings.push_back("its BIDS sidecar " + json + " cannot be read as JSON (or is over 1 MiB): the modality is not known");
+        return {};
+    }
+    const auto m = doc.find("Modality");
+    if (m == doc.end()) return {};
+    const std::string v = m->is_string() ? m->get<std::string>() : std::string();
+    const bool code = v.size() >= 2 && v.size() <= 8 &&
+                      std::all_of(v.begin(), v.end(), [](char c) { return c >= 'A' && c <= 'Z'; });
+    if (!code) {
+        warnings.push_back("its BIDS sidecar " + json + " gives Modality " + m->dump() + ", not a DICOM modality code");
+        return {};
+    }
+    return v;
 }
 
 }  // namespace
@@ -40,6 +74,7 @@ NiftiVoxelSource::NiftiVoxelSource(std::string path, std::uint32_t volume)
     const int got = gzread(gz_->file, raw, sizeof raw);
     if (got < 0) throw Error(path_ + ": not a readable NIfTI file (gzip data is corrupt)");
     header_ = NiftiHeader::parse(raw, std::size_t(got), path_);
+    if (const std::string m = sidecarModality(path_, header_.warnings); !m.empty()) header_.geometry.modality = m;
     VolumeChoice{path_, header_.volumes, volume_}.check();
     if (!endsWith(path_, ".gz")) {  // uncompressed: the size is known, check it now
         const std::uint64_t need = header_.voxOffset + std::uint64_t(header_.volumes) *

@@ -13,7 +13,8 @@ namespace hvx::core {
 /// slice by slice in file order, converting the file's type to the stored one (int8 to int16;
 /// 32- and 64-bit integers and float64 to float32) and its byte order to the host's. The
 /// placement is NiftiHeader's (sform, else qform, else pixdim). A 4D file holds `volumes()`
-/// volumes; the constructor picks one (0-based).
+/// volumes; the constructor picks one (0-based). A NIfTI names no modality: the volume is "OT"
+/// unless a BIDS sidecar beside it (NAME.json, as dcm2niix writes) gives its Modality.
 ///
 /// Threading: one thread at a time (VoxelSource's contract).
 class NiftiVoxelSource final : public VoxelSource {

@@ -105,6 +105,34 @@ TEST(CliBuild, RawFilesSayWhatIsAssumedAndConverted) {
     EXPECT_TRUE(contains(r.output, "left and right unknown")) << r.output;
 }
 
+// --modality says what a file cannot (a raw file or a NIfTI is "OT"): the octree records it, so
+// a CT's statistics are in HU; a code that is not one, or one contradicting the source, is refused.
+TEST(CliBuild, ModalityIsStatedForFilesThatNameNone) {
+    test::TempDir dir;
+    std::ofstream(dir.file("s.raw"), std::ios::binary) << std::string(8 * 8 * 8 * 2, '\x01');
+    const std::string raw = cli + " build " + dir.file("s.raw") + " --dims 8x8x8 --type int16 --spacing 1,1,1";
+    auto r = test::runCommand(raw + " -o " + dir.file("ot.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(test::runCommand(cli + " info " + dir.file("ot.hvo")).output, "int16, OT"));
+    r = test::runCommand(raw + " --modality CT -o " + dir.file("ct.hvo"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(test::runCommand(cli + " info " + dir.file("ct.hvo")).output, "int16, CT"));
+    r = test::runCommand(cli + " measure " + dir.file("ct.hvo") + " --roi sphere:3,3,3,2");
+    EXPECT_TRUE(contains(r.output, "HU")) << r.output;
+    r = test::runCommand(raw + " --modality ct -o " + dir.file("x.hvo"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_TRUE(contains(r.output, "--modality ct is not a DICOM modality code")) << r.output;
+    {
+        std::ofstream f(dir.file("mr.nrrd"), std::ios::binary);
+        f << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 4 4 4\nspace: left-posterior-superior\n"
+             "space directions: (1,0,0) (0,1,0) (0,0,1)\nspace origin: (0,0,0)\nencoding: raw\nmodality:=MR\n\n"
+          << std::string(64, '\x02');
+    }
+    r = test::runCommand(cli + " build " + dir.file("mr.nrrd") + " --modality CT -o " + dir.file("y.hvo"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_TRUE(contains(r.output, "says it is MR")) << r.output;
+}
+
 TEST(CliBuild, KilledBuildNeverLeavesAFileThatLooksComplete) {
     test::TempDir dir;
     const std::string out = dir.file("big.hvo");

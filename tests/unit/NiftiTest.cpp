@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <memory>
 
@@ -214,4 +215,115 @@ TEST_F(NiftiVsNibabel, BrokenFilesAreRefusedWithASentence) {
     std::memcpy(&b[108], &offset, 4);
     EXPECT_NE(message(variant("offset.nii", b)).find("vox_offset"), std::string::npos);
     EXPECT_NE(message(variant("garbage.nii.gz", std::string(4000, '\x1f'))).find(".nii"), std::string::npos);
+}
+
+namespace {
+/// A 4 x 3 x 2 int16 NIfTI-1 written field by field, for the header rules nibabel's writer
+/// will not produce: identity quaternion, qoffset (1, 2, 3), sform rows of `spacing` with the
+/// same offset plus `sformShift` in x, codes, units and scaling as given.
+struct HandHeader {
+    float pixdim0 = 1, spacing = 2, sformShift = 0, slope = 0, inter = 0;
+    std::int16_t qformCode = 1, sformCode = 1;
+    std::uint8_t units = 2;  // NIFTI_UNITS_MM
+    std::string write(const std::string& path) const {
+        std::string b(352 + 4 * 3 * 2 * 2, '\0');
+        auto put = [&](std::size_t at, auto v) { std::memcpy(&b[at], &v, sizeof v); };
+        put(0, std::int32_t(348));
+        const std::int16_t dim[8] = {3, 4, 3, 2, 1, 1, 1, 1};
+        for (int i = 0; i < 8; ++i) put(40 + 2 * std::size_t(i), dim[i]);
+        put(70, std::int16_t(4));   // datatype int16
+        put(72, std::int16_t(16));  // bitpix
+        const float pix[4] = {pixdim0, spacing, spacing, spacing};
+        for (int i = 0; i < 4; ++i) put(76 + 4 * std::size_t(i), pix[i]);
+        put(108, 352.0f);
+        put(112, slope);
+        put(116, inter);
+        b[123] = char(units);
+        put(252, qformCode);
+        put(254, sformCode);
+        put(268, 1.0f), put(272, 2.0f), put(276, 3.0f);  // qoffset
+        const float srow[3][4] = {{spacing, 0, 0, 1 + sformShift}, {0, spacing, 0, 2}, {0, 0, spacing, 3}};
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 4; ++c) put(280 + 16 * std::size_t(r) + 4 * std::size_t(c), srow[r][c]);
+        std::memcpy(&b[344], "n+1\0", 4);
+        std::ofstream(path, std::ios::binary).write(b.data(), std::streamsize(b.size()));
+        return path;
+    }
+};
+
+std::string refusal(const std::string& path) {
+    try {
+        core::NiftiVoxelSource s(path);
+    } catch (const core::Error& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+}  // namespace
+
+// The qform/sform disagreement is measured in millimetres whatever the file's unit (it had been
+// compared in the file's unit against 0.01 mm times the unit: a metre file 50 mm off said
+// nothing and a micrometre file 0.0005 mm off was called out).
+TEST(NiftiHeaderRules, DisagreementIsMeasuredInMillimetres) {
+    test::TempDir dir;
+    HandHeader metres;
+    metres.units = 1, metres.spacing = 0.002f, metres.sformShift = 0.05f;
+    core::NiftiVoxelSource m(metres.write(dir.file("m.nii")));
+    EXPECT_TRUE(mentions(m.warnings(), "disagree by up to 50 mm")) << ::testing::PrintToString(m.warnings());
+    HandHeader microns;
+    microns.units = 3, microns.spacing = 500, microns.sformShift = 0.5f;
+    core::NiftiVoxelSource u(microns.write(dir.file("u.nii")));
+    EXPECT_TRUE(u.warnings().empty()) << ::testing::PrintToString(u.warnings());
+    microns.sformShift = 20;  // 0.02 mm
+    core::NiftiVoxelSource u2(microns.write(dir.file("u2.nii")));
+    EXPECT_TRUE(mentions(u2.warnings(), "disagree by up to 0.02 mm")) << ::testing::PrintToString(u2.warnings());
+}
+
+// A qform that cannot place the volume (a zero voxel size, a qfac neither 1 nor -1, where
+// nifti1_io and nibabel read opposite slice orders) is refused when it is the placement, and
+// set aside with a note when the sform places the volume; a NaN intercept beside a slope leaves
+// the values unknown and is refused.
+TEST(NiftiHeaderRules, AnUnusableQformIsRefusedOnlyWhereItPlacesTheVolume) {
+    test::TempDir dir;
+    HandHeader zero;
+    zero.pixdim0 = 1;
+    zero.spacing = 2;
+    std::string path = zero.write(dir.file("z.nii"));
+    {  // pixdim[1] = 0 beside a usable sform
+        std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+        const float none = 0;
+        f.seekp(80);
+        f.write(reinterpret_cast<const char*>(&none), 4);
+    }
+    core::NiftiVoxelSource bySform(path);
+    EXPECT_TRUE(mentions(bySform.warnings(), "its qform is not used (pixdim[1] = 0")) << ::testing::PrintToString(bySform.warnings());
+    EXPECT_EQ(bySform.geometry().spacing, glm::dvec3(2.0));
+    HandHeader odd;
+    odd.pixdim0 = -0.5f;
+    core::NiftiVoxelSource oddBySform(odd.write(dir.file("q.nii")));
+    EXPECT_TRUE(mentions(oddBySform.warnings(), "pixdim[0] (qfac) = -0.5")) << ::testing::PrintToString(oddBySform.warnings());
+    odd.sformCode = 0;
+    EXPECT_NE(refusal(odd.write(dir.file("q0.nii"))).find("is neither 1 nor -1"), std::string::npos);
+    HandHeader nan;
+    nan.slope = 2, nan.inter = std::nanf("");
+    EXPECT_NE(refusal(nan.write(dir.file("n.nii"))).find("scl_inter is not a number"), std::string::npos);
+    nan.slope = 0;  // no scaling: the intercept does not matter
+    EXPECT_EQ(refusal(nan.write(dir.file("n0.nii"))), "accepted");
+}
+
+// A NIfTI names no modality: "OT", unless dcm2niix's BIDS sidecar beside it says so.
+TEST(NiftiHeaderRules, ModalityComesFromABidsSidecarOrIsUnknown) {
+    test::TempDir dir;
+    const std::string path = HandHeader{}.write(dir.file("scan.nii"));
+    EXPECT_EQ(core::NiftiVoxelSource(path).geometry().modality, "OT");
+    std::ofstream(dir.file("scan.json")) << R"({"Modality": "CT", "Manufacturer": "X", "SliceThickness": 1})";
+    EXPECT_EQ(core::NiftiVoxelSource(path).geometry().modality, "CT");
+    std::ofstream(dir.file("scan.json")) << R"({"Modality": "ct"})";
+    core::NiftiVoxelSource lower(path);
+    EXPECT_EQ(lower.geometry().modality, "OT");
+    EXPECT_TRUE(mentions(lower.warnings(), "not a DICOM modality code")) << ::testing::PrintToString(lower.warnings());
+    std::ofstream(dir.file("scan.json")) << "{\"Modality\": ";
+    core::NiftiVoxelSource broken(path);
+    EXPECT_EQ(broken.geometry().modality, "OT");
+    EXPECT_TRUE(mentions(broken.warnings(), "cannot be read as JSON")) << ::testing::PrintToString(broken.warnings());
 }
