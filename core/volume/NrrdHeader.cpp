@@ -1,10 +1,12 @@
 #include "core/volume/NrrdHeader.h"
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -52,6 +54,43 @@ FileElement elementOf(const std::string& v, const std::string& path) {
     if (v == "double") return FileElement::Float64;
     throw Error(path + ": unsupported NRRD type '" + v + "'");
 }
+// Millimetres in one of a NRRD "space units" or "units" entry; 0 for a unit that is not a length
+// Holovox knows (an empty or "???" entry is mm, NRRD's default for a patient space).
+double millimetresIn(const std::string& unit) {
+    auto any = [&](std::initializer_list<const char*> names) {
+        for (const char* n : names)
+            if (unit == n) return true;
+        return false;
+    };
+    if (any({"", "???", "mm", "millimeter", "millimeters", "millimetre", "millimetres"})) return 1.0;
+    if (any({"cm", "centimeter", "centimeters", "centimetre", "centimetres"})) return 10.0;
+    if (any({"m", "meter", "meters", "metre", "metres"})) return 1000.0;
+    if (any({"um", "\xc2\xb5m", "micron", "microns", "micrometer", "micrometers", "micrometre", "micrometres"})) return 0.001;
+    return 0.0;
+}
+
+// The millimetres of each of the first three quoted units of a "space units" / "units" field.
+glm::dvec3 unitScales(const std::string& value, const std::string& key, const std::string& path) {
+    glm::dvec3 scale(1.0);
+    std::size_t pos = 0;
+    for (int a = 0; a < 3; ++a) {
+        const auto open = value.find('"', pos);
+        const auto close = open == std::string::npos ? open : value.find('"', open + 1);
+        if (close == std::string::npos) throw Error(path + ": NRRD " + key + " '" + value + "' are not quoted units");
+        const std::string unit = value.substr(open + 1, close - open - 1);
+        scale[a] = millimetresIn(unit);
+        if (!(scale[a] > 0))
+            throw Error(path + ": NRRD " + key + " '" + unit + "' is not a length Holovox knows (mm, cm, m, um)");
+        pos = close + 1;
+    }
+    return scale;
+}
+
+std::string lowercase(std::string v) {
+    for (char& c : v) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return v;
+}
+
 // Moves h.headerBytes past `lineSkip` lines and `byteSkip` bytes of the data file (teem's
 // order); a byte skip of -1 puts raw data at the file's end.
 void skipToData(NrrdHeader& h, const std::string& path, long long lineSkip, long long byteSkip) {
@@ -95,6 +134,9 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     bool sizes = false, typed = false, spaced = false, endian = false;
     std::string space;
     std::vector<glm::dvec3> dirs;
+    glm::dvec3 spaceUnits(1.0), axisUnits(1.0);  // mm per unit: of the space's axes, of the index axes
+    std::optional<glm::dvec3> axisMins;
+    bool cellCentred = false;
     while (std::getline(in, line)) {
         if (trimBlanks(line).empty()) break;
         if (line[0] == '#') continue;
@@ -122,7 +164,19 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
             h.bigEndian = value == "big";
             endian = true;
         } else if (key == "space") {
-            space = value;
+            space = lowercase(value);  // teem reads the names in any case
+        } else if (key == "space units") {
+            spaceUnits = unitScales(value, key, path);
+        } else if (key == "units") {
+            axisUnits = unitScales(value, key, path);
+        } else if (key == "axis mins" || key == "axismins") {
+            glm::dvec3 m;
+            if (!(v >> m.x >> m.y >> m.z)) throw Error(path + ": NRRD axis mins '" + value + "' are not three numbers");
+            axisMins = m;
+        } else if (key == "centerings" || key == "centers") {
+            std::string c;
+            v >> c;
+            cellCentred = c == "cell";
         } else if (key == "space directions") {
             dirs = parseVectors(value, path);
             // a "none" axis is not spatial: only a 4-D file's last axis may be one
@@ -176,6 +230,12 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     if (!endian && elementSize(h.element) > 1 && h.encoding != "ascii" && h.encoding != "text" && h.encoding != "txt")
         throw Error(path + ": NRRD header gives no endian for its " + std::to_string(elementSize(h.element)) +
                     "-byte type, so its values cannot be read (teem refuses it too)");
+    const bool unitless = spaceUnits == glm::dvec3(1.0) && (!space.empty() || axisUnits == glm::dvec3(1.0));
+    if (!unitless)  // teem, ITK and 3D Slicer keep the numbers as they are and call them mm
+        h.warnings.push_back(path + ": NRRD " + (space.empty() ? "units" : "space units") +
+                             " are not millimetres: Holovox converts them to mm (teem, ITK and 3D Slicer do not)");
+    for (auto& d : dirs) d *= spaceUnits;
+    g.origin *= spaceUnits;
     if (dirs.size() == 3) {
         for (int a = 0; a < 3; ++a) {
             const double len = std::sqrt(glm::dot(dirs[std::size_t(a)], dirs[std::size_t(a)]));
@@ -192,10 +252,10 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
     // The patient spaces NRRD names, turned into LPS by the axes they flip; anything else cannot
     // be placed in the patient and is refused.
     glm::dvec3 flip(1.0);
-    if (space == "left-posterior-superior" || space == "LPS") {
-    } else if (space == "right-anterior-superior" || space == "RAS") {
+    if (space == "left-posterior-superior" || space == "lps") {
+    } else if (space == "right-anterior-superior" || space == "ras") {
         flip = {-1, -1, 1};
-    } else if (space == "left-anterior-superior" || space == "LAS") {
+    } else if (space == "left-anterior-superior" || space == "las") {
         flip = {1, -1, 1};
     } else if (space == "scanner-xyz") {
         h.warnings.push_back(path + ": NRRD space scanner-xyz is taken as LPS (the DICOM patient axes), as ITK does");
@@ -204,6 +264,9 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
             throw Error(path + ": NRRD header has space directions but no space, so they cannot be placed");
         h.warnings.push_back(path + ": NRRD header has no space: orientation unknown, the axes taken as L, P and S");
         g.orientationAssumed = true;  // the views draw "?" for the orientation letters
+        g.spacing *= axisUnits;
+        // Without a space, teem places sample 0 at the axis min (half a spacing in when cell-centred).
+        if (axisMins) g.origin = (*axisMins) * axisUnits + (cellCentred ? 0.5 * g.spacing : glm::dvec3(0.0));
     } else {
         throw Error(path + ": NRRD space '" + space + "' is not a patient space Holovox can place (LPS, RAS, LAS, scanner-xyz)");
     }

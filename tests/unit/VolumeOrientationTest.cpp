@@ -121,7 +121,8 @@ TEST(VolumeOrientation, EveryNrrdPatientSpaceBecomesLps) {
     for (const Case& c : {Case{"left-posterior-superior", own}, Case{"LPS", own},
                           Case{"right-anterior-superior", {-8.5, -22, 33}}, Case{"RAS", {-8.5, -22, 33}},
                           Case{"left-anterior-superior", {8.5, -22, 33}}, Case{"LAS", {8.5, -22, 33}},
-                          Case{"scanner-xyz", own}}) {
+                          Case{"scanner-xyz", own}, Case{"Right-Anterior-Superior", {-8.5, -22, 33}},
+                          Case{"ras", {-8.5, -22, 33}}}) {  // teem reads the names in any case
         SCOPED_TRACE(c.space);
         auto src = core::VoxelSourceFactory::open(write(std::string(c.space) + ".nrrd", c.space));
         EXPECT_NEAR(glm::length(patientOf(src->geometry(), {1, 1, 1}) - c.lps), 0.0, 1e-9);
@@ -137,6 +138,39 @@ TEST(VolumeOrientation, EveryNrrdPatientSpaceBecomesLps) {
     EXPECT_FALSE(placed->geometry().spacingAssumed);
     for (const char* space : {"3D-right-handed", "right-anterior-superior-time", "scanner-xyz-time"})
         EXPECT_NE(refusal(write("r.nrrd", space)).find("not a patient space"), std::string::npos) << space;
+}
+
+// NRRD lengths in other units are converted to mm (they had been taken as mm: a file in metres
+// built 1000 times too small), said, and a unit that is not a length is refused; without a
+// space, sample 0 lies at the axis min, half a spacing in when cell-centred (the NRRD format's
+// definition; it had been put at 0).
+TEST(VolumeOrientation, NrrdUnitsAndAxisMinsPlaceTheVolumeInMillimetres) {
+    test::TempDir dir;
+    auto write = [&](const std::string& name, const std::string& fields) {
+        std::ofstream(dir.file(name), std::ios::binary)
+            << "NRRD0004\ntype: uint8\ndimension: 3\nsizes: 2 2 2\nencoding: raw\n" << fields << "\n" << std::string(8, '\0');
+        return dir.file(name);
+    };
+    const std::string placed = "space: LPS\nspace directions: (0.002,0,0) (0,0.003,0) (0,0,0.004)\nspace origin: (0.01,0.02,0.03)\n";
+    auto metres = core::VoxelSourceFactory::open(write("m.nrrd", placed + "space units: \"m\" \"m\" \"m\"\n"));
+    EXPECT_NEAR(glm::length(metres->geometry().spacing - glm::dvec3(2, 3, 4)), 0.0, 1e-9);
+    EXPECT_NEAR(glm::length(patientOf(metres->geometry(), {1, 1, 1}) - glm::dvec3(12, 23, 34)), 0.0, 1e-9);
+    EXPECT_TRUE(mentions(metres->warnings(), "space units are not millimetres: Holovox converts them to mm"));
+    auto mm = core::VoxelSourceFactory::open(write("mm.nrrd", placed + "space units: \"mm\" \"mm\" \"mm\"\n"));
+    EXPECT_NEAR(mm->geometry().spacing.x, 0.002, 1e-12);
+    EXPECT_FALSE(mentions(mm->warnings(), "units"));
+    auto microns = core::VoxelSourceFactory::open(write("u.nrrd", placed + "space units: \"microns\" \"um\" \"um\"\n"));
+    EXPECT_NEAR(microns->geometry().spacing.y, 0.000003, 1e-15);
+    EXPECT_NE(refusal(write("f.nrrd", placed + "space units: \"furlong\" \"mm\" \"mm\"\n")).find("'furlong' is not a length"),
+              std::string::npos);
+    auto node = core::VoxelSourceFactory::open(write("n.nrrd", "spacings: 2 3 4\naxis mins: 100 200 300\n"));
+    EXPECT_NEAR(glm::length(node->geometry().origin - glm::dvec3(100, 200, 300)), 0.0, 1e-9);
+    auto cell = core::VoxelSourceFactory::open(write("c.nrrd", "spacings: 2 3 4\naxis mins: 100 200 300\ncenterings: cell cell cell\n"));
+    EXPECT_NEAR(glm::length(cell->geometry().origin - glm::dvec3(101, 201.5, 302)), 0.0, 1e-9);
+    auto cm = core::VoxelSourceFactory::open(write("cm.nrrd", "spacings: 2 3 4\naxis mins: 1 2 3\nunits: \"cm\" \"cm\" \"cm\"\n"));
+    EXPECT_NEAR(glm::length(cm->geometry().spacing - glm::dvec3(20, 30, 40)), 0.0, 1e-9);
+    EXPECT_NEAR(glm::length(cm->geometry().origin - glm::dvec3(10, 20, 30)), 0.0, 1e-9);
+    EXPECT_TRUE(mentions(cm->warnings(), "NRRD units are not millimetres"));
 }
 
 // The time points of a 4D series are shown in each other's place only on the same grid with
