@@ -55,6 +55,9 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
             if (value != "Image") throw Error(path + ": a MetaImage '" + value + "' object, not an image");
         } else if (key == "NDims") {
             ndims = std::atoi(value.c_str());
+            if (ndims > 3)  // its TransformMatrix, sizes and spacings then hold ndims² and ndims numbers
+                throw Error(path + ": a MetaImage of NDims = " + std::to_string(ndims) +
+                            " (a time series or vectors): Holovox reads 3-D MetaImages only");
         } else if (key == "DimSize") {
             const auto d = numbers<3>(value, key, path);
             for (int a = 0; a < 3; ++a) {

@@ -143,6 +143,10 @@ TEST(MetaImage, BrokenHeadersAndDataAreRefusedNamingTheFile) {
         {"matrix.mha", std::string(kHead) + "TransformMatrix = 1 0 0 1 0 0 0 0 1\nElementDataFile = LOCAL\n" + bytesOf(v),
          "dependent directions"},
         {"mesh.mha", "ObjectType = Mesh\nNDims = 3\nElementDataFile = LOCAL\n", "not an image"},
+        {"time.mha",  // a 4-D image: its 16-number TransformMatrix had been read as a 3 x 3 one
+         "ObjectType = Image\nNDims = 4\nDimSize = 6 5 4 2\nTransformMatrix = 1 0 0 0 0 1 0 0 0 0 1 0 0 0 0 1\n"
+         "ElementType = MET_SHORT\nElementDataFile = LOCAL\n",
+         "NDims = 4 (a time series or vectors): Holovox reads 3-D MetaImages only"},
         {"nodata.mha", std::string(kHead), "no ElementDataFile"},
         {"missing.mhd", std::string(kHead) + "ElementDataFile = gone.raw\n", "gone.raw"},
     };
