@@ -198,6 +198,7 @@ bool MainWindow::showTimePoint(int index) {
 void MainWindow::restoreMeasurements(const QString& path) {
     core::MeasurementSource source;
     source.volume = QFileInfo(path).absoluteFilePath().toStdString();
+    source.spacingAssumed = reader_ && reader_->geometry().spacingAssumed;
     if (!seriesUid_.isEmpty()) {  // the patient, study and series UIDs from the study database
         try {
             dicom::StudyDatabase db(browser_->databasePath().toStdString());

@@ -42,6 +42,10 @@ bool MeasurementOverlay::drawnOnSlice(const core::Measurement& m, const std::fun
     return onSlice(m.region->centre) && std::abs(std::abs(glm::dot(m.region->normal, normal)) - 1.0) < 1e-6;
 }
 
+QString MeasurementOverlay::lengthText(double mm, bool spacingAssumed) {
+    return spacingAssumed ? QObject::tr("%1 mm (spacing assumed)").arg(mm, 0, 'f', 1) : QObject::tr("%1 mm").arg(mm, 0, 'f', 1);
+}
+
 void MeasurementOverlay::list(const std::vector<core::Measurement>& items) {
     for (const auto& m : items) {
         if (planePoint_ && m.region && m.region->kind == core::MeasureRegion::Kind::Sphere) {
@@ -54,7 +58,7 @@ void MeasurementOverlay::list(const std::vector<core::Measurement>& items) {
         if (!drawnOnSlice(m, onSlice_, normal_)) continue;
         const QString name = QString::fromStdString(m.label);
         if (m.kind == core::Measurement::Kind::Distance)
-            distance(m.a, m.b, QObject::tr("%1  %2 mm").arg(name).arg(m.lengthMm(), 0, 'f', 1));
+            distance(m.a, m.b, QObject::tr("%1  %2").arg(name, lengthText(m.lengthMm(), spacingAssumed_)));
         else if (m.kind == core::Measurement::Kind::Angle)
             angle(m.a, m.b, m.c, QObject::tr("%1  %2\u00b0").arg(name).arg(m.angleDegrees(), 0, 'f', 1));
         else

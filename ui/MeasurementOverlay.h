@@ -41,6 +41,10 @@ public:
     /// A sphere as seen in the 3D view: its outline, a circle of `radiusPx` about `centre` (widget
     /// positions), with its label.
     void sphere(QPointF centre, double radiusPx, const QString& label);
+    /// "70.0 mm", or "70.0 mm (spacing assumed)" when the volume's source gave no spacing.
+    static QString lengthText(double mm, bool spacingAssumed);
+    /// list() marks its distances as measured in an assumed spacing.
+    void setSpacingAssumed(bool assumed) { spacingAssumed_ = assumed; }
     /// "M2  mean 25.6 HU": a region's label and mean.
     static QString regionLabel(const core::Measurement& m);
     /// A small square that can be dragged, at a patient point.
@@ -61,6 +65,7 @@ public:
     static const QColor kColour;
 
 private:
+    bool spacingAssumed_ = false;
     QPainter& p_;
     QSize size_;
     std::function<QPointF(const glm::dvec3&)> toWidget_;

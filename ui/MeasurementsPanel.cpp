@@ -14,12 +14,13 @@
 #include <set>
 
 #include "core/base/AtomicFileWriter.h"
+#include "ui/MeasurementOverlay.h"
 
 namespace hvx::ui {
 
 namespace {
-QString value(const core::Measurement& m) {
-    if (m.kind == core::Measurement::Kind::Distance) return QStringLiteral("%1 mm").arg(m.lengthMm(), 0, 'f', 1);
+QString value(const core::Measurement& m, bool spacingAssumed) {
+    if (m.kind == core::Measurement::Kind::Distance) return MeasurementOverlay::lengthText(m.lengthMm(), spacingAssumed);
     if (m.kind == core::Measurement::Kind::Angle) return QStringLiteral("%1\u00b0").arg(m.angleDegrees(), 0, 'f', 1);
     if (!m.stats) return QObject::tr("no statistics");
     const auto& s = *m.stats;
@@ -132,7 +133,8 @@ void MeasurementsPanel::refresh() {
                              : m.region && m.region->kind == core::MeasureRegion::Kind::Rectangle ? tr("rectangle")
                              : m.region && m.region->kind == core::MeasureRegion::Kind::Sphere ? tr("sphere")
                                                                                              : tr("region");
-        const QStringList cells{QString::fromStdString(m.label), kind, QString::fromStdString(m.view), value(m), where(m)};
+        const QStringList cells{QString::fromStdString(m.label), kind, QString::fromStdString(m.view),
+                                value(m, source_.spacingAssumed), where(m)};
         for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));
         ++row;
     }

@@ -331,6 +331,7 @@ void SliceMeasuring::paint(QPainter& p) {
     MeasurementOverlay overlay(p, view_.size(), [this](const glm::dvec3& x) { return view_.widgetAt(x); },
                                [this](const glm::dvec3& x) { return view_.onThisSlice(x); }, pl.normal(), pl.pixelMm);
     overlay.setPlanePoint(pl.centre);
+    overlay.setSpacingAssumed(reader->geometry().spacingAssumed);
     // The statistics of the last region (or why it has none) at the top left, clear of the
     // letters and the window.
     QString text;
@@ -353,8 +354,8 @@ void SliceMeasuring::paint(QPainter& p) {
     if (gesture_ == Gesture::Region && roi_) overlay.region(*roi_, {});
     if (outline_.size() >= 2) overlay.outline(outline_, false, {});
     if (ruler_ && gesture_ == Gesture::Ruler && view_.onThisSlice(ruler_->first)) {
-        const QString unit = reader->geometry().spacingAssumed ? QObject::tr(" (spacing assumed)") : QString();
-        overlay.distance(ruler_->first, ruler_->second, QObject::tr("%1 mm%2").arg(*rulerMm(), 0, 'f', 1).arg(unit));
+        overlay.distance(ruler_->first, ruler_->second,
+                         MeasurementOverlay::lengthText(*rulerMm(), reader->geometry().spacingAssumed));
     }
     if (anglePoints_.size() >= 2) {
         core::Measurement m;

@@ -356,6 +356,7 @@ void VolumeView::paintOverlays(QPainter& p) {
         p, size(),
         [this](const glm::dvec3& x) { return projected(x).value_or(QPointF(-1e6, -1e6)); },
         [](const glm::dvec3&) { return true; }, -camera_.back(), 1.0);
+    overlay.setSpacingAssumed(scene_ && scene_->reader->geometry().spacingAssumed);
     overlay.list(measurements_);
     for (const auto& x : picked_) overlay.distance(x, x, {});
     if (const auto crop = cropHandlesNow()) crop->paint(p, settings_.crop);

@@ -94,7 +94,7 @@ std::string MeasurementList::toCsv(const MeasurementSource& s) const {
     std::string out =
         "label,kind,view,length_mm,region,centre_x_lps,centre_y_lps,centre_z_lps,radius_mm,voxels,mean,sd,min,max,"
         "units,area_mm2,volume_mm3,exact,note,a_x_lps,a_y_lps,a_z_lps,b_x_lps,b_y_lps,b_z_lps,angle_deg,c_x_lps,c_y_lps,"
-        "c_z_lps,patient_name,patient_id,study_uid,series_uid,volume,radius2_mm\n";
+        "c_z_lps,patient_name,patient_id,study_uid,series_uid,volume,radius2_mm,spacing_assumed\n";
     for (const auto& m : items_) {
         std::vector<std::string> f{m.label, m.kindName(), m.view};
         f.push_back(m.kind == Measurement::Kind::Distance ? number(m.lengthMm()) : "");
@@ -120,6 +120,7 @@ std::string MeasurementList::toCsv(const MeasurementSource& s) const {
         f.insert(f.end(), {s.patientName, s.patientId, s.studyUid, s.seriesUid, s.volume});
         // An ellipse's second semi-axis (radius_mm is its first, along its axis).
         f.push_back(m.region && m.region->kind == MeasureRegion::Kind::Ellipse ? number(m.region->radius2) : "");
+        f.push_back(s.spacingAssumed ? "yes: lengths are not mm" : "");
         for (std::size_t i = 0; i < f.size(); ++i) out += (i ? "," : "") + field(f[i]);
         out += "\n";
     }
@@ -129,8 +130,10 @@ std::string MeasurementList::toCsv(const MeasurementSource& s) const {
 std::string MeasurementList::toJson(const MeasurementSource& s) const {
     json j;
     j["source"] = {{"patientName", s.patientName}, {"patientId", s.patientId}, {"studyInstanceUid", s.studyUid},
-                   {"seriesInstanceUid", s.seriesUid}, {"volume", s.volume}};
-    j["coordinates"] = "LPS mm (DICOM patient coordinates)";
+                   {"seriesInstanceUid", s.seriesUid}, {"volume", s.volume}, {"spacingAssumed", s.spacingAssumed}};
+    j["coordinates"] = s.spacingAssumed ? "LPS, in units of an assumed 1 mm voxel spacing (the volume's source gave "
+                                          "none): lengths, areas and volumes are not mm"
+                                        : "LPS mm (DICOM patient coordinates)";
     j["measurements"] = json::array();
     for (const auto& m : items_) {
         json e = {{"label", m.label}, {"view", m.view}};

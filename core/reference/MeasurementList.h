@@ -35,6 +35,9 @@ struct Measurement {
 /// series measured (empty when the volume did not come from DICOM), and the volume file.
 struct MeasurementSource {
     std::string patientName, patientId, studyUid, seriesUid, volume;
+    /// The volume's source gave no voxel spacing: lengths and areas are in units of an assumed
+    /// 1 mm, not millimetres, and the exports say so.
+    bool spacingAssumed = false;
 };
 
 /// The measurements of one volume, in the order they were made, each with a label of its own

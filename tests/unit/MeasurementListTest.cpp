@@ -92,6 +92,27 @@ TEST(MeasurementList, JsonCarriesTheUidsAndReadsBack) {
         EXPECT_THROW(core::MeasurementList::fromJson(bad), core::Error) << bad;
 }
 
+// A volume whose source gave no spacing: both exports say its lengths are not mm (Python's csv
+// module reads the column), where they had said "mm" like any other.
+TEST(MeasurementList, ExportsSayWhenTheSpacingWasAssumed) {
+    test::TempDir dir;
+    auto assumed = source();
+    assumed.spacingAssumed = true;
+    std::ofstream(dir.file("m.csv")) << sample().toCsv(assumed);
+    std::ofstream(dir.file("p.csv")) << sample().toCsv(source());
+    const auto r = test::runCommand("/usr/bin/python3 -c \"import csv; a = list(csv.DictReader(open('" + dir.file("m.csv") +
+                                    "'))); p = list(csv.DictReader(open('" + dir.file("p.csv") +
+                                    "'))); print(a[0]['spacing_assumed'] + '|' + a[1]['spacing_assumed'] + '|' + "
+                                    "p[0]['spacing_assumed'] + '|')\"");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output, "yes: lengths are not mm|yes: lengths are not mm||\n");
+    const std::string json = sample().toJson(assumed);
+    EXPECT_NE(json.find("\"spacingAssumed\": true"), std::string::npos) << json;
+    EXPECT_NE(json.find("lengths, areas and volumes are not mm"), std::string::npos) << json;
+    EXPECT_EQ(core::MeasurementList::fromJson(json).items().size(), 2u);
+    EXPECT_NE(sample().toJson(source()).find("\"spacingAssumed\": false"), std::string::npos);
+}
+
 // Angles: the size at the vertex, checked against numpy's arccos of the normalised dot product
 // (an independent computation), near 0 and 180 degrees too; exported to CSV and JSON and read back.
 TEST(MeasurementList, AnglesAgreeWithNumpyAndReadBack) {
@@ -182,7 +203,7 @@ TEST(MeasurementList, EllipsesAndRectanglesReadBack) {
     const std::string csv = list.toCsv(source());
     EXPECT_NE(csv.find(",ellipse,"), std::string::npos);
     EXPECT_NE(csv.find(",rectangle,"), std::string::npos);
-    EXPECT_NE(csv.find(",3.25\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",3.25,\n"), std::string::npos) << csv;
     EXPECT_THROW(core::MeasurementList::fromJson(
                      "{\"measurements\": [{\"kind\": \"region\", \"region\": {\"shape\": \"rectangle\", \"centre\": [0,0,0], "
                      "\"radiusMm\": 0, \"low\": [0,0,0], \"high\": [0,0,0], \"normal\": [0,0,1], \"thicknessMm\": 1, "
