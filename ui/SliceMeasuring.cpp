@@ -324,6 +324,22 @@ void SliceMeasuring::drag(const Handle& h, const glm::dvec3& to) {
     }
 }
 
+QString SliceMeasuring::statisticsText() const {
+    const auto* reader = view_.reader_.get();
+    if (!reader) return {};
+    if (!(roi_ && roiStats_ && view_.onThisSlice(roi_->centre))) return roiError_;
+    const QString unit = reader->geometry().spacingAssumed ? QObject::tr(" (spacing assumed)") : QString();
+    const auto& s = *roiStats_;
+    const QString u = s.units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(s.units);
+    QString text = QObject::tr("mean %1%2, SD %3\nmin %4, max %5\n%6 voxels, %7 mm\u00b2%8")
+                       .arg(s.mean, 0, 'f', 1).arg(u).arg(s.sd, 0, 'f', 1).arg(s.min, 0, 'g', 6).arg(s.max, 0, 'g', 6)
+                       .arg(s.voxels).arg(s.areaMm2, 0, 'f', 1).arg(unit);
+    if (!s.note.empty()) text += "\n" + QString::fromStdString(s.note);
+    if (view_.slabMm() > 0)  // the statistics are the thin slice's voxels, not the slab's MIP, MinIP or mean
+        text += "\n" + QObject::tr("of the one slice at the crosshair, not the %1 mm slab shown").arg(view_.slabMm(), 0, 'f', 1);
+    return text;
+}
+
 void SliceMeasuring::paint(QPainter& p) {
     const auto* reader = view_.reader_.get();
     if (!reader) return;
@@ -334,18 +350,7 @@ void SliceMeasuring::paint(QPainter& p) {
     overlay.setSpacingAssumed(reader->geometry().spacingAssumed);
     // The statistics of the last region (or why it has none) at the top left, clear of the
     // letters and the window.
-    QString text;
-    if (roi_ && roiStats_ && view_.onThisSlice(roi_->centre)) {
-        const QString unit = reader->geometry().spacingAssumed ? QObject::tr(" (spacing assumed)") : QString();
-        const auto& s = *roiStats_;
-        const QString u = s.units.empty() ? QString() : QStringLiteral(" ") + QString::fromStdString(s.units);
-        text = QObject::tr("mean %1%2, SD %3\nmin %4, max %5\n%6 voxels, %7 mm\u00b2%8")
-                   .arg(s.mean, 0, 'f', 1).arg(u).arg(s.sd, 0, 'f', 1).arg(s.min, 0, 'g', 6).arg(s.max, 0, 'g', 6)
-                   .arg(s.voxels).arg(s.areaMm2, 0, 'f', 1).arg(unit);
-        if (!s.note.empty()) text += "\n" + QString::fromStdString(s.note);
-    } else if (!roiError_.isEmpty()) {
-        text = roiError_;
-    }
+    const QString text = statisticsText();
     if (!text.isEmpty()) overlay.box(QRectF(6, 22, std::max(80, view_.width() / 2), view_.height() / 2), text);
     overlay.list(items_);
     for (const auto& m : items_)

@@ -59,6 +59,9 @@ public:
     const std::optional<core::RegionStatistics>& roiStatistics() const { return roiStats_; }
     /// Why the last region could not be measured (empty when it was).
     const QString& roiError() const { return roiError_; }
+    /// What the view shows at its top left for the last region: its statistics and what they
+    /// are of (a slab shown is not what was measured), or why it has none; empty off its slice.
+    QString statisticsText() const;
     /// Widget positions of the handles of the measurements drawn on this slice.
     std::vector<QPointF> handles() const;
     /// How far (px) the nearest of those handles lies from `pos` (infinity when there is none).

@@ -129,6 +129,8 @@ public:
     const std::optional<core::MeasureRegion>& roi() const { return measuring_.roi(); }
     const std::optional<core::RegionStatistics>& roiStatistics() const { return measuring_.roiStatistics(); }
     const QString& roiError() const { return measuring_.roiError(); }
+    /// The text over the slice for the last region (SliceMeasuring::statisticsText).
+    QString roiText() const { return measuring_.statisticsText(); }
     /// What Ctrl-drag draws (a circle at first).
     void setRegionShape(RegionShape shape) { measuring_.setRegionShape(shape); }
     /// Widget positions of the handles of the measurements drawn on this slice.

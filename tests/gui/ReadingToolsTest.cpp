@@ -89,6 +89,10 @@ private slots:
         QCOMPARE(axial->roiStatistics()->mean, direct.mean);
         QVERIFY(direct.voxels > 10);
         QCOMPARE(axial->roiStatistics()->units, std::string("HU"));
+        QVERIFY2(axial->roiText().startsWith("mean ") && !axial->roiText().contains("slab"), qPrintable(axial->roiText()));
+        axial->setSlab(20, core::SlabMode::Mip);  // the statistics stay the thin slice's, and say so
+        QVERIFY2(axial->roiText().contains("not the 20.0 mm slab shown"), qPrintable(axial->roiText()));
+        axial->setSlab(0, core::SlabMode::Mip);
         settledFrame();
         saveArtifact("slice-measurements.png");
         // Both went to the measurement list: its table, CSV and JSON exports (read back by
