@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <limits>
 
+#include <glm/matrix.hpp>
+
 #include "core/base/Error.h"
 #include "core/base/JobContext.h"
 #include "core/octree/OctreeLayout.h"
@@ -40,7 +42,8 @@ LabelStatistics LabelStatistics::compute(const OctreeReader& image, const Octree
                 job.throwIfCancelled();
                 job.report(double(done++) / double(total), "label statistics");
                 const std::uint32_t node = layout.nodeId(0, x, y, z);
-                if (labels.nodes()[node].maxValue <= 0) continue;  // background only
+                const auto& record = labels.nodes()[node];
+                if (record.minValue == 0 && record.maxValue == 0) continue;  // background only (labels may be negative)
                 const Brick b = labels.readBrick(node);
                 const std::uint32_t i0 = x * bs, j0 = y * bs, k0 = z * bs;
                 for (std::uint32_t k = k0; k < std::min(k0 + bs, lg.dims[2]); ++k)
@@ -65,7 +68,9 @@ LabelStatistics LabelStatistics::compute(const OctreeReader& image, const Octree
         approximate = approximate || (n.level == 0 && (n.flags & (hvo::NodeEmpty | hvo::NodeLossy8)) && n.maxValue > n.minValue);
     LabelStatistics out;
     out.units = ig.modality == "CT" ? "HU" : "";
-    const double voxelMl = lg.spacing.x * lg.spacing.y * lg.spacing.z / 1000.0;
+    // A voxel's volume is its parallelepiped's: a sheared grid (gantry tilt) holds less than the
+    // product of its spacings.
+    const double voxelMl = std::abs(glm::determinant(glm::dmat3(lg.indexToPatient()))) / 1000.0;
     std::string outside;
     for (const auto& [label, s] : sums) {
         Row r;

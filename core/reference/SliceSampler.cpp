@@ -93,13 +93,16 @@ std::shared_ptr<const Brick> SliceSampler::brick(std::uint32_t node) const {
 }
 
 double SliceSampler::valueAt(const glm::dvec3& patient, int level) const {
-    const auto& dims = layout_.levelDims(level);
+    const auto& dims = layout_.levelDims(0);
     const auto& grid = layout_.levelNodes(level);
     const glm::dvec3 o(space_.patientToOctree * glm::dvec4(patient, 1.0));
+    // Inside the volume's own voxels (level 0: a coarser level's count is rounded up, and its
+    // last voxel reaches past the volume's edge, where nothing was acquired).
+    const glm::dvec3 full = o * space_.rootVoxels - 0.5;
+    for (int a = 0; a < 3; ++a)
+        if (!(full[a] >= -0.5 && full[a] <= double(dims[std::size_t(a)]) - 0.5)) return std::numeric_limits<double>::quiet_NaN();
     // Level voxel coordinates, integers at voxel centres.
     const glm::dvec3 c = o * (space_.rootVoxels / double(1u << level)) - 0.5;
-    for (int a = 0; a < 3; ++a)
-        if (!(c[a] >= -0.5 && c[a] <= double(dims[std::size_t(a)]) - 0.5)) return std::numeric_limits<double>::quiet_NaN();
     const auto bs = double(reader_.brickSize());
     std::uint32_t n[3];
     for (int a = 0; a < 3; ++a)

@@ -94,3 +94,49 @@ TEST(LabelStatistics, VolumesAndMeansMatchABruteForceCount) {
     // An intensity volume is not a label map.
     EXPECT_THROW(core::LabelStatistics::compute(*ir, *ir, job), core::Error);
 }
+
+// A gantry-tilted (sheared) label grid: a voxel holds |det| of its axes, not the product of its
+// spacings (it had been counted 1/cos(20°) too large); negative labels are counted like any
+// other (a brick whose largest label was 0 or less had been skipped as background).
+TEST(LabelStatistics, ShearedGridsAndNegativeLabelsAreCountedExactly) {
+    test::TempDir dir;
+    core::VolumeGeometry ig;
+    ig.scalarType = core::ScalarType::Float32;
+    ig.origin = {-20, -20, -20};
+    test::DenseVolume iv;
+    iv.dims = {40, 40, 40};
+    iv.values.assign(40 * 40 * 40, 5.0);
+    test::MemoryVoxelSource image(ig, iv);
+    build(image, dir.file("image.hvo"), false);
+
+    core::VolumeGeometry lg;
+    lg.scalarType = core::ScalarType::Int16;
+    lg.isLabel = true;
+    lg.spacing = {1.0, 1.0, 1.5};
+    lg.origin = {-10, -10, -10};
+    const double tilt = 20.0 * 3.14159265358979323846 / 180.0;
+    lg.direction[2] = glm::dvec3(0, std::sin(tilt), std::cos(tilt));
+    test::DenseVolume lv;
+    lv.dims = {20, 20, 10};
+    std::map<int, std::uint64_t> count;
+    for (std::uint32_t k = 0; k < 10; ++k)
+        for (std::uint32_t j = 0; j < 20; ++j)
+            for (std::uint32_t i = 0; i < 20; ++i) {
+                const int l = i < 5 ? -1 : i < 12 ? 3 : 0;  // bricks of 16: the first holds only -1 and 3
+                lv.values.push_back(l);
+                if (l) ++count[l];
+            }
+    test::MemoryVoxelSource labels(lg, lv);
+    build(labels, dir.file("labels.hvo"), true);
+    const auto ir = core::OctreeReader::open(dir.file("image.hvo"));
+    const auto lr = core::OctreeReader::open(dir.file("labels.hvo"));
+    core::JobContext job;
+    const auto stats = core::LabelStatistics::compute(*ir, *lr, job);
+    ASSERT_EQ(stats.rows.size(), 2u);
+    const double voxelMl = 1.0 * 1.0 * 1.5 * std::cos(tilt) / 1000.0;  // the parallelepiped, worked by hand
+    for (const int l : {-1, 3}) {
+        EXPECT_EQ(stats.rows.at(l).voxels, count[l]) << l;
+        EXPECT_NEAR(stats.rows.at(l).volumeMl, double(count[l]) * voxelMl, 1e-12) << l;
+        EXPECT_NEAR(stats.rows.at(l).mean, 5.0, 1e-6) << l;
+    }
+}

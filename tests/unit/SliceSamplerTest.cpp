@@ -174,3 +174,28 @@ TEST(SubsampledVoxelSource, KeepsEveryFactorthVoxelInPlace) {
             for (std::size_t i = 0; i < 3; ++i)
                 EXPECT_EQ(out[(k * 2 + j) * 3 + i], std::int16_t(((k * 4 * 8 + j * 4) * 9 + i * 4) % 1000));
 }
+
+// At a coarser level a 37-voxel axis has 19 voxels, the last reaching past the volume: nothing
+// is drawn there (it had been, up to 2^level - 1 voxels beyond the volume's edge).
+TEST(SliceSampler, CoarseLevelsStopAtTheVolumesEdge) {
+    test::TempDir dir;
+    core::VolumeGeometry g;
+    g.scalarType = core::ScalarType::Float32;
+    test::DenseVolume v;
+    v.dims = {37, 37, 37};
+    v.values.assign(37 * 37 * 37, 100.0);
+    test::MemoryVoxelSource source(g, v);
+    core::BuildOptions o;
+    o.brickSize = 8;
+    core::JobContext job;
+    core::OctreeBuilder(o).build(source, dir.file("e.hvo"), job);
+    const auto reader = core::OctreeReader::open(dir.file("e.hvo"));
+    core::BrickCache cache(64u << 20);
+    const core::SliceSampler sampler(*reader, cache);
+    ASSERT_GE(reader->levelCount(), 3);
+    for (int level = 0; level < 3; ++level) {
+        EXPECT_FLOAT_EQ(float(sampler.valueAt({36.4, 18, 18}, level)), 100.0f) << "inside, level " << level;
+        EXPECT_TRUE(std::isnan(sampler.valueAt({36.6, 18, 18}, level))) << "past the edge (36.5 mm), level " << level;
+        EXPECT_TRUE(std::isnan(sampler.valueAt({18, 18, 37.5}, level))) << "level " << level;
+    }
+}
