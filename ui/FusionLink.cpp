@@ -39,10 +39,9 @@ void FusionLink::apply() {
         } else {
             // The overlay's window is in physical units; its transfer function runs over stored values.
             const auto& w = layers_.overlayWindow();
-            double lo = (w.centre - w.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
-            double hi = (w.centre + w.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
-            if (lo > hi) std::swap(lo, hi);
-            view_.setFusedVolume(reader, core::TransferFunction::forColorMap(layers_.overlayMap(), lo, hi,
+            const double lo = (w.centre - w.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
+            const double hi = (w.centre + w.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
+                    view_.setFusedVolume(reader, core::TransferFunction::forColorMap(layers_.overlayMap(), lo, hi,
                                                                              layers_.overlayOpacity(), g.valueMin,
                                                                              g.valueMax, referenceLength));
             shown_ = tr("overlay %1").arg(layers_.overlayName());

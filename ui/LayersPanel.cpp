@@ -17,6 +17,9 @@
 
 #include <QPointer>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/base/AtomicFileWriter.h"
 #include "core/base/Error.h"
 #include "core/octree/OctreeReader.h"
@@ -296,7 +299,8 @@ bool LayersPanel::chooseLabelTable(const QString& path) {
 }
 
 void LayersPanel::applyOverlayWindow() {
-    if (!updating_) layers_.setOverlayWindow({"", overlayLevel_->value(), overlayWidth_->value()});
+    if (!updating_ && overlayWidth_->value() > 0)
+        layers_.setOverlayWindow({"", overlayLevel_->value(), overlayWidth_->value()});
 }
 
 void LayersPanel::refresh() {
@@ -308,7 +312,16 @@ void LayersPanel::refresh() {
     for (QWidget* w : std::initializer_list<QWidget*>{labelOpacity_, fill_, outline_, legend_, removeLabels_, statisticsButton_})
         w->setEnabled(layers_.hasLabels());
     exportButton_->setEnabled(layers_.hasLabels() && !statistics_->rows.empty());
-    overlayWidth_->setValue(layers_.overlayWindow().width);
+    // Three significant digits of the width, however small the overlay's values (an ADC map in
+    // mm²/s): two decimals had turned a width of 0.0025 into 0.
+    const double width = layers_.overlayWindow().width;
+    const int decimals = std::clamp(3 - int(std::floor(std::log10(width > 0 ? width : 1.0))), 2, 12);
+    for (auto* s : {overlayWidth_, overlayLevel_}) {
+        s->setDecimals(decimals);
+        s->setSingleStep(std::pow(10.0, 1 - decimals));
+    }
+    overlayWidth_->setMinimum(std::pow(10.0, -decimals));
+    overlayWidth_->setValue(width);
     overlayLevel_->setValue(layers_.overlayWindow().centre);
     overlayOpacity_->setValue(int(std::lround(layers_.overlayOpacity() * 100)));
     labelOpacity_->setValue(int(std::lround(layers_.labelOpacity() * 100)));

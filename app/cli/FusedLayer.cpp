@@ -35,9 +35,8 @@ std::unique_ptr<core::TransferFunction> FusedLayer::makeTf(const std::map<std::s
     if (g.isLabel) throw core::Error(path + " is a label map: lay it over with --labels");
     const auto look = overlayLook(opts, g);
     // The window is in physical units; the transfer function runs over stored values.
-    double lo = (look.window.centre - look.window.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
-    double hi = (look.window.centre + look.window.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
-    if (lo > hi) std::swap(lo, hi);
+    const double lo = (look.window.centre - look.window.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
+    const double hi = (look.window.centre + look.window.width / 2 - g.rescaleIntercept) / g.rescaleSlope;
     char text[160];
     std::snprintf(text, sizeof text, "%s map, window W %.6g / L %.6g, opacity %.2g", look.map.name().c_str(),
                   look.window.width, look.window.centre, look.opacity);

@@ -113,20 +113,29 @@ double TransferFunction::gradientScale(double magnitude) const {
 
 TransferFunction TransferFunction::forColorMap(const ColorMap& map, double low, double high, double opacity,
                                                double valueMin, double valueMax, double referenceLength) {
-    if (!(high > low)) throw Error("a colour map's window needs a width above 0");
+    if (!(high != low) || !std::isfinite(low) || !std::isfinite(high))
+        throw Error("a colour map's window needs a width above 0");
     if (!(opacity >= 0 && opacity <= 1)) throw Error("an overlay's opacity must be 0 to 1");
-    // One control point per colour-map entry across the window, transparent just below it.
-    std::vector<Point> points;
+    // One control point per colour-map entry across the window, transparent beyond its low end;
+    // a decreasing rescale (high < low in stored units) lays the entries in reverse.
     const auto& entries = map.entries();
-    const double below = std::min(low, valueMin) - (high - low);
-    points.push_back({below, glm::dvec4(0.0)});
+    const auto& last = entries.back();
+    const double width = std::abs(high - low);
+    const glm::dvec4 top(last[0] / 255.0, last[1] / 255.0, last[2] / 255.0, opacity);
+    std::vector<Point> points;
     for (std::size_t i = 0; i < entries.size(); ++i) {
         const double t = double(i) / double(entries.size() - 1);
         const auto& c = entries[i];
         points.push_back({low + t * (high - low), glm::dvec4(c[0] / 255.0, c[1] / 255.0, c[2] / 255.0, t * opacity)});
     }
-    const auto& last = entries.back();
-    points.push_back({std::max(high, valueMax) + (high - low), glm::dvec4(last[0] / 255.0, last[1] / 255.0, last[2] / 255.0, opacity)});
+    if (high > low) {
+        points.insert(points.begin(), {std::min(low, valueMin) - width, glm::dvec4(0.0)});
+        points.push_back({std::max(high, valueMax) + width, top});
+    } else {
+        std::reverse(points.begin(), points.end());
+        points.insert(points.begin(), {std::min(high, valueMin) - width, top});
+        points.push_back({std::max(low, valueMax) + width, glm::dvec4(0.0)});
+    }
     return TransferFunction(std::move(points), valueMin, valueMax, referenceLength);
 }
 

@@ -44,7 +44,9 @@ public:
     /// A volume fused over another in 3D (PET over CT): below the window's low end (`low`,
     /// stored units) transparent, across the window the colour map's entries with opacity
     /// rising linearly to `opacity` at its high end, above it the last colour at `opacity`;
-    /// over the volume's stored range [valueMin, valueMax].
+    /// over the volume's stored range [valueMin, valueMax]. `low` and `high` are the stored
+    /// values of the window's physical low and high ends: under a negative rescale slope
+    /// high < low, and the map runs down the stored values.
     static TransferFunction forColorMap(const ColorMap& map, double low, double high, double opacity, double valueMin,
                                         double valueMax, double referenceLength);
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <future>
@@ -229,6 +230,8 @@ OctreeBuilder::OctreeBuilder(BuildOptions options) : options_(std::move(options)
         throw Error("brick size must be between 4 and 256 voxels");
     if (options_.border < 1 || options_.border > 8) throw Error("border must be between 1 and 8 voxels");
     if (options_.lossy8 && options_.labels) throw Error("label volumes cannot be stored lossy");
+    if (options_.emptyBelow && options_.labels)
+        throw Error("a label map keeps every brick: --empty-below would drop whole labels without a word");
 }
 
 BuildReport OctreeBuilder::build(VoxelSource& source, const std::string& output, JobContext& job) {
@@ -237,6 +240,14 @@ BuildReport OctreeBuilder::build(VoxelSource& source, const std::string& output,
     g.validate(source.describe());
     if (options_.lossy8 && g.scalarType == ScalarType::UInt8)
         throw Error(source.describe() + ": lossy 8-bit storage only applies to 16-bit and float volumes");
+    if ((options_.labels || g.isLabel) && (g.rescaleSlope != 1.0 || g.rescaleIntercept != 0.0)) {
+        char scale[96];
+        std::snprintf(scale, sizeof scale, "%.9g * v + %.9g", g.rescaleSlope, g.rescaleIntercept);
+        throw Error(source.describe() + ": a label map's classes are its stored values, but the file rescales them (" +
+                    scale + "; ITK would read other labels): Holovox does not guess which are meant");
+    }
+    if (options_.emptyBelow && g.isLabel)
+        throw Error(source.describe() + ": a label map keeps every brick: --empty-below would drop whole labels without a word");
     const OctreeLayout layout(g.dims, options_.brickSize);
     std::vector<hvo::NodeRecord> nodes = layout.nodes();
     AtomicFileWriter out(output);

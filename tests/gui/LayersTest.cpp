@@ -5,6 +5,7 @@
 // built first. Screenshot under <build>/test-artifacts/gui/layers.png.
 #include <QCheckBox>
 #include <QDockWidget>
+#include <QDoubleSpinBox>
 #include <QFile>
 #include <QLabel>
 #include <QSignalSpy>
@@ -170,6 +171,21 @@ private slots:
         // Far from the marker the overlay has nothing: the base's grey, untouched.
         const QPointF far = axial()->widgetAt(kHotSpot + glm::dvec3(-60, 30, 0));
         QCOMPARE(img.pixelColor(far.toPoint()), before.pixelColor(far.toPoint()));
+        // A window of small values (an ADC map's 0.0025 mm²/s) keeps its width in the panel's
+        // boxes, and editing the level does not send a width of 0 (two decimals had).
+        const core::DisplayWindow chosen = window_->layers()->overlayWindow();
+        window_->layers()->setOverlayWindow({"", 0.004, 0.0025});
+        QDoubleSpinBox* width = nullptr;
+        QDoubleSpinBox* level = nullptr;
+        for (auto* box : panel->findChildren<QDoubleSpinBox*>()) (width ? level : width) = box;
+        QVERIFY(width && level);
+        QVERIFY2(std::abs(width->value() - 0.0025) < 1e-9, qPrintable(width->text()));
+        level->setValue(0.005);
+        QVERIFY2(std::abs(window_->layers()->overlayWindow().width - 0.0025) < 1e-9,
+                 qPrintable(QString::number(window_->layers()->overlayWindow().width)));
+        QVERIFY(std::abs(window_->layers()->overlayWindow().centre - 0.005) < 1e-9);
+        window_->layers()->setOverlayWindow(chosen);
+        QVERIFY(std::abs(width->value() - chosen.width) <= 1e-3 * chosen.width);  // shown to four digits
         // Opacity 0: the slice is the base again.
         window_->layers()->setOverlayOpacity(0.0);
         QCOMPARE(axial()->image().convertToFormat(QImage::Format_RGB888), before.convertToFormat(QImage::Format_RGB888));

@@ -4,7 +4,10 @@
 #include "core/octree/OctreeReader.h"
 #include "core/octree/OctreeSummary.h"
 #include "core/volume/PhantomVoxelSource.h"
+#include "tests/support/MemoryVoxelSource.h"
 #include "tests/support/TempDir.h"
+
+#include <filesystem>
 
 using namespace hvx;
 
@@ -90,6 +93,38 @@ TEST(BuilderOptions, OutOfRangeOptionsAreRefused) {
     o = {};
     o.labels = o.lossy8 = true;
     EXPECT_THROW(core::OctreeBuilder{o}, core::Error);
+    o = {};
+    o.labels = true;
+    o.emptyBelow = 5.0;  // it had dropped every brick of a label-1 map without a word
+    EXPECT_THROW(core::OctreeBuilder{o}, core::Error);
+}
+
+// A label map whose file rescales its values (a NIfTI scl_slope 3, scl_inter 1): ITK reads
+// other labels than the stored ones, so Holovox refuses rather than pick one reading.
+TEST(BuilderOptions, ALabelMapWithARescaleIsRefused) {
+    test::TempDir dir;
+    core::VolumeGeometry g;
+    g.scalarType = core::ScalarType::UInt8;
+    g.rescaleSlope = 3;
+    g.rescaleIntercept = 1;
+    test::DenseVolume v;
+    v.dims = {8, 8, 8};
+    v.values.assign(512, 1.0);
+    test::MemoryVoxelSource source(g, v);
+    core::BuildOptions o;
+    o.labels = true;
+    core::JobContext job;
+    try {
+        core::OctreeBuilder(o).build(source, dir.file("l.hvo"), job);
+        ADD_FAILURE() << "built";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("rescales them (3 * v + 1"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("l.hvo")));
+    g.rescaleSlope = 1;
+    g.rescaleIntercept = 0;
+    test::MemoryVoxelSource plain(g, v);
+    EXPECT_NO_THROW(core::OctreeBuilder(o).build(plain, dir.file("l.hvo"), job));
 }
 
 TEST(BuilderOptions, SummaryCountsLevelsNodesAndCompression) {

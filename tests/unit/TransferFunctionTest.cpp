@@ -91,3 +91,23 @@ TEST(TransferFunction, RefractionByOpacityFollowsTheOpacityCurve) {
     EXPECT_TRUE(tf.refractionByOpacity(1.0).empty());
     EXPECT_THROW(tf.refractionByOpacity(0.1), core::Error);
 }
+
+#include "core/appearance/ColorMap.h"
+
+// An overlay stored with a negative rescale slope: its window's physical low end is the larger
+// stored value, and the colour map runs down the stored values. Physical value p is stored as
+// 10 - p here, so the map at stored 10 - p must be the plain map's at p (it had been swapped
+// back into increasing order: physical 0 drew the top colour, opaque).
+TEST(TransferFunction, ColourMapsFollowADecreasingRescale) {
+    const auto hot = core::ColorMap::named("hot");
+    const auto plain = core::TransferFunction::forColorMap(hot, 0.0, 10.0, 0.8, -10.0, 20.0, 1.0);
+    const auto negated = core::TransferFunction::forColorMap(hot, 10.0, 0.0, 0.8, -10.0, 20.0, 1.0);
+    for (double p = -10; p <= 20; p += 0.37) {
+        const glm::dvec4 a = plain.sample(p), b = negated.sample(10.0 - p);
+        for (int c = 0; c < 4; ++c) EXPECT_NEAR(a[c], b[c], 1e-9) << "physical " << p << ", channel " << c;
+    }
+    EXPECT_EQ(negated.sample(15.0).w, 0.0) << "physical -5: below the window, transparent";
+    EXPECT_NEAR(negated.sample(-5.0).w, -std::log(1.0 - 0.8), 1e-9)
+        << "physical 15: above it, the top colour at the opacity (0.8, as an extinction)";
+    EXPECT_THROW(core::TransferFunction::forColorMap(hot, 3.0, 3.0, 0.5, 0.0, 10.0, 1.0), core::Error);
+}
