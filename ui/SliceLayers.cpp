@@ -184,7 +184,7 @@ QImage SliceLayers::compose(const core::SliceImage& base, const core::VolumeGeom
     std::optional<core::SliceOverlay> overlay;
     std::optional<core::SliceLabels> labels;
     if (overlay_) {
-        overlayImage = overlay_->sampler->sample(plane);
+        overlayImage = overlay_->sampler->sampleLike(plane, base);  // over a slab, the overlay's own slab
         overlay = core::SliceOverlay{&overlayImage, &overlay_->reader->geometry(), map_, window_, overlayOpacity_};
     }
     if (labels_) {

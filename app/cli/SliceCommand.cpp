@@ -121,7 +121,7 @@ int sliceCommand(int argc, char** argv) {
         overlayLayer = std::make_unique<Layer>(path);
         const auto& og = overlayLayer->reader->geometry();
         pairFrames(g, baseName, og, path, args.flag("force-frame"));
-        overlayImage = overlayLayer->sampler->sample(plane);
+        overlayImage = overlayLayer->sampler->sampleLike(plane, img);  // over a slab, the overlay's own slab
         const auto look = overlayLook(opts, og);
         overlay = core::SliceOverlay{&overlayImage, &og, look.map, look.window, look.opacity};
         std::printf("overlay %s: %s map, window W %.6g / L %.6g, opacity %.2g\n", path.c_str(), overlay->map.name().c_str(),

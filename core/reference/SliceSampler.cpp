@@ -189,7 +189,13 @@ SliceImage SliceSampler::sampleSlab(const SlicePlane& plane, double thicknessMm,
                                       : float(mode == SlabMode::Mean ? acc[i] / count[i] : acc[i]);
     out.slabMm = thicknessMm;
     out.slabSamples = n;
+    out.slabMode = mode;
     return out;
+}
+
+SliceImage SliceSampler::sampleLike(const SlicePlane& plane, const SliceImage& base) const {
+    if (base.slabMm > 0 && !reader_.geometry().isLabel) return sampleSlab(plane, base.slabMm, base.slabMode);
+    return sample(plane);
 }
 
 }  // namespace hvx::core

@@ -49,6 +49,7 @@ struct SliceImage {
     std::vector<float> values;
     double slabMm = 0;  ///< the thickness sampled (0: a thin slice)
     int slabSamples = 1;
+    SlabMode slabMode = SlabMode::Mip;  ///< how a slab's samples were combined
 };
 
 /// Samples planes through an octree at the level whose voxels match the plane's pixels, reading
@@ -75,6 +76,10 @@ public:
     /// thicker than the volume's diagonal is clamped to it; a thickness <= 0, or a label map,
     /// throws core::Error.
     SliceImage sampleSlab(const SlicePlane& plane, double thicknessMm, SlabMode mode, int level = -1) const;
+    /// This volume on `plane` as `base` (another volume's image of it) was sampled: a slab of the
+    /// same thickness and mode, so that an overlay on a MIP is the overlay's MIP; a thin slice
+    /// for a thin base and always for a label map (whose slab would make up classes).
+    SliceImage sampleLike(const SlicePlane& plane, const SliceImage& base) const;
     const OctreeSpace& space() const { return space_; }
 
 private:

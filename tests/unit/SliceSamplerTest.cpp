@@ -199,3 +199,23 @@ TEST(SliceSampler, CoarseLevelsStopAtTheVolumesEdge) {
         EXPECT_TRUE(std::isnan(sampler.valueAt({18, 18, 37.5}, level))) << "level " << level;
     }
 }
+
+// An overlay laid over a slab is the overlay's own slab (its MIP over a MIP: a hot spot beside
+// the plane shows, as in the base), a thin slice over a thin one; a label map stays thin.
+TEST(SliceSampler, AnOverlayOverASlabIsItsOwnSlab) {
+    Grid grid;  // values i + 100 j + 10000 k: a MIP along k is the slab's top layer
+    core::BrickCache cache(64u << 20);
+    const core::SliceSampler sampler(*grid.reader, cache);
+    const glm::dvec3 centre(grid.g.indexToPatient() * glm::dvec4(24, 20, 15, 1.0));
+    const auto plane = core::SlicePlane::standard(core::SlicePlane::Orientation::Axial, centre, 0.8, 16, 16);
+    const auto slab = sampler.sampleSlab(plane, 10.0, core::SlabMode::Mip);
+    EXPECT_EQ(slab.slabMode, core::SlabMode::Mip);
+    const auto like = sampler.sampleLike(plane, slab);
+    EXPECT_EQ(like.values, slab.values);
+    EXPECT_EQ(like.slabMm, 10.0);
+    const auto thin = sampler.sample(plane);
+    EXPECT_EQ(sampler.sampleLike(plane, thin).values, thin.values);
+    EXPECT_GT(like.values[8 * 16 + 8], thin.values[8 * 16 + 8] + 10000.0) << "the MIP reaches layers above the plane";
+    const auto mean = sampler.sampleSlab(plane, 10.0, core::SlabMode::Mean);
+    EXPECT_EQ(sampler.sampleLike(plane, mean).values, mean.values);
+}
