@@ -48,9 +48,35 @@ std::string referencedSeries(DcmItem* ds, const std::string& sopClass) {
     return {};
 }
 
-bool number(DcmItem* item, const DcmTagKey& key, double& out, unsigned long pos = 0) {
+// A decimal (DS) or integer (IS) string that is not one whole number: DCMTK reads "-100,7" as
+// -100 and says nothing, so a decimal comma would move a slice or change a rescale silently.
+bool malformedText(DcmItem* item, const DcmTagKey& key, unsigned long pos) {
+    DcmElement* e = nullptr;
+    if (item->findAndGetElement(key, e).bad() || !e || (e->ident() != EVR_DS && e->ident() != EVR_IS)) return false;
+    OFString s;
+    if (e->getOFString(s, pos).bad()) return false;
+    std::string t(s.c_str());
+    t.erase(0, t.find_first_not_of(' '));
+    t.erase(t.find_last_not_of(' ') + 1);
+    if (t.empty()) return false;
+    char* end = nullptr;
+    std::strtod(t.c_str(), &end);
+    return end != t.c_str() + t.size();
+}
+
+// The number at `pos` of a numeric element; false when it is absent. A DS or IS string that is
+// not a number throws core::Error naming the element (strict), or counts as absent (a window).
+bool number(DcmItem* item, const DcmTagKey& key, double& out, unsigned long pos = 0, bool strict = true) {
     Float64 v = 0;
     if (!item || item->findAndGetFloat64(key, v, pos).bad() || !std::isfinite(v)) return false;
+    if (malformedText(item, key, pos)) {
+        if (!strict) return false;
+        OFString all;
+        item->findAndGetOFStringArray(key, all);
+        throw core::Error(std::string(DcmTag(key).getTagName()) + " '" + all.c_str() + "' is not a decimal number" +
+                          (std::strchr(all.c_str(), ',') ? " (a decimal comma?)" : "") +
+                          ": the image cannot be placed or its values known");
+    }
     out = v;
     return true;
 }
@@ -220,7 +246,7 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     if (number(ds, DCM_SliceThickness, d)) p.sliceThickness = d;
     for (unsigned long i = 0; i < 8; ++i) {  // the presets a modality offers, first the default
         double centre = 0, width = 0;
-        if (!number(ds, DCM_WindowCenter, centre, i) || !number(ds, DCM_WindowWidth, width, i)) break;
+        if (!number(ds, DCM_WindowCenter, centre, i, false) || !number(ds, DCM_WindowWidth, width, i, false)) break;
         if (!(width >= 1.0)) continue;  // PS3.3 C.11.2.1.2: a width below 1 is not a window
         OFString name;
         if (ds->findAndGetOFString(DCM_WindowCenterWidthExplanation, name, i).bad() || name.empty())
@@ -228,11 +254,18 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
         p.windows.push_back({name.c_str(), centre, width});
     }
     {
-        // PixelPaddingValue is US or SS depending on PixelRepresentation.
-        Uint16 pu = 0;
-        Sint16 ps = 0;
-        if (p.pixelRepresentation == 1 && ds->findAndGetSint16(DCM_PixelPaddingValue, ps).good()) p.pixelPadding = ps;
-        else if (ds->findAndGetUint16(DCM_PixelPaddingValue, pu).good()) p.pixelPadding = pu;
+        // PixelPaddingValue and its Range Limit are US or SS as PixelRepresentation says; a file
+        // that writes them US beside signed pixels means their 16 bits as signed (63536: -2000).
+        const auto padding = [&](const DcmTagKey& key) -> std::optional<double> {
+            Uint16 pu = 0;
+            Sint16 ps = 0;
+            if (p.pixelRepresentation == 1 && ds->findAndGetSint16(key, ps).good()) return ps;
+            if (ds->findAndGetUint16(key, pu).good())
+                return p.pixelRepresentation == 1 ? double(std::int16_t(pu)) : double(pu);
+            return std::nullopt;
+        };
+        p.pixelPadding = padding(DCM_PixelPaddingValue);
+        if (p.pixelPadding) p.pixelPaddingLimit = padding(DCM_PixelPaddingRangeLimit);
     }
     FrameGeometry base;
     readPlane(ds, base);
@@ -289,7 +322,12 @@ DicomHeaderReader::Kind classify(const OFCondition& status, DcmFileFormat& file,
         if (!preamble) return DicomHeaderReader::Kind::NotDicom;
         throw core::Error(name + ": DICOM file has no SOP Class, study or pixel data");
     }
-    fromDataset(ds, file.getMetaInfo(), out);
+    try {
+        fromDataset(ds, file.getMetaInfo(), out);
+    } catch (const core::Error& e) {  // a malformed value: named with its file
+        const std::string what = e.what();
+        throw core::Error(what.rfind(name, 0) == 0 ? what : name + ": " + what);
+    }
     if (out.sopInstanceUid.empty()) throw core::Error(name + ": DICOM file has no SOP Instance UID");
     return DicomHeaderReader::Kind::Dicom;
 }

@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -49,6 +50,15 @@ struct DicomInstance {
     int floatPixelBits = 0;
     std::string photometric;
     std::optional<double> pixelPadding;
+    /// Pixel Padding Range Limit: with it, every stored value between it and pixelPadding
+    /// (inclusive) is padding.
+    std::optional<double> pixelPaddingLimit;
+    /// Whether stored value `v` is padding (outside the scanned field, not a measurement).
+    bool isPadding(double v) const {
+        if (!pixelPadding) return false;
+        if (!pixelPaddingLimit) return v == *pixelPadding;
+        return v >= std::min(*pixelPadding, *pixelPaddingLimit) && v <= std::max(*pixelPadding, *pixelPaddingLimit);
+    }
     double sliceThickness = 0.0;
     /// WindowCenter/WindowWidth pairs (physical units) with their explanations, first the default.
     std::vector<core::DisplayWindow> windows;

@@ -28,6 +28,7 @@ DicomSeriesSource::DicomSeriesSource(SeriesVolume volume) : volume_(std::move(vo
         const bool sgn = first.pixelRepresentation == 1;
         paddingStored_ = sgn ? -double(1u << (first.bitsStored - 1)) : 0.0;
     }
+    paddingPhysical_ = paddingStored_ * s0.rescaleSlope + s0.rescaleIntercept;
 }
 
 std::string DicomSeriesSource::describe() const { return "series " + volume_.seriesUid + " (" + volume_.label + ")"; }
@@ -80,11 +81,10 @@ void DicomSeriesSource::writeSlice(std::uint32_t z, T* out) {
             // Stored values straight through (the common case): integer work only.
             const std::int32_t lo = std::numeric_limits<T>::lowest(), hi = std::numeric_limits<T>::max();
             const bool pad = ia.pixelPadding.has_value();
-            const auto padValue = pad ? std::int64_t(*ia.pixelPadding) : std::int64_t(0);
             const auto padTo = std::int32_t(std::clamp<double>(std::round(paddingStored_), lo, hi));
             for (std::size_t i = 0; i < n; ++i) {
                 const std::int32_t v = va[i];
-                out[i] = T(pad && v == padValue ? padTo : std::clamp(v, lo, hi));
+                out[i] = T(pad && ia.isPadding(v) ? padTo : std::clamp(v, lo, hi));
             }
             return;
         }
@@ -98,9 +98,10 @@ void DicomSeriesSource::writeSlice(std::uint32_t z, T* out) {
             std::memcpy(&f, &v, sizeof f);
             raw = double(f);
         }
-        const bool padded = in.pixelPadding && raw == *in.pixelPadding;
-        const double stored = padded ? paddingStored_ : raw;
-        return volume_.applyRescale ? stored * s.rescaleSlope + s.rescaleIntercept : stored;
+        // Padding is one value for the whole series (-1024 HU for CT), whatever each slice's own
+        // rescale: converted with the first slice's, never with this one's.
+        if (in.isPadding(raw)) return volume_.applyRescale ? paddingPhysical_ : paddingStored_;
+        return volume_.applyRescale ? raw * s.rescaleSlope + s.rescaleIntercept : raw;
     };
     for (std::size_t i = 0; i < n; ++i) {
         double x = value(ia, slices[a], va[i]);

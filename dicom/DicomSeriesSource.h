@@ -31,6 +31,7 @@ private:
     SeriesVolume volume_;
     std::map<std::size_t, std::vector<std::int32_t>> decoded_;  // input slice -> stored values
     double paddingStored_ = 0.0;
+    double paddingPhysical_ = 0.0;  ///< what padding becomes under applyRescale (-1024 HU for CT)
 };
 
 }  // namespace hvx::dicom

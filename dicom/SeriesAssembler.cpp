@@ -19,11 +19,27 @@ struct GroupKey {
     std::string series;
     std::string frame;  ///< Frame of Reference UID: two frames are two coordinate systems, never one stack
     std::uint16_t rows, columns, bits, signedness, samples;
-    std::array<long, 6> iop;
+    std::array<long, 6> iop;      ///< iop[0]: which plane of the series (samePlane), the rest 0
     std::array<long, 2> spacing;
     bool operator<(const GroupKey& o) const {
         return std::tie(series, frame, rows, columns, bits, signedness, samples, iop, spacing) <
                std::tie(o.series, o.frame, o.rows, o.columns, o.bits, o.signedness, o.samples, o.iop, o.spacing);
+    }
+};
+
+/// A stack's plane: its orientation cosines and pixel spacing.
+struct Plane {
+    std::array<double, 6> iop;
+    std::array<double, 2> spacing;
+    /// Within 1e-4 of each other's cosines (about 0.006°) and 1e-4 mm of spacing: one plane.
+    /// Rounding each to a grid had put values a hair apart (0.000049 and 0.000051) on two sides
+    /// of a grid line, splitting one stack into interleaved halves.
+    bool same(const Plane& o) const {
+        for (int a = 0; a < 6; ++a)
+            if (std::abs(iop[std::size_t(a)] - o.iop[std::size_t(a)]) > 1e-4) return false;
+        for (int a = 0; a < 2; ++a)
+            if (std::abs(spacing[std::size_t(a)] - o.spacing[std::size_t(a)]) > 1e-4) return false;
+        return true;
     }
 };
 
@@ -150,6 +166,7 @@ void finishGeometry(SeriesVolume& v) {
 std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInstance>& instances,
                                                     std::vector<std::string>& notes) {
     std::map<GroupKey, std::vector<VolumeSplitter::Member>> groups;
+    std::map<GroupKey, std::vector<Plane>> planes;  // per key without its plane: the planes met, in order
     std::map<std::string, std::set<std::string>> sizesPerSeries;
     std::map<std::string, std::size_t> skipped;
     for (std::size_t i = 0; i < instances.size(); ++i) {
@@ -166,6 +183,11 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
             ++skipped["colour images (not volumes)"];
             continue;
         }
+        // One sample per pixel, but an index into a colour table (PALETTE COLOR), not a value.
+        if (!in.photometric.empty() && in.photometric != "MONOCHROME1" && in.photometric != "MONOCHROME2") {
+            ++skipped["images of photometric interpretation " + in.photometric + " (colour-table indices, not values)"];
+            continue;
+        }
         // NM multi-frame objects are placed by their Detector Information Sequence (and, for
         // tomography, by rotation), which Holovox does not read: refused rather than stacked.
         if (in.sopClassUid == "1.2.840.10008.5.1.4.1.1.66.4") {  // Segmentation Storage: not an image
@@ -180,11 +202,14 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
             const auto& fg = in.frameGeometry[std::min<std::size_t>(f, in.frameGeometry.size() - 1)];
             GroupKey k{in.seriesInstanceUid, in.frameOfReferenceUid, in.rows, in.columns, in.bitsAllocated, in.pixelRepresentation,
                        in.samplesPerPixel, {}, {}};
-            const double iop[6] = {fg.rowDirection.x, fg.rowDirection.y, fg.rowDirection.z,
-                                   fg.columnDirection.x, fg.columnDirection.y, fg.columnDirection.z};
-            for (int a = 0; a < 6; ++a) k.iop[a] = std::lround(iop[a] * 1e4);
-            k.spacing[0] = std::lround(fg.pixelSpacing.x * 1e4);
-            k.spacing[1] = std::lround(fg.pixelSpacing.y * 1e4);
+            const Plane plane{{fg.rowDirection.x, fg.rowDirection.y, fg.rowDirection.z, fg.columnDirection.x,
+                               fg.columnDirection.y, fg.columnDirection.z},
+                              {fg.pixelSpacing.x, fg.pixelSpacing.y}};
+            auto& met = planes[k];
+            std::size_t which = 0;
+            while (which < met.size() && !met[which].same(plane)) ++which;
+            if (which == met.size()) met.push_back(plane);
+            k.iop[0] = long(which);
             groups[k].push_back({i, f});
             sizesPerSeries[in.seriesInstanceUid].insert(std::to_string(in.columns) + "x" + std::to_string(in.rows));
         }

@@ -220,6 +220,62 @@ def extras(out):
         return pixels
     float_series('float-nan', 'FloatPixelData', '<f4', 32, with_bad(1, np.nan))
     float_series('double-huge', 'DoubleFloatPixelData', '<f8', 64, with_bad(2, 1e300))
+    padding_cases(out, study, frame)
+
+
+def padding_cases(out, study, frame):
+    """CT padding: row 0 is the padding value (-2000), row 1 lies inside the Pixel Padding Range
+    Limit (-1600, limit -1500) in 'range'; slice 0's rescale differs from the others' in
+    'rescale'; the padding value is written US (63536) beside signed pixels in 'us'. Every
+    other pixel is HU 100 + 2c after the rescale. Then a decimal comma, PALETTE COLOR
+    pixels, and an orientation that differs by 2e-6 between slices."""
+    def ct(uid, s, name, edit):
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        ds.Modality = 'CT'
+        r, c = np.mgrid[0:ROWS, 0:COLS]
+        slope, inter = (2.0, -2048.0) if (name == 'pad-rescale' and s == 0) else (1.0, -1024.0)
+        stored = ((100 + 2 * c + 0 * r) - inter) / slope  # even HU: whole stored values under slope 2
+        stored[0, :] = -2000
+        if name == 'pad-range':
+            stored[1, :] = -1600
+        ds.RescaleSlope, ds.RescaleIntercept = f'{slope:g}', f'{inter:g}'
+        ds.PixelData = stored.astype('<i2').tobytes()
+        ds.add_new(0x00280120, 'SS', -2000)  # Pixel Padding Value
+        edit(ds)
+        save(ds, os.path.join(out, name, f'IM{s}'))
+    def range_limit(ds):
+        ds.add_new(0x00280121, 'SS', -1500)  # Pixel Padding Range Limit
+    def unsigned_padding(ds):
+        del ds[0x00280120]
+        ds.add_new(0x00280120, 'US', 63536)  # the bits of -2000, written as if unsigned
+    for name, edit in [('pad-rescale', lambda ds: None), ('pad-range', range_limit), ('pad-us', unsigned_padding)]:
+        uid = generate_uid()
+        for s in range(4):
+            ct(uid, s, name, edit)
+    uid = generate_uid()
+    for s in range(3):  # written as -20.5, then its bytes turned into a decimal comma
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        ds.ImagePositionPatient = ['-20.5', '-15', f'{30 + 2.5 * s:.1f}']
+        path = os.path.join(out, 'decimal-comma', f'IM{s}')
+        save(ds, path)
+        with open(path, 'rb') as f:
+            data = f.read()
+        assert b'-20.5\\-15' in data
+        with open(path, 'wb') as f:
+            f.write(data.replace(b'-20.5\\-15', b'-20,5\\-15'))
+    uid = generate_uid()
+    for s in range(3):
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        ds.PhotometricInterpretation = 'PALETTE COLOR'
+        ds.PixelRepresentation = 0
+        save(ds, os.path.join(out, 'palette', f'IM{s}'))
+    uid = generate_uid()
+    for s in range(8):  # cosines 0.000051 and 0.000049 on alternate slices: one stack
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        iop = [float(v) for v in ds.ImageOrientationPatient]
+        iop[2] = 0.000051 if s % 2 == 0 else 0.000049
+        ds.ImageOrientationPatient = [f'{v:.6f}' for v in iop]
+        save(ds, os.path.join(out, 'iop-jitter', f'IM{s}'))
 
 
 def main(out):

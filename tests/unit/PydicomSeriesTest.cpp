@@ -359,3 +359,47 @@ TEST_F(PydicomSeries, FloatAndDoubleFloatPixelDataAreImported) {
         }
     }
 }
+
+// CT padding (-2000, outside the scanned field) becomes -1024 HU on every slice: beside a
+// rescale that differs between slices (it had been converted with each slice's own rescale:
+// -512 HU), across a Pixel Padding Range Limit (-1600 had stayed a measurement), and when the
+// padding value is written US beside signed pixels (63536 is -2000's bits; it had never matched).
+TEST_F(PydicomSeries, PaddingIsAirOnEverySliceWhateverItsRescaleOrEncoding) {
+    for (const std::string name : {"pad-rescale", "pad-range", "pad-us"}) {
+        SCOPED_TRACE(name);
+        const auto volumes = import(name);
+        ASSERT_EQ(volumes.size(), 1u);
+        dicom::DicomSeriesSource src(volumes[0]);
+        const auto& g = src.geometry();
+        const auto v = physical(src);
+        ASSERT_EQ(v.size(), std::size_t(4 * 12 * 16));
+        for (std::uint32_t k = 0; k < 4; ++k)
+            for (std::uint32_t j = 0; j < g.dims[1]; ++j)
+                for (std::uint32_t i = 0; i < g.dims[0]; ++i) {
+                    const bool padding = j == 0 || (name == "pad-range" && j == 1);
+                    const double want = padding ? -1024.0 : 100.0 + 2.0 * i;
+                    ASSERT_NEAR(v[(std::size_t(k) * g.dims[1] + j) * g.dims[0] + i], want, 1e-3)
+                        << "slice " << k << ", row " << j << ", column " << i;
+                }
+    }
+}
+
+// A decimal comma in a DS value ("-20,5"), which DCMTK reads as -20 without a word, refuses
+// the file naming the element; PALETTE COLOR pixels (table indices) are not stacked as values;
+// orientations 2e-6 apart are one stack (they had been split into interleaved halves).
+TEST_F(PydicomSeries, MalformedNumbersPaletteColourAndOrientationNoise) {
+    core::JobContext job;
+    const auto comma = dicom::DicomScanner::scan({dir_->file("dcm/decimal-comma")}, job);
+    EXPECT_TRUE(comma.instances.empty());
+    EXPECT_EQ(comma.broken, 3u);
+    ASSERT_FALSE(comma.brokenReasons.empty());
+    EXPECT_NE(comma.brokenReasons[0].find("ImagePositionPatient '-20,5\\-15\\"), std::string::npos) << comma.brokenReasons[0];
+    EXPECT_NE(comma.brokenReasons[0].find("a decimal comma"), std::string::npos) << comma.brokenReasons[0];
+    std::vector<std::string> notes;
+    EXPECT_TRUE(import("palette", &notes).empty());
+    EXPECT_TRUE(anyContains(notes, "3 images of photometric interpretation PALETTE COLOR")) << ::testing::PrintToString(notes);
+    const auto jitter = import("iop-jitter", &notes);
+    ASSERT_EQ(jitter.size(), 1u) << ::testing::PrintToString(notes);
+    EXPECT_EQ(jitter[0].geometry.dims[2], 8u);
+    EXPECT_NEAR(jitter[0].geometry.spacing.z, 2.5, 1e-3);
+}
