@@ -2,7 +2,10 @@
 // axes run opposite to LPS (an RAS-ordered NIfTI-like grid), at full and reduced levels.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <functional>
+#include <memory>
 
 #include <glm/mat4x4.hpp>
 
@@ -43,6 +46,24 @@ struct Grid {
         return idx.x + 100 * idx.y + 10000 * idx.z;
     }
 };
+/// A float32 volume of `dims` built into an octree of 16³ (or `brick`) bricks, opened.
+std::unique_ptr<core::OctreeReader> octreeOf(const test::TempDir& dir, core::VolumeGeometry g, std::array<std::uint32_t, 3> dims,
+                                             const std::function<double(std::size_t i, std::size_t k)>& value,
+                                             std::uint32_t brick = 16) {
+    g.scalarType = core::ScalarType::Float32;
+    test::DenseVolume v;
+    v.dims = dims;
+    const std::size_t slice = std::size_t(dims[0]) * dims[1];
+    for (std::size_t k = 0; k < dims[2]; ++k)
+        for (std::size_t i = 0; i < slice; ++i) v.values.push_back(value(i, k));
+    test::MemoryVoxelSource source(g, v);
+    core::BuildOptions o;
+    o.brickSize = brick;
+    core::JobContext job;
+    core::OctreeBuilder(o).build(source, dir.file("v.hvo"), job);
+    return core::OctreeReader::open(dir.file("v.hvo"));
+}
+
 }  // namespace
 
 TEST(SliceSampler, FullResolutionSlicesGiveExactValuesInEveryStandardPlane) {
@@ -110,19 +131,8 @@ TEST(SliceSampler, CoarsePixelsReadACoarseLevelThatAveragesTheSameValues) {
 TEST(SliceSampler, AThinSliceOfThickSlicesNeverAveragesTwoOfThem) {
     test::TempDir dir;
     core::VolumeGeometry g;
-    g.scalarType = core::ScalarType::Float32;
     g.spacing = {0.5, 0.5, 3.0};
-    test::DenseVolume v;
-    v.dims = {128, 128, 16};
-    v.values.resize(128 * 128 * 16);
-    for (std::size_t k = 0; k < 16; ++k)
-        for (std::size_t i = 0; i < 128 * 128; ++i) v.values[k * 128 * 128 + i] = k % 2 ? 0.0 : 200.0;
-    test::MemoryVoxelSource source(g, v);
-    core::BuildOptions o;
-    o.brickSize = 16;
-    core::JobContext job;
-    core::OctreeBuilder(o).build(source, dir.file("z.hvo"), job);
-    const auto reader = core::OctreeReader::open(dir.file("z.hvo"));
+    const auto reader = octreeOf(dir, g, {128, 128, 16}, [](std::size_t, std::size_t k) { return k % 2 ? 0.0 : 200.0; });
     core::BrickCache cache(64u << 20);
     const core::SliceSampler sampler(*reader, cache);
     const glm::dvec3 layer4(g.indexToPatient() * glm::dvec4(64, 64, 4, 1.0));
@@ -179,17 +189,7 @@ TEST(SubsampledVoxelSource, KeepsEveryFactorthVoxelInPlace) {
 // is drawn there (it had been, up to 2^level - 1 voxels beyond the volume's edge).
 TEST(SliceSampler, CoarseLevelsStopAtTheVolumesEdge) {
     test::TempDir dir;
-    core::VolumeGeometry g;
-    g.scalarType = core::ScalarType::Float32;
-    test::DenseVolume v;
-    v.dims = {37, 37, 37};
-    v.values.assign(37 * 37 * 37, 100.0);
-    test::MemoryVoxelSource source(g, v);
-    core::BuildOptions o;
-    o.brickSize = 8;
-    core::JobContext job;
-    core::OctreeBuilder(o).build(source, dir.file("e.hvo"), job);
-    const auto reader = core::OctreeReader::open(dir.file("e.hvo"));
+    const auto reader = octreeOf(dir, {}, {37, 37, 37}, [](std::size_t, std::size_t) { return 100.0; }, 8);
     core::BrickCache cache(64u << 20);
     const core::SliceSampler sampler(*reader, cache);
     ASSERT_GE(reader->levelCount(), 3);
