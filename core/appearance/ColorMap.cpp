@@ -9,15 +9,11 @@
 #include <sstream>
 
 #include "core/base/Error.h"
+#include "core/base/Trim.h"
 
 namespace hvx::core {
 
 namespace {
-std::string lower(std::string s) {
-    for (auto& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
 std::uint8_t byte(double v) { return std::uint8_t(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
 
 /// Piecewise linear through (t, r, g, b) stops, t increasing from 0 to 1.
@@ -54,7 +50,7 @@ const std::vector<std::string>& ColorMap::builtinNames() {
 }
 
 ColorMap ColorMap::named(const std::string& name) {
-    const std::string n = lower(name) == "gray" ? "grey" : lower(name);
+    const std::string n = lowercase(name) == "gray" ? "grey" : lowercase(name);
     const auto& names = builtinNames();
     if (std::find(names.begin(), names.end(), n) == names.end()) {
         std::string list;
@@ -69,7 +65,7 @@ ColorMap ColorMap::named(const std::string& name) {
 
 ColorMap ColorMap::namedOrFile(const std::string& nameOrPath) {
     const auto& names = builtinNames();
-    const std::string n = lower(nameOrPath) == "gray" ? "grey" : lower(nameOrPath);
+    const std::string n = lowercase(nameOrPath) == "gray" ? "grey" : lowercase(nameOrPath);
     // Neither a built-in name nor a file: the names are the better answer.
     if (std::find(names.begin(), names.end(), n) != names.end() || !std::ifstream(nameOrPath)) return named(n);
     return load(nameOrPath);
@@ -81,7 +77,7 @@ ColorMap ColorMap::load(const std::string& path) {
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     ColorMap m;
     m.name_ = path.substr(path.find_last_of('/') + 1);
-    const bool lutName = path.size() > 4 && lower(path.substr(path.size() - 4)) == ".lut";
+    const bool lutName = path.size() > 4 && lowercase(path.substr(path.size() - 4)) == ".lut";
     if (lutName && bytes.size() == 768) {  // mricron: planar reds, greens, blues
         for (std::size_t i = 0; i < 256; ++i)
             m.entries_[i] = {std::uint8_t(bytes[i]), std::uint8_t(bytes[256 + i]), std::uint8_t(bytes[512 + i])};

@@ -9,17 +9,13 @@
 #include <sstream>
 
 #include "core/base/Error.h"
+#include "core/base/Trim.h"
 
 namespace hvx::core {
 
 namespace {
-std::string lower(std::string s) {
-    for (auto& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
 bool endsWith(const std::string& s, const std::string& tail) {
-    return s.size() >= tail.size() && lower(s.substr(s.size() - tail.size())) == tail;
+    return s.size() >= tail.size() && lowercase(s.substr(s.size() - tail.size())) == tail;
 }
 
 std::array<std::uint8_t, 4> hueColour(int label) {

@@ -12,16 +12,12 @@
 #include <glm/matrix.hpp>
 
 #include "core/base/Error.h"
+#include "core/base/Trim.h"
 
 namespace hvx::core {
 
 namespace {
 constexpr std::size_t kHeaderLimit = 64 * 1024;
-
-std::string lower(std::string s) {
-    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
 
 bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
 
@@ -86,14 +82,14 @@ LegacyVtkHeader LegacyVtkHeader::read(const std::string& path) {
     };
     auto bad = [&](const std::string& what) { return Error(path + ": legacy VTK header: " + what); };
     std::string line;
-    if (!words.restOfLine(line) || lower(line).rfind("# vtk datafile version", 0) != 0)
+    if (!words.restOfLine(line) || lowercase(line).rfind("# vtk datafile version", 0) != 0)
         throw Error(path + ": not a legacy VTK file (no '# vtk DataFile Version' line first)");
     if (!words.restOfLine(line)) {  // the title
         if (whole) throw bad("it ends after its first line");
         h.streamReason = "its header is longer than 64 KiB";
         return h;
     }
-    const std::string format = lower(words.next());
+    const std::string format = lowercase(words.next());
     if (format.empty() && !whole) {
         h.streamReason = "its header is longer than 64 KiB";
         return h;
@@ -102,14 +98,14 @@ LegacyVtkHeader LegacyVtkHeader::read(const std::string& path) {
         notStreamable("its data is ASCII");
     else if (format != "binary")
         throw bad("its third line is '" + format + "', not ASCII or BINARY");
-    const std::string datasetKey = lower(words.next());
+    const std::string datasetKey = lowercase(words.next());
     const std::string dataset = words.next();
     if (dataset.empty() && !whole) {
         h.streamReason = "its header is longer than 64 KiB";
         return h;
     }
     if (datasetKey != "dataset") throw bad("no DATASET after " + format);
-    if (lower(dataset) != "structured_points") {
+    if (lowercase(dataset) != "structured_points") {
         h.streamReason = "it holds a " + dataset + " dataset";  // VTK's reader refuses it in words of its own
         return h;
     }
@@ -130,7 +126,7 @@ LegacyVtkHeader LegacyVtkHeader::read(const std::string& path) {
     glm::dvec3 step(1.0), origin(0.0);
     glm::dmat3 axes(1.0);
     std::uint64_t points = 0;
-    for (std::string key = lower(words.next());; key = lower(words.next())) {
+    for (std::string key = lowercase(words.next());; key = lowercase(words.next())) {
         if (key == "dimensions") {
             const auto d = numbers(3, "DIMENSIONS");
             for (int a = 0; a < 3; ++a) {
@@ -186,13 +182,13 @@ LegacyVtkHeader LegacyVtkHeader::read(const std::string& path) {
     h.warnings.push_back(path + ": a VTK file names no patient axes: taken as LPS, as ITK writes them");
 
     // The first point attribute: SCALARS name type [components], then LOOKUP_TABLE name.
-    const std::string attribute = lower(words.next());
+    const std::string attribute = lowercase(words.next());
     if (attribute != "scalars") {
         notStreamable("its first point data are " + (attribute.empty() ? std::string("missing") : attribute) + ", not SCALARS");
         return h;
     }
     const std::string name = words.next();
-    const std::string type = lower(words.next());
+    const std::string type = lowercase(words.next());
     std::string rest;
     if (name.empty() || type.empty() || !words.restOfLine(rest)) throw bad("its SCALARS line is incomplete");
     if (const auto first = rest.find_first_not_of(" \t\r"); first != std::string::npos) {
@@ -204,7 +200,7 @@ LegacyVtkHeader LegacyVtkHeader::read(const std::string& path) {
         g.scalarType = storedTypeOf(h.element);
     else
         notStreamable("its SCALARS are of type " + type);
-    if (lower(words.next()) != "lookup_table") {
+    if (lowercase(words.next()) != "lookup_table") {
         notStreamable("its SCALARS have no LOOKUP_TABLE line");
         return h;
     }

@@ -1,6 +1,5 @@
 #include "core/volume/NrrdHeader.h"
 
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -84,11 +83,6 @@ glm::dvec3 unitScales(const std::string& value, const std::string& key, const st
         pos = close + 1;
     }
     return scale;
-}
-
-std::string lowercase(std::string v) {
-    for (char& c : v) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return v;
 }
 
 // Moves h.headerBytes past `lineSkip` lines and `byteSkip` bytes of the data file (teem's
