@@ -1,4 +1,3 @@
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -97,9 +96,7 @@ int buildCommand(int argc, char** argv) {
     // --modality says what a file does not (a NIfTI, NRRD or raw file is "OT"); it never
     // overrides a modality the source names.
     if (const auto m = args.value("modality")) {
-        const bool code = m->size() >= 2 && m->size() <= 8 &&
-                          std::all_of(m->begin(), m->end(), [](char c) { return c >= 'A' && c <= 'Z'; });
-        if (!code) throw core::Error("--modality " + *m + " is not a DICOM modality code (CT, MR, PT, ...)");
+        if (!core::VolumeGeometry::isModalityCode(*m)) throw core::Error("--modality " + *m + " is not a DICOM modality code (CT, MR, PT, ...)");
         const std::string& named = source->geometry().modality;
         if (!named.empty() && named != "OT" && named != *m)
             throw core::Error("--modality " + *m + ": " + args.positional()[0] + " says it is " + named);

@@ -43,9 +43,7 @@ std::string sidecarModality(const std::string& path, std::vector<std::string>& w
     const auto m = doc.find("Modality");
     if (m == doc.end()) return {};
     const std::string v = m->is_string() ? m->get<std::string>() : std::string();
-    const bool code = v.size() >= 2 && v.size() <= 8 &&
-                      std::all_of(v.begin(), v.end(), [](char c) { return c >= 'A' && c <= 'Z'; });
-    if (!code) {
+    if (!VolumeGeometry::isModalityCode(v)) {
         warnings.push_back("its BIDS sidecar " + json + " gives Modality " + m->dump() + ", not a DICOM modality code");
         return {};
     }

@@ -21,6 +21,11 @@ glm::dmat4 VolumeGeometry::indexToPatient() const {
     return m;
 }
 
+bool VolumeGeometry::isModalityCode(const std::string& code) {
+    return code.size() >= 2 && code.size() <= 8 &&
+           std::all_of(code.begin(), code.end(), [](char c) { return c >= 'A' && c <= 'Z'; });
+}
+
 glm::dvec3 VolumeGeometry::nearestVoxelCentre(const glm::dvec3& patient) const {
     const glm::dmat4 toPatient = indexToPatient();
     const glm::dvec3 index(glm::inverse(toPatient) * glm::dvec4(patient, 1.0));

@@ -38,6 +38,8 @@ struct VolumeGeometry {
     /// the default; at most 4 are kept in an .hvo.
     std::vector<DisplayWindow> windows;
 
+    /// Whether `code` has the form of a DICOM modality code (2 to 8 capitals: CT, MR, PT, RTDOSE).
+    static bool isModalityCode(const std::string& code);
     /// Number of voxels (as 64-bit, volumes may exceed 2^32 voxels).
     std::uint64_t voxelCount() const {
         return std::uint64_t(dims[0]) * dims[1] * dims[2];
