@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -53,11 +54,13 @@ struct DicomInstance {
     /// Pixel Padding Range Limit: with it, every stored value between it and pixelPadding
     /// (inclusive) is padding.
     std::optional<double> pixelPaddingLimit;
-    /// Whether stored value `v` is padding (outside the scanned field, not a measurement).
-    bool isPadding(double v) const {
-        if (!pixelPadding) return false;
-        if (!pixelPaddingLimit) return v == *pixelPadding;
-        return v >= std::min(*pixelPadding, *pixelPaddingLimit) && v <= std::max(*pixelPadding, *pixelPaddingLimit);
+    /// The stored values that are padding (outside the scanned field, not measurements), as
+    /// [low, high]; an empty range (low > high) when the image has none. Worked out once per
+    /// image, not per pixel.
+    std::pair<double, double> paddingRange() const {
+        if (!pixelPadding) return {1.0, 0.0};
+        const double limit = pixelPaddingLimit.value_or(*pixelPadding);
+        return {std::min(*pixelPadding, limit), std::max(*pixelPadding, limit)};
     }
     double sliceThickness = 0.0;
     /// WindowCenter/WindowWidth pairs (physical units) with their explanations, first the default.

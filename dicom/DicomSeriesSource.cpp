@@ -80,16 +80,19 @@ void DicomSeriesSource::writeSlice(std::uint32_t z, T* out) {
         if (a == b && !volume_.applyRescale) {
             // Stored values straight through (the common case): integer work only.
             const std::int32_t lo = std::numeric_limits<T>::lowest(), hi = std::numeric_limits<T>::max();
-            const bool pad = ia.pixelPadding.has_value();
             const auto padTo = std::int32_t(std::clamp<double>(std::round(paddingStored_), lo, hi));
+            const auto [padLow, padHigh] = ia.paddingRange();  // stored padding values: integers here
+            const auto pLo = std::int64_t(std::ceil(padLow)), pHi = std::int64_t(std::floor(padHigh));
             for (std::size_t i = 0; i < n; ++i) {
                 const std::int32_t v = va[i];
-                out[i] = T(pad && ia.isPadding(v) ? padTo : std::clamp(v, lo, hi));
+                out[i] = T(v >= pLo && v <= pHi ? padTo : std::clamp(v, lo, hi));
             }
             return;
         }
     }
-    auto value = [&](const DicomInstance& in, const SliceRef& s, std::int32_t v) -> double {
+    const auto padA = ia.paddingRange(), padB = ib.paddingRange();
+    auto value = [&](const DicomInstance& in, const std::pair<double, double>& pad, const SliceRef& s,
+                     std::int32_t v) -> double {
         // The decoder hands 32-bit samples over as int32: unsigned ones at or above 2^31 are
         // taken back as unsigned here, never as negative numbers.
         double raw = in.bitsAllocated == 32 && in.pixelRepresentation == 0 ? double(std::uint32_t(v)) : double(v);
@@ -100,12 +103,12 @@ void DicomSeriesSource::writeSlice(std::uint32_t z, T* out) {
         }
         // Padding is one value for the whole series (-1024 HU for CT), whatever each slice's own
         // rescale: converted with the first slice's, never with this one's.
-        if (in.isPadding(raw)) return volume_.applyRescale ? paddingPhysical_ : paddingStored_;
+        if (raw >= pad.first && raw <= pad.second) return volume_.applyRescale ? paddingPhysical_ : paddingStored_;
         return volume_.applyRescale ? raw * s.rescaleSlope + s.rescaleIntercept : raw;
     };
     for (std::size_t i = 0; i < n; ++i) {
-        double x = value(ia, slices[a], va[i]);
-        if (b != a) x += t * (value(ib, slices[b], vb[i]) - x);
+        double x = value(ia, padA, slices[a], va[i]);
+        if (b != a) x += t * (value(ib, padB, slices[b], vb[i]) - x);
         if constexpr (std::is_floating_point_v<T>) {
             out[i] = T(x);
         } else {
