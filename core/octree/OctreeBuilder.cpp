@@ -225,13 +225,17 @@ private:
 
 }  // namespace
 
+namespace {
+constexpr const char* kLabelsKeepEveryBrick =
+    "a label map keeps every brick: --empty-below would drop whole labels without a word";
+}  // namespace
+
 OctreeBuilder::OctreeBuilder(BuildOptions options) : options_(std::move(options)) {
     if (options_.brickSize < 4 || options_.brickSize > 256)
         throw Error("brick size must be between 4 and 256 voxels");
     if (options_.border < 1 || options_.border > 8) throw Error("border must be between 1 and 8 voxels");
     if (options_.lossy8 && options_.labels) throw Error("label volumes cannot be stored lossy");
-    if (options_.emptyBelow && options_.labels)
-        throw Error("a label map keeps every brick: --empty-below would drop whole labels without a word");
+    if (options_.emptyBelow && options_.labels) throw Error(kLabelsKeepEveryBrick);
 }
 
 BuildReport OctreeBuilder::build(VoxelSource& source, const std::string& output, JobContext& job) {
@@ -246,8 +250,7 @@ BuildReport OctreeBuilder::build(VoxelSource& source, const std::string& output,
         throw Error(source.describe() + ": a label map's classes are its stored values, but the file rescales them (" +
                     scale + "; ITK would read other labels): Holovox does not guess which are meant");
     }
-    if (options_.emptyBelow && g.isLabel)
-        throw Error(source.describe() + ": a label map keeps every brick: --empty-below would drop whole labels without a word");
+    if (options_.emptyBelow && g.isLabel) throw Error(source.describe() + ": " + kLabelsKeepEveryBrick);
     const OctreeLayout layout(g.dims, options_.brickSize);
     std::vector<hvo::NodeRecord> nodes = layout.nodes();
     AtomicFileWriter out(output);
