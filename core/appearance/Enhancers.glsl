@@ -259,6 +259,23 @@ HVX_FN bool hvxHidden(HvxTools t, int hvxBits, vec3 p, vec3 v, float hTheta) {
     return false;
 }
 
+// The stretch of a ray (origin, unit direction dir; t in world mm from the origin) outside which
+// hvxHidden holds for every sample, as (first, last): in the focal probe's focus cone
+// (hTheta = 0) and without MImDA, the chord through the probe's bounding sphere grown by a
+// thousandth of its radius against rounding (empty, first > last, when the ray misses it); the
+// whole ray otherwise. The ray caster starts and ends such a ray there, rather than stepping
+// through the hidden context sample by sample.
+HVX_FN vec2 hvxVisibleSpan(HvxTools t, int hvxBits, vec3 origin, vec3 dir, float hTheta) {
+    if (HVX_TOOL_ON(HVX_MIMDA_BIT) || !HVX_TOOL_ON(HVX_FOCAL_BIT) || hTheta > 0.0f) return vec2(-1e30f, 1e30f);
+    vec3 toC = vec3(t.focalCentre) - origin;
+    float along = dot(toC, dir);
+    float r = t.focalStyle.w * 1.001f;
+    float gap2 = dot(toC, toC) - along * along;  // the squared distance from the centre to the ray's line
+    if (gap2 > r * r) return vec2(1e30f, -1e30f);
+    float chord = sqrt(r * r - gap2);
+    return vec2(along - chord, along + chord);
+}
+
 // Applies the active tools in a fixed order: clip plane, focal probe, context probe, band
 // picker. HVX_TOOL_ON(bit) is a compile-time constant in the shader (a static variant) and a
 // test of hvxBits on the CPU. `entered` becomes true at the first sample inside the focal probe,

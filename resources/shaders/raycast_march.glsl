@@ -79,9 +79,6 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     vec3 inv = rayInverse(d);
     float octPerMm = length(d);
     float nudge = 1e-3 * extent.w / max(1e-12, octPerMm);
-    uint n = 0u;
-    vec3 lo = vec3(0.0), hi = vec3(1.0);
-    hvxDescend(0u, n, lo, hi, o + (t0 + nudge) * d);
 
     vec3 color = vec3(0.0);
     float alpha = 0.0, sum = 0.0, travelled = 0.0;
@@ -96,7 +93,16 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     bool entered = false;
     vec4 accum = vec4(0.0);
     float importanceMax = 0.0;
+    // In the focus cone, what lies outside the probe's bounding sphere is hidden: the ray
+    // starts and ends there (hvxVisibleSpan), on its own sampling grid from t0.
+    vec2 span = hvxVisibleSpan(tools, HVX_TOOLS, ow, dw, hTheta);
+    tIn = max(t0, span.x);
+    t1 = min(t1, span.y);
+    if (!(t1 > tIn)) return vec4(0.0);
 #endif
+    uint n = 0u;
+    vec3 lo = vec3(0.0), hi = vec3(1.0);
+    hvxDescend(0u, n, lo, hi, o + (tIn + nudge) * d);
     // The current leaf: where the ray leaves it, its sampler, step and next sample.
     float dt = 1.0, t = 0.0;
     LeafSampler L;

@@ -116,6 +116,15 @@ int main(int argc, char** argv) {
         add("context probe, axis across the view", T::ContextBit);
         const glm::dvec3 forward = glm::normalize(view.target - view.eye);
         cases.back().rs.tools.context.axis = glm::normalize(glm::cross(forward, view.up));
+        // In the focus cone the rays start and end at the probe's bounding sphere
+        // (core::glsl::hvxVisibleSpan); a wide cone shows what that saves.
+        add("focal probe, focus cone 0.9 of the probe", T::FocalBit);
+        cases.back().rs.tools.focal.rho = 0.9;
+        // What seeing the inside costs by itself: the front half cut away by a clip plane seen
+        // face-on through the probes' centre (a plain cut, tests/render/ToolsTest.cpp).
+        add("cut face-on through the centre", T::ClipBit);
+        cases.back().rs.tools.clip.normal = -forward;
+        cases.back().rs.tools.clip.offset = glm::dot(forward, centre);
         add("no tool, rays never stop early", 0, 2.0);
         add("focal probe, rays never stop early", T::FocalBit, 2.0);
         add("focal probe, half the samples", T::FocalBit, 0.99, 2.0);

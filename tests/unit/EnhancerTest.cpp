@@ -185,8 +185,8 @@ TEST(ToolSet, OutOfRangeParametersAreRefusedAndJsonRoundTrips) {
 }
 
 TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
-    // hvxHidden lets the ray caster skip a sample's gradient and enhancers; each sample it
-    // declares hidden must come out of the whole chain with opacity exactly 0, whatever its
+    // hvxHidden lets the ray caster skip a sample's gradient and enhancers, and hvxVisibleSpan
+    // the samples outside it; each sample they declare hidden must come out of the whole chain with opacity exactly 0, whatever its
     // value, colour, opacity and gradient. Random tools, rays and samples; the chain is run on
     // each hidden one.
     std::mt19937 rng(7);
@@ -198,7 +198,7 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
         return glm::normalize(v);
     };
     using T = core::ToolSet;
-    int hidden = 0, checked = 0;
+    int hidden = 0, checked = 0, outsideSpan = 0;
     for (int bits : {int(T::FocalBit), int(T::ClipBit), int(T::ContextBit), T::ClipBit | T::FocalBit | T::BandBit,
                      T::ClipBit | T::ContextBit | T::FocalBit, T::FocalBit | T::BandBit | T::MimdaBit}) {
         const int hiddenBefore = hidden;
@@ -225,8 +225,15 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
             for (int ray = 0; ray < 50; ++ray) {
                 const glm::vec3 v = glm::normalize(-eye + 40.0f * unit());
                 const float hTheta = (bits & T::FocalBit) ? hvxFocalAngle(tools, eye, v) : 1.0f;
+                // the ray caster starts and ends a ray at hvxVisibleSpan: all outside it is hidden
+                const glm::vec2 span = hvxVisibleSpan(tools, bits, eye, v, hTheta);
                 for (int k = 0; k < 60; ++k) {
-                    const glm::vec3 p = eye + v * (200.0f + 200.0f * pos(rng));
+                    const float along = 200.0f + 200.0f * pos(rng);
+                    const glm::vec3 p = eye + v * along;
+                    if (along < span.x || along > span.y) {
+                        EXPECT_TRUE(hvxHidden(tools, bits, p, v, hTheta)) << "tools " << bits << " outside the span";
+                        ++outsideSpan;
+                    }
                     if (!hvxHidden(tools, bits, p, v, hTheta)) continue;
                     ++hidden;
                     for (int s = 0; s < 4; ++s) {
@@ -246,8 +253,10 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
         if (bits & T::MimdaBit) EXPECT_EQ(hidden, hiddenBefore) << "nothing is hidden under MImDA";
         else EXPECT_GT(hidden, hiddenBefore + 100) << "tools " << bits << " hide something";
     }
-    std::printf("%d hidden samples, %d runs of the chain\n", hidden, checked);
+    std::printf("%d hidden samples, %d runs of the chain, %d samples outside the visible span\n", hidden, checked,
+                outsideSpan);
     EXPECT_GT(hidden, 2000);
+    EXPECT_GT(outsideSpan, 500) << "focus cones that skip part of the ray";
 }
 
 TEST(ToolSet, TheFocalProbesBoundingSphereHoldsTheWholeProbe) {
