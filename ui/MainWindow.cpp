@@ -216,7 +216,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
             }
         });
         connect(s, &SliceView::resampled, this, [this] {
-            for (int k = 0; k < 3; ++k) slices_[k]->setCrossNormals(slices_[(k + 1) % 3]->normal(), slices_[(k + 2) % 3]->normal());
+            for (int k = 0; k < 3; ++k) slices_[k]->setCrossPlanes(slices_[(k + 1) % 3]->plane(), slices_[(k + 2) % 3]->plane());
         });
         connect(s, &SliceView::pointChanged, this, [this, s](const glm::dvec3& p) {
             for (auto* other : slices_)

@@ -9,19 +9,34 @@
 
 namespace hvx::ui {
 
-SliceCrosshair::SliceCrosshair(const core::SlicePlane& plane, QPointF cursor, QSize size, const glm::dvec3& first,
-                               const glm::dvec3& second)
-    : cursor_(cursor), size_(size) {
-    for (const auto& n : {first, second})
-        if (const auto d = direction(plane, n)) directions_.push_back(*d);
+SliceCrosshair::SliceCrosshair(const core::SlicePlane& plane, const glm::dvec3& cursor, const Other& first,
+                               const Other& second)
+    : size_(plane.width, plane.height) {
+    auto widget = [&](const glm::dvec3& x) {
+        return QPointF(plane.width / 2.0 + glm::dot(x - plane.centre, plane.right) / plane.pixelMm,
+                       plane.height / 2.0 + glm::dot(x - plane.centre, plane.down) / plane.pixelMm);
+    };
+    const glm::dvec3 n = plane.normal();
+    const glm::dvec3 onPlane = cursor - n * glm::dot(n, cursor - plane.centre);  // the cursor on this plane
+    for (const Other& o : {first, second}) {
+        const auto d = direction(plane, o.normal);
+        if (!d) continue;
+        // Along this plane, across the line, from the cursor to where the other plane lies.
+        const glm::dvec3 across = glm::cross(n, glm::normalize(glm::cross(n, o.normal)));
+        const double rate = glm::dot(o.normal, across);
+        const double s = std::abs(rate) > 1e-9 ? glm::dot(o.normal, o.point - onPlane) / rate : 0.0;
+        directions_.push_back(*d);
+        anchors_.push_back(widget(onPlane + s * across));
+    }
     if (directions_.size() == 2) {
-        const double r = 0.35 * std::min(size.width(), size.height());
-        for (const QPointF& d : directions_) {
-            handles_.push_back(cursor + r * d);
-            handles_.push_back(cursor - r * d);
+        const double r = 0.35 * std::min(plane.width, plane.height);
+        for (std::size_t k = 0; k < 2; ++k) {
+            handles_.push_back(anchors_[k] + r * directions_[k]);
+            handles_.push_back(anchors_[k] - r * directions_[k]);
         }
     } else {
         directions_ = {QPointF(1, 0), QPointF(0, 1)};
+        anchors_ = {widget(onPlane), widget(onPlane)};
     }
 }
 
@@ -43,9 +58,10 @@ std::optional<QPointF> SliceCrosshair::handleAt(QPointF pos) const {
 void SliceCrosshair::paint(QPainter& p) const {
     p.setPen(QPen(QColor(80, 200, 255, 180), 1));
     const double reach = std::hypot(size_.width(), size_.height());
-    for (const QPointF& d : directions_) {  // a gap of 6 px around the cursor
-        p.drawLine(cursor_ + 6 * d, cursor_ + reach * d);
-        p.drawLine(cursor_ - 6 * d, cursor_ - reach * d);
+    for (std::size_t k = 0; k < directions_.size(); ++k) {  // a gap of 6 px around the cursor
+        const QPointF a = anchors_[k], d = directions_[k];
+        p.drawLine(a + 6 * d, a + reach * d);
+        p.drawLine(a - 6 * d, a - reach * d);
     }
     p.setRenderHint(QPainter::Antialiasing);
     p.setBrush(QColor(80, 200, 255, 120));

@@ -13,15 +13,21 @@ class QPainter;
 
 namespace hvx::ui {
 
-/// The crosshair of a slice view: the lines where the other two planes cut this one, through
-/// the cursor, with a rotation handle on either side of each line (plain horizontal and
-/// vertical lines without handles when the other planes are not known).
+/// The crosshair of a slice view: the lines where the other two planes cut this one, each drawn
+/// where that plane lies (a native plane sits on the nearest voxel layer, up to half a slice
+/// from the cursor), with a rotation handle on either side of each line (plain horizontal and
+/// vertical lines through the cursor, without handles, when the other planes are not known).
 class SliceCrosshair {
 public:
-    /// `plane` is the view's, `cursor` the cursor's widget position, `others` the other planes'
-    /// normals (zero when not known).
-    SliceCrosshair(const core::SlicePlane& plane, QPointF cursor, QSize size, const glm::dvec3& first,
-                   const glm::dvec3& second);
+    /// One of the other views' planes: its normal (zero when not known) and a point on it.
+    struct Other {
+        glm::dvec3 normal{0.0};
+        glm::dvec3 point{0.0};
+        bool operator==(const Other& o) const { return normal == o.normal && point == o.point; }
+    };
+    /// `plane` is the view's (its width and height the widget's), `cursor` the cursor's patient
+    /// position.
+    SliceCrosshair(const core::SlicePlane& plane, const glm::dvec3& cursor, const Other& first, const Other& second);
     /// Screen direction (unit) of the line where a plane with normal `other` cuts `plane`, or none
     /// when they are parallel or `other` is zero.
     static std::optional<QPointF> direction(const core::SlicePlane& plane, const glm::dvec3& other);
@@ -31,9 +37,12 @@ public:
     std::optional<QPointF> handleAt(QPointF pos) const;
     void paint(QPainter& p) const;
 
+    /// Where each line passes nearest the cursor (widget positions, one per line).
+    const std::vector<QPointF>& anchors() const { return anchors_; }
+
 private:
-    QPointF cursor_;
     QSize size_;
+    std::vector<QPointF> anchors_;
     std::vector<QPointF> directions_;
     std::vector<QPointF> handles_;
 };

@@ -374,11 +374,15 @@ QString SliceView::slicePosition() const {
     const glm::dvec3 n = plane().normal();
     const int axis = nearestAxis();
     const long slice = sliceIndex() + 1;
-    // The patient axis the normal runs along, and the point's coordinate on it.
+    // The patient axis the normal runs along, and the coordinate on it of the plane shown (a
+    // native plane lies on the nearest voxel layer, not at the cursor).
     int patientAxis = 0;
     for (int a = 1; a < 3; ++a)
         if (std::abs(n[a]) > std::abs(n[patientAxis])) patientAxis = a;
-    return tr("slice %1/%2 \u2022 %3 mm").arg(slice).arg(g.dims[std::size_t(axis)]).arg(point_[patientAxis], 0, 'f', 1);
+    return tr("slice %1/%2 \u2022 %3 mm")
+        .arg(slice)
+        .arg(g.dims[std::size_t(axis)])
+        .arg(plane().centre[patientAxis], 0, 'f', 1);
 }
 
 QString SliceView::levelReadout() const {
@@ -402,14 +406,17 @@ void SliceView::setFollowsView(bool on) {
     update();
 }
 
-void SliceView::setCrossNormals(const glm::dvec3& first, const glm::dvec3& second) {
-    if (cross_[0] == first && cross_[1] == second) return;
-    cross_[0] = first;
-    cross_[1] = second;
+void SliceView::setCrossPlanes(const core::SlicePlane& first, const core::SlicePlane& second) {
+    const SliceCrosshair::Other a{first.normal(), first.centre}, b{second.normal(), second.centre};
+    if (cross_[0] == a && cross_[1] == b) return;
+    cross_[0] = a;
+    cross_[1] = b;
     update();
 }
 
-SliceCrosshair SliceView::crosshair() const { return {plane(), widgetAt(point_), size(), cross_[0], cross_[1]}; }
+SliceCrosshair SliceView::crosshair() const { return {plane(), point_, cross_[0], cross_[1]}; }
+
+std::vector<QPointF> SliceView::crosshairAnchors() const { return reader_ ? crosshair().anchors() : std::vector<QPointF>{}; }
 
 std::vector<QPointF> SliceView::rotationHandles() const { return reader_ ? crosshair().handles() : std::vector<QPointF>{}; }
 

@@ -16,11 +16,11 @@ class QPainter;
 #include "core/reference/RegionStatistics.h"
 #include "core/reference/SliceSampler.h"
 #include "core/volume/DisplayWindow.h"
+#include "ui/SliceCrosshair.h"
 #include "ui/SliceMeasuring.h"
 
 namespace hvx::ui {
 
-class SliceCrosshair;
 class SliceLayers;
 
 /// One 2D slice view (axial, coronal or sagittal) through the current point, read from the
@@ -89,11 +89,13 @@ public:
     /// owner sets the normal from the camera (setNormal) while it is on.
     bool followsView() const { return followsView_; }
     void setFollowsView(bool on);
-    /// The normals of the other two views' planes: the crosshair draws where they cut this
-    /// plane, with a rotation handle on each side of each line. Zero: plain cursor lines.
-    void setCrossNormals(const glm::dvec3& first, const glm::dvec3& second);
-    /// Widget positions of the rotation handles (two per crosshair line; none without cross normals).
+    /// The other two views' planes as they show them: the crosshair draws where they cut this
+    /// plane, with a rotation handle on each side of each line.
+    void setCrossPlanes(const core::SlicePlane& first, const core::SlicePlane& second);
+    /// Widget positions of the rotation handles (two per crosshair line; none without cross planes).
     std::vector<QPointF> rotationHandles() const;
+    /// Widget positions where the crosshair's lines pass nearest the cursor (one per line).
+    std::vector<QPointF> crosshairAnchors() const;
     /// Degrees between the plane's normal and the standard plane's.
     double tiltDegrees() const;
     /// The orientation letters at the left, right, top and bottom edges ("?" when unknown).
@@ -196,7 +198,7 @@ private:
     double slabMm_ = 0;
     core::SlabMode slabMode_ = core::SlabMode::Mip;
     bool rotating_ = false;  // a crosshair handle is being dragged
-    glm::dvec3 cross_[2]{glm::dvec3(0.0), glm::dvec3(0.0)};  // the other planes' normals
+    SliceCrosshair::Other cross_[2];  // the other views' planes (normal zero: not known)
     double rotateAngle_ = 0;  // screen angle of the handle being dragged, about the cursor (radians)
     /// The crosshair as it is drawn now.
     SliceCrosshair crosshair() const;

@@ -139,6 +139,50 @@ private slots:
         coronal->grab().save(kArtifacts + "/slice-coronal.png");
     }
 
+    // A native plane shows the voxel layer nearest the point, up to half a slice from it: the
+    // crosshair lines of the other views are drawn where that layer is, not where the mouse
+    // was, and the slice readout gives the layer's position (w-ct.hvo: 5 mm voxels).
+    void crosshairLinesLieOnTheLayersShown() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* coronal = window_->slice(1);
+        auto* sagittal = window_->slice(2);
+        QVERIFY(QTest::qWaitForWindowExposed(coronal));
+        const auto geometry = core::OctreeReader::open(dir_.file("w-ct.hvo"))->geometry();
+        const glm::dmat4 toIndex = glm::inverse(geometry.indexToPatient());
+        auto fraction = [&](const glm::dvec3& p) {  // signed distance from the nearest axial layer, in slices
+            const double k = (toIndex * glm::dvec4(p, 1.0)).z;
+            return k - std::round(k);
+        };
+        // A row of the coronal view about 0.4 of a slice off a layer.
+        int row = coronal->height() / 4;
+        for (int y = coronal->height() / 4; y < coronal->height() / 2; ++y)
+            if (std::abs(std::abs(fraction(coronal->patientAt(QPointF(coronal->width() / 2, y)))) - 0.4) <
+                std::abs(std::abs(fraction(coronal->patientAt(QPointF(coronal->width() / 2, row)))) - 0.4))
+                row = y;
+        const QPoint click(coronal->width() / 2, row);
+        QTest::mouseClick(coronal, Qt::LeftButton, Qt::NoModifier, click);
+        const glm::dvec3 clicked = coronal->point();
+        QVERIFY2(std::abs(fraction(clicked)) > 0.3, qPrintable(QString::number(fraction(clicked))));
+        const glm::dvec3 layer = axial->plane().centre;
+        QVERIFY2(std::abs(fraction(layer)) < 1e-6, "the axial view shows a voxel layer");
+        QVERIFY(std::abs(layer.z - clicked.z) > 0.3 * geometry.spacing[2]);
+        QVERIFY2(axial->slicePosition().endsWith(QString::number(layer.z, 'f', 1) + " mm"), qPrintable(axial->slicePosition()));
+        // The coronal and sagittal views draw the axial plane's line on that layer (their second
+        // and first cross planes), a few pixels from the click; each view's own cursor lines
+        // still cross at the point where the views are native to it.
+        for (auto [view, line] : {std::pair{coronal, 1}, std::pair{sagittal, 0}}) {
+            const auto anchors = view->crosshairAnchors();
+            QCOMPARE(anchors.size(), std::size_t(2));
+            const double want = view->widgetAt(layer).y();
+            QVERIFY2(std::abs(anchors[std::size_t(line)].y() - want) < 0.01,
+                     qPrintable(QString("view %1: line at %2, layer at %3").arg(line)
+                                    .arg(anchors[std::size_t(line)].y()).arg(want)));
+            QVERIFY(std::abs(anchors[std::size_t(line)].y() - view->widgetAt(clicked).y()) > 1.0);
+        }
+        saveArtifact("slices-crosshair-on-layers.png");
+    }
+
     // Dragging a crosshair handle in the axial view turns the coronal and sagittal planes about
     // the axial normal: they stay perpendicular to it and to each other, turned by the angle the
     // mouse went round the cursor; the axial crosshair follows the mouse; their letters stay
@@ -156,6 +200,9 @@ private slots:
         const auto right = std::max_element(handles.begin(), handles.end(),
                                             [](const QPointF& a, const QPointF& b) { return a.x() < b.x(); });
         const QPoint press = right->toPoint();
+        // where the horizontal line passes nearest the cursor: within half a slice of it, on the
+        // layer the coronal view shows
+        const QPointF line = axial->crosshairAnchors().at(0);
         const double r = std::hypot(right->x() - c.x(), right->y() - c.y());
         QTest::mousePress(axial, Qt::LeftButton, Qt::NoModifier, press);
         QPoint last = press;
@@ -178,8 +225,9 @@ private slots:
         QCOMPARE(axial->tiltDegrees(), 0.0);
         // The axial crosshair now runs through where the mouse let go (the handle turned by as much
         // as the mouse did about the cursor, from where it was grabbed: the press was rounded to
-        // a whole pixel off the handle's centre).
-        const double grabbed = std::atan2(right->y() - c.y(), right->x() - c.x()) - std::atan2(press.y() - c.y(), press.x() - c.x());
+        // a whole pixel off the handle's centre); the turned planes are no longer native, so
+        // they pass through the cursor itself.
+        const double grabbed = std::atan2(right->y() - line.y(), right->x() - line.x()) - std::atan2(press.y() - c.y(), press.x() - c.x());
         const double mouse = std::atan2(last.y() - c.y(), last.x() - c.x()) + grabbed;
         bool follows = false;
         for (const QPointF& h : axial->rotationHandles())
