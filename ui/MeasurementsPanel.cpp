@@ -34,6 +34,7 @@ QString value(const core::Measurement& m, bool spacingAssumed) {
                        .arg(qulonglong(s.voxels));
     if (s.areaMm2 > 0) text += QObject::tr(", %1 mm\u00b2").arg(s.areaMm2, 0, 'f', 1);
     if (!s.exact) text += QObject::tr(" (approximate: %1)").arg(QString::fromStdString(s.note));
+    else if (!s.note.empty()) text += QStringLiteral(" (%1)").arg(QString::fromStdString(s.note));
     return text;
 }
 

@@ -258,6 +258,29 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
         between = between || from[a] > to[a];
     }
     const glm::dmat4 toPatient = g.indexToPatient();
+    // Whether the region holds voxel centres of the grid continued past the volume's faces: then
+    // it reaches outside, and only its part inside is counted.
+    auto reachesOutside = [&] {
+        std::int64_t a0[3], a1[3];  // the region's index range on the continued grid, one layer past each face at most
+        for (int a = 0; a < 3; ++a) {
+            a0[a] = std::max<std::int64_t>(-1, std::int64_t(std::ceil(first[a] - 1e-9)));
+            a1[a] = std::min<std::int64_t>(std::int64_t(g.dims[std::size_t(a)]), std::int64_t(std::floor(last[a] + 1e-9)));
+        }
+        for (int a = 0; a < 3; ++a)
+            for (const std::int64_t layer : {std::int64_t(-1), std::int64_t(g.dims[std::size_t(a)])}) {
+                if (layer < a0[a] || layer > a1[a]) continue;
+                const int b = (a + 1) % 3, c = (a + 2) % 3;
+                for (std::int64_t u = a0[b]; u <= a1[b]; ++u)
+                    for (std::int64_t v = a0[c]; v <= a1[c]; ++v) {
+                        glm::dvec4 index(0.0, 0.0, 0.0, 1.0);
+                        index[a] = double(layer);
+                        index[b] = double(u);
+                        index[c] = double(v);
+                        if (region.contains(glm::dvec3(toPatient * index))) return true;
+                    }
+            }
+        return false;
+    };
     const std::int64_t bs = reader.brickSize();
     const std::int64_t border = reader.border();
     // Level-0 nodes by grid coordinate.
@@ -329,6 +352,10 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
                  (empty ? std::string("without their values (below the build's --empty-below)") : std::string()) +
                  (empty && lossy ? " or " : "") + (lossy ? std::string("as lossy 8-bit") : std::string()) +
                  ": the figures are approximate";
+    }
+    if (reachesOutside()) {  // the figures are those of the part inside, exact as such
+        s.note += std::string(s.note.empty() ? "" : "; ") +
+                  "the region reaches outside the volume: only the voxels inside the volume are counted";
     }
     if (g.spacingAssumed) {
         s.exact = false;

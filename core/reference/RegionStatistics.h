@@ -56,7 +56,8 @@ struct MeasureRegion {
 /// Statistics of the voxels whose centres lie in a region, in the volume's physical units (HU
 /// for CT), read from the finest level of the octree (level 0), never from a coarser level or
 /// what a view shows. Voxels of bricks stored without their values (empty below a threshold,
-/// or lossy 8-bit) are counted apart: then `exact` is false and `note` says why.
+/// or lossy 8-bit) are counted apart: then `exact` is false and `note` says why. A region that
+/// reaches outside the volume counts its voxels inside it, and `note` says so.
 struct RegionStatistics {
     std::uint64_t voxels = 0;
     double mean = 0, sd = 0, min = 0, max = 0;  ///< physical units; sd is the population SD
@@ -65,7 +66,7 @@ struct RegionStatistics {
     std::uint64_t approximateVoxels = 0;        ///< in empty or lossy bricks
     bool exact = true;
     std::string units;  ///< "HU" for CT, else empty
-    std::string note;   ///< why the figures are not exact, or why there are none
+    std::string note;   ///< why the figures are not exact, why there are none, or that the region reaches outside the volume
 
     /// Throws core::Error when the region is degenerate (radius or a box side <= 0) or lies
     /// wholly outside the volume, and CorruptBrickError for a brick that cannot be read.

@@ -115,10 +115,29 @@ TEST(RegionStatistics, SphereAndBoxesMatchABruteForcePassOnManySmallBricks) {
     EXPECT_NEAR(s.mean, 1000.0, 3.0) << "the ball's HU, noise averaged out";
     // The voxel-centre count of a 10 mm ball in 1 mm voxels is within 2 % of 4/3 pi r^3.
     EXPECT_NEAR(s.volumeMm3, 4.0 / 3.0 * M_PI * 1000.0, 0.02 * 4.0 / 3.0 * M_PI * 1000.0);
-    // A box across the ball's edge, and one cut by the volume's own faces (clamped, not refused).
-    for (const auto& box : {core::MeasureRegion::box(centre - 6.0, centre + glm::dvec3(12.0, 3.0, 8.0)),
-                            core::MeasureRegion::box(g.origin - 30.0, g.origin + glm::dvec3(7.0, 9.0, 11.0))})
-        expectSame(core::RegionStatistics::compute(*reader, box), bruteForce(g, v, box), box.describe());
+    // A box across the ball's edge, and one cut by the volume's own faces (clamped, not refused:
+    // the voxels inside the volume count, and the figures say that the region reached past it).
+    const auto across = core::MeasureRegion::box(centre - 6.0, centre + glm::dvec3(12.0, 3.0, 8.0));
+    const auto inside = core::RegionStatistics::compute(*reader, across);
+    expectSame(inside, bruteForce(g, v, across), across.describe());
+    EXPECT_EQ(inside.note, "");
+    const auto cut = core::MeasureRegion::box(g.origin - 30.0, g.origin + glm::dvec3(7.0, 9.0, 11.0));
+    const auto clamped = core::RegionStatistics::compute(*reader, cut);
+    expectSame(clamped, bruteForce(g, v, cut), cut.describe());
+    EXPECT_TRUE(clamped.exact) << "the figures of the part inside";
+    EXPECT_NE(clamped.note.find("reaches outside the volume: only the voxels inside the volume are counted"),
+              std::string::npos) << clamped.note;
+    // A sphere reaching 1.3 voxels past the last layer holds centres of the grid continued past
+    // the face: said; one that stops short of the last layer, or whose bounding box, not
+    // itself, crosses a corner: not said.
+    const glm::dvec3 far = g.origin + glm::dvec3(49.0, 20.0, 18.0);  // on the last layer along i
+    const auto past = core::RegionStatistics::compute(*reader, core::MeasureRegion::sphere(far + glm::dvec3(-3.7, 0, 0), 5.0));
+    EXPECT_NE(past.note.find("reaches outside"), std::string::npos) << past.note;
+    const auto within = core::RegionStatistics::compute(*reader, core::MeasureRegion::sphere(far + glm::dvec3(-5.2, 0, 0), 5.0));
+    EXPECT_EQ(within.note, "");
+    const glm::dvec3 corner = g.origin + glm::dvec3(3.2, 3.2, 3.2);  // 5.5 mm from the corner voxel's centre
+    const auto nearCorner = core::RegionStatistics::compute(*reader, core::MeasureRegion::sphere(corner, 4.0));
+    EXPECT_EQ(nearCorner.note, "");
 }
 
 // A circle drawn on an axial slice (a disc one slice thick): the voxels of that slice whose
