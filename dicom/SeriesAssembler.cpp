@@ -139,7 +139,15 @@ void finishGeometry(SeriesVolume& v) {
                                               "(no ImageOrientationPatient)");
     if (!fg.hasSpacing) v.warnings.insert(v.warnings.begin(), "spacing unknown, assumed 1 mm (no PixelSpacing)");
     g.modality = first.modality.empty() ? "OT" : first.modality;
-    g.monochrome1 = first.photometric == "MONOCHROME1";
+    // MONOCHROME1 (the lowest value white) is how to show the values, not what they are: a
+    // stack that mixes the two keeps its values and is shown as MONOCHROME2, and says so.
+    std::size_t inverted = 0;
+    for (const auto& s : v.slices) inverted += v.instances[s.instance].photometric == "MONOCHROME1" ? 1 : 0;
+    g.monochrome1 = inverted == v.slices.size();
+    if (inverted && !g.monochrome1)
+        v.warnings.push_back(fmt("%.0f of the %.0f slices are MONOCHROME1 (the lowest value white), the others "
+                                 "MONOCHROME2: shown as MONOCHROME2 (higher values brighter); the values are as stored",
+                                 double(inverted), double(v.slices.size())));
     g.spacingAssumed = !fg.hasSpacing;
     g.orientationAssumed = !fg.hasOrientation;
     g.windows = first.windows;

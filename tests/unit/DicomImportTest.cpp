@@ -5,6 +5,8 @@
 #include <random>
 #include <set>
 
+#include <dcmtk/dcmdata/dctk.h>
+
 #include "core/octree/OctreeBuilder.h"
 #include "core/octree/OctreeReader.h"
 #include "dicom/DicomScanner.h"
@@ -282,4 +284,32 @@ TEST(DicomImport, HounsfieldRescaleAndMonochrome1GoIntoTheOctree) {
     volumes = importFolder(dir.file("cr"));
     ASSERT_EQ(volumes.size(), 1u);
     EXPECT_TRUE(volumes[0].geometry.monochrome1);
+}
+
+TEST(DicomImport, AStackMixingMonochrome1And2KeepsItsValuesAndSaysHowItIsShown) {
+    test::TempDir dir;
+    auto vol = knownVolume({8, 8, 3}, kAxial, {1, 1, 1});
+    core::JobContext job;
+    const auto files = dicom::DicomSeriesWriter::write(vol, dir.file("s"), {}, job);
+    ASSERT_EQ(files.size(), 3u);
+    auto invert = [](const std::string& path) {  // as a scanner writing MONOCHROME1 would label it
+        DcmFileFormat f;
+        ASSERT_TRUE(f.loadFile(path.c_str()).good());
+        ASSERT_TRUE(f.getDataset()->putAndInsertString(DCM_PhotometricInterpretation, "MONOCHROME1").good());
+        ASSERT_TRUE(f.saveFile(path.c_str(), EXS_LittleEndianExplicit).good());
+    };
+    invert(files[0]);
+    invert(files[2]);
+    auto volumes = importFolder(dir.file("s"));
+    ASSERT_EQ(volumes.size(), 1u);
+    EXPECT_FALSE(volumes[0].geometry.monochrome1) << "shown as MONOCHROME2";
+    std::string said;
+    for (const auto& w : volumes[0].warnings) said += w + "\n";
+    EXPECT_NE(said.find("2 of the 3 slices are MONOCHROME1"), std::string::npos) << said;
+    expectSameVolumeInPatientSpace(volumes[0], vol);  // the values as stored
+    invert(files[1]);
+    volumes = importFolder(dir.file("s"));
+    ASSERT_EQ(volumes.size(), 1u);
+    EXPECT_TRUE(volumes[0].geometry.monochrome1) << "every slice MONOCHROME1";
+    for (const auto& w : volumes[0].warnings) EXPECT_EQ(w.find("MONOCHROME"), std::string::npos) << w;
 }
