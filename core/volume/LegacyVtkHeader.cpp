@@ -169,6 +169,23 @@ LegacyVtkHeader LegacyVtkHeader::read(const std::string& path) {
     for (int a = 0; a < 3 && direction; ++a)
         if (std::abs(glm::length(axes[a]) - 1.0) > 1e-3) throw bad("its DIRECTION's column " + std::to_string(a) + " is not a unit direction");
     if (direction && std::abs(glm::determinant(axes)) < 1e-3) throw bad("its DIRECTION has dependent directions");
+    if (direction) {
+        // DIRECTION is no keyword of VTK's legacy format (VTK neither writes nor reads it; its
+        // XML .vti carries the axes): whether its nine numbers are the axes' rows or columns is
+        // defined nowhere, so it is taken only where both readings agree.
+        double asymmetry = 0;
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) asymmetry = std::max(asymmetry, std::abs(axes[c][r] - axes[r][c]));
+        if (asymmetry > 1e-6)
+            throw bad("its DIRECTION is not part of VTK's legacy format, and whether its numbers give the axes by "
+                      "rows or by columns is defined nowhere; these place the volume differently either way, so it "
+                      "is not read (write it as .vti, NRRD, NIfTI or MetaImage, which define their axes)");
+        if (!h.streamReason.empty())
+            throw bad("its DIRECTION is not part of VTK's legacy format, and VTK's reader, which would read this "
+                      "file's data (" + h.streamReason + "), refuses it");
+        h.warnings.push_back(path + ": DIRECTION is not part of VTK's legacy format: taken as written (it reads the "
+                                    "same by rows and by columns)");
+    }
     for (int a = 0; a < 3; ++a) {
         if (step[a] == 0.0) throw bad("its SPACING has a zero");
         g.spacing[a] = std::abs(step[a]);
