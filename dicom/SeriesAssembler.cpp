@@ -139,6 +139,13 @@ void finishGeometry(SeriesVolume& v) {
                                               "(no ImageOrientationPatient)");
     if (!fg.hasSpacing) v.warnings.insert(v.warnings.begin(), "spacing unknown, assumed 1 mm (no PixelSpacing)");
     g.modality = first.modality.empty() ? "OT" : first.modality;
+    // Padding (outside the scanned field) has no value of its own once stacked: say what it became.
+    if (std::any_of(v.slices.begin(), v.slices.end(), [&](const SliceRef& s) { return v.instances[s.instance].pixelPadding.has_value(); }))
+        v.warnings.push_back(g.modality == "CT"
+                                 ? std::string("pixels marked as padding (outside the scanned field) are shown and measured "
+                                               "as -1024 HU, air: a region over them counts them as air")
+                                 : std::string("pixels marked as padding (outside the scanned field) are shown and measured "
+                                               "as the stored type's lowest value (0 when unsigned)"));
     // MONOCHROME1 (the lowest value white) is how to show the values, not what they are: a
     // stack that mixes the two keeps its values and is shown as MONOCHROME2, and says so.
     std::size_t inverted = 0;

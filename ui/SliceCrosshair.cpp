@@ -28,15 +28,20 @@ SliceCrosshair::SliceCrosshair(const core::SlicePlane& plane, const glm::dvec3& 
         directions_.push_back(*d);
         anchors_.push_back(widget(onPlane + s * across));
     }
+    centre_ = widget(onPlane);
     if (directions_.size() == 2) {
+        // The lines cross where a0 + u·d0 = a1 + v·d1 (they are not parallel: the planes differ).
+        const QPointF a = anchors_[1] - anchors_[0], d0 = directions_[0], d1 = directions_[1];
+        const double det = d0.x() * -d1.y() + d1.x() * d0.y();
+        if (std::abs(det) > 1e-9) centre_ = anchors_[0] + d0 * ((a.x() * -d1.y() + d1.x() * a.y()) / det);
         const double r = 0.35 * std::min(plane.width, plane.height);
-        for (std::size_t k = 0; k < 2; ++k) {
-            handles_.push_back(anchors_[k] + r * directions_[k]);
-            handles_.push_back(anchors_[k] - r * directions_[k]);
+        for (const QPointF& d : directions_) {
+            handles_.push_back(centre_ + r * d);
+            handles_.push_back(centre_ - r * d);
         }
     } else {
         directions_ = {QPointF(1, 0), QPointF(0, 1)};
-        anchors_ = {widget(onPlane), widget(onPlane)};
+        anchors_ = {centre_, centre_};
     }
 }
 
@@ -58,10 +63,9 @@ std::optional<QPointF> SliceCrosshair::handleAt(QPointF pos) const {
 void SliceCrosshair::paint(QPainter& p) const {
     p.setPen(QPen(QColor(80, 200, 255, 180), 1));
     const double reach = std::hypot(size_.width(), size_.height());
-    for (std::size_t k = 0; k < directions_.size(); ++k) {  // a gap of 6 px around the cursor
-        const QPointF a = anchors_[k], d = directions_[k];
-        p.drawLine(a + 6 * d, a + reach * d);
-        p.drawLine(a - 6 * d, a - reach * d);
+    for (const QPointF& d : directions_) {  // through the crossing, with a gap of 6 px around it
+        p.drawLine(centre_ + 6 * d, centre_ + reach * d);
+        p.drawLine(centre_ - 6 * d, centre_ - reach * d);
     }
     p.setRenderHint(QPainter::Antialiasing);
     p.setBrush(QColor(80, 200, 255, 120));

@@ -39,9 +39,12 @@ public:
 
     /// Where each line passes nearest the cursor (widget positions, one per line).
     const std::vector<QPointF>& anchors() const { return anchors_; }
+    /// Where the lines cross (the cursor where they are not known): the handles turn about it.
+    QPointF centre() const { return centre_; }
 
 private:
     QSize size_;
+    QPointF centre_;
     std::vector<QPointF> anchors_;
     std::vector<QPointF> directions_;
     std::vector<QPointF> handles_;

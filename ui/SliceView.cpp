@@ -249,6 +249,11 @@ void SliceView::mousePressEvent(QMouseEvent* e) {
                                         measuring_.nearestHandlePx(e->position());
     if (!rotate && measuring_.press(e)) return;  // a measurement's handle, one being drawn, an angle's click
     if (rotate) {
+        // The planes turn about where the lines cross (within half a slice of the cursor, on the
+        // layers shown): the cursor moves there first, so that it stays where they cross.
+        point_ = patientAt(crosshair().centre());
+        emit pointChanged(point_);
+        update();
         const QPointF v = e->position() - widgetAt(point_);
         rotating_ = true;
         rotateAngle_ = std::atan2(v.y(), v.x());
@@ -374,15 +379,14 @@ QString SliceView::slicePosition() const {
     const glm::dvec3 n = plane().normal();
     const int axis = nearestAxis();
     const long slice = sliceIndex() + 1;
-    // The patient axis the normal runs along, and the coordinate on it of the plane shown (a
-    // native plane lies on the nearest voxel layer, not at the cursor).
+    // The patient axis the normal runs along, and the coordinate on it of the cursor on the plane
+    // shown (a native plane lies on the nearest voxel layer, up to half a slice from the cursor).
     int patientAxis = 0;
     for (int a = 1; a < 3; ++a)
         if (std::abs(n[a]) > std::abs(n[patientAxis])) patientAxis = a;
-    return tr("slice %1/%2 \u2022 %3 mm")
-        .arg(slice)
-        .arg(g.dims[std::size_t(axis)])
-        .arg(plane().centre[patientAxis], 0, 'f', 1);
+    const auto p = plane();
+    const glm::dvec3 onPlane = point_ - n * glm::dot(n, point_ - p.centre);
+    return tr("slice %1/%2 \u2022 %3 mm").arg(slice).arg(g.dims[std::size_t(axis)]).arg(onPlane[patientAxis], 0, 'f', 1);
 }
 
 QString SliceView::levelReadout() const {
@@ -417,6 +421,8 @@ void SliceView::setCrossPlanes(const core::SlicePlane& first, const core::SliceP
 SliceCrosshair SliceView::crosshair() const { return {plane(), point_, cross_[0], cross_[1]}; }
 
 std::vector<QPointF> SliceView::crosshairAnchors() const { return reader_ ? crosshair().anchors() : std::vector<QPointF>{}; }
+
+QPointF SliceView::crosshairCentre() const { return crosshair().centre(); }
 
 std::vector<QPointF> SliceView::rotationHandles() const { return reader_ ? crosshair().handles() : std::vector<QPointF>{}; }
 

@@ -96,6 +96,8 @@ public:
     std::vector<QPointF> rotationHandles() const;
     /// Widget positions where the crosshair's lines pass nearest the cursor (one per line).
     std::vector<QPointF> crosshairAnchors() const;
+    /// Where the crosshair's lines cross: the handles turn the other planes about it.
+    QPointF crosshairCentre() const;
     /// Degrees between the plane's normal and the standard plane's.
     double tiltDegrees() const;
     /// The orientation letters at the left, right, top and bottom edges ("?" when unknown).

@@ -266,11 +266,12 @@ HVX_FN bool hvxHidden(HvxTools t, int hvxBits, vec3 p, vec3 v, float hTheta) {
 // whole ray otherwise. The ray caster starts and ends such a ray there, rather than stepping
 // through the hidden context sample by sample.
 HVX_FN vec2 hvxVisibleSpan(HvxTools t, int hvxBits, vec3 origin, vec3 dir, float hTheta) {
-    if (HVX_TOOL_ON(HVX_MIMDA_BIT) || !HVX_TOOL_ON(HVX_FOCAL_BIT) || hTheta > 0.0f) return vec2(-1e30f, 1e30f);
+    if (HVX_TOOL_ON(HVX_MIMDA_BIT) || !HVX_TOOL_ON(HVX_FOCAL_BIT) || !(hTheta <= 0.0f)) return vec2(-1e30f, 1e30f);
     vec3 toC = vec3(t.focalCentre) - origin;
     float along = dot(toC, dir);
     float r = t.focalStyle.w * 1.001f;
-    float gap2 = dot(toC, toC) - along * along;  // the squared distance from the centre to the ray's line
+    vec3 gap = toC - along * dir;  // from the ray's line to the centre (not |toC|² - along², which cancels far away)
+    float gap2 = dot(gap, gap);
     if (gap2 > r * r) return vec2(1e30f, -1e30f);
     float chord = sqrt(r * r - gap2);
     return vec2(along - chord, along + chord);

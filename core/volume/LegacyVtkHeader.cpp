@@ -67,6 +67,14 @@ bool elementOf(const std::string& type, FileElement& e) {
 }  // namespace
 
 LegacyVtkHeader LegacyVtkHeader::read(const std::string& path) {
+    LegacyVtkHeader h = parse(path);
+    if (h.direction_ && !h.streamReason.empty())
+        throw Error(path + ": legacy VTK header: its DIRECTION is not part of VTK's legacy format, and VTK's reader, "
+                           "which would read this file's data (" + h.streamReason + "), refuses it");
+    return h;
+}
+
+LegacyVtkHeader LegacyVtkHeader::parse(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(path + ": cannot open");
     std::string text(kHeaderLimit, '\0');
@@ -146,7 +154,7 @@ LegacyVtkHeader LegacyVtkHeader::read(const std::string& path) {
             const auto d = numbers(9, "DIRECTION");
             for (int r = 0; r < 3; ++r)
                 for (int c = 0; c < 3; ++c) axes[c][r] = d[std::size_t(3 * r + c)];
-            direction = true;
+            direction = h.direction_ = true;
         } else if (key == "point_data") {
             const auto n = numbers(1, "POINT_DATA");
             if (!(n[0] >= 0 && n[0] < 1.8e19) || n[0] != std::floor(n[0])) throw bad("its POINT_DATA is not a count");
@@ -180,9 +188,6 @@ LegacyVtkHeader LegacyVtkHeader::read(const std::string& path) {
             throw bad("its DIRECTION is not part of VTK's legacy format, and whether its numbers give the axes by "
                       "rows or by columns is defined nowhere; these place the volume differently either way, so it "
                       "is not read (write it as .vti, NRRD, NIfTI or MetaImage, which define their axes)");
-        if (!h.streamReason.empty())
-            throw bad("its DIRECTION is not part of VTK's legacy format, and VTK's reader, which would read this "
-                      "file's data (" + h.streamReason + "), refuses it");
         h.warnings.push_back(path + ": DIRECTION is not part of VTK's legacy format: taken as written (it reads the "
                                     "same by rows and by columns)");
     }

@@ -9,8 +9,10 @@
 namespace hvx::core {
 
 /// The header of a legacy VTK file (.vtk) that holds an image: `DATASET STRUCTURED_POINTS` with
-/// DIMENSIONS, SPACING (or ASPECT_RATIO), ORIGIN and, as newer VTK writes it, DIRECTION (nine
-/// numbers, row by row: column a is axis a's direction), then POINT_DATA and its SCALARS.
+/// DIMENSIONS, SPACING (or ASPECT_RATIO), ORIGIN, then POINT_DATA and its SCALARS. DIRECTION is
+/// no keyword of the format (neither VTK nor ITK writes or reads it): nine numbers that some
+/// writers add, by rows or by columns nobody defines, so one is taken, with a warning, only
+/// where both readings agree, and only for data Holovox streams (VTK's reader refuses it).
 /// VTK files name no patient axes; like ITK, which writes them, Holovox takes them as LPS.
 ///
 /// A plain image (BINARY, point data whose first attribute is one-component SCALARS of any
@@ -30,6 +32,10 @@ public:
     /// Parses the header (at most its first 64 KiB); throws core::Error naming the file and the
     /// bad field for a header that is not a legacy VTK image or that contradicts itself.
     static LegacyVtkHeader read(const std::string& path);
+
+private:
+    bool direction_ = false;  // the header holds a DIRECTION
+    static LegacyVtkHeader parse(const std::string& path);
 };
 
 }  // namespace hvx::core

@@ -179,6 +179,7 @@ private slots:
                      qPrintable(QString("view %1: line at %2, layer at %3").arg(line)
                                     .arg(anchors[std::size_t(line)].y()).arg(want)));
             QVERIFY(std::abs(anchors[std::size_t(line)].y() - view->widgetAt(clicked).y()) > 1.0);
+            QVERIFY2(std::abs(view->crosshairCentre().y() - want) < 0.01, "the lines cross on the layer");
         }
         saveArtifact("slices-crosshair-on-layers.png");
     }
@@ -196,13 +197,10 @@ private slots:
         const auto handles = axial->rotationHandles();
         QCOMPARE(handles.size(), std::size_t(4));
         // The handle to the right of the cursor, on the horizontal line (the coronal plane's).
-        const QPointF c = axial->widgetAt(axial->point());
+        const QPointF c = axial->crosshairCentre();  // within half a slice of the cursor: on the layers shown
         const auto right = std::max_element(handles.begin(), handles.end(),
                                             [](const QPointF& a, const QPointF& b) { return a.x() < b.x(); });
         const QPoint press = right->toPoint();
-        // where the horizontal line passes nearest the cursor: within half a slice of it, on the
-        // layer the coronal view shows
-        const QPointF line = axial->crosshairAnchors().at(0);
         const double r = std::hypot(right->x() - c.x(), right->y() - c.y());
         QTest::mousePress(axial, Qt::LeftButton, Qt::NoModifier, press);
         QPoint last = press;
@@ -227,7 +225,7 @@ private slots:
         // as the mouse did about the cursor, from where it was grabbed: the press was rounded to
         // a whole pixel off the handle's centre); the turned planes are no longer native, so
         // they pass through the cursor itself.
-        const double grabbed = std::atan2(right->y() - line.y(), right->x() - line.x()) - std::atan2(press.y() - c.y(), press.x() - c.x());
+        const double grabbed = std::atan2(right->y() - c.y(), right->x() - c.x()) - std::atan2(press.y() - c.y(), press.x() - c.x());
         const double mouse = std::atan2(last.y() - c.y(), last.x() - c.x()) + grabbed;
         bool follows = false;
         for (const QPointF& h : axial->rotationHandles())

@@ -169,6 +169,13 @@ TEST(LegacyVtk, BrokenHeadersAndShortDataAreRefusedNamingTheFile) {
     EXPECT_TRUE(has(refusal(kHead + "SPACING 1 0 1\n" + body), "SPACING has a zero"));
     EXPECT_TRUE(has(refusal(kHead + "DIRECTION 1 1 0 0 0 0 0 0 1\n" + body), "dependent directions"));
     EXPECT_TRUE(has(refusal(kHead + "DIRECTION 2 0 0 0 1 0 0 0 1\n" + body), "not a unit direction"));
+    // DIRECTION on data VTK's reader would read (ASCII, three components): it refuses the
+    // keyword, so the file is refused here in words of its own.
+    EXPECT_TRUE(has(refusal("# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 6 5 4\n"
+                            "DIRECTION 1 0 0 0 1 0 0 0 1\n" + kScalars + "0 1 2\n"),
+                    "VTK's reader, which would read this file's data (its data is ASCII), refuses it"));
+    EXPECT_TRUE(has(refusal(kHead + "DIRECTION 1 0 0 0 1 0 0 0 1\nPOINT_DATA 120\nSCALARS v short 3\nLOOKUP_TABLE default\n"),
+                    "refuses it"));
     // A rotation reads differently by rows and by columns: VTK defines neither.
     EXPECT_TRUE(has(refusal(kHead + "DIRECTION 0 -1 0 1 0 0 0 0 1\n" + body), "by rows or by columns is defined nowhere"));
     EXPECT_TRUE(has(refusal(kHead + "POINT_DATA 119\nSCALARS v short\nLOOKUP_TABLE default\n" + bigEndianBytes(ramp(119))),

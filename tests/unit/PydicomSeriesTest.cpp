@@ -369,6 +369,8 @@ TEST_F(PydicomSeries, PaddingIsAirOnEverySliceWhateverItsRescaleOrEncoding) {
         SCOPED_TRACE(name);
         const auto volumes = import(name);
         ASSERT_EQ(volumes.size(), 1u);
+        EXPECT_TRUE(anyContains(volumes[0].warnings, "padding (outside the scanned field) are shown and measured as -1024 HU"))
+            << ::testing::PrintToString(volumes[0].warnings);
         dicom::DicomSeriesSource src(volumes[0]);
         const auto& g = src.geometry();
         const auto v = physical(src);
