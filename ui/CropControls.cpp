@@ -66,8 +66,11 @@ void CropControls::setVolume(const std::array<std::uint32_t, 3>& dims, const glm
         const glm::dvec3 d = direction[a];
         axes_[std::size_t(a)]->setText(QStringLiteral("%1 (%2\u2192%3)").arg(QChar('i' + a)).arg(towards(-d), towards(d)));
         const double length = double(dims[std::size_t(a)]) * spacing[a];
+        // Two significant digits of the voxel at least (0.1 mm of a 0.05 mm voxel is two voxels).
+        const int decimals = std::clamp(int(std::ceil(-std::log10(spacing[a]))) + 1, 1, 4);
         for (int side = 0; side < 2; ++side) {
             const QSignalBlocker block(faces_[std::size_t(side * 3 + a)]);
+            faces_[std::size_t(side * 3 + a)]->setDecimals(decimals);
             faces_[std::size_t(side * 3 + a)]->setRange(0.0, length);
             faces_[std::size_t(side * 3 + a)]->setSingleStep(spacing[a]);
         }

@@ -221,6 +221,15 @@ private slots:
         enabled->setChecked(true);
         QVERIFY(!crop->box().whole());
         QVERIFY(std::abs(crop->box().max.z - 0.5) < 0.01);  // the field holds tenths of a mm
+        {  // a micro-CT's 0.05 mm voxels: the fields hold thousandths, a face lands on its voxel
+            ui::CropControls fine;
+            fine.setVolume({100, 100, 100}, glm::dvec3(0.05), glm::dmat3(1.0));
+            auto* high = fine.findChild<QDoubleSpinBox*>("cropkHigh");
+            QCOMPARE(high->decimals(), 3);
+            high->setValue(2.45);  // 49 voxels of 100
+            fine.findChild<QCheckBox*>("cropEnabled")->setChecked(true);
+            QVERIFY2(std::abs(fine.box().max.z - 0.49) < 1e-9, qPrintable(QString::number(fine.box().max.z, 'g', 12)));
+        }
         const QImage cropped = settledFrame();
         saveArtifact("crop.png");
         QVERIFY2(difference(whole, cropped) > 1.0, "the crop box changes the frame");
