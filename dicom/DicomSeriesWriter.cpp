@@ -73,7 +73,10 @@ void registerEncoders() {
     static std::once_flag once;
     std::call_once(once, [] {
         DJEncoderRegistration::registerCodecs();
-        DJLSEncoderRegistration::registerCodecs();
+        // Raw, not DCMTK's default "cooked" mode: on incompressible 16-bit data (full-range signed
+        // noise) the cooked encoder of DCMTK 3.6.7 overran its buffer (double free, or slices
+        // CharLS could not decode); `dcmcjpls +pc` does the same, `+pr` does not.
+        DJLSEncoderRegistration::registerCodecs(0, 0, 0, 0, OFFalse);
         DcmRLEEncoderRegistration::registerCodecs();
     });
 }
