@@ -21,6 +21,8 @@ public:
     const core::VolumeGeometry& geometry() const override { return volume_.geometry; }
     void readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) override;
     std::string describe() const override;
+    /// What the stacking assumed or made up (missing slices interpolated, resampling...).
+    std::vector<std::string> warnings() const override { return volume_.warnings; }
     const SeriesVolume& volume() const { return volume_; }
 
 private:

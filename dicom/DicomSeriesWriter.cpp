@@ -82,7 +82,8 @@ void registerEncoders() {
 }
 
 void putCommon(DcmItem* ds, const DicomWriteOptions& o, const core::VolumeGeometry& g, const std::string& modality,
-               const std::string& studyUid, const std::string& seriesUid, const std::string& frameOfReference) {
+               const std::string& studyUid, const std::string& seriesUid, const std::string& frameOfReference,
+               bool eightBit) {
     ds->putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 100");
     ds->putAndInsertString(DCM_PatientName, o.patientName.c_str());
     ds->putAndInsertString(DCM_PatientID, o.patientId.c_str());
@@ -111,7 +112,8 @@ void putCommon(DcmItem* ds, const DicomWriteOptions& o, const core::VolumeGeomet
     ds->putAndInsertString(DCM_PhotometricInterpretation, g.monochrome1 ? "MONOCHROME1" : "MONOCHROME2");
     ds->putAndInsertUint16(DCM_Rows, Uint16(g.dims[1]));
     ds->putAndInsertUint16(DCM_Columns, Uint16(g.dims[0]));
-    const Uint16 bits = g.scalarType == core::ScalarType::UInt8 ? 8 : 16;
+    if (!o.derivation.empty()) ds->putAndInsertString(DCM_DerivationDescription, o.derivation.substr(0, 1024).c_str());
+    const Uint16 bits = eightBit ? 8 : 16;
     ds->putAndInsertUint16(DCM_BitsAllocated, bits);
     ds->putAndInsertUint16(DCM_BitsStored, bits);
     ds->putAndInsertUint16(DCM_HighBit, Uint16(bits - 1));
@@ -202,11 +204,23 @@ void save(DcmFileFormat& file, const std::string& path, E_TransferSyntax xfer, D
     }
 }
 
-void putPixels(DcmItem* ds, const std::vector<std::uint8_t>& bytes, bool eightBit) {
-    if (eightBit) ds->putAndInsertUint8Array(DCM_PixelData, bytes.data(), static_cast<unsigned long>(bytes.size()));
-    else
+/// `bytes` holds the volume's own type: 8-bit values are written as 8 bits, or widened to 16
+/// where `eightBit` is false (CT and MR), 16-bit ones as they are.
+void putPixels(DcmItem* ds, const std::vector<std::uint8_t>& bytes, bool eightBit, bool sourceEightBit) {
+    if (eightBit) {
+        ds->putAndInsertUint8Array(DCM_PixelData, bytes.data(), static_cast<unsigned long>(bytes.size()));
+    } else if (sourceEightBit) {
+        const std::vector<Uint16> wide(bytes.begin(), bytes.end());
+        ds->putAndInsertUint16Array(DCM_PixelData, wide.data(), static_cast<unsigned long>(wide.size()));
+    } else {
         ds->putAndInsertUint16Array(DCM_PixelData, reinterpret_cast<const Uint16*>(bytes.data()),
                                     static_cast<unsigned long>(bytes.size() / 2));
+    }
+}
+
+/// CT and MR images hold 16 bits (PS3.3 C.8.2.1, C.8.3.1); other IODs may hold 8.
+bool writesEightBit(const core::VolumeGeometry& g, const std::string& modality) {
+    return g.scalarType == core::ScalarType::UInt8 && modality != "CT" && modality != "MR";
 }
 
 struct SeriesUids {
@@ -230,7 +244,7 @@ void writeLegacyConvertedEnhanced(core::VoxelSource& source, const std::string& 
     ds->putAndInsertString(DCM_SOPInstanceUID, newUid().c_str());
     const char* type = "DERIVED\\PRIMARY\\VOLUME\\NONE";  // value 2 is PRIMARY in the enhanced IODs
     ds->putAndInsertString(DCM_ImageType, type);
-    putCommon(ds, o, g, modality, uids.study, uids.series, uids.frameOfReference);
+    putCommon(ds, o, g, modality, uids.study, uids.series, uids.frameOfReference, writesEightBit(g, modality));
     ds->putAndInsertString(DCM_InstanceNumber, "1");
     ds->putAndInsertString(DCM_ContentDate, (o.studyDate.empty() ? today() : o.studyDate).c_str());
     ds->putAndInsertString(DCM_ContentTime, "120000");
@@ -290,7 +304,7 @@ void writeLegacyConvertedEnhanced(core::VoxelSource& source, const std::string& 
         source.readSlices(k, 1, all.data() + k * sliceBytes);
         job.report(double(k + 1) / g.dims[2], "writing frames");
     }
-    putPixels(ds, all, g.scalarType == core::ScalarType::UInt8);
+    putPixels(ds, all, writesEightBit(g, modality), g.scalarType == core::ScalarType::UInt8);
     save(file, path, xfer, param);
 }
 }  // namespace
@@ -309,53 +323,75 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
         throw core::Error(source.describe() + ": the source gave no " +
                           (g.spacingAssumed ? std::string("pixel spacing") : std::string("orientation")) +
                           " (Holovox assumed one to show it); an export would write the assumption as a fact");
+    // ImageOrientationPatient states two perpendicular unit vectors: a grid sheared within its
+    // slices has no DICOM form (one sheared along k is a tilted gantry, written as such).
+    if (std::abs(glm::dot(glm::normalize(g.direction[0]), glm::normalize(g.direction[1]))) > 1e-4)
+        throw core::Error(source.describe() + ": its rows and columns are not perpendicular (the grid is sheared "
+                                              "within its slices), which DICOM's Image Orientation cannot state");
     DcmRepresentationParameter* param = nullptr;
     const E_TransferSyntax xfer = syntaxOf(o.transferSyntax, param);
+    const std::filesystem::path target(folder);
     std::error_code ec;
-    std::filesystem::create_directories(folder, ec);
+    if (std::filesystem::exists(target, ec) &&
+        (!std::filesystem::is_directory(target, ec) || !std::filesystem::is_empty(target, ec)))
+        throw core::Error(folder + ": " + (std::filesystem::is_directory(target, ec) ? "already holds files" : "is a file") +
+                          "; an export goes into a new or empty folder, so that it never mixes with or replaces "
+                          "other files");
+    // Written beside the target and renamed to it when whole: a failed or cancelled export
+    // leaves nothing behind.
+    const std::filesystem::path staging = target.string() + ".partial-" + newUid().substr(newUid().size() - 8);
+    std::filesystem::create_directories(staging, ec);
     if (ec) throw core::Error(folder + ": cannot create folder (" + ec.message() + ")");
     const std::string modality = o.modality.empty() ? (g.modality.empty() ? std::string("OT") : g.modality) : o.modality;
+    if (o.enhancedMultiframe && modality != "CT" && modality != "MR") {
+        std::filesystem::remove_all(staging, ec);
+        throw core::Error("an enhanced multi-frame export is Legacy Converted Enhanced CT or MR; " + modality +
+                          " is written as single-frame images (leave out --enhanced)");
+    }
     const std::string studyUid = o.studyUid.empty() ? newUid() : o.studyUid;
     const std::string seriesUid = o.seriesUid.empty() ? newUid() : o.seriesUid;
     // Kept from a DICOM source, so the export registers with it; new otherwise.
     const std::string frameOfReference = o.frameOfReferenceUid.empty() ? newUid() : o.frameOfReferenceUid;
     const std::size_t sliceBytes = std::size_t(g.dims[0]) * g.dims[1] * core::scalarSize(g.scalarType);
-    const bool eightBit = g.scalarType == core::ScalarType::UInt8;
+    const bool eightBit = writesEightBit(g, modality), sourceEightBit = g.scalarType == core::ScalarType::UInt8;
+    std::vector<std::string> names;
+    try {
+        if (o.enhancedMultiframe) {
+            writeLegacyConvertedEnhanced(source, (staging / "ENHANCED.dcm").string(), o, modality,
+                                         {studyUid, seriesUid, frameOfReference}, xfer, param, job);
+            names.push_back("ENHANCED.dcm");
+        } else {
+            std::vector<std::uint8_t> slice(sliceBytes);
+            for (std::uint32_t k = 0; k < g.dims[2]; ++k) {
+                job.throwIfCancelled();
+                DcmFileFormat file;
+                DcmDataset* ds = file.getDataset();
+                const std::string sopUid = newUid();
+                ds->putAndInsertString(DCM_SOPClassUID, sopClassFor(modality));
+                ds->putAndInsertString(DCM_SOPInstanceUID, sopUid.c_str());
+                ds->putAndInsertString(DCM_ImageType, "DERIVED\\SECONDARY\\AXIAL");
+                putCommon(ds, o, g, modality, studyUid, seriesUid, frameOfReference, eightBit);
+                ds->putAndInsertString(DCM_InstanceNumber, std::to_string(k + 1).c_str());
+                putPlane(ds, g, k, true, true, true, true, modality);
+                putModalityModule(ds, modality, g);
+                source.readSlices(k, 1, slice.data());
+                putPixels(ds, slice, eightBit, sourceEightBit);
+                char name[32];
+                std::snprintf(name, sizeof name, "IMG%05u.dcm", k + 1);
+                save(file, (staging / name).string(), xfer, param);
+                names.push_back(name);
+                job.report(double(k + 1) / g.dims[2], "writing slices");
+            }
+        }
+        if (std::filesystem::exists(target, ec)) std::filesystem::remove(target, ec);  // new or empty: checked above
+        std::filesystem::rename(staging, target, ec);
+        if (ec) throw core::Error(folder + ": cannot move the written series into place (" + ec.message() + ")");
+    } catch (...) {
+        std::filesystem::remove_all(staging, ec);
+        throw;
+    }
     std::vector<std::string> paths;
-
-    if (o.enhancedMultiframe && modality != "CT" && modality != "MR")
-        throw core::Error("an enhanced multi-frame export is Legacy Converted Enhanced CT or MR; " + modality +
-                          " is written as single-frame images (leave out --enhanced)");
-    if (o.enhancedMultiframe) {
-        const std::string path = (std::filesystem::path(folder) / "ENHANCED.dcm").string();
-        writeLegacyConvertedEnhanced(source, path, o, modality, {studyUid, seriesUid, frameOfReference}, xfer, param,
-                                     job);
-        paths.push_back(path);
-        return paths;
-    }
-
-    std::vector<std::uint8_t> slice(sliceBytes);
-    for (std::uint32_t k = 0; k < g.dims[2]; ++k) {
-        job.throwIfCancelled();
-        DcmFileFormat file;
-        DcmDataset* ds = file.getDataset();
-        const std::string sopUid = newUid();
-        ds->putAndInsertString(DCM_SOPClassUID, sopClassFor(modality));
-        ds->putAndInsertString(DCM_SOPInstanceUID, sopUid.c_str());
-        ds->putAndInsertString(DCM_ImageType, "DERIVED\\SECONDARY\\AXIAL");
-        putCommon(ds, o, g, modality, studyUid, seriesUid, frameOfReference);
-        ds->putAndInsertString(DCM_InstanceNumber, std::to_string(k + 1).c_str());
-        putPlane(ds, g, k, true, true, true, true, modality);
-        putModalityModule(ds, modality, g);
-        source.readSlices(k, 1, slice.data());
-        putPixels(ds, slice, eightBit);
-        char name[32];
-        std::snprintf(name, sizeof name, "IMG%05u.dcm", k + 1);
-        const std::string path = (std::filesystem::path(folder) / name).string();
-        save(file, path, xfer, param);
-        paths.push_back(path);
-        job.report(double(k + 1) / g.dims[2], "writing slices");
-    }
+    for (const auto& n : names) paths.push_back((target / n).string());
     return paths;
 }
 

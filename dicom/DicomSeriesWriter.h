@@ -9,10 +9,14 @@ namespace hvx::dicom {
 
 /// What to put in the DICOM objects that export a volume.
 struct DicomWriteOptions {
-    std::string patientName = "HOLOVOX^DEMO";
-    std::string patientId = "HVX0001";
-    std::string patientBirthDate = "19700101";
-    std::string patientSex = "O";
+    /// Who the images are of: empty (DICOM's "unknown") unless given; never made up.
+    std::string patientName;
+    std::string patientId;
+    std::string patientBirthDate;
+    std::string patientSex;
+    /// What the export did to the images (Derivation Description, at most 1024 characters):
+    /// the source's warnings, such as slices interpolated where the series had none.
+    std::string derivation;
     std::string studyDescription = "Holovox export";
     std::string seriesDescription = "Volume";
     std::string studyDate;  ///< YYYYMMDD; today when empty
@@ -31,9 +35,12 @@ struct DicomWriteOptions {
 
 /// Writes a volume as a DICOM series (one file per k-slice, or one enhanced multi-frame
 /// object), with exact ImagePositionPatient / ImageOrientationPatient / PixelSpacing from the
-/// volume's geometry (a sheared geometry gives a tilted-gantry stack) and its rescale. Each
-/// file is written under a temporary name and renamed. Holovox uses it to export, to seed the
-/// demo archive, and to write test series with known geometry.
+/// volume's geometry (a sheared geometry gives a tilted-gantry stack; rows and columns must be
+/// perpendicular) and its rescale. The series is written into a folder beside the target and
+/// renamed to it when whole, so a failed or cancelled export leaves nothing, and the target
+/// must be new or empty, so an export never mixes with or replaces other files. 8-bit volumes
+/// are widened to 16 bits for CT and MR, whose IODs allow no other. Holovox uses it to export,
+/// to seed the demo archive, and to write test series with known geometry.
 class DicomSeriesWriter {
 public:
     /// Writes into `folder` (created if needed); returns the file paths in slice order.

@@ -86,17 +86,12 @@ pid_t archivePid(const DemoArchive::Config& c) {
     return line.find("Orthanc") != std::string::npos && line.find(config) != std::string::npos ? pid : 0;
 }
 
-/// Writes one demo series into `folder` unless it is there: into a folder beside it, renamed
-/// into place when whole, so that a write cut short leaves nothing that looks complete.
+/// Writes one demo series into `folder` unless it is there (the writer renames a series into
+/// place only when whole, so a write cut short leaves nothing that looks complete).
 std::vector<std::string> writeOnce(const fs::path& folder, core::VoxelSource& source, const dicom::DicomWriteOptions& o,
                                    core::JobContext& job) {
     std::vector<std::string> files;
-    if (!fs::exists(folder)) {
-        const fs::path partial = folder.string() + ".partial";
-        fs::remove_all(partial);
-        dicom::DicomSeriesWriter::write(source, partial.string(), o, job);
-        fs::rename(partial, folder);
-    }
+    if (!fs::exists(folder)) dicom::DicomSeriesWriter::write(source, folder.string(), o, job);
     for (const auto& e : fs::directory_iterator(folder))
         if (e.is_regular_file()) files.push_back(e.path().string());
     std::sort(files.begin(), files.end());

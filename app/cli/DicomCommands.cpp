@@ -242,24 +242,41 @@ int exportDicomCommand(int argc, char** argv) {
         reopen = [volume] { return std::make_unique<dicom::DicomSeriesSource>(volume); };
     } else {
         input = args.positional()[0];
+        if (std::filesystem::path(input).extension() == ".hvo")
+            throw core::Error(input + ": export-dicom writes the source a volume was built from (a NIfTI, NRRD, ... "
+                                      "file, or an imported series with --series-uid), not its octree");
         const auto volume = std::uint32_t(args.integer("volume", 1, 1, 1 << 20) - 1);  // 1-based, as build's
         reopen = [input, volume] { return core::VoxelSourceFactory::open(input, {}, volume); };
     }
     source = reopen();
-    for (const auto& w : source->warnings()) std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
-    core::RescaledInt16Source* rescaled = nullptr;
-    if (source->geometry().scalarType == core::ScalarType::Float32) {
-        // DICOM images hold integers: a first pass finds the range, the second writes 16 bits
-        // over it, and the largest error is reported.
-        const auto [lo, hi] = core::RescaledInt16Source::physicalRange(*source);
-        auto r = std::make_unique<core::RescaledInt16Source>(reopen(), lo, hi);
-        rescaled = r.get();
-        source = std::move(r);
+    // What the source assumed or made up is said here and written into every image
+    // (Derivation Description): an interpolated slice must not pass for an acquired one.
+    std::string derivation = "Holovox export of " + (fromSeries ? "series " + input : std::filesystem::path(input).filename().string());
+    for (const auto& w : source->warnings()) {
+        std::fprintf(stderr, "holovox-cli: warning: %s\n", w.c_str());
+        derivation += "; " + w;
     }
+    o.derivation = derivation;
     if (auto v = args.value("modality")) {
         static const std::set<std::string> known = {"CT", "MR", "PT", "NM", "OT", "US", "XA", "CR", "DX", "RTDOSE", "SEG"};
         if (!known.count(*v)) throw core::Error("--modality " + *v + " is not a DICOM modality Holovox writes");
         o.modality = *v;
+    }
+    core::RescaledInt16Source* rescaled = nullptr;
+    if (source->geometry().scalarType == core::ScalarType::Float32) {
+        // DICOM images hold integers: a first pass finds the range, the second writes 16 bits
+        // over it, and the largest error is reported. A CT's HU must stay within half a unit:
+        // one far value (an outlier) would otherwise coarsen every other.
+        const auto [lo, hi] = core::RescaledInt16Source::physicalRange(*source);
+        const std::string modality = o.modality.empty() ? source->geometry().modality : o.modality;
+        const double halfStep = (hi - lo) / 65535.0 / 2.0;
+        if (modality == "CT" && halfStep > 0.5)
+            throw core::Error(input + ": its float values run from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                              " HU; as 16-bit integers every value would move by up to " + std::to_string(halfStep) +
+                              " HU (a CT holds about -1024 to 3071 HU: is a value wrong?)");
+        auto r = std::make_unique<core::RescaledInt16Source>(reopen(), lo, hi);
+        rescaled = r.get();
+        source = std::move(r);
     }
     if (auto v = args.value("syntax")) o.transferSyntax = *v;
     if (auto v = args.value("patient")) o.patientName = *v;
@@ -269,6 +286,9 @@ int exportDicomCommand(int argc, char** argv) {
     if (auto v = args.value("date")) o.studyDate = *v;
     if (auto v = args.value("accession")) o.accessionNumber = *v;
     o.enhancedMultiframe = args.flag("enhanced");
+    if (!fromSeries && !args.value("patient") && !args.value("patient-id"))
+        std::fprintf(stderr, "holovox-cli: warning: no --patient or --patient-id: the patient's name and ID are left "
+                             "empty (unknown), not made up\n");
     ProgressBar bar("export");
     core::JobContext job(bar.observer());
     SignalCancel cancel(job);

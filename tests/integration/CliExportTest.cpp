@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -146,6 +147,17 @@ TEST(CliExport, ASeriesKeepsItsPatientStudyAndFrameOfReference) {
         EXPECT_EQ(in.modality, "MR");
     }
     EXPECT_EQ(errorLines(dir.file("out/IMG00001.dcm")), 0u);
+    // What the stacking did is said and written into each image: the 4th slice of `offline`
+    // lies 2 mm off the stack's line and was placed by its position along it.
+    r = test::runCommand(cli + " import " + dir.file("cases/offline") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const auto offline = dicom::DicomScanner::scan({dir.file("cases/offline")}, job);
+    r = test::runCommand(cli + " export-dicom --series-uid " + offline.instances.front().seriesInstanceUid + db + " -o " +
+                         dir.file("off"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("off the stack's line"), std::string::npos) << r.output;
+    const auto dump = test::runCommand("dcmdump +L +P DerivationDescription " + dir.file("off/IMG00003.dcm") + " 2>&1");
+    EXPECT_NE(dump.output.find("off the stack's line"), std::string::npos) << dump.output;
 }
 
 // A 4-D file exports the volume asked for (--volume had been accepted and ignored: volume 1
@@ -184,4 +196,76 @@ TEST(CliExport, AFourDimensionalFileExportsTheVolumeAsked) {
                                        dir.file("none") + " 2>&1");
     EXPECT_NE(past.exitCode, 0);
     EXPECT_NE(past.output.find("holds 3 volumes; there is no volume 4"), std::string::npos) << past.output;
+}
+
+// What an export must never do: mix with or replace files already in its folder, leave half a
+// series behind when it fails, write an orientation DICOM cannot state, coarsen a CT's HU by
+// an outlier, make up a patient, or write 8-bit CT/MR (their IODs hold 16 bits).
+TEST(CliExport, AnExportNeverMixesFilesLeavesHalfASeriesOrMakesThingsUp) {
+    test::TempDir dir;
+    const std::string script =
+        "import gzip, sys, numpy as np\n"
+        "def nrrd(path, a, kind, dirs='(1,0,0) (0,1,0) (0,0,2)', enc='raw', cut=False):\n"
+        "    h = ('NRRD0004\\ntype: %s\\ndimension: 3\\nsizes: %d %d %d\\nspace: left-posterior-superior\\n'\n"
+        "         'space directions: %s\\nencoding: %s\\nendian: little\\n\\n') % (kind, a.shape[2], a.shape[1], a.shape[0], dirs, enc)\n"
+        "    data = a.tobytes() if enc == 'raw' else gzip.compress(a.tobytes())\n"
+        "    open(path, 'wb').write(h.encode() + (data[:len(data) // 2] if cut else data))\n"
+        "rng = np.random.default_rng(3)\n"
+        "out = sys.argv[1]\n"
+        "nrrd(out + '/u8.nrrd', rng.integers(0, 256, (5, 24, 32), dtype=np.uint8), 'uchar')\n"
+        "nrrd(out + '/cut.nrrd', rng.integers(-1000, 3000, (40, 64, 64), dtype=np.int16), 'short', enc='gzip', cut=True)\n"
+        "nrrd(out + '/shear.nrrd', np.zeros((4, 24, 32), np.int16), 'short', dirs='(1,0,0) (0.3,1,0) (0,0,2)')\n"
+        "f = rng.uniform(-1000, 3000, (4, 24, 32)).astype(np.float32); f[2, 5, 5] = 3e8\n"
+        "nrrd(out + '/outlier.nrrd', f, 'float')\n";
+    std::ofstream(dir.file("make.py")) << script;
+    auto r = test::runCommand("/usr/bin/python3 " + dir.file("make.py") + " " + dir.path().string() + " 2>&1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    auto files = [&](const std::string& folder) {
+        std::size_t n = 0;
+        for (const auto& e : std::filesystem::directory_iterator(dir.file(folder))) n += e.is_regular_file();
+        return n;
+    };
+    // 8-bit as CT: widened to 16 bits, free of dciodvfy errors, the values as they were; no
+    // patient given: the name and ID are left empty, and the command says so.
+    r = test::runCommand(cli + " export-dicom " + dir.file("u8.nrrd") + " --modality CT -o " + dir.file("u8"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("the patient's name and ID are left empty"), std::string::npos) << r.output;
+    EXPECT_EQ(errorLines(dir.file("u8/IMG00001.dcm")), 0u) << test::runCommand("dciodvfy " + dir.file("u8/IMG00001.dcm") + " 2>&1").output;
+    const std::string check =
+        "import pydicom, glob, sys, numpy as np\n"
+        "s = sorted((pydicom.dcmread(f) for f in glob.glob(sys.argv[1] + '/IMG*.dcm')), key=lambda d: d.InstanceNumber)\n"
+        "a = np.stack([d.pixel_array for d in s])\n"
+        "raw = np.fromfile(sys.argv[2], np.uint8)[-a.size:].reshape(a.shape)\n"
+        "assert s[0].BitsAllocated == 16, s[0].BitsAllocated\n"
+        "assert np.array_equal(a, raw)\n"
+        "assert str(s[0].PatientName) == '' and s[0].PatientID == '', (s[0].PatientName, s[0].PatientID)\n"
+        "print('ok')\n";
+    std::ofstream(dir.file("check.py")) << check;
+    r = test::runCommand("/usr/bin/python3 " + dir.file("check.py") + " " + dir.file("u8") + " " + dir.file("u8.nrrd") + " 2>&1");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    // Into a folder that holds files: refused, and the files stay as they were.
+    r = test::runCommand(cli + " export-dicom " + dir.file("u8.nrrd") + " --patient OTHER -o " + dir.file("u8"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("already holds files"), std::string::npos) << r.output;
+    EXPECT_EQ(files("u8"), 5u);
+    // A source that fails half way (gzip data cut short): nothing left, neither the folder nor
+    // the one beside it the series was written into.
+    r = test::runCommand(cli + " export-dicom " + dir.file("cut.nrrd") + " --patient P -o " + dir.file("cut"));
+    EXPECT_NE(r.exitCode, 0);
+    std::size_t left = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+        left += e.path().filename().string().rfind("cut", 0) == 0 && e.path().extension() != ".nrrd";
+    EXPECT_EQ(left, 0u) << r.output;
+    // Rows and columns not perpendicular: no DICOM orientation states it.
+    r = test::runCommand(cli + " export-dicom " + dir.file("shear.nrrd") + " --patient P -o " + dir.file("shear"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("rows and columns are not perpendicular"), std::string::npos) << r.output;
+    // One float CT value of 3e8 would move every HU by thousands.
+    r = test::runCommand(cli + " export-dicom " + dir.file("outlier.nrrd") + " --modality CT --patient P -o " + dir.file("f"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("is a value wrong?"), std::string::npos) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("f")));
+    // An octree is not a source.
+    r = test::runCommand(cli + " export-dicom " + dir.file("x.hvo") + " -o " + dir.file("x"));
+    EXPECT_NE(r.output.find("not its octree"), std::string::npos) << r.output;
 }
