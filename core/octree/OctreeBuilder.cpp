@@ -274,6 +274,15 @@ BuildReport OctreeBuilder::build(VoxelSource& source, const std::string& output,
         }
     });
     job.throwIfCancelled();
+    // A label is a class: held as a 32-bit float (the type wide integer files are kept as), it
+    // is exact only below 2^24 in magnitude, where two neighbouring classes would become one.
+    const double largest = std::max(std::abs(double(nodes[0].minValue)), std::abs(double(nodes[0].maxValue)));
+    if ((options_.labels || g.isLabel) && g.scalarType == ScalarType::Float32 && largest >= 16777216.0) {
+        char value[48];
+        std::snprintf(value, sizeof value, "%.0f", largest);
+        throw Error(source.describe() + ": its labels reach " + value + " in magnitude; Holovox keeps labels exactly "
+                    "only below 16777216 (2^24), and larger ones would merge or change: renumber the classes");
+    }
 
     hvo::finishFile(header, nodes, out);
 

@@ -127,6 +127,32 @@ TEST(BuilderOptions, ALabelMapWithARescaleIsRefused) {
     EXPECT_NO_THROW(core::OctreeBuilder(o).build(plain, dir.file("l.hvo"), job));
 }
 
+// Labels are held as 32-bit floats when the file's integers are wider: beyond 2^24 two classes
+// would become one (16777217 reads as 16777216), so such a map is refused and nothing is written.
+TEST(BuilderOptions, LabelsBeyondWhatAFloatHoldsExactlyAreRefused) {
+    test::TempDir dir;
+    core::VolumeGeometry g;
+    g.scalarType = core::ScalarType::Float32;
+    test::DenseVolume v;
+    v.dims = {8, 8, 8};
+    v.values.assign(512, 0.0);
+    v.values[3] = 16777215.0;  // the largest kept
+    core::BuildOptions o;
+    o.labels = true;
+    core::JobContext job;
+    test::MemoryVoxelSource fits(g, v);
+    EXPECT_NO_THROW(core::OctreeBuilder(o).build(fits, dir.file("ok.hvo"), job));
+    v.values[7] = -16777216.0;
+    test::MemoryVoxelSource beyond(g, v);
+    try {
+        core::OctreeBuilder(o).build(beyond, dir.file("l.hvo"), job);
+        ADD_FAILURE() << "built";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("its labels reach 16777216 in magnitude"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("l.hvo")));
+}
+
 TEST(BuilderOptions, SummaryCountsLevelsNodesAndCompression) {
     test::TempDir dir;
     core::PhantomVoxelSource p({100, 60, 20}, 5);
