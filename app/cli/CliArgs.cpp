@@ -33,7 +33,8 @@ CliArgs::CliArgs(int argc, char** argv, int first, const std::vector<std::string
                 if (i + 1 >= argc) throw core::Error("option --" + name + " needs a value");
                 value = argv[++i];
             }
-            values_[name] = value;
+            // Given twice, one would be silently dropped: which was meant is not for Holovox to guess.
+            if (!values_.emplace(name, value).second) throw core::Error("option --" + name + " is given twice");
         } else {
             throw core::Error("unknown option --" + name);
         }

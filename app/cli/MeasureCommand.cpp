@@ -25,6 +25,7 @@ int measureCommand(int argc, char** argv) {
     if (s.voxels) {
         std::printf("  mean    %.6g %s\n  sd      %.6g %s\n  min     %.6g %s\n  max     %.6g %s\n", s.mean, u, s.sd, u,
                     s.min, u, s.max, u);
+        if (s.areaMm2 > 0) std::printf("  area    %.6g mm2 (a region drawn on a slice)\n", s.areaMm2);
         std::printf("  volume  %.6g mm3 (%.6g ml)\n", s.volumeMm3, s.volumeMm3 / 1000.0);
     }
     if (!s.note.empty()) std::printf("  note    %s\n", s.note.c_str());

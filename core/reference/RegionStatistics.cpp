@@ -124,7 +124,9 @@ MeasureRegion MeasureRegion::parse(const std::string& text) {
         for (std::string part; std::getline(in, part, ',');) {
             char* end = nullptr;
             const double x = std::strtod(part.c_str(), &end);
-            if (part.empty() || *end != '\0' || !std::isfinite(x)) {
+            // decimal numbers only (strtod also reads hex, "0x3" for 3); no empty field, none after a trailing comma
+            const bool decimal = part.find_first_not_of("0123456789+-.eE ") == std::string::npos;
+            if (part.empty() || !decimal || *end != '\0' || !std::isfinite(x) || text.back() == ',') {
                 v.clear();
                 break;
             }
@@ -252,11 +254,30 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
     bool between = false;         // inside the volume, but around no voxel centre
     for (int a = 0; a < 3; ++a) {
         const double size = double(g.dims[std::size_t(a)]);
+        if (std::isnan(first[a]) || std::isnan(last[a]))
+            throw Error("the " + region.describe() + " is too large to place on the volume's grid");
         if (last[a] < -0.5 || first[a] > size - 0.5) throw Error("the " + region.describe() + " lies outside the volume");
+        // Clamped before the conversion to integers: a region of 1e19 mm holds the whole volume.
+        first[a] = std::max(first[a], -2.0);
+        last[a] = std::min(last[a], size + 1.0);
         from[a] = std::max<std::int64_t>(0, std::int64_t(std::ceil(first[a] - 1e-9)));
         to[a] = std::min<std::int64_t>(std::int64_t(size) - 1, std::int64_t(std::floor(last[a] + 1e-9)));
         between = between || from[a] > to[a];
     }
+    // A region that holds no voxel centre lies outside the volume when its centre does (the box
+    // test above passes an oblique volume's corner), else between the centres.
+    auto noVoxel = [&]() -> RegionStatistics {
+        const glm::dvec3 c(toIndex * glm::dvec4(region.kind == MeasureRegion::Kind::Box ? 0.5 * (region.low + region.high)
+                                                                                      : region.centre, 1.0));
+        for (int a = 0; a < 3; ++a)
+            if (c[a] < -0.5 || c[a] > double(g.dims[std::size_t(a)]) - 0.5)
+                throw Error("the " + region.describe() + " lies outside the volume");
+        RegionStatistics none;
+        none.units = g.modality == "CT" ? "HU" : "";
+        none.exact = false;
+        none.note = "no voxel centre lies in the " + region.describe() + " (it is smaller than a voxel)";
+        return none;
+    };
     const glm::dmat4 toPatient = g.indexToPatient();
     // Whether the region holds voxel centres of the grid continued past the volume's faces: then
     // it reaches outside, and only its part inside is counted.
@@ -294,11 +315,7 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
 
     RegionStatistics s;
     s.units = g.modality == "CT" ? "HU" : "";
-    if (between) {
-        s.exact = false;
-        s.note = "no voxel centre lies in the " + region.describe() + " (it is smaller than a voxel)";
-        return s;
-    }
+    if (between) return noVoxel();
     double mean = 0, m2 = 0;  // Welford's running mean and sum of squared deviations
     double minV = std::numeric_limits<double>::max(), maxV = std::numeric_limits<double>::lowest();
     bool lossy = false, empty = false;
@@ -333,11 +350,7 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
                     empty = empty || b.empty;
                 }
             }
-    if (s.voxels == 0) {
-        s.note = "no voxel centre lies in the " + region.describe() + " (it is smaller than a voxel)";
-        s.exact = false;
-        return s;
-    }
+    if (s.voxels == 0) return noVoxel();
     const double n = double(s.voxels);
     s.mean = mean;
     s.sd = std::sqrt(std::max(0.0, m2 / n));

@@ -99,6 +99,14 @@ TEST(CliCommands, MeasureAgreesWithNumpyOverVtksReadingOfTheSameFile) {
     r = test::runCommand(cli + " measure " + dir.file("p.hvo") + " --roi ellipse:1,2");
     EXPECT_NE(r.exitCode, 0);
     EXPECT_NE(r.output.find("is not a region"), std::string::npos) << r.output;
+    // Two regions given: which was meant is not guessed (the last had been measured).
+    r = test::runCommand(cli + " measure " + dir.file("p.hvo") + " --roi sphere:0,0,0,2 --roi sphere:0,0,0,8");
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("option --roi is given twice"), std::string::npos) << r.output;
+    // A circle drawn on a slice (a disc) gives its area as well as its volume.
+    r = test::runCommand(cli + " measure " + dir.file("p.hvo") + " --roi disc:10,-20,5,0,0,1,30,20");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("  area    "), std::string::npos) << r.output;
 }
 
 // slice: an axial plane through voxel centres, windowed, read back by VTK's PNG reader, equals

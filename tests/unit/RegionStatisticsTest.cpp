@@ -225,9 +225,32 @@ TEST(RegionStatistics, DegenerateOutsideAndSubVoxelRegionsAreNamed) {
     EXPECT_EQ(tiny.voxels, 0u);
     EXPECT_FALSE(tiny.exact);
     EXPECT_NE(tiny.note.find("smaller than a voxel"), std::string::npos) << tiny.note;
+    // A region of 1e19 mm holds the whole volume (its index range had overflowed to nothing).
+    const auto huge = core::RegionStatistics::compute(*reader, core::MeasureRegion::sphere(g.origin, 1e19));
+    EXPECT_EQ(huge.voxels, 8000u);
+    EXPECT_NE(huge.note.find("reaches outside the volume"), std::string::npos) << huge.note;
+    EXPECT_EQ(core::RegionStatistics::compute(*reader, core::MeasureRegion::box(g.origin - 1e20, g.origin + 1e20)).voxels, 8000u);
+    // A volume turned 45 degrees about z: a sphere beyond its corner, within the corner's
+    // patient-axis box, lies outside the volume (it had been called smaller than a voxel).
+    auto turned = g;
+    const double c = std::sqrt(0.5);
+    turned.direction = glm::dmat3(glm::dvec3(c, c, 0), glm::dvec3(-c, c, 0), glm::dvec3(0, 0, 1));
+    test::TempDir dir2;
+    const auto oblique = core::OctreeReader::open(build(dir2, turned, v));
+    const glm::dvec3 corner = turned.origin + glm::dvec3(0, 0, 10);  // voxel (0, 0, 10)
+    const glm::dvec3 beyond = corner + 6.0 * glm::normalize(-(turned.direction[0] + turned.direction[1]));
+    try {
+        const auto s = core::RegionStatistics::compute(*oblique, core::MeasureRegion::sphere(beyond, 3.0));
+        ADD_FAILURE() << "measured: " << s.voxels << " voxels, " << s.note;
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("lies outside the volume"), std::string::npos) << e.what();
+    }
     EXPECT_THROW(core::MeasureRegion::parse("sphere:1,2,3"), core::Error);
     EXPECT_THROW(core::MeasureRegion::parse("cube:1,2,3,4"), core::Error);
     EXPECT_THROW(core::MeasureRegion::parse("box:1,2,3,4,5,nan"), core::Error);
+    EXPECT_THROW(core::MeasureRegion::parse("sphere:-0x3,-35,0,2"), core::Error) << "hex is not a coordinate";
+    EXPECT_THROW(core::MeasureRegion::parse("sphere:-3,-35,0,2,"), core::Error) << "a trailing comma";
+    EXPECT_EQ(core::MeasureRegion::parse("sphere:-3,-35,0,2.5e1").radius, 25.0);
     const auto parsed = core::MeasureRegion::parse("box:4,5,6,1,2,3");
     EXPECT_EQ(parsed.low, glm::dvec3(1, 2, 3));
     EXPECT_EQ(parsed.high, glm::dvec3(4, 5, 6));
