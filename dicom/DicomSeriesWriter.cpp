@@ -330,7 +330,8 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
                                               "within its slices), which DICOM's Image Orientation cannot state");
     DcmRepresentationParameter* param = nullptr;
     const E_TransferSyntax xfer = syntaxOf(o.transferSyntax, param);
-    const std::filesystem::path target(folder);
+    std::filesystem::path target = std::filesystem::path(folder).lexically_normal();
+    if (target.filename().empty()) target = target.parent_path();  // "out/" is "out"
     std::error_code ec;
     if (std::filesystem::exists(target, ec) &&
         (!std::filesystem::is_directory(target, ec) || !std::filesystem::is_empty(target, ec)))
@@ -339,7 +340,8 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
                           "other files");
     // Written beside the target and renamed to it when whole: a failed or cancelled export
     // leaves nothing behind.
-    const std::filesystem::path staging = target.string() + ".partial-" + newUid().substr(newUid().size() - 8);
+    const std::string unique = newUid();
+    const std::filesystem::path staging = target.string() + ".partial-" + unique.substr(unique.size() - 8);
     std::filesystem::create_directories(staging, ec);
     if (ec) throw core::Error(folder + ": cannot create folder (" + ec.message() + ")");
     const std::string modality = o.modality.empty() ? (g.modality.empty() ? std::string("OT") : g.modality) : o.modality;

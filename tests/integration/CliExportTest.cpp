@@ -227,7 +227,7 @@ TEST(CliExport, AnExportNeverMixesFilesLeavesHalfASeriesOrMakesThingsUp) {
     };
     // 8-bit as CT: widened to 16 bits, free of dciodvfy errors, the values as they were; no
     // patient given: the name and ID are left empty, and the command says so.
-    r = test::runCommand(cli + " export-dicom " + dir.file("u8.nrrd") + " --modality CT -o " + dir.file("u8"));
+    r = test::runCommand(cli + " export-dicom " + dir.file("u8.nrrd") + " --modality CT -o " + dir.file("u8") + "/");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("the patient's name and ID are left empty"), std::string::npos) << r.output;
     EXPECT_EQ(errorLines(dir.file("u8/IMG00001.dcm")), 0u) << test::runCommand("dciodvfy " + dir.file("u8/IMG00001.dcm") + " 2>&1").output;
