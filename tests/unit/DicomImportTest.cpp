@@ -137,24 +137,29 @@ INSTANTIATE_TEST_SUITE_P(Orientations, DicomOrientation,
                                            std::make_pair("oblique", oblique())),
                          [](const auto& p) { return std::string(p.param.first); });
 
-class DicomCodec : public ::testing::TestWithParam<const char*> {};
+class DicomCodec : public ::testing::TestWithParam<const char*> {
+protected:
+    /// Writes `volume` in the syntax under test and expects the import to give it back.
+    void expectRoundTrip(test::MemoryVoxelSource& volume) {
+        test::TempDir dir;
+        dicom::DicomWriteOptions o;
+        o.transferSyntax = GetParam();
+        core::JobContext job;
+        dicom::DicomSeriesWriter::write(volume, dir.file("s"), o, job);
+        const auto volumes = importFolder(dir.file("s"));
+        ASSERT_EQ(volumes.size(), 1u);
+        expectSameVolumeInPatientSpace(volumes[0], volume);
+    }
+};
 
 TEST_P(DicomCodec, EachTransferSyntaxDcmtkWritesDecodesIdentically) {
-    test::TempDir dir;
     auto vol = knownVolume({17, 13, 4}, kAxial, {0.5, 0.5, 1.0});
-    dicom::DicomWriteOptions o;
-    o.transferSyntax = GetParam();
-    core::JobContext job;
-    dicom::DicomSeriesWriter::write(vol, dir.file("s"), o, job);
-    const auto volumes = importFolder(dir.file("s"));
-    ASSERT_EQ(volumes.size(), 1u);
-    expectSameVolumeInPatientSpace(volumes[0], vol);
+    expectRoundTrip(vol);
 }
 
 // Incompressible data: stored values over the whole int16 range, at random. DCMTK's default
 // ("cooked") JPEG-LS encoder crashed or wrote undecodable slices on it.
 TEST_P(DicomCodec, FullRangeNoiseSurvivesEachTransferSyntax) {
-    test::TempDir dir;
     auto base = knownVolume({64, 48, 3}, kAxial, {0.5, 0.5, 1.0});
     test::DenseVolume v;
     v.dims = base.geometry().dims;
@@ -163,13 +168,7 @@ TEST_P(DicomCodec, FullRangeNoiseSurvivesEachTransferSyntax) {
     core::VolumeGeometry g = base.geometry();
     g.rescaleIntercept = 0.0;
     test::MemoryVoxelSource noise(g, v);
-    dicom::DicomWriteOptions o;
-    o.transferSyntax = GetParam();
-    core::JobContext job;
-    dicom::DicomSeriesWriter::write(noise, dir.file("s"), o, job);
-    const auto volumes = importFolder(dir.file("s"));
-    ASSERT_EQ(volumes.size(), 1u);
-    expectSameVolumeInPatientSpace(volumes[0], noise);
+    expectRoundTrip(noise);
 }
 
 INSTANTIATE_TEST_SUITE_P(Syntaxes, DicomCodec,
