@@ -112,7 +112,11 @@ void putCommon(DcmItem* ds, const DicomWriteOptions& o, const core::VolumeGeomet
     ds->putAndInsertString(DCM_PhotometricInterpretation, g.monochrome1 ? "MONOCHROME1" : "MONOCHROME2");
     ds->putAndInsertUint16(DCM_Rows, Uint16(g.dims[1]));
     ds->putAndInsertUint16(DCM_Columns, Uint16(g.dims[0]));
-    if (!o.derivation.empty()) ds->putAndInsertString(DCM_DerivationDescription, o.derivation.substr(0, 1024).c_str());
+    if (!o.derivation.empty()) {  // ST in ISO_IR 100 (Latin-1): what is not ASCII (UTF-8 names) becomes '?'
+        std::string text;
+        for (const char c : o.derivation.substr(0, 1024)) text += (c & 0x80) ? '?' : c;
+        ds->putAndInsertString(DCM_DerivationDescription, text.c_str());
+    }
     const Uint16 bits = eightBit ? 8 : 16;
     ds->putAndInsertUint16(DCM_BitsAllocated, bits);
     ds->putAndInsertUint16(DCM_BitsStored, bits);
@@ -332,21 +336,36 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
     const E_TransferSyntax xfer = syntaxOf(o.transferSyntax, param);
     std::filesystem::path target = std::filesystem::path(folder).lexically_normal();
     if (target.filename().empty()) target = target.parent_path();  // "out/" is "out"
+    std::error_code linkError;
+    if (std::filesystem::is_symlink(target, linkError)) target = std::filesystem::canonical(target, linkError);  // where it points
     std::error_code ec;
     if (std::filesystem::exists(target, ec) &&
         (!std::filesystem::is_directory(target, ec) || !std::filesystem::is_empty(target, ec)))
         throw core::Error(folder + ": " + (std::filesystem::is_directory(target, ec) ? "already holds files" : "is a file") +
                           "; an export goes into a new or empty folder, so that it never mixes with or replaces "
                           "other files");
-    // Written beside the target and renamed to it when whole: a failed or cancelled export
-    // leaves nothing behind.
+    // A new folder is written beside the target and renamed to it when whole; an empty one (a
+    // mount point, ".") is written into, and what was written is removed on failure. Either
+    // way a failed or cancelled export leaves nothing behind.
+    const bool intoEmpty = std::filesystem::exists(target, ec);
     const std::string unique = newUid();
-    const std::filesystem::path staging = target.string() + ".partial-" + unique.substr(unique.size() - 8);
-    std::filesystem::create_directories(staging, ec);
-    if (ec) throw core::Error(folder + ": cannot create folder (" + ec.message() + ")");
+    const std::filesystem::path staging =
+        intoEmpty ? target : std::filesystem::path(target.string() + ".partial-" + unique.substr(unique.size() - 8));
+    if (!intoEmpty) {
+        if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path(), ec);
+        if (ec || !std::filesystem::create_directory(staging, ec))  // a new folder, never one already there
+            throw core::Error(folder + ": cannot create folder (" + (ec ? ec.message() : std::string("it exists")) + ")");
+    }
+    std::vector<std::string> names;  // the files written, in slice order
+    auto discard = [&] {
+        std::error_code ignored;
+        if (!intoEmpty) std::filesystem::remove_all(staging, ignored);
+        else
+            for (const auto& n : names) std::filesystem::remove(staging / n, ignored);
+    };
     const std::string modality = o.modality.empty() ? (g.modality.empty() ? std::string("OT") : g.modality) : o.modality;
     if (o.enhancedMultiframe && modality != "CT" && modality != "MR") {
-        std::filesystem::remove_all(staging, ec);
+        discard();
         throw core::Error("an enhanced multi-frame export is Legacy Converted Enhanced CT or MR; " + modality +
                           " is written as single-frame images (leave out --enhanced)");
     }
@@ -356,7 +375,6 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
     const std::string frameOfReference = o.frameOfReferenceUid.empty() ? newUid() : o.frameOfReferenceUid;
     const std::size_t sliceBytes = std::size_t(g.dims[0]) * g.dims[1] * core::scalarSize(g.scalarType);
     const bool eightBit = writesEightBit(g, modality), sourceEightBit = g.scalarType == core::ScalarType::UInt8;
-    std::vector<std::string> names;
     try {
         if (o.enhancedMultiframe) {
             writeLegacyConvertedEnhanced(source, (staging / "ENHANCED.dcm").string(), o, modality,
@@ -385,11 +403,12 @@ std::vector<std::string> DicomSeriesWriter::write(core::VoxelSource& source, con
                 job.report(double(k + 1) / g.dims[2], "writing slices");
             }
         }
-        if (std::filesystem::exists(target, ec)) std::filesystem::remove(target, ec);  // new or empty: checked above
-        std::filesystem::rename(staging, target, ec);
-        if (ec) throw core::Error(folder + ": cannot move the written series into place (" + ec.message() + ")");
+        if (!intoEmpty) {
+            std::filesystem::rename(staging, target, ec);
+            if (ec) throw core::Error(folder + ": cannot move the written series into place (" + ec.message() + ")");
+        }
     } catch (...) {
-        std::filesystem::remove_all(staging, ec);
+        discard();
         throw;
     }
     std::vector<std::string> paths;

@@ -33,8 +33,11 @@ CliArgs::CliArgs(int argc, char** argv, int first, const std::vector<std::string
                 if (i + 1 >= argc) throw core::Error("option --" + name + " needs a value");
                 value = argv[++i];
             }
-            // Given twice, one would be silently dropped: which was meant is not for Holovox to guess.
-            if (!values_.emplace(name, value).second) throw core::Error("option --" + name + " is given twice");
+            // Given twice, one would be silently dropped: which was meant is not for Holovox to guess
+            // (-o and --output are one option).
+            const std::string key = name == "output" ? "o" : name;
+            if (!values_.emplace(key, value).second)
+                throw core::Error("option --" + name + (key == "o" ? " (or -o)" : "") + " is given twice");
         } else {
             throw core::Error("unknown option --" + name);
         }
@@ -42,7 +45,7 @@ CliArgs::CliArgs(int argc, char** argv, int first, const std::vector<std::string
 }
 
 std::optional<std::string> CliArgs::value(const std::string& name) const {
-    const auto it = values_.find(name);
+    const auto it = values_.find(name == "output" ? "o" : name);
     if (it == values_.end()) return std::nullopt;
     return it->second;
 }

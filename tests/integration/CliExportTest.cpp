@@ -256,6 +256,23 @@ TEST(CliExport, AnExportNeverMixesFilesLeavesHalfASeriesOrMakesThingsUp) {
     for (const auto& e : std::filesystem::directory_iterator(dir.path()))
         left += e.path().filename().string().rfind("cut", 0) == 0 && e.path().extension() != ".nrrd";
     EXPECT_EQ(left, 0u) << r.output;
+    // Into an empty folder that exists (a mount point, "."): written into it, and on failure
+    // what was written is removed and the folder stays, empty.
+    std::filesystem::create_directory(dir.file("empty"));
+    r = test::runCommand(cli + " export-dicom " + dir.file("cut.nrrd") + " --patient P -o " + dir.file("empty"));
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_TRUE(std::filesystem::is_directory(dir.file("empty")));
+    EXPECT_EQ(files("empty"), 0u);
+    // A symbolic link to an empty folder: the series goes where it points; the link stays.
+    std::filesystem::create_directory(dir.file("real"));
+    std::filesystem::create_directory_symlink(dir.file("real"), dir.file("link"));
+    r = test::runCommand(cli + " export-dicom " + dir.file("u8.nrrd") + " --patient P -o " + dir.file("link"));
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::is_symlink(dir.file("link")));
+    EXPECT_EQ(files("real"), 5u);
+    // -o and --output are one option: both given is refused.
+    r = test::runCommand(cli + " export-dicom " + dir.file("u8.nrrd") + " -o " + dir.file("a") + " --output " + dir.file("b"));
+    EXPECT_NE(r.output.find("is given twice"), std::string::npos) << r.output;
     // Rows and columns not perpendicular: no DICOM orientation states it.
     r = test::runCommand(cli + " export-dicom " + dir.file("shear.nrrd") + " --patient P -o " + dir.file("shear"));
     EXPECT_NE(r.exitCode, 0);
