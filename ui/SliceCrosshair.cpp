@@ -13,8 +13,8 @@ SliceCrosshair::SliceCrosshair(const core::SlicePlane& plane, const glm::dvec3& 
                                const Other& second)
     : size_(plane.width, plane.height) {
     auto widget = [&](const glm::dvec3& x) {
-        return QPointF(plane.width / 2.0 + glm::dot(x - plane.centre, plane.right) / plane.pixelMm,
-                       plane.height / 2.0 + glm::dot(x - plane.centre, plane.down) / plane.pixelMm);
+        const glm::dvec2 p = plane.pixelOf(x);
+        return QPointF(p.x, p.y);
     };
     const glm::dvec3 n = plane.normal();
     const glm::dvec3 onPlane = cursor - n * glm::dot(n, cursor - plane.centre);  // the cursor on this plane

@@ -163,8 +163,7 @@ core::SlicePlane SliceView::plane() const {
 }
 
 glm::dvec3 SliceView::patientAt(const QPointF& pos) const {
-    const auto p = plane();
-    return p.centre + (pos.x() - p.width / 2.0) * p.pixelMm * p.right + (pos.y() - p.height / 2.0) * p.pixelMm * p.down;
+    return plane().patientAt({pos.x(), pos.y()});
 }
 
 void SliceView::resizeEvent(QResizeEvent*) { resample(); }
@@ -437,9 +436,8 @@ void SliceView::mouseReleaseEvent(QMouseEvent* e) {
 }
 
 QPointF SliceView::widgetAt(const glm::dvec3& patient) const {
-    const auto p = plane();
-    return {width() / 2.0 + glm::dot(patient - p.centre, p.right) / p.pixelMm,
-            height() / 2.0 + glm::dot(patient - p.centre, p.down) / p.pixelMm};
+    const glm::dvec2 p = plane().pixelOf(patient);
+    return {p.x, p.y};
 }
 
 bool SliceView::onThisSlice(const glm::dvec3& patient) const {

@@ -65,6 +65,14 @@ SlicePlane SlicePlane::oblique(const glm::dvec3& normal, const glm::dvec3& centr
 
 glm::dvec3 SlicePlane::normal() const { return glm::normalize(glm::cross(right, down)); }
 
+glm::dvec2 SlicePlane::pixelOf(const glm::dvec3& patient) const {
+    return {width / 2.0 + glm::dot(patient - centre, right) / pixelMm, height / 2.0 + glm::dot(patient - centre, down) / pixelMm};
+}
+
+glm::dvec3 SlicePlane::patientAt(const glm::dvec2& pixel) const {
+    return centre + (pixel.x - width / 2.0) * pixelMm * right + (pixel.y - height / 2.0) * pixelMm * down;
+}
+
 std::array<std::string, 4> SlicePlane::edgeLabels() const {
     return {OrbitCamera::patientLabel(-right), OrbitCamera::patientLabel(right), OrbitCamera::patientLabel(-down),
             OrbitCamera::patientLabel(down)};

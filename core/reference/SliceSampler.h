@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/streaming/BrickCache.h"
@@ -38,6 +39,11 @@ struct SlicePlane {
     std::array<std::string, 4> edgeLabels() const;
     /// right x down: the unit normal, pointing away from the viewer.
     glm::dvec3 normal() const;
+    /// Where a patient point projects on the image, in pixels from its top-left corner (a
+    /// pixel's centre at +0.5); the inverse of patientAt.
+    glm::dvec2 pixelOf(const glm::dvec3& patient) const;
+    /// The patient point on the plane at image position `pixel` (pixels from the top-left corner).
+    glm::dvec3 patientAt(const glm::dvec2& pixel) const;
 };
 
 /// How a thick slab combines the samples across its thickness.
