@@ -130,7 +130,7 @@ LegacyVtkHeader LegacyVtkHeader::parse(const std::string& path) {
         }
         return v;
     };
-    bool dims = false, spacing = false, direction = false;
+    bool dims = false, spacing = false;
     glm::dvec3 step(1.0), origin(0.0);
     glm::dmat3 axes(1.0);
     std::uint64_t points = 0;
@@ -154,7 +154,7 @@ LegacyVtkHeader LegacyVtkHeader::parse(const std::string& path) {
             const auto d = numbers(9, "DIRECTION");
             for (int r = 0; r < 3; ++r)
                 for (int c = 0; c < 3; ++c) axes[c][r] = d[std::size_t(3 * r + c)];
-            direction = h.direction_ = true;
+            h.direction_ = true;
         } else if (key == "point_data") {
             const auto n = numbers(1, "POINT_DATA");
             if (!(n[0] >= 0 && n[0] < 1.8e19) || n[0] != std::floor(n[0])) throw bad("its POINT_DATA is not a count");
@@ -174,10 +174,10 @@ LegacyVtkHeader LegacyVtkHeader::parse(const std::string& path) {
     if (points != voxels)
         throw bad("its POINT_DATA " + std::to_string(points) + " is not the " + std::to_string(voxels) +
                   " points of its DIMENSIONS");
-    for (int a = 0; a < 3 && direction; ++a)
+    for (int a = 0; a < 3 && h.direction_; ++a)
         if (std::abs(glm::length(axes[a]) - 1.0) > 1e-3) throw bad("its DIRECTION's column " + std::to_string(a) + " is not a unit direction");
-    if (direction && std::abs(glm::determinant(axes)) < 1e-3) throw bad("its DIRECTION has dependent directions");
-    if (direction) {
+    if (h.direction_ && std::abs(glm::determinant(axes)) < 1e-3) throw bad("its DIRECTION has dependent directions");
+    if (h.direction_) {
         // DIRECTION is no keyword of VTK's legacy format (VTK neither writes nor reads it; its
         // XML .vti carries the axes): whether its nine numbers are the axes' rows or columns is
         // defined nowhere, so it is taken only where both readings agree.
