@@ -264,14 +264,15 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
         to[a] = std::min<std::int64_t>(std::int64_t(size) - 1, std::int64_t(std::floor(last[a] + 1e-9)));
         between = between || from[a] > to[a];
     }
-    // A region that holds no voxel centre lies outside the volume when its centre does (the box
-    // test above passes an oblique volume's corner), else between the centres.
+    // A region that holds no voxel centre lies outside the volume, or overlaps only its edge,
+    // when its centre lies outside (the box test above passes an oblique volume's corner, and a
+    // region reaching less than half a voxel in), else between the centres.
     auto noVoxel = [&]() -> RegionStatistics {
         const glm::dvec3 c(toIndex * glm::dvec4(region.kind == MeasureRegion::Kind::Box ? 0.5 * (region.low + region.high)
                                                                                       : region.centre, 1.0));
         for (int a = 0; a < 3; ++a)
             if (c[a] < -0.5 || c[a] > double(g.dims[std::size_t(a)]) - 0.5)
-                throw Error("the " + region.describe() + " lies outside the volume");
+                throw Error("the " + region.describe() + " holds no voxel centre: its centre lies outside the volume");
         RegionStatistics none;
         none.units = g.modality == "CT" ? "HU" : "";
         none.exact = false;

@@ -222,6 +222,10 @@ TEST(RegionStatistics, DegenerateOutsideAndSubVoxelRegionsAreNamed) {
     EXPECT_NE(error(core::MeasureRegion::box(g.origin, g.origin + glm::dvec3(4, 0, 4))).find("no volume"),
               std::string::npos);
     EXPECT_NE(error(core::MeasureRegion::sphere(g.origin - 100.0, 5.0)).find("outside the volume"), std::string::npos);
+    // Centred 0.7 voxel before the first voxel, reaching 0.2 voxel into the volume: it holds no
+    // voxel centre, and is not said to be wholly outside (it had been).
+    const std::string edge = error(core::MeasureRegion::sphere(g.origin + glm::dvec3(-0.7, 5.0, 5.0), 0.5));
+    EXPECT_NE(edge.find("holds no voxel centre: its centre lies outside the volume"), std::string::npos) << edge;
     const auto tiny = core::RegionStatistics::compute(*reader, core::MeasureRegion::sphere(g.origin + 5.5, 0.2));
     EXPECT_EQ(tiny.voxels, 0u);
     EXPECT_FALSE(tiny.exact);
