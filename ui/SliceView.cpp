@@ -172,6 +172,9 @@ void SliceView::resample() {
     image_ = {};
     if (!sampler_ || width() < 2 || height() < 2) {
         update();
+        // Collapsed (a splitter closed on it), it shows nothing, but its plane still moves: the
+        // other views' crosshair and the slice scroller follow it.
+        if (sampler_) emit resampled();
         return;
     }
     // Fit the volume's extent along the plane's axes into the widget.

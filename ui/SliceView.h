@@ -142,7 +142,8 @@ public:
 
 signals:
     void pointChanged(const glm::dvec3& patient);
-    /// The image was sampled again (another slice, volume, window, tilt or size).
+    /// The image was sampled again (another slice, volume, window, tilt or size), or, while the
+    /// view is too small to show one, its plane changed.
     void resampled();
     /// The user chose a window (a drag or a preset key), in physical units.
     void windowChosen(double centre, double width, const QString& name);

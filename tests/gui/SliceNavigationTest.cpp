@@ -184,6 +184,30 @@ private slots:
         saveArtifact("slices-crosshair-on-layers.png");
     }
 
+    // An axial view collapsed to a pixel's width shows nothing, but when its slice moves the
+    // coronal view's line for it still follows (it had stayed where the slice had been).
+    void collapsedViewsPlaneStillDrawnInTheOthers() {
+        QVERIFY(window_->openOctree(QString::fromStdString(dir_.file("w-ct.hvo"))));
+        auto* axial = window_->slice(0);
+        auto* coronal = window_->slice(1);
+        QVERIFY(QTest::qWaitForWindowExposed(coronal));
+        const glm::dvec3 start = axial->plane().centre;
+        axial->setFixedWidth(1);
+        QTRY_VERIFY(axial->width() < 2);
+        const auto geometry = core::OctreeReader::open(dir_.file("w-ct.hvo"))->geometry();
+        const glm::dvec3 moved = start + glm::dvec3(0.0, 0.0, 6.0 * geometry.spacing[2]);
+        axial->setPoint(moved);
+        const glm::dvec3 layer = axial->plane().centre;
+        QVERIFY(std::abs(layer.z - start.z) > 5.0 * geometry.spacing[2]);
+        const auto anchors = coronal->crosshairAnchors();
+        QCOMPARE(anchors.size(), std::size_t(2));
+        QVERIFY2(std::abs(anchors[1].y() - coronal->widgetAt(layer).y()) < 0.01,
+                 qPrintable(QString("line at %1, slice at %2").arg(anchors[1].y()).arg(coronal->widgetAt(layer).y())));
+        axial->setMinimumWidth(0);
+        axial->setMaximumWidth(QWIDGETSIZE_MAX);
+        QTRY_VERIFY(axial->width() > 100);
+    }
+
     // Dragging a crosshair handle in the axial view turns the coronal and sagittal planes about
     // the axial normal: they stay perpendicular to it and to each other, turned by the angle the
     // mouse went round the cursor; the axial crosshair follows the mouse; their letters stay
