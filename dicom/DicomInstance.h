@@ -69,6 +69,9 @@ struct DicomInstance {
     /// Geometry per frame (one entry for single-frame images).
     std::vector<FrameGeometry> frameGeometry;
 
+    /// Frame f's geometry (frame 0's where the object states one for all; frameGeometry not empty).
+    const FrameGeometry& frame(std::size_t f) const { return frameGeometry[std::min(f, frameGeometry.size() - 1)]; }
+
     /// True for objects with image pixel data that can form volumes.
     bool hasPixels() const { return rows > 0 && columns > 0 && frames > 0 && bitsAllocated > 0; }
 };

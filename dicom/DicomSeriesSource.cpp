@@ -14,7 +14,6 @@ namespace hvx::dicom {
 
 DicomSeriesSource::DicomSeriesSource(SeriesVolume volume) : volume_(std::move(volume)) {
     if (volume_.slices.empty()) throw core::Error("series " + volume_.seriesUid + " has no slices");
-    const auto& g = volume_.geometry;
     const auto& s0 = volume_.slices.front();
     const DicomInstance& first = volume_.instances[s0.instance];
     // Before anything is sized from Rows and Columns (the builder's slabs, the decoders).
@@ -22,13 +21,28 @@ DicomSeriesSource::DicomSeriesSource(SeriesVolume volume) : volume_(std::move(vo
         throw core::Error(first.path + ": a frame of " + std::to_string(first.columns) + " × " +
                           std::to_string(first.rows) + " pixels cannot be right (Holovox decodes frames of up to "
                           "16384 × 16384)");
-    if (g.modality == "CT") {
-        paddingStored_ = (-1024.0 - s0.rescaleIntercept) / s0.rescaleSlope;
-    } else {
-        const bool sgn = first.pixelRepresentation == 1;
-        paddingStored_ = sgn ? -double(1u << (first.bitsStored - 1)) : 0.0;
-    }
+    paddingStored_ = paddingStoredOf(volume_);
     paddingPhysical_ = paddingStored_ * s0.rescaleSlope + s0.rescaleIntercept;
+}
+
+double DicomSeriesSource::paddingStoredOf(const SeriesVolume& v) {
+    const auto& s0 = v.slices.front();
+    if (v.geometry.modality == "CT") return (-1024.0 - s0.rescaleIntercept) / s0.rescaleSlope;
+    const DicomInstance& first = v.instances[s0.instance];
+    return first.pixelRepresentation == 1 ? -double(1u << (first.bitsStored - 1)) : 0.0;
+}
+
+double DicomSeriesSource::paddingValue(const SeriesVolume& v) {
+    const auto& s0 = v.slices.front();
+    const double stored = paddingStoredOf(v);
+    if (v.applyRescale) return stored * s0.rescaleSlope + s0.rescaleIntercept;  // float values: exact
+    // Stored values: rounded and held to the stored type, as writeSlice writes them.
+    double held = 0.0;
+    core::dispatchScalar(v.geometry.scalarType, [&](auto tag) {
+        using T = decltype(tag);
+        held = std::clamp(std::round(stored), double(std::numeric_limits<T>::lowest()), double(std::numeric_limits<T>::max()));
+    });
+    return held * v.geometry.rescaleSlope + v.geometry.rescaleIntercept;
 }
 
 std::string DicomSeriesSource::describe() const { return "series " + volume_.seriesUid + " (" + volume_.label + ")"; }

@@ -24,8 +24,13 @@ public:
     /// What the stacking assumed or made up (missing slices interpolated, resampling...).
     std::vector<std::string> warnings() const override { return volume_.warnings; }
     const SeriesVolume& volume() const { return volume_; }
+    /// The physical value that pixels marked as padding take in `v` (its geometry finished):
+    /// -1024 HU for CT where the stored type holds it, else the lowest stored value.
+    static double paddingValue(const SeriesVolume& v);
 
 private:
+    /// Padding as a stored value of the first slice's rescale, before rounding and clamping.
+    static double paddingStoredOf(const SeriesVolume& v);
     const std::vector<std::int32_t>& input(std::size_t slice);
     template <class T>
     void writeSlice(std::uint32_t z, T* out);

@@ -10,6 +10,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "dicom/DicomSeriesSource.h"
 #include "dicom/VolumeSplitter.h"
 
 namespace hvx::dicom {
@@ -43,6 +44,21 @@ struct Plane {
     }
 };
 
+/// The angle between the row and column directions of ImageOrientationPatient, in degrees (0
+/// when either is zero).
+double orientationDegrees(const FrameGeometry& fg) {
+    const double lr = glm::length(fg.rowDirection), lc = glm::length(fg.columnDirection);
+    if (!(lr > 1e-6 && lc > 1e-6)) return 0.0;
+    const double cosine = std::clamp(glm::dot(fg.rowDirection, fg.columnDirection) / (lr * lc), -1.0, 1.0);
+    return std::acos(cosine) * 180.0 / M_PI;
+}
+/// How far they are from perpendicular. The standard asks for orthonormal cosines; written to
+/// six decimals they are perpendicular to about 1e-4 degrees.
+double orientationDegreesOff(const FrameGeometry& fg) { return std::abs(orientationDegrees(fg) - 90.0); }
+/// Beyond a degree off perpendicular (4.5 mm across a 256 mm image) the header is broken: the
+/// images are refused. Less, they are placed as stated (sheared), with a warning.
+constexpr double kMostOrientationDegreesOff = 1.0;
+
 std::string fmt(const char* f, double a, double b = 0, double c = 0) {
     char buf[256];
     std::snprintf(buf, sizeof buf, f, a, b, c);
@@ -60,7 +76,7 @@ core::ScalarType storageType(const DicomInstance& in, bool applyRescale) {
 void checkOnLine(SeriesVolume& v, const glm::dvec3& k) {
     const auto& first = v.slices.front();
     const DicomInstance& in = v.instances[first.instance];
-    const auto& fg = in.frameGeometry[std::min<std::size_t>(first.frame, in.frameGeometry.size() - 1)];
+    const auto& fg = in.frame(first.frame);
     const double tolerance = 0.1 * std::min(fg.pixelSpacing.x, fg.pixelSpacing.y);
     double worst = 0;
     std::vector<std::string> off;
@@ -81,7 +97,18 @@ void checkOnLine(SeriesVolume& v, const glm::dvec3& k) {
 
 void finishGeometry(SeriesVolume& v) {
     const DicomInstance& first = v.instances[v.slices.front().instance];
-    const FrameGeometry& fg = first.frameGeometry[std::min<std::size_t>(v.slices.front().frame, first.frameGeometry.size() - 1)];
+    const FrameGeometry& fg = first.frame(v.slices.front().frame);
+    if (fg.hasOrientation) {
+        const double off = orientationDegreesOff(fg);
+        if (off > 0.01)
+            v.warnings.push_back(fmt("ImageOrientationPatient's rows and columns are %.2f degrees apart, not "
+                                     "perpendicular as the standard asks: the pixels are placed as stated (sheared)",
+                                     orientationDegrees(fg)));
+        const double lr = glm::length(fg.rowDirection), lc = glm::length(fg.columnDirection);
+        if (std::abs(lr - 1.0) > 1e-3 || std::abs(lc - 1.0) > 1e-3)
+            v.warnings.push_back(fmt("ImageOrientationPatient's directions are %.4g and %.4g long, not 1: taken as "
+                                     "directions (normalised)", lr, lc));
+    }
     glm::dvec3 r = glm::normalize(fg.rowDirection), c = glm::normalize(fg.columnDirection);
     const glm::dvec3 n = glm::normalize(glm::cross(r, c));
     auto& g = v.geometry;
@@ -139,13 +166,6 @@ void finishGeometry(SeriesVolume& v) {
                                               "(no ImageOrientationPatient)");
     if (!fg.hasSpacing) v.warnings.insert(v.warnings.begin(), "spacing unknown, assumed 1 mm (no PixelSpacing)");
     g.modality = first.modality.empty() ? "OT" : first.modality;
-    // Padding (outside the scanned field) has no value of its own once stacked: say what it became.
-    if (std::any_of(v.slices.begin(), v.slices.end(), [&](const SliceRef& s) { return v.instances[s.instance].pixelPadding.has_value(); }))
-        v.warnings.push_back(g.modality == "CT"
-                                 ? std::string("pixels marked as padding (outside the scanned field) are shown and measured "
-                                               "as -1024 HU, air: a region over them counts them as air")
-                                 : std::string("pixels marked as padding (outside the scanned field) are shown and measured "
-                                               "as the stored type's lowest value (0 when unsigned)"));
     // MONOCHROME1 (the lowest value white) is how to show the values, not what they are: a
     // stack that mixes the two keeps its values and is shown as MONOCHROME2, and says so.
     std::size_t inverted = 0;
@@ -174,6 +194,19 @@ void finishGeometry(SeriesVolume& v) {
     } else {
         g.rescaleSlope = v.slices.front().rescaleSlope;
         g.rescaleIntercept = v.slices.front().rescaleIntercept;
+    }
+    // Padding (outside the scanned field) has no value of its own once stacked: say what it
+    // became (-1024 HU may lie below what an unsigned type holds under the rescale).
+    if (std::any_of(v.slices.begin(), v.slices.end(), [&](const SliceRef& s) { return v.instances[s.instance].pixelPadding.has_value(); })) {
+        const double value = DicomSeriesSource::paddingValue(v);
+        const std::string what = "pixels marked as padding (outside the scanned field) are shown and measured as ";
+        if (g.modality != "CT")
+            v.warnings.push_back(what + fmt("%.6g, the lowest value the stored bits hold", value));
+        else if (value == -1024.0)
+            v.warnings.push_back(what + "-1024 HU, air: a region over them counts them as air");
+        else
+            v.warnings.push_back(what + fmt("%.6g HU (-1024 HU, air, lies below what the stored type holds under "
+                                            "this rescale): a region over them counts them at that value", value));
     }
 }
 }  // namespace
@@ -214,7 +247,12 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
             continue;
         }
         for (std::uint32_t f = 0; f < in.frames; ++f) {
-            const auto& fg = in.frameGeometry[std::min<std::size_t>(f, in.frameGeometry.size() - 1)];
+            const auto& fg = in.frame(f);
+            if (fg.hasOrientation && orientationDegreesOff(fg) > kMostOrientationDegreesOff) {
+                ++skipped["images whose ImageOrientationPatient is not two perpendicular directions (a broken header: "
+                          "nothing says how their pixels lie)"];
+                continue;
+            }
             GroupKey k{in.seriesInstanceUid, in.frameOfReferenceUid, in.rows, in.columns, in.bitsAllocated, in.pixelRepresentation,
                        in.samplesPerPixel, {}, {}};
             const Plane plane{{fg.rowDirection.x, fg.rowDirection.y, fg.rowDirection.z, fg.columnDirection.x,
@@ -239,7 +277,7 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
         const DicomInstance& ref = instances[members.front().first];
         // The group's own orientation (a three-plane localizer's frames differ from frame 0's).
         const FrameGeometry& rg =
-            ref.frameGeometry[std::min<std::size_t>(members.front().second, ref.frameGeometry.size() - 1)];
+            ref.frame(members.front().second);
         const glm::dvec3 n = glm::normalize(glm::cross(rg.rowDirection, rg.columnDirection));
         // The same instance found twice (two copies of a file) is one image.
         std::set<std::pair<std::string, std::uint32_t>> seen;
@@ -266,13 +304,23 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
             v.varying = part.varying;
             std::map<std::size_t, std::size_t> local;
             bool missingPosition = false;
+            // Images without a position among images with one cannot be placed: they are left
+            // out (one had been put at z = its index, 10 cm away, and interpolated towards).
+            std::vector<std::string> unplaced;
+            const bool somePlaced = std::any_of(part.members.begin(), part.members.end(), [&](const auto& m) {
+                return instances[m.first].frame(m.second).hasPosition;
+            });
             for (const auto& [idx, frame] : part.members) {
                 const auto& in = instances[idx];
+                if (somePlaced && !in.frame(frame).hasPosition) {
+                    unplaced.push_back(std::to_string(in.instanceNumber) + (in.frames > 1 ? " frame " + std::to_string(frame + 1) : ""));
+                    continue;
+                }
                 if (!local.count(idx)) {
                     local[idx] = v.instances.size();
                     v.instances.push_back(in);
                 }
-                const auto& fg = in.frameGeometry[std::min<std::size_t>(frame, in.frameGeometry.size() - 1)];
+                const auto& fg = in.frame(frame);
                 missingPosition = missingPosition || !fg.hasPosition;
                 SliceRef s;
                 s.instance = local[idx];
@@ -285,6 +333,13 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
             }
             if (missingPosition)
                 v.warnings.push_back("images have no ImagePositionPatient: stacked in file order with 1 mm spacing");
+            if (!unplaced.empty()) {
+                std::string names;
+                for (std::size_t u = 0; u < unplaced.size() && u < 5; ++u) names += (u ? ", " : "") + unplaced[u];
+                if (unplaced.size() > 5) names += ", ...";
+                v.warnings.push_back(std::to_string(unplaced.size()) + " image(s) without ImagePositionPatient (instance " +
+                                     names + ") left out: nothing says where they lie; the others are placed by theirs");
+            }
             if (copies)
                 v.warnings.push_back(std::to_string(copies) + " files are copies of instances already found (same SOP "
                                      "Instance UID): each instance is used once");

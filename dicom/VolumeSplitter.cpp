@@ -15,7 +15,7 @@ namespace {
 
 const FrameGeometry& frameOf(const std::vector<DicomInstance>& instances, const VolumeSplitter::Member& m) {
     const auto& in = instances[m.first];
-    return in.frameGeometry[std::min<std::size_t>(m.second, in.frameGeometry.size() - 1)];
+    return in.frame(m.second);
 }
 
 std::string num(double v) {
@@ -42,7 +42,10 @@ const std::vector<Dimension>& dimensions() {
         {"echo",
          [](const FrameDimensions& f) {
              const std::string te = f.echoTime ? " (TE " + num(*f.echoTime) + " ms)" : "";
-             if (f.echoNumber) return std::make_pair(padded(*f.echoNumber), "echo " + std::to_string(*f.echoNumber) + te);
+             // Both: echoes numbered alike but of different TE are two echoes (seen in the field).
+             if (f.echoNumber)
+                 return std::make_pair(padded(*f.echoNumber) + (f.echoTime ? padded(*f.echoTime) : std::string()),
+                                       "echo " + std::to_string(*f.echoNumber) + te);
              if (f.echoTime) return std::make_pair(padded(*f.echoTime), "TE " + num(*f.echoTime) + " ms");
              return std::make_pair(std::string(), std::string());
          }},
@@ -80,59 +83,136 @@ const std::vector<Dimension>& dimensions() {
     return d;
 }
 
-/// Frames at positions (along the normal, to 1 µm) held by more than one frame.
-std::size_t repeatedPositions(const std::vector<DicomInstance>& instances, const std::vector<VolumeSplitter::Member>& m,
-                              const glm::dvec3& normal) {
-    std::map<long long, int> count;
+/// The positions along the normal of the members that have one, sorted.
+std::vector<double> positionsAlong(const std::vector<DicomInstance>& instances,
+                                   const std::vector<VolumeSplitter::Member>& m, const glm::dvec3& normal) {
+    std::vector<double> along;
     for (const auto& member : m) {
         const auto& fg = frameOf(instances, member);
-        if (!fg.hasPosition) continue;
-        ++count[std::llround(glm::dot(fg.position, normal) * 1000.0)];
+        if (fg.hasPosition) along.push_back(glm::dot(fg.position, normal));
     }
-    std::size_t repeated = 0;
-    for (const auto& [at, n] : count) repeated += std::size_t(n > 1 ? n : 0);
+    std::sort(along.begin(), along.end());
+    return along;
+}
+
+/// Frames at positions held by more than one frame: positions closer than `tolerance` mm along
+/// the normal are one position.
+std::size_t repeatedPositions(const std::vector<DicomInstance>& instances, const std::vector<VolumeSplitter::Member>& m,
+                              const glm::dvec3& normal, double tolerance) {
+    const auto along = positionsAlong(instances, m, normal);
+    std::size_t repeated = 0, run = 1;
+    for (std::size_t i = 1; i <= along.size(); ++i) {
+        if (i < along.size() && along[i] - along[i - 1] <= tolerance) {
+            ++run;
+            continue;
+        }
+        if (run > 1) repeated += run;
+        run = 1;
+    }
     return repeated;
+}
+
+/// Whether the members' positions are evenly spaced (to a hundredth of the spacing), as
+/// SeriesAssembler takes a stack to be without resampling it.
+bool evenlySpaced(const std::vector<DicomInstance>& instances, const std::vector<VolumeSplitter::Member>& m,
+                  const glm::dvec3& normal) {
+    const auto along = positionsAlong(instances, m, normal);
+    if (along.size() < 3) return true;
+    std::vector<double> gaps;
+    for (std::size_t i = 1; i < along.size(); ++i) gaps.push_back(along[i] - along[i - 1]);
+    std::sort(gaps.begin(), gaps.end());
+    return gaps.back() - gaps.front() <= std::max(0.01 * gaps[gaps.size() / 2], 1e-3);
+}
+
+/// The part's members grouped by one dimension's value (sorted by key), each named.
+std::vector<VolumeSplitter::Part> splitBy(const std::vector<DicomInstance>& instances, const VolumeSplitter::Part& part,
+                                          const Dimension& dim) {
+    std::map<std::string, VolumeSplitter::Part> byValue;
+    for (const auto& m : part.members) {
+        const auto [key, words] = dim.keyAndWords(frameOf(instances, m).dimensions);
+        auto& sub = byValue[key];
+        if (sub.members.empty())
+            sub.varying = part.varying.empty() ? words : (words.empty() ? part.varying : part.varying + ", " + words);
+        sub.members.push_back(m);
+    }
+    std::vector<VolumeSplitter::Part> out;
+    for (auto& [key, sub] : byValue) out.push_back(std::move(sub));
+    return out;
 }
 
 }  // namespace
 
 VolumeSplitter::Result VolumeSplitter::split(const std::vector<DicomInstance>& instances,
                                              const std::vector<Member>& members, const glm::dvec3& normal) {
-    std::vector<Part> parts{{members, ""}};
-    for (const auto& dim : dimensions()) {
-        std::vector<Part> next;
-        for (auto& part : parts) {
-            if (repeatedPositions(instances, part.members, normal) == 0) {
-                next.push_back(std::move(part));
-                continue;
-            }
-            std::map<std::string, Part> byValue;  // sorted by key
-            for (const auto& m : part.members) {
-                const auto [key, words] = dim.keyAndWords(frameOf(instances, m).dimensions);
-                auto& sub = byValue[key];
-                if (sub.members.empty())
-                    sub.varying = part.varying.empty() ? words : (words.empty() ? part.varying : part.varying + ", " + words);
-                sub.members.push_back(m);
-            }
-            if (byValue.size() < 2) {
-                next.push_back(std::move(part));
-                continue;
-            }
-            for (auto& [key, sub] : byValue) next.push_back(std::move(sub));
-        }
-        parts = std::move(next);
-    }
+    // Positions closer than a twentieth of the stack's mean spacing (1 µm at least) are one
+    // position: two acquisitions 2 µm apart had been stacked as one, resampled to 9000 slices.
+    const auto along = positionsAlong(instances, members, normal);
+    const double tolerance =
+        along.size() > 1 ? std::max(1e-3, 0.05 * (along.back() - along.front()) / double(along.size() - 1)) : 1e-3;
+    const auto repeated = [&](const Part& p) { return repeatedPositions(instances, p.members, normal, tolerance); };
+
+    // Where images share positions, the dimension that tells them all apart into the fewest
+    // volumes (the earlier in dimensions() on a tie): a trigger time that differs on every image
+    // of two acquisitions tells them apart too, but into one-image volumes. When none tells them
+    // all apart, the first that tells some apart, and its parts are split further.
     Result r;
-    for (auto& part : parts) {
-        const std::size_t repeated = repeatedPositions(instances, part.members, normal);
-        if (repeated == 0) {
-            r.parts.push_back(std::move(part));
+    std::vector<Part> work{{members, ""}};
+    std::vector<Part> done;
+    while (!work.empty()) {
+        Part part = std::move(work.back());
+        work.pop_back();
+        const std::size_t before = repeated(part);
+        if (before == 0) {
+            done.push_back(std::move(part));
             continue;
         }
-        r.refused.push_back(std::to_string(repeated) + " images" +
-                            (part.varying.empty() ? "" : " of " + part.varying) +
-                            " share positions and nothing tells them apart (image type, echo, diffusion, time point, "
-                            "trigger time, acquisition, stack): that volume is refused rather than mixed");
+        std::vector<Part> best, first;
+        for (const auto& dim : dimensions()) {
+            auto parts = splitBy(instances, part, dim);
+            if (parts.size() < 2) continue;
+            std::size_t after = 0;
+            for (const auto& p : parts) after += repeated(p);
+            if (after == 0 && (best.empty() || parts.size() < best.size())) best = parts;
+            if (after < before && first.empty()) first = std::move(parts);
+        }
+        if (!best.empty()) {
+            for (auto& p : best) done.push_back(std::move(p));
+        } else if (!first.empty()) {
+            for (auto it = first.rbegin(); it != first.rend(); ++it) work.push_back(std::move(*it));
+        } else {
+            r.refused.push_back(std::to_string(before) + " images" + (part.varying.empty() ? "" : " of " + part.varying) +
+                                " share positions (within " + num(tolerance) +
+                                " mm) and nothing tells them apart (image type, echo, diffusion, time point, trigger "
+                                "time, acquisition, stack): that volume is refused rather than mixed");
+        }
+    }
+    // Images at distinct positions, unevenly spaced, that one dimension divides into evenly
+    // spaced parts of two images or more lying over each other (pre- and post-contrast 0.3 mm
+    // apart): two acquisitions, never interleaved into one stack and interpolated between.
+    // Parts one after another (a scan in two ranges) or of one image each (an acquisition
+    // number per image) stay one stack.
+    for (auto& part : done) {
+        std::vector<Part> parts;
+        if (!evenlySpaced(instances, part.members, normal)) {
+            for (const auto& dim : dimensions()) {
+                parts = splitBy(instances, part, dim);
+                bool apart = parts.size() >= 2;
+                std::vector<std::pair<double, double>> ranges;
+                for (const auto& p : parts) {
+                    const auto a = positionsAlong(instances, p.members, normal);
+                    apart = apart && a.size() >= 2 && evenlySpaced(instances, p.members, normal);
+                    if (!a.empty()) ranges.emplace_back(a.front(), a.back());
+                }
+                std::sort(ranges.begin(), ranges.end());
+                bool overlap = false;
+                for (std::size_t i = 1; i < ranges.size(); ++i) overlap = overlap || ranges[i].first < ranges[i - 1].second;
+                if (apart && overlap) break;
+                parts.clear();
+            }
+        }
+        if (parts.empty()) r.parts.push_back(std::move(part));
+        else
+            for (auto& p : parts) r.parts.push_back(std::move(p));
     }
     return r;
 }

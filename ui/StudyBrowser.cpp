@@ -78,7 +78,7 @@ QIcon dicomThumbnail(const std::vector<std::string>& files) {
         double lo = 1e300, hi = -1e300;
         for (auto v : px) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
         if (in.modality == "CT" && !in.frameGeometry.empty()) {  // soft-tissue window
-            const auto& f = in.frameGeometry[std::min<std::size_t>(in.frames / 2, in.frameGeometry.size() - 1)];
+            const auto& f = in.frame(in.frames / 2);
             lo = (-160 - f.rescaleIntercept) / f.rescaleSlope;
             hi = (240 - f.rescaleIntercept) / f.rescaleSlope;
         }

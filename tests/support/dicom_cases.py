@@ -278,6 +278,86 @@ def padding_cases(out, study, frame):
         save(ds, os.path.join(out, 'iop-jitter', f'IM{s}'))
 
 
+def acquisition_cases(out):
+    """Where only some attributes tell acquisitions apart:
+      gated/      acquisitions 1 and 2 at the same 5 positions, a TriggerTime different on
+                  every image (as gated scanners write it): two volumes, not ten of one slice
+      echo-te/    two echoes both numbered 1, TE 10 and 80 ms: two volumes
+      offset/     acquisitions 1 and 2 of 5 slices 2.5 mm apart, the second 0.3 mm higher
+                  (pre- and post-contrast): two volumes, never interleaved into one
+      near/       two images 2 um apart at each of 5 positions, nothing tells them apart:
+                  refused (they had been resampled to some 6000 slices)
+      unplaced/   5 slices, the middle one without ImagePositionPatient: left out
+      skew/       5 slices whose rows and columns are 80 degrees apart: refused
+      skew-small/ 5 slices whose rows and columns are 89.8 degrees apart: placed, with a warning
+      pad-unsigned/ 3 unsigned CT slices, intercept -1000, PixelPaddingValue 0: padding is
+                  -1000 HU (the lowest the type holds), and the warning says so
+    Volume v's pixels are 1000 * v + 100 * slice + column + 7 * row, as elsewhere."""
+    study, frame = generate_uid(), generate_uid()
+    def write(name, images):
+        for i, ds in enumerate(images):
+            save(ds, os.path.join(out, name, f'IM{i:04d}'))
+    uid, images, n = generate_uid(), [], 0
+    for v in range(2):
+        for s in range(5):
+            n += 1
+            images.append(image(uid, study, frame, n, s, v, {'AcquisitionNumber': v + 1, 'TriggerTime': str(37 * n)}))
+    write('gated', images)
+    uid, images, n = generate_uid(), [], 0
+    for v in range(2):
+        for s in range(5):
+            n += 1
+            images.append(image(uid, study, frame, n, s, v, {'EchoNumbers': 1, 'EchoTime': ['10', '80'][v]}))
+    write('echo-te', images)
+    uid, images, n = generate_uid(), [], 0
+    for v in range(2):
+        for s in range(5):
+            n += 1
+            ds = image(uid, study, frame, n, s, v, {'AcquisitionNumber': v + 1})
+            pos = np.array([-20.0, -15.0, 30.0]) + NORMAL * (2.5 * s + 0.3 * v)
+            ds.ImagePositionPatient = [f'{x:.4f}' for x in pos]
+            images.append(ds)
+    write('offset', images)
+    uid, images, n = generate_uid(), [], 0
+    for v in range(2):
+        for s in range(5):
+            n += 1
+            ds = image(uid, study, frame, n, s, v, {})
+            pos = np.array([-20.0, -15.0, 30.0]) + NORMAL * (2.5 * s + 0.002 * v)
+            ds.ImagePositionPatient = [f'{x:.4f}' for x in pos]
+            images.append(ds)
+    write('near', images)
+    uid, images = generate_uid(), []
+    for s in range(5):
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        if s == 2:
+            del ds.ImagePositionPatient
+        images.append(ds)
+    write('unplaced', images)
+    for name, degrees in [('skew', 80.0), ('skew-small', 89.8)]:
+        uid, images = generate_uid(), []
+        a = math.radians(degrees)
+        for s in range(5):
+            ds = image(uid, study, frame, s + 1, s, 0, {})
+            ds.ImageOrientationPatient = [f'{x:.6f}' for x in [1, 0, 0, math.cos(a), math.sin(a), 0]]
+            ds.ImagePositionPatient = ['0', '0', f'{2.5 * s:.1f}']
+            images.append(ds)
+        write(name, images)
+    uid, images = generate_uid(), []
+    for s in range(3):
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        ds.Modality = 'CT'
+        ds.PixelRepresentation = 0
+        ds.RescaleSlope, ds.RescaleIntercept = '1', '-1000'
+        r, c = np.mgrid[0:ROWS, 0:COLS]
+        stored = 1100 + 2 * c + 0 * r
+        stored[0, :] = 0
+        ds.PixelData = stored.astype('<u2').tobytes()
+        ds.add_new(0x00280120, 'US', 0)  # Pixel Padding Value
+        images.append(ds)
+    write('pad-unsigned', images)
+
+
 def main(out):
     os.makedirs(out, exist_ok=True)
     series(out, 'echo', 2, 12, lambda v: {'EchoNumbers': v + 1, 'EchoTime': str(10 * (v + 1))})
@@ -288,6 +368,7 @@ def main(out):
                                              'NumberOfTemporalPositions': 10, 'EchoTime': '5'})
     series(out, 'twins', 2, 5, lambda v: {}, twins=True)
     extras(out)
+    acquisition_cases(out)
     print('written', sorted(os.listdir(out)))
 
 

@@ -33,6 +33,12 @@ namespace {
 
 std::vector<double> physical(core::VoxelSource& s) { return test::voxelValues(s, true); }
 
+bool anyContains(const std::vector<std::string>& v, const std::string& part) {
+    for (const auto& s : v)
+        if (s.find(part) != std::string::npos) return true;
+    return false;
+}
+
 /// Every voxel of `ours` placed in `theirs` by the two geometries: the index found must be a
 /// whole voxel of theirs, holding the same value.
 void expectSameVoxels(core::VoxelSource& ours, core::VoxelSource& theirs) {
@@ -72,7 +78,7 @@ protected:
                                         dir_->file("dcm"));
         log_ = r.output;
         ok_ = r.exitCode == 0;
-        for (const std::string c : {"echo", "diffusion", "dynamic"}) {
+        for (const std::string c : {"echo", "diffusion", "dynamic", "gated", "echo-te"}) {
             std::filesystem::create_directories(dir_->file("nii/" + c));
             const auto n = test::runCommand("dcm2niix -z n -f %s -o " + dir_->file("nii/" + c) + " " + dir_->file("dcm/" + c));
             ok_ = ok_ && n.exitCode == 0;
@@ -152,8 +158,89 @@ TEST_F(PydicomSeries, ImagesNothingTellsApartAreRefusedNotMixed) {
     const auto volumes = import("twins", &notes);
     EXPECT_TRUE(volumes.empty()) << "a volume was made of images that share positions";
     ASSERT_EQ(notes.size(), 1u);
-    EXPECT_NE(notes[0].find("10 images share positions and nothing tells them apart"), std::string::npos) << notes[0];
+    EXPECT_NE(notes[0].find("10 images share positions (within "), std::string::npos) << notes[0];
+    EXPECT_NE(notes[0].find("mm) and nothing tells them apart"), std::string::npos) << notes[0];
     EXPECT_NE(notes[0].find("refused"), std::string::npos) << notes[0];
+}
+
+// Two acquisitions at the same positions whose every image has its own TriggerTime are two
+// volumes, as dcm2niix's 4D image holds them (they had become ten one-slice volumes); two
+// echoes numbered alike but of different TE are two echoes, as dcm2niix's e1 and e1a.
+TEST_F(PydicomSeries, AcquisitionsToldApartByWhatSeparatesThemAll) {
+    const auto gated = import("gated");
+    ASSERT_EQ(gated.size(), 2u);
+    for (std::uint32_t t = 0; t < 2; ++t) {
+        SCOPED_TRACE(t);
+        EXPECT_EQ(gated[t].varying, "acquisition " + std::to_string(t + 1));
+        EXPECT_TRUE(gated[t].warnings.empty()) << gated[t].warnings.front();
+        dicom::DicomSeriesSource ours(gated[t]);
+        core::NiftiVoxelSource theirs(nii("gated/7.nii"), t);
+        expectSameVoxels(ours, theirs);
+    }
+    const auto echoes = import("echo-te");
+    ASSERT_EQ(echoes.size(), 2u);
+    EXPECT_EQ(echoes[0].varying, "echo 1 (TE 10 ms)");
+    EXPECT_EQ(echoes[1].varying, "echo 1 (TE 80 ms)");
+    for (std::size_t e = 0; e < 2; ++e) {
+        dicom::DicomSeriesSource ours(echoes[e]);
+        core::NiftiVoxelSource theirs(nii(e == 0 ? "echo-te/7_e1.nii" : "echo-te/7_e1a.nii"));
+        expectSameVoxels(ours, theirs);
+    }
+}
+
+// Two acquisitions 0.3 mm apart are two evenly spaced volumes, never one interleaved stack
+// interpolated between pre- and post-contrast (dcm2niix merges them, warning "Interslice
+// distance varies"); images 2 um apart that nothing tells apart are refused (they had been
+// resampled to thousands of slices); an image without a position is left out, not put at z = 2.
+TEST_F(PydicomSeries, NearbyAcquisitionsStayApartAndUnplacedImagesAreLeftOut) {
+    const auto offset = import("offset");
+    ASSERT_EQ(offset.size(), 2u);
+    for (std::size_t v = 0; v < 2; ++v) {
+        SCOPED_TRACE(v);
+        EXPECT_EQ(offset[v].varying, "acquisition " + std::to_string(v + 1));
+        EXPECT_EQ(offset[v].geometry.dims[2], 5u);
+        EXPECT_FALSE(offset[v].resample);
+        EXPECT_TRUE(offset[v].warnings.empty()) << offset[v].warnings.front();
+        dicom::DicomSeriesSource src(offset[v]);
+        for (const double x : physical(src)) ASSERT_TRUE(x >= 1000.0 * double(v) && x < 1000.0 * double(v) + 1000.0) << x;
+    }
+    std::vector<std::string> notes;
+    EXPECT_TRUE(import("near", &notes).empty());
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("10 images share positions (within 0.0"), std::string::npos) << notes[0];
+
+    const auto unplaced = import("unplaced");
+    ASSERT_EQ(unplaced.size(), 1u);
+    EXPECT_TRUE(anyContains(unplaced[0].warnings, "1 image(s) without ImagePositionPatient (instance 3) left out"))
+        << ::testing::PrintToString(unplaced[0].warnings);
+    EXPECT_TRUE(anyContains(unplaced[0].warnings, "1 missing slice(s)")) << ::testing::PrintToString(unplaced[0].warnings);
+    const auto& g = unplaced[0].geometry;
+    EXPECT_EQ(g.dims[2], 5u);
+    EXPECT_NEAR(glm::length(g.origin - glm::dvec3(-20.0, -15.0, 30.0)), 0.0, 1e-3) << "the stack starts at slice 0";
+    EXPECT_NEAR(g.spacing.z, 2.5, 1e-3);
+}
+
+// Rows and columns 80 degrees apart are a broken header: refused; 89.8 degrees apart, placed as
+// stated with a warning naming the angle. Unsigned CT whose rescale cannot hold -1024 HU: the
+// padding warning names the value padding takes (-1000 HU), which the voxels hold.
+TEST_F(PydicomSeries, SkewedOrientationAndUnsignedPaddingAreNamed) {
+    std::vector<std::string> notes;
+    EXPECT_TRUE(import("skew", &notes).empty());
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find("5 images whose ImageOrientationPatient is not two perpendicular directions"),
+              std::string::npos) << notes[0];
+    const auto small = import("skew-small");
+    ASSERT_EQ(small.size(), 1u);
+    EXPECT_TRUE(anyContains(small[0].warnings, "rows and columns are 89.80 degrees apart"))
+        << ::testing::PrintToString(small[0].warnings);
+    const auto pad = import("pad-unsigned");
+    ASSERT_EQ(pad.size(), 1u);
+    EXPECT_TRUE(anyContains(pad[0].warnings, "measured as -1000 HU (-1024 HU, air, lies below what the stored type holds"))
+        << ::testing::PrintToString(pad[0].warnings);
+    dicom::DicomSeriesSource src(pad[0]);
+    const auto v = physical(src);
+    for (std::size_t i = 0; i < 16; ++i) EXPECT_EQ(v[i], -1000.0) << "row 0 is padding";
+    EXPECT_EQ(v[16], 100.0) << "row 1, column 0: 1100 - 1000";
 }
 
 TEST_F(PydicomSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
@@ -184,14 +271,6 @@ TEST_F(PydicomSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
     database.setSeriesVolumes(volumes[1].seriesUid, {"echo 1 (TE 10 ms)"});
     EXPECT_EQ(database.volumesOfSeries(volumes[1].seriesUid).size(), 1u);
 }
-
-namespace {
-bool anyContains(const std::vector<std::string>& v, const std::string& part) {
-    for (const auto& s : v)
-        if (s.find(part) != std::string::npos) return true;
-    return false;
-}
-}  // namespace
 
 TEST_F(PydicomSeries, SliceOffTheStackLineIsNamed) {
     const auto volumes = import("offline");
