@@ -110,6 +110,7 @@ void readPlane(DcmItem* item, FrameGeometry& g) {
     }
     if (number(item, DCM_RescaleSlope, v[0]) && v[0] != 0.0) g.rescaleSlope = v[0];
     if (number(item, DCM_RescaleIntercept, v[0])) g.rescaleIntercept = v[0];
+    if (std::string type = text(item, DCM_RescaleType); !type.empty()) g.rescaleType = type;
 }
 
 bool integer(DcmItem* item, const DcmTagKey& key, int& out) {

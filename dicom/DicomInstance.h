@@ -26,6 +26,9 @@ struct FrameGeometry {
     glm::dvec2 pixelSpacing{1.0, 1.0};  ///< PixelSpacing: (between rows, between columns) mm
     double rescaleSlope = 1.0;
     double rescaleIntercept = 0.0;
+    /// RescaleType as written (empty when absent): a CT's values are HU unless it names other
+    /// units (US, MGML, Z_EFF, ... for dual-energy maps).
+    std::string rescaleType;
     FrameDimensions dimensions;  ///< what tells this frame apart from others at its position
 };
 

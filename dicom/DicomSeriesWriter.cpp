@@ -186,7 +186,8 @@ void putPlane(DcmItem* item, const core::VolumeGeometry& g, std::uint32_t k, boo
     if (rescale) {
         item->putAndInsertString(DCM_RescaleIntercept, decimals({g.rescaleIntercept}).c_str());
         item->putAndInsertString(DCM_RescaleSlope, decimals({g.rescaleSlope}).c_str());
-        item->putAndInsertString(DCM_RescaleType, modality == "CT" ? "HU" : "US");
+        // A CT's values are HU unless its source said otherwise (an iodine map): then unspecified.
+        item->putAndInsertString(DCM_RescaleType, modality == "CT" && !g.notHounsfield ? "HU" : "US");
     }
 }
 

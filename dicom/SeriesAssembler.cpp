@@ -166,6 +166,21 @@ void finishGeometry(SeriesVolume& v) {
                                               "(no ImageOrientationPatient)");
     if (!fg.hasSpacing) v.warnings.insert(v.warnings.begin(), "spacing unknown, assumed 1 mm (no PixelSpacing)");
     g.modality = first.modality.empty() ? "OT" : first.modality;
+    // A CT's values are HU unless RescaleType names other units (dual-energy iodine, effective Z).
+    if (g.modality == "CT") {
+        std::set<std::string> types;
+        for (const auto& s : v.slices) {
+            const std::string& t = v.instances[s.instance].frame(s.frame).rescaleType;
+            types.insert(t.empty() ? "HU" : t);
+        }
+        g.notHounsfield = types != std::set<std::string>{"HU"};
+        if (g.notHounsfield) {
+            std::string names;
+            for (const auto& t : types) names += (names.empty() ? "" : ", ") + t;
+            v.warnings.push_back("values in " + names + " (RescaleType), not Hounsfield units: measured without units, "
+                                 "no HU windows or presets");
+        }
+    }
     // MONOCHROME1 (the lowest value white) is how to show the values, not what they are: a
     // stack that mixes the two keeps its values and is shown as MONOCHROME2, and says so.
     std::size_t inverted = 0;
@@ -200,7 +215,7 @@ void finishGeometry(SeriesVolume& v) {
     if (std::any_of(v.slices.begin(), v.slices.end(), [&](const SliceRef& s) { return v.instances[s.instance].pixelPadding.has_value(); })) {
         const double value = DicomSeriesSource::paddingValue(v);
         const std::string what = "pixels marked as padding (outside the scanned field) are shown and measured as ";
-        if (g.modality != "CT")
+        if (!g.hounsfield())
             v.warnings.push_back(what + fmt("%.6g, the lowest value the stored bits hold", value));
         else if (value == -1024.0)
             v.warnings.push_back(what + "-1024 HU, air: a region over them counts them as air");

@@ -78,8 +78,8 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
         openLabel_ = label.isEmpty() ? QFileInfo(path).fileName() : label;
         setWindowTitle(tr("Holovox \u2014 %1").arg(openLabel_));
         const double pMin = g.valueMin * g.rescaleSlope + g.rescaleIntercept, pMax = g.valueMax * g.rescaleSlope + g.rescaleIntercept;
-        controls_->setVolume(g.rescaleSlope, g.rescaleIntercept, std::min(pMin, pMax), std::max(pMin, pMax), g.modality == "CT");
-        tfEditor_->setVolume(g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept, g.modality, {});
+        controls_->setVolume(g.rescaleSlope, g.rescaleIntercept, std::min(pMin, pMax), std::max(pMin, pMax), g.hounsfield());
+        tfEditor_->setVolume(g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept, g.hounsfield(), {});
         view_->setVolume(reader, keepCamera);
         splitLink_->setVolume(reader, path, openLabel_);
         openPath_.clear();  // the new volume's crop box is not saved under the old one's key
@@ -120,7 +120,7 @@ bool MainWindow::openOctree(const QString& path, const QString& label, bool keep
                              const auto& geo = reader->geometry();
                              self->histogram_ = *histogram;
                              const auto spec = self->tfEditor_->spec();
-                             self->tfEditor_->setVolume(geo.valueMin, geo.valueMax, geo.rescaleSlope, geo.rescaleIntercept, geo.modality, *histogram);
+                             self->tfEditor_->setVolume(geo.valueMin, geo.valueMax, geo.rescaleSlope, geo.rescaleIntercept, geo.hounsfield(), *histogram);
                              self->tfEditor_->setSpec(spec);  // keep what the user chose meanwhile
                              // Without a DICOM or CT window: the 1st-99th percentile, unless chosen.
                              const auto physical = [&](double v) { return v * geo.rescaleSlope + geo.rescaleIntercept; };

@@ -146,11 +146,11 @@ void RenderControls::remember(QCheckBox* box, const QString& key, bool fallback)
     });
 }
 
-void RenderControls::setVolume(double slope, double intercept, double physicalMin, double physicalMax, bool ct) {
+void RenderControls::setVolume(double slope, double intercept, double physicalMin, double physicalMax, bool hounsfield) {
     slope_ = slope;
     intercept_ = intercept;
     iso_->setRange(physicalMin, physicalMax);
-    iso_->setValue(ct ? 300.0 : 0.5 * (physicalMin + physicalMax));
+    iso_->setValue(hounsfield ? 300.0 : 0.5 * (physicalMin + physicalMax));
 }
 
 bool RenderControls::frameReconstruction() const { return subFrames_->isChecked(); }

@@ -22,7 +22,7 @@ class RenderControls : public QWidget {
 public:
     explicit RenderControls(QWidget* parent = nullptr);
     /// The value conversion and range of the open volume (for the isovalue field).
-    void setVolume(double slope, double intercept, double physicalMin, double physicalMax, bool ct);
+    void setVolume(double slope, double intercept, double physicalMin, double physicalMax, bool hounsfield);
     core::RenderSettings settings() const;
     void setSettings(const core::RenderSettings& s);
     /// Voxels per pixel of the working set (quality slider: 1 is full accuracy).

@@ -51,8 +51,8 @@ QIcon thumbnail(const std::string& octreePath) {
         const double extent = std::max(g.dims[0] * g.spacing.x, g.dims[1] * g.spacing.y);
         const auto img = sampler.sample(core::SlicePlane::standard(core::SlicePlane::Orientation::Axial, centre, extent / 64, 64, 64));
         QImage q(64, 64, QImage::Format_Grayscale8);
-        const double lo = g.modality == "CT" ? (-160 - g.rescaleIntercept) / g.rescaleSlope : g.valueMin;
-        const double hi = g.modality == "CT" ? (240 - g.rescaleIntercept) / g.rescaleSlope : g.valueMax;
+        const double lo = g.hounsfield() ? (-160 - g.rescaleIntercept) / g.rescaleSlope : g.valueMin;
+        const double hi = g.hounsfield() ? (240 - g.rescaleIntercept) / g.rescaleSlope : g.valueMax;
         for (int y = 0; y < 64; ++y)
             for (int x = 0; x < 64; ++x) {
                 const float v = img.values[std::size_t(y * 64 + x)];
@@ -77,10 +77,10 @@ QIcon dicomThumbnail(const std::vector<std::string>& files) {
         if (px.size() < std::size_t(in.rows) * in.columns) return {};
         double lo = 1e300, hi = -1e300;
         for (auto v : px) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
-        if (in.modality == "CT" && !in.frameGeometry.empty()) {  // soft-tissue window
-            const auto& f = in.frame(in.frames / 2);
-            lo = (-160 - f.rescaleIntercept) / f.rescaleSlope;
-            hi = (240 - f.rescaleIntercept) / f.rescaleSlope;
+        const auto* f = in.frameGeometry.empty() ? nullptr : &in.frame(in.frames / 2);
+        if (in.modality == "CT" && f && (f->rescaleType.empty() || f->rescaleType == "HU")) {  // soft-tissue window
+            lo = (-160 - f->rescaleIntercept) / f->rescaleSlope;
+            hi = (240 - f->rescaleIntercept) / f->rescaleSlope;
         }
         const bool invert = in.photometric == "MONOCHROME1";
         QImage q(64, 64, QImage::Format_Grayscale8);

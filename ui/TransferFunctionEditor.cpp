@@ -62,14 +62,14 @@ TransferFunctionEditor::TransferFunctionEditor(QWidget* parent)
 }
 
 void TransferFunctionEditor::setVolume(double valueMin, double valueMax, double slope, double intercept,
-                                       const std::string& modality, const core::VolumeHistogram& histogram) {
+                                       bool hounsfield, const core::VolumeHistogram& histogram) {
     slope_ = slope;
     intercept_ = intercept;
     canvas_->setRange(valueMin, valueMax, slope, intercept);
     canvas_->setHistogram(histogram);
     gradient_->setVolume(slope, histogram);
     refraction_->setVolume(valueMin, valueMax, slope, intercept, histogram);
-    const QString preset = modality == "CT" ? "ct-bone" : "mr-default";
+    const QString preset = hounsfield ? "ct-bone" : "mr-default";
     presets_->setCurrentText(preset);
     applyPreset(preset);
 }

@@ -29,8 +29,9 @@ class TransferFunctionEditor : public QWidget {
 public:
     explicit TransferFunctionEditor(QWidget* parent = nullptr);
 
-    /// A volume's value range (stored units), rescale and histogram; resets to `preset`.
-    void setVolume(double valueMin, double valueMax, double slope, double intercept, const std::string& modality,
+    /// A volume's value range (stored units), rescale and histogram; resets to the CT bone
+    /// preset where the values are HU, else to the MR default.
+    void setVolume(double valueMin, double valueMax, double slope, double intercept, bool hounsfield,
                    const core::VolumeHistogram& histogram);
     /// Applies a built-in preset by name (core::TransferFunction::presetNames()).
     void applyPreset(const QString& name);

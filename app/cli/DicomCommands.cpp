@@ -270,7 +270,7 @@ int exportDicomCommand(int argc, char** argv) {
         const auto [lo, hi] = core::RescaledInt16Source::physicalRange(*source);
         const std::string modality = o.modality.empty() ? source->geometry().modality : o.modality;
         const double halfStep = (hi - lo) / 65535.0 / 2.0;
-        if (modality == "CT" && halfStep > 0.5)
+        if (modality == "CT" && !source->geometry().notHounsfield && halfStep > 0.5)
             throw core::Error(input + ": its float values run from " + std::to_string(lo) + " to " + std::to_string(hi) +
                               " HU; as 16-bit integers every value would move by up to " + std::to_string(halfStep) +
                               " HU (a CT holds about -1024 to 3071 HU: is a value wrong?)");

@@ -126,7 +126,7 @@ int lightFieldCommand(int argc, char** argv) {
     const std::string mode = args.value("mode").value_or("dvr");
     if (mode == "mip") settings.mode = core::RenderSettings::Mode::Mip;
     else if (mode != "dvr") throw core::Error("--mode must be dvr or mip for light-field output");
-    const std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
+    const std::string preset = args.value("tf").value_or(g.hounsfield() ? "ct-bone" : "mr-default");
     auto tf = core::TransferFunction::preset(preset, g.valueMin, g.valueMax, g.rescaleSlope, g.rescaleIntercept,
                                              space.minSpacing);
     applyRefractionOption(args, g,

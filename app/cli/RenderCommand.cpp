@@ -122,7 +122,7 @@ int renderCommand(int argc, char** argv) {
             throw core::Error(*tools + ": " + e.what());
         }
     }
-    std::string preset = args.value("tf").value_or(g.modality == "CT" ? "ct-bone" : "mr-default");
+    std::string preset = args.value("tf").value_or(g.hounsfield() ? "ct-bone" : "mr-default");
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
     const bool fusedLabels = args.value("labels").has_value();
     if (fusedLabels && args.value("overlay")) throw core::Error("one volume at a time is fused in 3D: --overlay or --labels");
@@ -181,7 +181,7 @@ int renderCommand(int argc, char** argv) {
     opt.cpuMirror = args.flag("cpu");  // the GPU pool takes bricks in their stored type
     opt.cullByTransferFunction = settings.mode == core::RenderSettings::Mode::Dvr;
     if (settings.mode == core::RenderSettings::Mode::Iso) {
-        const double physical = args.number("iso").value_or(g.modality == "CT" ? 300.0 : 0.5 * (g.valueMin + g.valueMax));
+        const double physical = args.number("iso").value_or(g.hounsfield() ? 300.0 : 0.5 * (g.valueMin + g.valueMax));
         settings.isoValue = (physical - g.rescaleIntercept) / g.rescaleSlope;
         opt.isosurface = true;
         opt.isoValue = settings.isoValue;

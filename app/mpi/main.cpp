@@ -55,7 +55,7 @@ int run(int rank, int size, int argc, char** argv) {
     const auto reader = core::OctreeReader::open(input);
     const auto& g = reader->geometry();
     const auto space = core::OctreeSpace::of(g, reader->brickSize(), reader->levelCount());
-    const auto tf = core::TransferFunction::preset(g.modality == "CT" ? "ct-bone" : "mr-default", g.valueMin, g.valueMax,
+    const auto tf = core::TransferFunction::preset(g.hounsfield() ? "ct-bone" : "mr-default", g.valueMin, g.valueMax,
                                                    g.rescaleSlope, g.rescaleIntercept, space.minSpacing);
     // The anterior view, framed as `holovox-cli lightfield` frames it (core::ContentBox::framing).
     const auto framing = core::ContentBox::framing(display, *reader, tf, false, {1, 0, 0}, {0, 0, 1}, false);

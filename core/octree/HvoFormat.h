@@ -38,6 +38,7 @@ enum FileFlags : std::uint32_t {
     FileSpacingAssumed = 32u,      ///< VolumeGeometry::spacingAssumed
     FileOrientationAssumed = 64u,  ///< VolumeGeometry::orientationAssumed
     FileSplitVoxels = 128u,        ///< version 2: payloads are split-voxels (see FileHeader::split)
+    FileNotHounsfield = 256u,      ///< VolumeGeometry::notHounsfield
 };
 /// NodeRecord::flags.
 enum NodeFlags : std::uint32_t { NodeEmpty = 1u, NodeLossy8 = 2u };

@@ -28,7 +28,7 @@ FileHeader startHeader(const VolumeGeometry& g, const BuildOptions& opt, int lev
     h.flags = (opt.labels || g.isLabel ? FileLabels : 0u) | (opt.lossy8 ? FileLossy8 : 0u) |
               (opt.emptyBelow ? FileEmptyThreshold : 0u) | FileShuffled |
               (g.monochrome1 ? FileMonochrome1 : 0u) | (g.spacingAssumed ? FileSpacingAssumed : 0u) |
-              (g.orientationAssumed ? FileOrientationAssumed : 0u);
+              (g.orientationAssumed ? FileOrientationAssumed : 0u) | (g.notHounsfield ? FileNotHounsfield : 0u);
     h.rescaleSlope = g.rescaleSlope;
     h.rescaleIntercept = g.rescaleIntercept;
     h.emptyBelow = opt.emptyBelow ? *opt.emptyBelow : 0.0;

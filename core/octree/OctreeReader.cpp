@@ -102,6 +102,7 @@ void OctreeReader::load() {
     g.frameOfReferenceUid.assign(h.frameOfReferenceUid, strnlen(h.frameOfReferenceUid, sizeof h.frameOfReferenceUid));
     g.isLabel = (h.flags & hvo::FileLabels) != 0;
     g.monochrome1 = (h.flags & hvo::FileMonochrome1) != 0;
+    g.notHounsfield = (h.flags & hvo::FileNotHounsfield) != 0;
     g.spacingAssumed = (h.flags & hvo::FileSpacingAssumed) != 0;
     g.orientationAssumed = (h.flags & hvo::FileOrientationAssumed) != 0;
     for (const auto& w : h.windows)

@@ -67,7 +67,7 @@ LabelStatistics LabelStatistics::compute(const OctreeReader& image, const Octree
     for (const auto& n : image.nodes())
         approximate = approximate || (n.level == 0 && (n.flags & (hvo::NodeEmpty | hvo::NodeLossy8)) && n.maxValue > n.minValue);
     LabelStatistics out;
-    out.units = ig.modality == "CT" ? "HU" : "";
+    out.units = ig.hounsfield() ? "HU" : "";
     // A voxel's volume is its parallelepiped's: a sheared grid (gantry tilt) holds less than the
     // product of its spacings.
     const double voxelMl = std::abs(glm::determinant(glm::dmat3(lg.indexToPatient()))) / 1000.0;

@@ -274,7 +274,7 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
             if (c[a] < -0.5 || c[a] > double(g.dims[std::size_t(a)]) - 0.5)
                 throw Error("the " + region.describe() + " holds no voxel centre: its centre lies outside the volume");
         RegionStatistics none;
-        none.units = g.modality == "CT" ? "HU" : "";
+        none.units = g.hounsfield() ? "HU" : "";
         none.exact = false;
         none.note = "no voxel centre lies in the " + region.describe() + " (it is smaller than a voxel)";
         return none;
@@ -315,7 +315,7 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
             leaf[std::size_t((std::int64_t(nodes[n].z) * grid[1] + nodes[n].y) * grid[0] + nodes[n].x)] = n;
 
     RegionStatistics s;
-    s.units = g.modality == "CT" ? "HU" : "";
+    s.units = g.hounsfield() ? "HU" : "";
     if (between) return noVoxel();
     double mean = 0, m2 = 0;  // Welford's running mean and sum of squared deviations
     double minV = std::numeric_limits<double>::max(), maxV = std::numeric_limits<double>::lowest();

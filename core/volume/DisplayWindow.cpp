@@ -16,7 +16,7 @@ const std::vector<DisplayWindow>& DisplayWindow::ctPresets() {
 
 DisplayWindow DisplayWindow::initial(const VolumeGeometry& g, std::optional<std::pair<double, double>> percentiles) {
     if (!g.windows.empty()) return g.windows.front();
-    if (g.modality == "CT") return {"CT default", 40, 400};
+    if (g.hounsfield()) return {"CT default", 40, 400};
     if (percentiles && percentiles->second > percentiles->first)
         return {"1st-99th percentile", 0.5 * (percentiles->first + percentiles->second),
                 percentiles->second - percentiles->first};
@@ -27,7 +27,7 @@ DisplayWindow DisplayWindow::initial(const VolumeGeometry& g, std::optional<std:
 
 std::vector<DisplayWindow> DisplayWindow::presetsFor(const VolumeGeometry& g) {
     std::vector<DisplayWindow> out = g.windows;
-    if (g.modality == "CT") out.insert(out.end(), ctPresets().begin(), ctPresets().end());
+    if (g.hounsfield()) out.insert(out.end(), ctPresets().begin(), ctPresets().end());
     return out;
 }
 

@@ -34,10 +34,15 @@ struct VolumeGeometry {
     bool monochrome1 = false;     ///< DICOM MONOCHROME1: display with inverted grey scale
     bool spacingAssumed = false;      ///< the source gave no pixel spacing: 1 mm assumed, lengths are not mm
     bool orientationAssumed = false;  ///< the source gave no orientation: axial assumed, left/right unknown
+    /// A CT whose values are not Hounsfield units (DICOM RescaleType other than HU: an iodine or
+    /// effective-Z map): no HU windows, presets or padding; measured without units.
+    bool notHounsfield = false;
     /// The source's own windows (DICOM WindowCenter/WindowWidth and their explanations), first
     /// the default; at most 4 are kept in an .hvo.
     std::vector<DisplayWindow> windows;
 
+    /// Whether the values are Hounsfield units: a CT whose RescaleType is HU or absent.
+    bool hounsfield() const { return modality == "CT" && !notHounsfield; }
     /// Whether `code` has the form of a DICOM modality code (2 to 8 capitals: CT, MR, PT, RTDOSE).
     static bool isModalityCode(const std::string& code);
     /// Number of voxels (as 64-bit, volumes may exceed 2^32 voxels).

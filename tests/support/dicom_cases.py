@@ -292,6 +292,8 @@ def acquisition_cases(out):
       skew-small/ 5 slices whose rows and columns are 89.8 degrees apart: placed, with a warning
       pad-unsigned/ 3 unsigned CT slices, intercept -1000, PixelPaddingValue 0: padding is
                   -1000 HU (the lowest the type holds), and the warning says so
+      iodine/     3 CT slices of a dual-energy iodine map, RescaleType MGML, slope 0.001, with
+                  PixelPaddingValue -5: its values are not HU (and padding is not made -1024)
     Volume v's pixels are 1000 * v + 100 * slice + column + 7 * row, as elsewhere."""
     study, frame = generate_uid(), generate_uid()
     def write(name, images):
@@ -356,6 +358,18 @@ def acquisition_cases(out):
         ds.add_new(0x00280120, 'US', 0)  # Pixel Padding Value
         images.append(ds)
     write('pad-unsigned', images)
+    uid, images = generate_uid(), []
+    for s in range(3):
+        ds = image(uid, study, frame, s + 1, s, 0, {})
+        ds.Modality = 'CT'
+        ds.RescaleSlope, ds.RescaleIntercept, ds.RescaleType = '0.001', '0', 'MGML'
+        r, c = np.mgrid[0:ROWS, 0:COLS]
+        stored = 7000 + 0 * c + 0 * r  # 7 mg/ml everywhere but row 0
+        stored[0, :] = -5
+        ds.PixelData = stored.astype('<i2').tobytes()
+        ds.add_new(0x00280120, 'SS', -5)  # Pixel Padding Value
+        images.append(ds)
+    write('iodine', images)
 
 
 def main(out):

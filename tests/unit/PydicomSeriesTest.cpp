@@ -13,6 +13,7 @@
 #include <fstream>
 #include <iterator>
 #include <memory>
+#include <regex>
 
 #include <glm/matrix.hpp>
 
@@ -241,6 +242,32 @@ TEST_F(PydicomSeries, SkewedOrientationAndUnsignedPaddingAreNamed) {
     const auto v = physical(src);
     for (std::size_t i = 0; i < 16; ++i) EXPECT_EQ(v[i], -1000.0) << "row 0 is padding";
     EXPECT_EQ(v[16], 100.0) << "row 1, column 0: 1100 - 1000";
+}
+
+// A dual-energy iodine map (RescaleType MGML) is a CT whose values are not HU: the import says
+// so, padding takes the lowest stored value, not -1024 "HU", and measure prints no HU, also
+// from the octree built from it.
+TEST_F(PydicomSeries, CtValuesNotInHounsfieldUnitsAreNotCalledHu) {
+    const auto volumes = import("iodine");
+    ASSERT_EQ(volumes.size(), 1u);
+    const auto& g = volumes[0].geometry;
+    EXPECT_EQ(g.modality, "CT");
+    EXPECT_FALSE(g.hounsfield());
+    EXPECT_TRUE(anyContains(volumes[0].warnings, "values in MGML (RescaleType), not Hounsfield units"))
+        << ::testing::PrintToString(volumes[0].warnings);
+    EXPECT_TRUE(anyContains(volumes[0].warnings, "measured as -32.768, the lowest value the stored bits hold"))
+        << ::testing::PrintToString(volumes[0].warnings);
+    const std::string db = " --db " + dir_->file("iodine.sqlite");
+    auto r = test::runCommand(std::string(HVX_CLI) + " import " + dir_->file("dcm/iodine") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(std::string(HVX_CLI) + " build-series " + volumes[0].seriesUid + " -o " + dir_->file("iodine.hvo") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_FALSE(core::OctreeReader::open(dir_->file("iodine.hvo"))->geometry().hounsfield());
+    r = test::runCommand(std::string(HVX_CLI) + " measure " + dir_->file("iodine.hvo") + " --roi box:-100,-100,-100,100,100,100");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("HU"), std::string::npos) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("max +7 *\n"))) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("min +-32.768 *\n"))) << r.output;
 }
 
 TEST_F(PydicomSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
