@@ -341,8 +341,9 @@ void LayersPanel::refreshLegend() {
             auto* item = new QTreeWidgetItem(legend_, {QString::number(label), QString::fromStdString(e.name)});
             if (const auto row = statistics_->rows.find(label); row != statistics_->rows.end()) {
                 item->setText(2, QString::number(row->second.volumeMl, 'f', 2));
-                if (row->second.sampled > 0)
-                    item->setText(3, QStringLiteral("%1 \u00b1 %2 %3")
+                if (row->second.sampled > 0)  // "≈" where bricks stored without values made it approximate
+                    item->setText(3, QStringLiteral("%1%2 \u00b1 %3 %4")
+                                         .arg(row->second.exact ? QString() : QStringLiteral("\u2248"))
                                          .arg(row->second.mean, 0, 'f', 1)
                                          .arg(row->second.sd, 0, 'f', 1)
                                          .arg(QString::fromStdString(statistics_->units)));

@@ -17,6 +17,7 @@ namespace hvx::core {
 
 namespace {
 struct Sums {
+    bool approximate = false;
     std::uint64_t voxels = 0, sampled = 0;
     double sum = 0, sumSq = 0, min = std::numeric_limits<double>::infinity(), max = -std::numeric_limits<double>::infinity();
 };
@@ -35,7 +36,29 @@ LabelStatistics LabelStatistics::compute(const OctreeReader& image, const Octree
     std::map<int, Sums> sums;
     const std::uint64_t total = std::uint64_t(grid[0]) * grid[1] * grid[2];
     std::uint64_t done = 0;
+    // The image's level-0 bricks stored without their values (empty or 8-bit, and not constant):
+    // a label sampled in one has approximate figures.
+    const OctreeLayout imageLayout(ig.dims, image.brickSize());
+    std::vector<bool> inexact(image.nodes().size(), false);
     bool approximate = false;
+    for (std::size_t n = 0; n < image.nodes().size(); ++n) {
+        const auto& r = image.nodes()[n];
+        inexact[n] = r.level == 0 && (r.flags & (hvo::NodeEmpty | hvo::NodeLossy8)) && r.maxValue > r.minValue;
+        approximate = approximate || inexact[n];
+    }
+    const glm::dmat4 toImage = glm::inverse(ig.indexToPatient());
+    const auto sampledInexact = [&](const glm::dvec3& p) {  // any brick the trilinear sample reads from
+        const glm::dvec3 c(toImage * glm::dvec4(p, 1.0));
+        for (int corner = 0; corner < 8; ++corner) {
+            std::uint32_t b[3];
+            for (int a = 0; a < 3; ++a) {
+                const double v = (corner >> a) & 1 ? std::ceil(c[a]) : std::floor(c[a]);
+                b[a] = std::uint32_t(std::clamp(v, 0.0, double(ig.dims[std::size_t(a)] - 1))) / image.brickSize();
+            }
+            if (inexact[imageLayout.nodeId(0, b[0], b[1], b[2])]) return true;
+        }
+        return false;
+    };
     for (std::uint32_t z = 0; z < grid[2]; ++z)
         for (std::uint32_t y = 0; y < grid[1]; ++y)
             for (std::uint32_t x = 0; x < grid[0]; ++x) {
@@ -57,6 +80,7 @@ LabelStatistics LabelStatistics::compute(const OctreeReader& image, const Octree
                             const double v = sampler.valueAt(p, 0);
                             if (std::isnan(v)) continue;
                             const double phys = v * ig.rescaleSlope + ig.rescaleIntercept;
+                            if (approximate && !s.approximate) s.approximate = sampledInexact(p);
                             ++s.sampled;
                             s.sum += phys;
                             s.sumSq += phys * phys;
@@ -64,8 +88,6 @@ LabelStatistics LabelStatistics::compute(const OctreeReader& image, const Octree
                             s.max = std::max(s.max, phys);
                         }
             }
-    for (const auto& n : image.nodes())
-        approximate = approximate || (n.level == 0 && (n.flags & (hvo::NodeEmpty | hvo::NodeLossy8)) && n.maxValue > n.minValue);
     LabelStatistics out;
     out.units = ig.hounsfield() ? "HU" : "";
     // A voxel's volume is its parallelepiped's: a sheared grid (gantry tilt) holds less than the
@@ -77,6 +99,7 @@ LabelStatistics LabelStatistics::compute(const OctreeReader& image, const Octree
         r.voxels = s.voxels;
         r.volumeMl = double(s.voxels) * voxelMl;
         r.sampled = s.sampled;
+        r.exact = !s.approximate;
         if (s.sampled > 0) {
             r.mean = s.sum / double(s.sampled);
             r.sd = std::sqrt(std::max(0.0, s.sumSq / double(s.sampled) - r.mean * r.mean));
@@ -87,14 +110,18 @@ LabelStatistics LabelStatistics::compute(const OctreeReader& image, const Octree
         out.rows[label] = r;
     }
     if (!outside.empty()) out.note = "label(s) " + outside + " reach outside the image: their means count only the voxels inside";
-    if (approximate)
-        out.note += std::string(out.note.empty() ? "" : "; ") +
-                    "the image stores some bricks without their values (empty or 8-bit): means there are approximate";
+    std::string inexactLabels;
+    for (const auto& [label, r] : out.rows)
+        if (!r.exact) inexactLabels += (inexactLabels.empty() ? "" : ", ") + std::to_string(label);
+    if (!inexactLabels.empty())
+        out.note += std::string(out.note.empty() ? "" : "; ") + "label(s) " + inexactLabels +
+                    " lie where the image stores bricks without their values (empty or 8-bit): their figures are "
+                    "approximate (the exact column says which)";
     return out;
 }
 
 std::string LabelStatistics::csv(const LabelTable* table) const {
-    std::string out = "label,name,voxels,volume_ml,voxels_in_image,mean,sd,min,max,units\n";
+    std::string out = "label,name,voxels,volume_ml,voxels_in_image,mean,sd,min,max,units,exact\n";
     char buf[256];
     for (const auto& [label, r] : rows) {
         std::string name = "label " + std::to_string(label);
@@ -103,10 +130,11 @@ std::string LabelStatistics::csv(const LabelTable* table) const {
         for (const char c : name) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
         quoted += '"';
         if (r.sampled > 0)
-            std::snprintf(buf, sizeof buf, ",%llu,%.6f,%llu,%.6g,%.6g,%.6g,%.6g,%s\n", static_cast<unsigned long long>(r.voxels),
-                          r.volumeMl, static_cast<unsigned long long>(r.sampled), r.mean, r.sd, r.min, r.max, units.c_str());
+            std::snprintf(buf, sizeof buf, ",%llu,%.6f,%llu,%.6g,%.6g,%.6g,%.6g,%s,%s\n", static_cast<unsigned long long>(r.voxels),
+                          r.volumeMl, static_cast<unsigned long long>(r.sampled), r.mean, r.sd, r.min, r.max, units.c_str(),
+                          r.exact ? "yes" : "no");
         else
-            std::snprintf(buf, sizeof buf, ",%llu,%.6f,0,,,,,%s\n", static_cast<unsigned long long>(r.voxels), r.volumeMl,
+            std::snprintf(buf, sizeof buf, ",%llu,%.6f,0,,,,,%s,yes\n", static_cast<unsigned long long>(r.voxels), r.volumeMl,
                           units.c_str());
         out += std::to_string(label) + "," + quoted + buf;
     }

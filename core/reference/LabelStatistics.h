@@ -21,17 +21,18 @@ struct LabelStatistics {
         double volumeMl = 0;
         std::uint64_t sampled = 0;  ///< voxels whose centre lies in the image (the mean's count)
         double mean = 0, sd = 0, min = 0, max = 0;  ///< sd: the population SD
+        bool exact = true;  ///< false when some of its image values come from bricks stored without them
     };
     std::map<int, Row> rows;  ///< by label (0, the background, is left out)
     std::string units;        ///< "HU" for CT, else empty
-    /// Labels some of whose voxels lie outside the image, or approximate image values (bricks
-    /// stored without values): said here, empty when none.
+    /// Labels some of whose voxels lie outside the image, or with approximate image values
+    /// (bricks stored without values), named: empty when none.
     std::string note;
 
     /// Throws core::Error when `labels` is not a label map, CorruptBrickError for a brick that
     /// cannot be read; honours `job`'s cancellation and reports progress.
     static LabelStatistics compute(const OctreeReader& image, const OctreeReader& labels, JobContext& job);
-    /// CSV, one row per label: label,name,voxels,volume_ml,voxels_in_image,mean,sd,min,max,units
+    /// CSV, one row per label: label,name,voxels,volume_ml,voxels_in_image,mean,sd,min,max,units,exact
     /// (names from `table` when given, quoted as RFC 4180 says).
     std::string csv(const LabelTable* table) const;
 };

@@ -245,7 +245,7 @@ TEST(CliCommands, LabelStatsAgreeWithNumpyAndSlicesDrawLabels) {
     std::ifstream csv(dir.file("stats.csv"));
     std::string header, line;
     std::getline(csv, header);
-    EXPECT_EQ(header, "label,name,voxels,volume_ml,voxels_in_image,mean,sd,min,max,units");
+    EXPECT_EQ(header, "label,name,voxels,volume_ml,voxels_in_image,mean,sd,min,max,units,exact");
     std::istringstream want(oracle.output);
     int rows = 0;
     while (std::getline(csv, line)) {

@@ -140,3 +140,47 @@ TEST(LabelStatistics, ShearedGridsAndNegativeLabelsAreCountedExactly) {
         EXPECT_NEAR(stats.rows.at(l).mean, 5.0, 1e-6) << l;
     }
 }
+
+// An image built with --empty-below keeps bricks below the threshold without their values: a
+// label lying in one has approximate figures and is named, per label (the note had named none
+// and the CSV had not said which); a label elsewhere stays exact.
+TEST(LabelStatistics, LabelsOverBricksStoredWithoutValuesAreMarkedApproximate) {
+    test::TempDir dir;
+    core::VolumeGeometry g;
+    g.scalarType = core::ScalarType::Float32;
+    g.modality = "CT";
+    test::DenseVolume iv, lv;
+    iv.dims = lv.dims = {48, 16, 16};
+    for (std::uint32_t k = 0; k < 16; ++k)
+        for (std::uint32_t j = 0; j < 16; ++j)
+            for (std::uint32_t i = 0; i < 48; ++i) {
+                // x < 32: air that varies (-1000 to -985), below the threshold (the first brick
+                // with its border wholly); beyond, tissue.
+                iv.values.push_back(i < 32 ? -1000.0 + double((i + j + k) % 16) : 40.0 + double(i));
+                lv.values.push_back(i >= 4 && i < 12 ? 1 : (i >= 36 && i < 44 ? 2 : 0));
+            }
+    test::MemoryVoxelSource image(g, iv);
+    core::BuildOptions o;
+    o.brickSize = 16;
+    o.emptyBelow = -500.0;
+    core::JobContext job;
+    core::OctreeBuilder(o).build(image, dir.file("image.hvo"), job);
+    auto lg = g;
+    lg.scalarType = core::ScalarType::UInt8;
+    lg.isLabel = true;
+    lg.modality = "OT";
+    test::MemoryVoxelSource labels(lg, lv);
+    build(labels, dir.file("labels.hvo"), true);
+    const auto stats = core::LabelStatistics::compute(*core::OctreeReader::open(dir.file("image.hvo")),
+                                                      *core::OctreeReader::open(dir.file("labels.hvo")), job);
+    ASSERT_EQ(stats.rows.size(), 2u);
+    EXPECT_FALSE(stats.rows.at(1).exact);
+    EXPECT_TRUE(stats.rows.at(2).exact);
+    EXPECT_NEAR(stats.rows.at(2).mean, 40.0 + 39.5, 1e-3);
+    EXPECT_NE(stats.note.find("label(s) 1 lie where the image stores bricks without their values"), std::string::npos)
+        << stats.note;
+    const std::string csv = stats.csv(nullptr);
+    EXPECT_NE(csv.find(",units,exact\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",HU,no\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find(",HU,yes\n"), std::string::npos) << csv;
+}
