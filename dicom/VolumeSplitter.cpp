@@ -150,12 +150,23 @@ VolumeSplitter::Result VolumeSplitter::split(const std::vector<DicomInstance>& i
     const double tolerance =
         along.size() > 1 ? std::max(1e-3, 0.05 * (along.back() - along.front()) / double(along.size() - 1)) : 1e-3;
     const auto repeated = [&](const Part& p) { return repeatedPositions(instances, p.members, normal, tolerance); };
+    Result r;
+    // Without a position anywhere, nothing says which images share one: images of different
+    // type, echo, diffusion or time point are never stacked together in file order.
+    if (along.empty()) {
+        for (std::size_t d = 0; d < 4 && d < dimensions().size(); ++d)
+            if (auto parts = splitBy(instances, {members, ""}, dimensions()[d]); parts.size() > 1) {
+                r.parts = std::move(parts);
+                return r;
+            }
+        r.parts.push_back({members, ""});
+        return r;
+    }
 
     // Where images share positions, the dimension that tells them all apart into the fewest
     // volumes (the earlier in dimensions() on a tie): a trigger time that differs on every image
     // of two acquisitions tells them apart too, but into one-image volumes. When none tells them
     // all apart, the first that tells some apart, and its parts are split further.
-    Result r;
     std::vector<Part> work{{members, ""}};
     std::vector<Part> done;
     while (!work.empty()) {

@@ -17,7 +17,8 @@ namespace hvx::dicom {
 /// images still share a position cannot be told apart: it is refused, never mixed and never
 /// reduced to "the first". Images at distinct but unevenly spaced positions that one of those
 /// dimensions divides into evenly spaced, overlapping parts (two acquisitions offset a little)
-/// are split too, rather than interleaved and interpolated.
+/// are split too, rather than interleaved and interpolated. Images without positions are split
+/// by image type, echo, diffusion or time point where one varies (nothing else is known).
 ///
 /// Threading: pure functions.
 class VolumeSplitter {

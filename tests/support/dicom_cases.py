@@ -292,6 +292,8 @@ def acquisition_cases(out):
       skew-small/ 5 slices whose rows and columns are 89.8 degrees apart: placed, with a warning
       pad-unsigned/ 3 unsigned CT slices, intercept -1000, PixelPaddingValue 0: padding is
                   -1000 HU (the lowest the type holds), and the warning says so
+      noplace-echo/ two echoes of 3 slices, none with ImagePositionPatient: two volumes (the
+                  echoes had been stacked together in file order)
       iodine/     3 CT slices of a dual-energy iodine map, RescaleType MGML, slope 0.001, with
                   PixelPaddingValue -5: its values are not HU (and padding is not made -1024)
     Volume v's pixels are 1000 * v + 100 * slice + column + 7 * row, as elsewhere."""
@@ -370,6 +372,14 @@ def acquisition_cases(out):
         ds.add_new(0x00280120, 'SS', -5)  # Pixel Padding Value
         images.append(ds)
     write('iodine', images)
+    uid, images, n = generate_uid(), [], 0
+    for v in range(2):
+        for s in range(3):
+            n += 1
+            ds = image(uid, study, frame, n, s, v, {'EchoNumbers': v + 1, 'EchoTime': ['10', '20'][v]})
+            del ds.ImagePositionPatient
+            images.append(ds)
+    write('noplace-echo', images)
 
 
 def main(out):

@@ -219,6 +219,15 @@ TEST_F(PydicomSeries, NearbyAcquisitionsStayApartAndUnplacedImagesAreLeftOut) {
     EXPECT_EQ(g.dims[2], 5u);
     EXPECT_NEAR(glm::length(g.origin - glm::dvec3(-20.0, -15.0, 30.0)), 0.0, 1e-3) << "the stack starts at slice 0";
     EXPECT_NEAR(g.spacing.z, 2.5, 1e-3);
+    // Without any position, two echoes are still two volumes, each in file order.
+    const auto echoes = import("noplace-echo");
+    ASSERT_EQ(echoes.size(), 2u);
+    for (std::size_t v = 0; v < 2; ++v) {
+        EXPECT_EQ(echoes[v].varying, "echo " + std::to_string(v + 1) + " (TE " + std::to_string(10 * (v + 1)) + " ms)");
+        EXPECT_TRUE(anyContains(echoes[v].warnings, "no ImagePositionPatient: stacked in file order"));
+        dicom::DicomSeriesSource src(echoes[v]);
+        for (const double x : physical(src)) ASSERT_TRUE(x >= 1000.0 * double(v) && x < 1000.0 * double(v) + 1000.0) << x;
+    }
 }
 
 // Rows and columns 80 degrees apart are a broken header: refused; 89.8 degrees apart, placed as
