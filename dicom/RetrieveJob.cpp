@@ -94,10 +94,18 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
         // Runs on its own thread: every failure is kept in the series' status, none is lost.
         try {
             std::vector<DicomInstance> instances;
+            StudyDatabase::ImportStats stats;
             {
                 std::lock_guard lock(mutex);
                 instances = received[series[index].seriesUid];
-                db_.addInstances(instances);
+                stats = db_.addInstances(instances);
+            }
+            // A UID collision (images naming a study, series or instance filed under another
+            // patient, study or series) refuses those images and fails the series, never mixed.
+            if (!stats.conflicts.empty()) {
+                std::string why;
+                for (const auto& c : stats.conflicts) why += (why.empty() ? "" : "; ") + c;
+                throw core::Error(why);
             }
             if (!buildOctrees || instances.empty() || !series[index].retrieved) return;
             std::vector<std::string> notes;

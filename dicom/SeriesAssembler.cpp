@@ -18,13 +18,14 @@ namespace hvx::dicom {
 namespace {
 struct GroupKey {
     std::string series;
+    std::string owner;  ///< patient ID, name and study UID: a series UID two patients share is never one stack
     std::string frame;  ///< Frame of Reference UID: two frames are two coordinate systems, never one stack
     std::uint16_t rows, columns, bits, signedness, samples;
     std::array<long, 6> iop;      ///< iop[0]: which plane of the series (samePlane), the rest 0
     std::array<long, 2> spacing;
     bool operator<(const GroupKey& o) const {
-        return std::tie(series, frame, rows, columns, bits, signedness, samples, iop, spacing) <
-               std::tie(o.series, o.frame, o.rows, o.columns, o.bits, o.signedness, o.samples, o.iop, o.spacing);
+        return std::tie(series, owner, frame, rows, columns, bits, signedness, samples, iop, spacing) <
+               std::tie(o.series, o.owner, o.frame, o.rows, o.columns, o.bits, o.signedness, o.samples, o.iop, o.spacing);
     }
 };
 
@@ -268,7 +269,8 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
                           "nothing says how their pixels lie)"];
                 continue;
             }
-            GroupKey k{in.seriesInstanceUid, in.frameOfReferenceUid, in.rows, in.columns, in.bitsAllocated, in.pixelRepresentation,
+            GroupKey k{in.seriesInstanceUid, in.patientId + '\\' + in.patientName + '\\' + in.studyInstanceUid,
+                       in.frameOfReferenceUid, in.rows, in.columns, in.bitsAllocated, in.pixelRepresentation,
                        in.samplesPerPixel, {}, {}};
             const Plane plane{{fg.rowDirection.x, fg.rowDirection.y, fg.rowDirection.z, fg.columnDirection.x,
                                fg.columnDirection.y, fg.columnDirection.z},
@@ -285,7 +287,21 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
     for (const auto& [what, n] : skipped) notes.push_back(std::to_string(n) + " " + what + " skipped");
 
     std::map<std::string, int> stacksPerSeries;
-    for (const auto& [key, members] : groups) ++stacksPerSeries[key.series];
+    std::map<std::string, std::set<std::string>> whyStacks;  // series -> what differs between its stacks
+    std::map<std::string, const GroupKey*> firstKey;
+    for (const auto& [key, members] : groups) {
+        ++stacksPerSeries[key.series];
+        const GroupKey*& first = firstKey[key.series];
+        if (!first) {
+            first = &key;
+            continue;
+        }
+        if (key.owner != first->owner) whyStacks[key.series].insert("patients or studies (a UID collision)");
+        if (key.frame != first->frame) whyStacks[key.series].insert("frames of reference");
+        if (std::tie(key.rows, key.columns, key.bits, key.signedness, key.samples, key.iop, key.spacing) !=
+            std::tie(first->rows, first->columns, first->bits, first->signedness, first->samples, first->iop, first->spacing))
+            whyStacks[key.series].insert("geometry");
+    }
     std::map<std::string, int> stackIndex;
     std::vector<SeriesVolume> out;
     for (auto& [key, members] : groups) {
@@ -363,8 +379,10 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
             if (stacksPerSeries[key.series] > 1) {
                 std::string sizes;
                 for (const auto& sz : sizesPerSeries[key.series]) sizes += (sizes.empty() ? "" : ", ") + sz;
+                std::string why;
+                for (const auto& w : whyStacks[key.series]) why += (why.empty() ? "" : " and ") + w;
                 v.warnings.push_back("series holds " + std::to_string(stacksPerSeries[key.series]) +
-                                     " stacks of different geometry" +
+                                     " stacks of different " + why +
                                      (sizesPerSeries[key.series].size() > 1 ? " and mixed image sizes (" + sizes + ")" : "") +
                                      ": split into separate volumes");
             }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <set>
 
 #include "core/base/Error.h"
 #include "core/octree/OctreeBuilder.h"
@@ -131,7 +132,28 @@ std::string SeriesOctree::buildPreview(StudyDatabase& db, const std::string& ser
     return out;
 }
 
-void SeriesOctree::recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes) {
+void SeriesOctree::recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& scanned) {
+    // A series whose images came in over several imports (two folders, two retrieves) is
+    // assembled again from all its files: its gaps and volumes are the whole series', not the
+    // last import's (a filled gap had kept its "missing slices" warning, a new one had none).
+    std::map<std::string, std::set<std::string>> seen;  // series -> SOP Instance UIDs in `scanned`
+    for (const auto& v : scanned)
+        for (const auto& in : v.instances) seen[v.seriesUid].insert(in.sopInstanceUid);
+    std::vector<SeriesVolume> volumes;
+    for (const auto& v : scanned) {
+        SeriesRow row;
+        if (!db.findSeries(v.seriesUid, row) || std::size_t(row.instanceCount) <= seen[v.seriesUid].size()) {
+            volumes.push_back(v);
+            continue;
+        }
+        if (seen[v.seriesUid].empty()) continue;  // assembled below once
+        seen[v.seriesUid].clear();
+        core::JobContext scanJob;
+        const auto scan = DicomScanner::scan(db.filesOfSeries(v.seriesUid), scanJob);
+        std::vector<std::string> notes;
+        for (auto& whole : SeriesAssembler::assemble(scan.instances, notes))
+            if (whole.seriesUid == v.seriesUid) volumes.push_back(std::move(whole));
+    }
     std::map<std::string, std::vector<std::string>> bySeries, warnings;
     for (const auto& v : volumes) {
         bySeries[v.seriesUid].push_back(v.varying.empty() ? v.label : v.varying);

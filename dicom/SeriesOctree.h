@@ -47,7 +47,8 @@ public:
                                  std::vector<std::string>* warnings = nullptr, int volume = 0);
     /// Records in the database the volumes of every series in `volumes` that splits into several
     /// (what varies between them), and each series' assembly warnings, as import and retrieve
-    /// find them.
+    /// find them; a series the database holds more images of than `volumes` do is assembled
+    /// again from all its files first.
     static void recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes);
 };
 

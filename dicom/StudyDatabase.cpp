@@ -2,10 +2,13 @@
 
 #include <sqlite3.h>
 
+#include <glm/geometric.hpp>
+
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <set>
 #include <thread>
 
@@ -196,6 +199,15 @@ void StudyDatabase::exec(const char* sql) const {
     }
 }
 
+namespace {
+/// Paths are kept absolute, so that a row still names its file from another working folder.
+std::string absolutePath(const std::string& path) {
+    std::error_code ec;
+    const auto p = std::filesystem::absolute(path, ec);
+    return ec ? path : p.lexically_normal().string();
+}
+}  // namespace
+
 StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomInstance>& instances) {
     ImportStats stats;
     transaction([&] {
@@ -208,12 +220,56 @@ StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomIn
                          "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT(uid) DO UPDATE SET "
                          "refers_to = CASE WHEN refers_to = '' THEN excluded.refers_to ELSE refers_to END RETURNING id;");
         Stmt find(db_, "SELECT path FROM instances WHERE sop_uid = ?1;");
+        // What a UID is already filed under: an instance naming another is a collision.
+        Stmt studyOwner(db_, "SELECT p.patient_id, p.name FROM studies s JOIN patients p ON p.id = s.patient WHERE s.uid = ?1;");
+        Stmt seriesOwner(db_, "SELECT st.uid FROM series se JOIN studies st ON st.id = se.study WHERE se.uid = ?1;");
+        Stmt sopOwner(db_, "SELECT se.uid FROM instances i JOIN series se ON se.id = i.series WHERE i.sop_uid = ?1;");
+        std::map<std::string, std::size_t> conflictCounts;  // sentence -> images
+        std::map<std::string, std::pair<int, glm::dvec3>> inBatch;  // SOP UID -> instance number, first position
+        auto refuse = [&](std::size_t index, const std::string& why) {
+            stats.refused.push_back(index);
+            ++conflictCounts[why];
+        };
         Stmt put(db_, "INSERT INTO instances(sop_uid, series, path, transfer_syntax, sop_class, instance_number, file_size) "
                       "VALUES(?1, ?2, ?3, ?4, ?5, ?6, ?7) ON CONFLICT(sop_uid) DO UPDATE SET path = ?3, series = ?2, "
                       "transfer_syntax = ?4, file_size = ?7;");
-        std::set<std::int64_t> touchedSeries, touchedStudies;
-        for (const auto& in : instances) {
+        std::set<std::int64_t> touchedSeries, touchedStudies, grown;
+        for (std::size_t index = 0; index < instances.size(); ++index) {
+            const auto& in = instances[index];
             if (in.studyInstanceUid.empty() || in.seriesInstanceUid.empty() || in.sopInstanceUid.empty()) continue;
+            const std::string who = in.patientName + " (" + in.patientId + ")";
+            studyOwner.reset();
+            studyOwner.bind(1, in.studyInstanceUid);
+            if (studyOwner.step() && (studyOwner.text(0) != in.patientId || studyOwner.text(1) != in.patientName)) {
+                refuse(index, "study " + in.studyInstanceUid + " is filed under patient " + studyOwner.text(1) + " (" +
+                                  studyOwner.text(0) + "), not " + who + " whom these images name");
+                continue;
+            }
+            seriesOwner.reset();
+            seriesOwner.bind(1, in.seriesInstanceUid);
+            if (seriesOwner.step() && seriesOwner.text(0) != in.studyInstanceUid) {
+                refuse(index, "series " + in.seriesInstanceUid + " is filed under study " + seriesOwner.text(0) +
+                                  ", not study " + in.studyInstanceUid + " of " + who + " that these images name");
+                continue;
+            }
+            sopOwner.reset();
+            sopOwner.bind(1, in.sopInstanceUid);
+            if (sopOwner.step() && sopOwner.text(0) != in.seriesInstanceUid) {
+                refuse(index, "their SOP Instance UIDs are filed in series " + sopOwner.text(0) + ", not series " +
+                                  in.seriesInstanceUid + " of " + who + " that they name");
+                continue;
+            }
+            // Two files of one SOP Instance UID: copies, unless their images differ.
+            const glm::dvec3 at = in.frameGeometry.empty() ? glm::dvec3(0.0) : in.frame(0).position;
+            if (const auto seen = inBatch.find(in.sopInstanceUid); seen != inBatch.end()) {
+                if (seen->second.first != in.instanceNumber || glm::length(seen->second.second - at) > 1e-3) {
+                    refuse(index, "they share their SOP Instance UID with another image of series " +
+                                      in.seriesInstanceUid + " (other instance number or position)");
+                    continue;
+                }
+            } else {
+                inBatch[in.sopInstanceUid] = {in.instanceNumber, at};
+            }
             patient.reset();
             patient.bind(1, in.patientId).bind(2, in.patientName).bind(3, in.patientBirthDate).bind(4, in.patientSex);
             patient.step();
@@ -231,23 +287,41 @@ StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomIn
             series.step();
             const auto seriesId = series.integer(0);
             while (series.step()) {}
+            const std::string path = absolutePath(in.path);
             find.reset();
             find.bind(1, in.sopInstanceUid);
             if (find.step()) {
-                if (find.text(0) == in.path) {
+                if (find.text(0) == path) {
                     ++stats.unchanged;
                     continue;
                 }
                 ++stats.moved;
             } else {
                 ++stats.added;
+                grown.insert(seriesId);
             }
             put.reset();
-            put.bind(1, in.sopInstanceUid).bind(2, seriesId).bind(3, in.path).bind(4, in.transferSyntaxUid)
+            put.bind(1, in.sopInstanceUid).bind(2, seriesId).bind(3, path).bind(4, in.transferSyntaxUid)
                 .bind(5, in.sopClassUid).bind(6, std::int64_t(in.instanceNumber)).bind(7, std::int64_t(in.fileSize));
             put.step();
             touchedSeries.insert(seriesId);
             touchedStudies.insert(studyId);
+        }
+        for (const auto& [why, n] : conflictCounts)
+            stats.conflicts.push_back(std::to_string(n) + " image(s) refused, never filed: " + why +
+                                      " (a UID collision; the images already filed stay as they were)");
+        // An octree built before a series gained images holds fewer than the series: forgotten,
+        // so that opening the series builds it again (a stale one had opened, interpolated
+        // across slices that had since arrived).
+        Stmt stale(db_, "UPDATE series SET octree = NULL WHERE id = ?1;");
+        Stmt staleVolumes(db_, "UPDATE volumes SET octree = NULL WHERE series = ?1;");
+        for (auto id : grown) {
+            stale.reset();
+            stale.bind(1, id);
+            stale.step();
+            staleVolumes.reset();
+            staleVolumes.bind(1, id);
+            staleVolumes.step();
         }
         Stmt count(db_, "UPDATE series SET instance_count = (SELECT count(*) FROM instances WHERE series = ?1) WHERE id = ?1;");
         for (auto id : touchedSeries) {
@@ -265,6 +339,14 @@ StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomIn
         }
     });
     return stats;
+}
+
+std::vector<DicomInstance> StudyDatabase::ImportStats::accepted(const std::vector<DicomInstance>& instances) const {
+    const std::set<std::size_t> out(refused.begin(), refused.end());
+    std::vector<DicomInstance> kept;
+    for (std::size_t i = 0; i < instances.size(); ++i)
+        if (!out.count(i)) kept.push_back(instances[i]);
+    return kept;
 }
 
 StudyDatabase::FileCheck StudyDatabase::checkFiles() {
@@ -427,7 +509,7 @@ std::vector<std::string> StudyDatabase::filesOfSeries(const std::string& seriesU
 
 void StudyDatabase::setSeriesOctree(const std::string& seriesUid, const std::string& octreePath) {
     Stmt s(db_, "UPDATE series SET octree = ?2 WHERE uid = ?1;");
-    s.bind(1, seriesUid).bind(2, octreePath);
+    s.bind(1, seriesUid).bind(2, absolutePath(octreePath));
     s.step();
 }
 
@@ -468,7 +550,7 @@ std::vector<VolumeRow> StudyDatabase::volumesOfSeries(const std::string& seriesU
 
 void StudyDatabase::setVolumeOctree(const std::string& seriesUid, int number, const std::string& octreePath) {
     Stmt s(db_, "UPDATE volumes SET octree = ?3 WHERE number = ?2 AND series = (SELECT id FROM series WHERE uid = ?1);");
-    s.bind(1, seriesUid).bind(2, std::int64_t(number)).bind(3, octreePath);
+    s.bind(1, seriesUid).bind(2, std::int64_t(number)).bind(3, absolutePath(octreePath));
     s.step();
 }
 

@@ -66,8 +66,18 @@ public:
         std::size_t added = 0;      ///< instances new to the database
         std::size_t unchanged = 0;  ///< already known, same file
         std::size_t moved = 0;      ///< known SOP instance now found at another path
+        /// Indices (into the instances given) refused as identity conflicts, none filed.
+        std::vector<std::size_t> refused;
+        /// One sentence per conflict: a study UID of another patient, a series UID of another
+        /// study, a SOP Instance UID of another series, or of another image in this batch.
+        std::vector<std::string> conflicts;
+        /// The instances given less those refused (what may be stacked into volumes).
+        std::vector<DicomInstance> accepted(const std::vector<DicomInstance>& instances) const;
     };
-    /// Adds instances (and their patients, studies, series) in one transaction.
+    /// Adds instances (and their patients, studies, series) in one transaction. A UID already
+    /// filed under another patient, study or series (a UID collision, as a faulty anonymiser
+    /// makes) refuses the instance, named in `conflicts`: one patient's image is never filed
+    /// under another patient, study or series. Paths are kept absolute.
     ImportStats addInstances(const std::vector<DicomInstance>& instances);
     struct FileCheck {
         std::size_t offline = 0;     ///< instances whose files cannot be reached now

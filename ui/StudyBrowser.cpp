@@ -299,15 +299,18 @@ int StudyBrowser::importPaths(const QStringList& paths) {
             dicom::StudyDatabase database(db);
             const auto stats = database.addInstances(scan.instances);
             std::vector<std::string> notes;  // a 4D series' volumes, for the rows below it
-            dicom::SeriesOctree::recordVolumes(database, dicom::SeriesAssembler::assemble(scan.instances, notes));
+            dicom::SeriesOctree::recordVolumes(database,
+                                               dicom::SeriesAssembler::assemble(stats.accepted(scan.instances), notes));
             if (scan.instances.empty())
                 throw core::Error(scan.broken ? "no readable DICOM found: " + std::to_string(scan.broken) + " broken files"
                                               : std::string("no DICOM files found there"));
-            for (const auto& i : scan.instances)
+            for (const auto& i : stats.accepted(scan.instances))
                 if (!found->contains(QString::fromStdString(i.seriesInstanceUid)))
                     found->append(QString::fromStdString(i.seriesInstanceUid));
-            return QObject::tr("%1 DICOM files (%2 new), %3 not DICOM, %4 broken")
-                .arg(scan.instances.size()).arg(stats.added).arg(scan.notDicom).arg(scan.broken);
+            QString summary = QObject::tr("%1 DICOM files (%2 new), %3 not DICOM, %4 broken")
+                                  .arg(scan.instances.size()).arg(stats.added).arg(scan.notDicom).arg(scan.broken);
+            for (const auto& c : stats.conflicts) summary += "; " + QString::fromStdString(c);
+            return summary;
         },
         [this, found, id](const QString& summary) {
             refresh();

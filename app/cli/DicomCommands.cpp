@@ -41,14 +41,13 @@ void printVolume(const dicom::SeriesVolume& v, std::size_t number = 0) {
     for (const auto& w : v.warnings) std::printf("      warning: %s\n", w.c_str());
 }
 
-std::vector<dicom::SeriesVolume> scanAndAssemble(const std::vector<std::string>& paths, dicom::DicomScanner::Result& scan,
-                                                 std::vector<std::string>& notes) {
+dicom::DicomScanner::Result scanFiles(const std::vector<std::string>& paths) {
     ProgressBar bar("scan ");
     core::JobContext job(bar.observer());
     SignalCancel cancel(job);
-    scan = dicom::DicomScanner::scan(paths, job);
+    auto scan = dicom::DicomScanner::scan(paths, job);
     bar.finish();
-    return dicom::SeriesAssembler::assemble(scan.instances, notes);
+    return scan;
 }
 
 std::string octreeName(const dicom::SeriesVolume& v, std::size_t stacks, std::size_t index) {
@@ -61,10 +60,11 @@ int importCommand(int argc, char** argv) {
     if (args.positional().empty()) throw core::Error("usage: holovox-cli import PATH... [--db FILE] [--build]");
     const std::string dbPath = args.value("db").value_or(dicom::StudyDatabase::defaultPath());
     dicom::StudyDatabase db(dbPath);
-    dicom::DicomScanner::Result scan;
-    std::vector<std::string> notes;
-    const auto volumes = scanAndAssemble(args.positional(), scan, notes);
+    const auto scan = scanFiles(args.positional());
     const auto stats = db.addInstances(scan.instances);
+    // What a UID collision refused is never stacked either.
+    std::vector<std::string> notes = stats.conflicts;
+    const auto volumes = dicom::SeriesAssembler::assemble(stats.accepted(scan.instances), notes);
     dicom::SeriesOctree::recordVolumes(db, volumes);
     std::printf("scanned %zu files: %zu DICOM, %zu not DICOM (skipped), %zu broken\n", scan.filesSeen,
                 scan.instances.size(), scan.notDicom, scan.broken);
@@ -184,9 +184,9 @@ int buildSeriesCommand(int argc, char** argv) {
                     path.c_str(), grid->c_str(), core::LabelTable::sidecarPath(path).c_str());
         return 0;
     }
-    dicom::DicomScanner::Result scan;
+    const auto scan = scanFiles(files);
     std::vector<std::string> notes;
-    auto volumes = scanAndAssemble(files, scan, notes);
+    auto volumes = dicom::SeriesAssembler::assemble(scan.instances, notes);
     volumes.erase(std::remove_if(volumes.begin(), volumes.end(),
                                  [&](const dicom::SeriesVolume& v) { return v.seriesUid != uid; }),
                   volumes.end());

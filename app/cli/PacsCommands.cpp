@@ -221,8 +221,9 @@ int listenCommand(int argc, char** argv) {
     std::mutex mutex;
     dicom::StorageServer server(s.local, allowed, [&](const dicom::DicomInstance& in) {
         std::lock_guard lock(mutex);
-        db.addInstances({in});
+        const auto stats = db.addInstances({in});
         std::printf("received %s %s -> %s\n", in.modality.c_str(), in.sopInstanceUid.c_str(), in.path.c_str());
+        for (const auto& c : stats.conflicts) std::printf("  not indexed: %s\n", c.c_str());
         std::fflush(stdout);
     });
     for (const auto& n : s.nodes)

@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 
+#include <filesystem>
 #include <fstream>
 
 #include "core/base/Error.h"
@@ -209,4 +210,71 @@ TEST(StudyDatabase, OctreePathIsRecordedAndCorruptFileRefused) {
     EXPECT_EQ(row.octreePath, "/tmp/x.hvo");
     std::ofstream(dir.file("junk.sqlite")) << std::string(5000, 'j');
     EXPECT_THROW(dicom::StudyDatabase(dir.file("junk.sqlite")), core::Error);
+}
+
+// UID collisions, as a faulty anonymiser makes them: images naming a study of another patient,
+// a series of another study or a SOP Instance UID of another series are refused and named,
+// never filed there; two different images of one SOP Instance UID keep the first. Within one
+// batch and across imports alike. What was filed stays as it was.
+TEST(StudyDatabase, UidCollisionsAreRefusedNeverFiledUnderAnotherPatient) {
+    test::TempDir dir;
+    dicom::StudyDatabase db(dir.file("s.sqlite"));
+    const auto file = [&](const std::string& name) {
+        std::ofstream(dir.file(name)) << "x";
+        return dir.file(name);
+    };
+    std::vector<dicom::DicomInstance> batch = {
+        instance(file("ann1"), "ALPHA^ANN", "A1", "9.1", "20240101", "9.1.1", "CT", "9.1.1.1"),
+        // Bob's image in Ann's series (another study): refused.
+        instance(file("bob1"), "BETA^BOB", "B1", "9.2", "20240101", "9.1.1", "CT", "9.2.1.1"),
+        // Bob's image in Ann's study: refused.
+        instance(file("bob2"), "BETA^BOB", "B1", "9.1", "20240101", "9.1.2", "CT", "9.1.2.1"),
+    };
+    auto s = db.addInstances(batch);
+    EXPECT_EQ(s.added, 1u);
+    EXPECT_EQ(s.refused, (std::vector<std::size_t>{1, 2}));
+    ASSERT_EQ(s.conflicts.size(), 2u);
+    EXPECT_NE(s.conflicts[0].find("series 9.1.1 is filed under study 9.1, not study 9.2 of BETA^BOB (B1)"), std::string::npos)
+        << s.conflicts[0];
+    EXPECT_NE(s.conflicts[1].find("study 9.1 is filed under patient ALPHA^ANN (A1), not BETA^BOB (B1)"), std::string::npos)
+        << s.conflicts[1];
+    EXPECT_EQ(s.accepted(batch).size(), 1u);
+    dicom::StudyQuery bob;
+    bob.text = "BETA";
+    EXPECT_TRUE(db.findStudies(bob).empty()) << "Bob has no study filed";
+    // Across imports: Ann's SOP Instance UID in Bob's own series is refused, not moved there.
+    s = db.addInstances({instance(file("bob3"), "BETA^BOB", "B1", "9.3", "20240101", "9.3.1", "CT", "9.1.1.1")});
+    EXPECT_EQ(s.refused.size(), 1u);
+    ASSERT_EQ(s.conflicts.size(), 1u);
+    EXPECT_NE(s.conflicts[0].find("filed in series 9.1.1, not series 9.3.1"), std::string::npos) << s.conflicts[0];
+    EXPECT_EQ(db.filesOfSeries("9.1.1"), (std::vector<std::string>{dir.file("ann1")}));
+    // Two different images (other instance numbers) of one SOP Instance UID in one batch.
+    auto a = instance(file("c1"), "ALPHA^ANN", "A1", "9.1", "20240101", "9.1.1", "CT", "9.1.1.7");
+    auto b = instance(file("c2"), "ALPHA^ANN", "A1", "9.1", "20240101", "9.1.1", "CT", "9.1.1.7");
+    a.instanceNumber = 7;
+    b.instanceNumber = 8;
+    s = db.addInstances({a, b});
+    EXPECT_EQ(s.added, 1u);
+    EXPECT_EQ(s.refused, (std::vector<std::size_t>{1}));
+    ASSERT_EQ(s.conflicts.size(), 1u);
+    EXPECT_NE(s.conflicts[0].find("share their SOP Instance UID with another image"), std::string::npos) << s.conflicts[0];
+}
+
+// A series that gains images after its octree was built forgets the octree (it had opened the
+// stale one, interpolated across the slices that came since); paths are stored absolute.
+TEST(StudyDatabase, ASeriesThatGainsImagesForgetsItsOctree) {
+    test::TempDir dir;
+    dicom::StudyDatabase db(dir.file("s.sqlite"));
+    auto in = sample(dir);
+    db.addInstances({in[0], in[1]});
+    db.setSeriesOctree("1.1.1", dir.file("x.hvo"));
+    db.addInstances({in[0], in[1]});  // nothing new: kept
+    dicom::SeriesRow row;
+    ASSERT_TRUE(db.findSeries("1.1.1", row));
+    EXPECT_EQ(row.octreePath, dir.file("x.hvo"));
+    db.addInstances({in[2]});
+    ASSERT_TRUE(db.findSeries("1.1.1", row));
+    EXPECT_EQ(row.octreePath, "");
+    EXPECT_EQ(row.instanceCount, 3);
+    for (const auto& f : db.filesOfSeries("1.1.1")) EXPECT_TRUE(std::filesystem::path(f).is_absolute()) << f;
 }
