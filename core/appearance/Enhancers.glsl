@@ -189,6 +189,16 @@ HVX_FN vec2 hvxDetailShading(vec3 g, vec3 gs, vec3 L, float unsharp, float exagg
     return vec2(mix(ndl, e, gn * exaggerate), ndl);
 }
 
+// ---- Projection grey ---------------------------------------------------------------------------
+// MIP, MinIP and the average show a value through a window: on screen its grey is linear in the
+// value, as a windowed slice's is. A frame holds linear light, which the outputs encode to sRGB
+// (PNG, the views), so the window's fraction g in [0, 1] becomes the light whose sRGB code is g
+// (IEC 61966-2-1); written straight, a value at a quarter of the window had shown 54 % grey.
+HVX_FN float hvxProjectionLight(float g) {
+    g = clamp(g, 0.0f, 1.0f);
+    return g <= 0.04045f ? g / 12.92f : pow((g + 0.055f) / 1.055f, 2.4f);
+}
+
 // ---- The chain -------------------------------------------------------------------------------
 // Tool parameters as the shader's uniform block holds them (std140: vec4s only); filled from
 // core::ToolSet by both sides.

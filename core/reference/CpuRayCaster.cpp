@@ -451,7 +451,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     if (mode == RenderSettings::Mode::Mip || mode == RenderSettings::Mode::MinIp || mode == RenderSettings::Mode::Average) {
         if (!hit) return glm::vec4(0.0f);
         const double v = mode == RenderSettings::Mode::Average ? (travelled > 0 ? sum / travelled : extreme) : extreme;
-        const float g = float(std::clamp((v - tf_.valueMin()) / (tf_.valueMax() - tf_.valueMin()), 0.0, 1.0));
+        const float g = glsl::hvxProjectionLight(float((v - tf_.valueMin()) / (tf_.valueMax() - tf_.valueMin())));
         return glm::vec4(g, g, g, 1.0f);
     }
     if (toolBits) return accum;

@@ -269,7 +269,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
 #if MODE >= 2
     if (!hit) return vec4(0.0);
     float v = MODE == 4 ? (travelled > 0.0 ? sum / travelled : extreme) : extreme;
-    float g = clamp((v - tfRange.x) / (tfRange.y - tfRange.x), 0.0, 1.0);
+    float g = hvxProjectionLight((v - tfRange.x) / (tfRange.y - tfRange.x));
     return vec4(g, g, g, 1.0);
 #elif HVX_TOOLS != 0
     return accum;

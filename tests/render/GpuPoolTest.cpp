@@ -20,9 +20,16 @@ using namespace hvx;
 
 namespace {
 // Largest absolute difference of the grey MIP/MinIP images, in stored units.
+/// A projection's window fraction from the frame's light (its sRGB code, IEC 61966-2-1).
+double windowFraction(float light) {
+    const double l = double(light);
+    return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
+}
+
 double worstStoredError(const core::RenderImage& a, const core::RenderImage& b, double range) {
     double worst = 0;
-    for (std::size_t i = 0; i < a.rgba.size(); ++i) worst = std::max(worst, double(std::abs(a.rgba[i].r - b.rgba[i].r)));
+    for (std::size_t i = 0; i < a.rgba.size(); ++i)
+        worst = std::max(worst, std::abs(windowFraction(a.rgba[i].r) - windowFraction(b.rgba[i].r)));
     return worst * range;
 }
 

@@ -64,7 +64,7 @@ struct Comparison {
 
 /// Renders with the CPU reference and compares every pixel with `oracle` (RGBA); `covered`
 /// counts the pixels the oracle gives any opacity.
-/// The pixels of the last render() whose grey (red) is above 0.05: a projection that shows
+/// The pixels of the last render() whose grey (red, as shown) is above 0.05: a projection that shows
 /// something, not a black frame that any black frame would match.
 int lit = 0;
 
@@ -90,7 +90,7 @@ Comparison compare(Scene& s, const core::TransferFunction& tf, const core::Rende
             c.mean += diff / (kSize * kSize);
             c.large += diff > largeAbove;
             c.covered += want.a > 0.05;
-            lit += got.r > 0.05f;
+            lit += got.r > 0.05f / 12.92f;  // light whose sRGB code is 0.05
         }
     return c;
 }
@@ -125,7 +125,10 @@ TEST(DenseOracle, ProjectionModesMatchTheDenseVolume) {
                 if (n == 0) return glm::dvec4(0.0);
                 const double v = mode == Mode::Average ? (length > 0 ? sum / length : extreme) : extreme;
                 const double grey = std::clamp((v - tf.valueMin()) / (tf.valueMax() - tf.valueMin()), 0.0, 1.0);
-                return glm::dvec4(grey, grey, grey, 1.0);
+                // The frame holds the light whose sRGB code (IEC 61966-2-1) is that grey: the
+                // PNG and the views then show the value linearly, as a windowed slice does.
+                const double light = grey <= 0.04045 ? grey / 12.92 : std::pow((grey + 0.055) / 1.055, 2.4);
+                return glm::dvec4(light, light, light, 1.0);
             },
             0.05);
         std::printf("mode %d against dense marching: mean |diff| %.5f, max %.4f, %d of %d pixels off by > 0.05\n",
