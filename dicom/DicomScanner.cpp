@@ -94,10 +94,10 @@ DicomScanner::Result DicomScanner::scan(const std::vector<std::string>& paths, c
                     referenced.clear();  // fall back to walking the folder
                 }
             }
-            if (!referenced.empty()) {
-                files.insert(files.end(), referenced.begin(), referenced.end());
-                continue;
-            }
+            // What the DICOMDIR lists (a referenced file that is missing counts as broken), and
+            // the folder's other files: a series copied in beside a DICOMDIR, or a referenced
+            // file's copy elsewhere, had been ignored without a word.
+            files.insert(files.end(), referenced.begin(), referenced.end());
             for (auto it = fs::recursive_directory_iterator(p, fs::directory_options::skip_permission_denied, ec);
                  it != fs::recursive_directory_iterator(); it.increment(ec)) {
                 if (ec) break;

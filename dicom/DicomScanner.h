@@ -21,8 +21,8 @@ public:
         std::size_t broken = 0;    ///< DICOM files that could not be read
         std::vector<std::string> brokenReasons;  ///< the first few, one sentence each
     };
-    /// Scans each path: a DICOMDIR file (its referenced files), a folder (its DICOMDIR if it has
-    /// one that parses, else every file below it), or a single file. Throws core::Error only when
+    /// Scans each path: a DICOMDIR file (its referenced files), a folder (the files its DICOMDIR
+    /// references, if it has one that parses, and every file below it), or a single file. Throws core::Error only when
     /// a given path does not exist; core::Cancelled when the job is cancelled.
     static Result scan(const std::vector<std::string>& paths, core::JobContext& job);
     /// The files a DICOMDIR references (paths resolved against its folder); throws core::Error.

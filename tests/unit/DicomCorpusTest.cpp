@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include "core/base/Error.h"
@@ -84,6 +86,22 @@ TEST(DicomCorpus, DicomdirListsItsReferencedFiles) {
     const auto files = dicom::DicomScanner::filesOfDicomdir(corpus + "dicomdirtests/DICOMDIR");
     EXPECT_GT(files.size(), 10u);
     for (const auto& f : files) EXPECT_TRUE(std::filesystem::exists(f)) << f;
+}
+
+// A folder with a DICOMDIR: what it references and the files it does not list (a series copied
+// in beside it had been ignored without a word), each file once.
+TEST(DicomCorpus, AFolderWithADicomdirKeepsTheFilesItDoesNotList) {
+    test::TempDir dir;
+    std::filesystem::copy(corpus + "dicomdirtests", dir.file("cd"), std::filesystem::copy_options::recursive);
+    std::filesystem::copy_file(corpus + "CT_small.dcm", dir.file("cd/EXTRA.dcm"));
+    core::JobContext job;
+    const auto listed = dicom::DicomScanner::filesOfDicomdir(dir.file("cd/DICOMDIR"));
+    const auto scan = dicom::DicomScanner::scan({dir.file("cd")}, job);
+    std::set<std::string> paths, sops;
+    for (const auto& in : scan.instances) paths.insert(in.path), sops.insert(in.sopInstanceUid);
+    EXPECT_TRUE(paths.count(dir.file("cd/EXTRA.dcm"))) << "the unlisted file";
+    for (const auto& f : listed) EXPECT_TRUE(paths.count(f)) << f;
+    EXPECT_EQ(paths.size(), scan.instances.size()) << "each file once";
 }
 
 TEST(DicomCorpus, TruncatedAndForeignFilesAreReportedNotCrashed) {
