@@ -382,6 +382,19 @@ def acquisition_cases(out):
     write('noplace-echo', images)
 
 
+def charset_cases(out):
+    """charsets/: one image per SpecificCharacterSet, the patient's name in it, pydicom encoding:
+    IM0 ISO_IR 100 Müller^Jürgen, IM1 ISO_IR 144 Иванов^Иван, IM2 GB18030 王^小明."""
+    study, frame = generate_uid(), generate_uid()
+    for i, (charset, name) in enumerate([('ISO_IR 100', 'Müller^Jürgen'), ('ISO_IR 144', 'Иванов^Иван'),
+                                         ('GB18030', '王^小明')]):
+        ds = image(generate_uid(), study, frame, 1, 0, 0, {})
+        ds.SpecificCharacterSet = charset
+        ds.PatientName = name
+        ds.StudyDescription = name.split('^')[0]
+        save(ds, os.path.join(out, 'charsets', f'IM{i}'))
+
+
 def main(out):
     os.makedirs(out, exist_ok=True)
     series(out, 'echo', 2, 12, lambda v: {'EchoNumbers': v + 1, 'EchoTime': str(10 * (v + 1))})
@@ -393,6 +406,7 @@ def main(out):
     series(out, 'twins', 2, 5, lambda v: {}, twins=True)
     extras(out)
     acquisition_cases(out)
+    charset_cases(out)
     print('written', sorted(os.listdir(out)))
 
 

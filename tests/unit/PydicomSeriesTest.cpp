@@ -19,6 +19,7 @@
 
 #include "core/octree/OctreeReader.h"
 #include "core/volume/NiftiVoxelSource.h"
+#include "dicom/DicomHeaderReader.h"
 #include "dicom/DicomScanner.h"
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/SeriesAssembler.h"
@@ -277,6 +278,20 @@ TEST_F(PydicomSeries, CtValuesNotInHounsfieldUnitsAreNotCalledHu) {
     EXPECT_EQ(r.output.find("HU"), std::string::npos) << r.output;
     EXPECT_TRUE(std::regex_search(r.output, std::regex("max +7 *\n"))) << r.output;
     EXPECT_TRUE(std::regex_search(r.output, std::regex("min +-32.768 *\n"))) << r.output;
+}
+
+// Names in Latin-1, Cyrillic and GB18030 (SpecificCharacterSet) are read as UTF-8, as pydicom
+// wrote them (Latin-1 bytes had been stored as they were, invalid UTF-8).
+TEST_F(PydicomSeries, NamesInOtherCharacterSetsAreReadAsUtf8) {
+    const std::vector<std::pair<std::string, std::string>> want = {
+        {"IM0", "M\u00fcller^J\u00fcrgen"}, {"IM1", "\u0418\u0432\u0430\u043d\u043e\u0432^\u0418\u0432\u0430\u043d"},
+        {"IM2", "\u738b^\u5c0f\u660e"}};
+    for (const auto& [file, name] : want) {
+        dicom::DicomInstance in;
+        ASSERT_EQ(dicom::DicomHeaderReader::read(dir_->file("dcm/charsets/" + file), in), dicom::DicomHeaderReader::Kind::Dicom);
+        EXPECT_EQ(in.patientName, name) << file;
+        EXPECT_EQ(in.studyDescription, name.substr(0, name.find('^'))) << file;
+    }
 }
 
 TEST_F(PydicomSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
