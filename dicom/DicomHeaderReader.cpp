@@ -181,12 +181,46 @@ constexpr std::uint64_t kMaxFrames = 1u << 18;
 /// assembler's slices): every frame takes room in the file, a whole frame when the pixels are
 /// stored as they are, at least a fragment's 8-byte item header when encapsulated, and a
 /// 1/1032 of a frame (deflate's best ratio) when the dataset is deflated.
+/// One frame's bytes as stored natively; in bits first: 1-bit frames (a binary segmentation) are
+/// packed, not one byte a pixel.
+std::uint64_t nativeFrameBytes(const DicomInstance& p) {
+    return (std::uint64_t(p.rows) * p.columns * std::max<std::uint16_t>(1, p.samplesPerPixel) *
+                std::max<std::uint16_t>(1, p.bitsAllocated) + 7) / 8;
+}
+
+/// Pixels stored as they are take their whole size in the file: a file too short to hold them
+/// is truncated, refused at import rather than when the series is built (where one such slice
+/// had made the whole series unbuildable). The pixels start after the first PixelData tag in the
+/// file's first MiB (an icon's nested one, earlier, only makes the bound laxer, never wrong).
+void checkNativePixelBytes(DcmDataset* ds, const DicomInstance& p) {
+    const DcmXfer xfer(ds->getOriginalXfer());
+    if (p.frames == 0 || p.floatPixelBits || xfer.isEncapsulated() || xfer.getStreamCompression() != ESC_none) return;
+    std::uint64_t start = 0;
+    {
+        std::ifstream f(p.path, std::ios::binary);
+        std::string head(std::size_t(std::min<std::uint64_t>(p.fileSize, 1u << 20)), '\0');
+        f.read(head.data(), std::streamsize(head.size()));
+        head.resize(std::size_t(f.gcount()));
+        const std::string tag = xfer.isBigEndian() ? std::string("\x7f\xe0\x00\x10", 4) : std::string("\xe0\x7f\x10\x00", 4);
+        const auto at = head.find(tag, 132);
+        if (at == std::string::npos) return;
+        start = at + 8;  // the shortest element header
+    }
+    // In bits over all frames: 1-bit frames (a binary segmentation) run on without padding.
+    const std::uint64_t need = start + (std::uint64_t(p.frames) * p.rows * p.columns *
+                                            std::max<std::uint16_t>(1, p.samplesPerPixel) *
+                                            std::max<std::uint16_t>(1, p.bitsAllocated) + 7) / 8;
+    if (p.fileSize < need)
+        throw core::Error(p.path + ": the file's " + std::to_string(p.fileSize) + " bytes cannot hold its " +
+                          std::to_string(need - start) + " bytes of pixel data after its header (" +
+                          std::to_string(p.frames) + " frame(s) of " +
+                          std::to_string(p.columns) + "x" + std::to_string(p.rows) + "): truncated");
+}
+
 void checkFrameCount(DcmDataset* ds, const DicomInstance& p) {
     if (p.frames <= 1) return;
     const DcmXfer xfer(ds->getOriginalXfer());
-    // In bits first: 1-bit frames (a binary segmentation) are packed, not one byte a pixel.
-    const std::uint64_t frameBytes = (std::uint64_t(p.rows) * p.columns * std::max<std::uint16_t>(1, p.samplesPerPixel) *
-                                          std::max<std::uint16_t>(1, p.bitsAllocated) + 7) / 8;
+    const std::uint64_t frameBytes = nativeFrameBytes(p);
     std::uint64_t least = frameBytes;
     if (xfer.isEncapsulated()) least = 8;
     else if (xfer.getStreamCompression() != ESC_none) least = std::max<std::uint64_t>(1, frameBytes / 1032);
@@ -243,6 +277,7 @@ void fromDataset(DcmDataset* ds, DcmMetaInfo* meta, DicomInstance& p) {
     const bool pixels = ds->tagExists(DCM_PixelData) || p.floatPixelBits != 0;
     p.frames = (p.rows && p.columns && (pixels || p.bitsAllocated)) ? std::uint32_t(i32) : 0;
     checkFrameCount(ds, p);
+    checkNativePixelBytes(ds, p);
     double d = 0;
     if (number(ds, DCM_SliceThickness, d)) p.sliceThickness = d;
     for (unsigned long i = 0; i < 8; ++i) {  // the presets a modality offers, first the default

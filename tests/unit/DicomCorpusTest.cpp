@@ -127,6 +127,13 @@ TEST(DicomCorpus, TruncatedAndForeignFilesAreReportedNotCrashed) {
         }
     }
     EXPECT_EQ(scan.instances.size() + scan.notDicom + scan.broken, 4u);
+    // The file whose pixels were cut is refused when scanned, naming what is missing (it had
+    // been imported and failed only when its series was built).
+    for (const auto& found : scan.instances) EXPECT_EQ(found.path.find("pixels-cut"), std::string::npos) << found.path;
+    bool named = false;
+    for (const auto& r : scan.brokenReasons)
+        named = named || (r.find("pixels-cut.dcm: the file's") != std::string::npos && r.find("truncated") != std::string::npos);
+    EXPECT_TRUE(named) << ::testing::PrintToString(scan.brokenReasons);
 }
 
 // pydicom as the oracle for pixels: every grey image of its corpus that pydicom
