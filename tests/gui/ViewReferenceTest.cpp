@@ -134,11 +134,14 @@ private slots:
             // order differ in the last bits): 80 dB leaves a margin; a wrong mode, camera,
             // window or transfer function falls far below.
             QVERIFY2(db > 80.0, qPrintable(QString("%1: %2 dB").arg(names[mode]).arg(db)));
+            // A projection's grey is linear in the value (the MinIP of a phantom in air is the
+            // air, a few greys above black): lit there is any grey at all.
+            const int dark = mode == 3 ? 0 : 30;
             int lit = 0;
             for (int y = 0; y < frame.height(); y += 4)
                 for (int x = 0; x < frame.width(); x += 4) {
                     const QRgb p = frame.pixel(x, y);
-                    lit += qRed(p) + qGreen(p) + qBlue(p) > 30 ? 1 : 0;
+                    lit += qRed(p) + qGreen(p) + qBlue(p) > dark ? 1 : 0;
                     if (mode >= 2) QVERIFY2(qRed(p) == qGreen(p) && qGreen(p) == qBlue(p), "a projection is grey");
                 }
             QVERIFY2(lit > 100, qPrintable(names[mode] + " draws nothing"));
