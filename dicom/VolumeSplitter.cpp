@@ -42,9 +42,10 @@ const std::vector<Dimension>& dimensions() {
         {"echo",
          [](const FrameDimensions& f) {
              const std::string te = f.echoTime ? " (TE " + num(*f.echoTime) + " ms)" : "";
-             // Both: echoes numbered alike but of different TE are two echoes (seen in the field).
+             // Both: echoes numbered alike but of different TE are two echoes (seen in the field);
+             // TE to 0.01 ms, so that jitter in its last digits does not split an echo.
              if (f.echoNumber)
-                 return std::make_pair(padded(*f.echoNumber) + (f.echoTime ? padded(*f.echoTime) : std::string()),
+                 return std::make_pair(padded(*f.echoNumber) + (f.echoTime ? padded(std::round(*f.echoTime * 100.0) / 100.0) : std::string()),
                                        "echo " + std::to_string(*f.echoNumber) + te);
              if (f.echoTime) return std::make_pair(padded(*f.echoTime), "TE " + num(*f.echoTime) + " ms");
              return std::make_pair(std::string(), std::string());
@@ -112,6 +113,15 @@ std::size_t repeatedPositions(const std::vector<DicomInstance>& instances, const
     return repeated;
 }
 
+/// How many distinct positions (closer than `tolerance` mm are one) the members hold.
+std::size_t distinctPositions(const std::vector<DicomInstance>& instances, const std::vector<VolumeSplitter::Member>& m,
+                              const glm::dvec3& normal, double tolerance) {
+    const auto along = positionsAlong(instances, m, normal);
+    std::size_t n = along.empty() ? 0 : 1;
+    for (std::size_t i = 1; i < along.size(); ++i) n += along[i] - along[i - 1] > tolerance ? 1 : 0;
+    return n;
+}
+
 /// Whether the members' positions are evenly spaced (to a hundredth of the spacing), as
 /// SeriesAssembler takes a stack to be without resampling it.
 bool evenlySpaced(const std::vector<DicomInstance>& instances, const std::vector<VolumeSplitter::Member>& m,
@@ -163,10 +173,13 @@ VolumeSplitter::Result VolumeSplitter::split(const std::vector<DicomInstance>& i
         return r;
     }
 
-    // Where images share positions, the dimension that tells them all apart into the fewest
-    // volumes (the earlier in dimensions() on a tie): a trigger time that differs on every image
-    // of two acquisitions tells them apart too, but into one-image volumes. When none tells them
-    // all apart, the first that tells some apart, and its parts are split further.
+    // Where images share positions, the first dimension (in dimensions()' order) that tells some
+    // apart without leaving a fragment, a part covering less than half the positions: a trigger
+    // time that differs on every image of two acquisitions tells them apart too, but into
+    // one-image volumes, and one image of another ImageType per acquisition would become a
+    // volume of its own. Its parts are split further where positions still repeat (DTI's two
+    // b0 volumes by their acquisition). When every such dimension leaves fragments, the first
+    // that tells some apart.
     std::vector<Part> work{{members, ""}};
     std::vector<Part> done;
     while (!work.empty()) {
@@ -177,19 +190,27 @@ VolumeSplitter::Result VolumeSplitter::split(const std::vector<DicomInstance>& i
             done.push_back(std::move(part));
             continue;
         }
+        const std::size_t positions = distinctPositions(instances, part.members, normal, tolerance);
         std::vector<Part> best, first;
         for (const auto& dim : dimensions()) {
             auto parts = splitBy(instances, part, dim);
             if (parts.size() < 2) continue;
             std::size_t after = 0;
-            for (const auto& p : parts) after += repeated(p);
-            if (after == 0 && (best.empty() || parts.size() < best.size())) best = parts;
-            if (after < before && first.empty()) first = std::move(parts);
+            bool fragment = false;
+            for (const auto& p : parts) {
+                after += repeated(p);
+                fragment = fragment || 2 * p.members.size() < positions;
+            }
+            if (after >= before) continue;
+            if (!fragment) {
+                best = std::move(parts);
+                break;
+            }
+            if (first.empty()) first = std::move(parts);
         }
+        if (best.empty()) best = std::move(first);
         if (!best.empty()) {
-            for (auto& p : best) done.push_back(std::move(p));
-        } else if (!first.empty()) {
-            for (auto it = first.rbegin(); it != first.rend(); ++it) work.push_back(std::move(*it));
+            for (auto it = best.rbegin(); it != best.rend(); ++it) work.push_back(std::move(*it));
         } else {
             r.refused.push_back(std::to_string(before) + " images" + (part.varying.empty() ? "" : " of " + part.varying) +
                                 " share positions (within " + num(tolerance) +
@@ -209,14 +230,26 @@ VolumeSplitter::Result VolumeSplitter::split(const std::vector<DicomInstance>& i
                 parts = splitBy(instances, part, dim);
                 bool apart = parts.size() >= 2;
                 std::vector<std::pair<double, double>> ranges;
+                std::vector<double> spacings;
                 for (const auto& p : parts) {
                     const auto a = positionsAlong(instances, p.members, normal);
                     apart = apart && a.size() >= 2 && evenlySpaced(instances, p.members, normal);
+                    if (a.size() >= 2) spacings.push_back((a.back() - a.front()) / double(a.size() - 1));
                     if (!a.empty()) ranges.emplace_back(a.front(), a.back());
                 }
                 std::sort(ranges.begin(), ranges.end());
                 bool overlap = false;
                 for (std::size_t i = 1; i < ranges.size(); ++i) overlap = overlap || ranges[i].first < ranges[i - 1].second;
+                // Not one grid interleaved (odd and even slices acquired apart, one slice lost):
+                // its parts, merged, are evenly spaced at their spacing over their number; two
+                // acquisitions offset a little come closer than half that.
+                if (apart && overlap) {
+                    std::sort(spacings.begin(), spacings.end());
+                    const auto all = positionsAlong(instances, part.members, normal);
+                    double closest = 1e300;
+                    for (std::size_t i = 1; i < all.size(); ++i) closest = std::min(closest, all[i] - all[i - 1]);
+                    apart = closest < 0.5 * spacings[spacings.size() / 2] / double(parts.size());
+                }
                 if (apart && overlap) break;
                 parts.clear();
             }

@@ -292,6 +292,10 @@ def acquisition_cases(out):
       skew-small/ 5 slices whose rows and columns are 89.8 degrees apart: placed, with a warning
       pad-unsigned/ 3 unsigned CT slices, intercept -1000, PixelPaddingValue 0: padding is
                   -1000 HU (the lowest the type holds), and the warning says so
+      dti-two-b0/ two b0 and two b1000 volumes of 4 slices, an AcquisitionNumber each: four
+                  volumes named by b-value first (not by acquisition alone)
+      interleaved/ one stack of 10 slices whose odd and even slices carry AcquisitionNumber 2
+                  and 1, slice 8 lost: one volume with a missing slice, not two at twice the spacing
       noplace-echo/ two echoes of 3 slices, none with ImagePositionPatient: two volumes (the
                   echoes had been stacked together in file order)
       iodine/     3 CT slices of a dual-energy iodine map, RescaleType MGML, slope 0.001, with
@@ -380,6 +384,20 @@ def acquisition_cases(out):
             del ds.ImagePositionPatient
             images.append(ds)
     write('noplace-echo', images)
+    uid, images, n = generate_uid(), [], 0
+    for v, (b, g) in enumerate([(0.0, [0.0, 0.0, 0.0]), (0.0, [0.0, 0.0, 0.0]), (1000.0, [0.6, 0.8, 0.0]),
+                                (1000.0, [0.0, 0.6, 0.8])]):
+        for s in range(4):
+            n += 1
+            images.append(image(uid, study, frame, n, s, v, {'AcquisitionNumber': v + 1, 'DiffusionBValue': b,
+                                                             'DiffusionGradientOrientation': g}))
+    write('dti-two-b0', images)
+    uid, images = generate_uid(), []
+    for s in range(10):
+        if s == 8:
+            continue  # lost
+        images.append(image(uid, study, frame, s + 1, s, 0, {'AcquisitionNumber': 1 + s % 2}))
+    write('interleaved', images)
 
 
 def charset_cases(out):

@@ -220,6 +220,17 @@ TEST_F(PydicomSeries, NearbyAcquisitionsStayApartAndUnplacedImagesAreLeftOut) {
     EXPECT_EQ(g.dims[2], 5u);
     EXPECT_NEAR(glm::length(g.origin - glm::dvec3(-20.0, -15.0, 30.0)), 0.0, 1e-3) << "the stack starts at slice 0";
     EXPECT_NEAR(g.spacing.z, 2.5, 1e-3);
+    // DTI with two b0 volumes told apart by their acquisition: named by b-value first.
+    const auto dti = import("dti-two-b0");
+    ASSERT_EQ(dti.size(), 4u);
+    EXPECT_EQ(dti[0].varying, "b 0, acquisition 1");
+    EXPECT_EQ(dti[1].varying, "b 0, acquisition 2");
+    EXPECT_EQ(dti[2].varying.rfind("b 1000", 0), 0u) << dti[2].varying;
+    // Odd and even slices of one grid, one lost: one volume with its gap said, not two halves.
+    const auto interleaved = import("interleaved");
+    ASSERT_EQ(interleaved.size(), 1u);
+    EXPECT_EQ(interleaved[0].geometry.dims[2], 10u);
+    EXPECT_TRUE(anyContains(interleaved[0].warnings, "1 missing slice(s)")) << ::testing::PrintToString(interleaved[0].warnings);
     // Without any position, two echoes are still two volumes, each in file order.
     const auto echoes = import("noplace-echo");
     ASSERT_EQ(echoes.size(), 2u);
