@@ -194,15 +194,23 @@ std::uint64_t nativeFrameBytes(const DicomInstance& p) {
 /// file's first MiB (an icon's nested one, earlier, only makes the bound laxer, never wrong).
 void checkNativePixelBytes(DcmDataset* ds, const DicomInstance& p) {
     const DcmXfer xfer(ds->getOriginalXfer());
-    if (p.frames == 0 || p.floatPixelBits || xfer.isEncapsulated() || xfer.getStreamCompression() != ESC_none) return;
+    // 4:2:2 colour stores two samples a pixel, not SamplesPerPixel (3): not checked.
+    if (p.frames == 0 || p.floatPixelBits || xfer.isEncapsulated() || xfer.getStreamCompression() != ESC_none ||
+        p.photometric.find("422") != std::string::npos)
+        return;
     std::uint64_t start = 0;
-    {
+    {  // read on in 64 KiB steps, to the tag: a header's few KiB, not the pixels
         std::ifstream f(p.path, std::ios::binary);
-        std::string head(std::size_t(std::min<std::uint64_t>(p.fileSize, 1u << 20)), '\0');
-        f.read(head.data(), std::streamsize(head.size()));
-        head.resize(std::size_t(f.gcount()));
         const std::string tag = xfer.isBigEndian() ? std::string("\x7f\xe0\x00\x10", 4) : std::string("\xe0\x7f\x10\x00", 4);
-        const auto at = head.find(tag, 132);
+        std::string head;
+        std::size_t at = std::string::npos;
+        while (at == std::string::npos && head.size() < (1u << 20) && f) {
+            const std::size_t from = head.size() > 3 ? head.size() - 3 : 0;
+            std::string chunk(1u << 16, '\0');
+            f.read(chunk.data(), std::streamsize(chunk.size()));
+            head.append(chunk.data(), std::size_t(f.gcount()));
+            at = head.find(tag, std::max<std::size_t>(from, 132));
+        }
         if (at == std::string::npos) return;
         start = at + 8;  // the shortest element header
     }

@@ -110,6 +110,8 @@ DicomScanner::Result DicomScanner::scan(const std::vector<std::string>& paths, c
             files.push_back(p);
         }
     }
+    // One spelling per file: a DICOMDIR's references and the walk of "dd//" had differed.
+    for (auto& f : files) f = fs::path(f).lexically_normal().string();
     std::sort(files.begin(), files.end());
     files.erase(std::unique(files.begin(), files.end()), files.end());
 

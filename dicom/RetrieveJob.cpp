@@ -110,9 +110,9 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
             if (!buildOctrees || instances.empty() || !series[index].retrieved) return;
             std::vector<std::string> notes;
             auto volumes = SeriesAssembler::assemble(instances, notes);
-            {
+            {  // the whole series where a retrieve before this one brought part of it
                 std::lock_guard lock(mutex);
-                SeriesOctree::recordVolumes(db_, volumes);
+                volumes = SeriesOctree::recordVolumes(db_, volumes, instances);
             }
             if (volumes.empty()) return;
             std::size_t pick = 0;

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "dicom/DicomSeriesSource.h"
+#include "dicom/PersonName.h"
 #include "dicom/VolumeSplitter.h"
 
 namespace hvx::dicom {
@@ -269,7 +270,7 @@ std::vector<SeriesVolume> SeriesAssembler::assemble(const std::vector<DicomInsta
                           "nothing says how their pixels lie)"];
                 continue;
             }
-            GroupKey k{in.seriesInstanceUid, in.patientId + '\\' + in.patientName + '\\' + in.studyInstanceUid,
+            GroupKey k{in.seriesInstanceUid, in.patientId + '\\' + personNameKey(in.patientName) + '\\' + in.studyInstanceUid,
                        in.frameOfReferenceUid, in.rows, in.columns, in.bitsAllocated, in.pixelRepresentation,
                        in.samplesPerPixel, {}, {}};
             const Plane plane{{fg.rowDirection.x, fg.rowDirection.y, fg.rowDirection.z, fg.columnDirection.x,

@@ -132,27 +132,33 @@ std::string SeriesOctree::buildPreview(StudyDatabase& db, const std::string& ser
     return out;
 }
 
-void SeriesOctree::recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& scanned) {
+std::vector<SeriesVolume> SeriesOctree::recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& scanned,
+                                                      const std::vector<DicomInstance>& batch) {
     // A series whose images came in over several imports (two folders, two retrieves) is
-    // assembled again from all its files: its gaps and volumes are the whole series', not the
-    // last import's (a filled gap had kept its "missing slices" warning, a new one had none).
-    std::map<std::string, std::set<std::string>> seen;  // series -> SOP Instance UIDs in `scanned`
-    for (const auto& v : scanned)
-        for (const auto& in : v.instances) seen[v.seriesUid].insert(in.sopInstanceUid);
+    // assembled again from all its files that can be read: its gaps and volumes are the whole
+    // series', not the last import's (a filled gap had kept its "missing slices" warning, a new
+    // one had none). Counted against the batch, not the volumes, which leave some images out.
+    std::map<std::string, std::set<std::string>> inBatch;  // series -> SOP Instance UIDs
+    for (const auto& in : batch) inBatch[in.seriesInstanceUid].insert(in.sopInstanceUid);
     std::vector<SeriesVolume> volumes;
+    std::set<std::string> whole;
     for (const auto& v : scanned) {
+        if (whole.count(v.seriesUid)) continue;  // assembled whole already
         SeriesRow row;
-        if (!db.findSeries(v.seriesUid, row) || std::size_t(row.instanceCount) <= seen[v.seriesUid].size()) {
+        if (!db.findSeries(v.seriesUid, row) || std::size_t(row.instanceCount) <= inBatch[v.seriesUid].size()) {
             volumes.push_back(v);
             continue;
         }
-        if (seen[v.seriesUid].empty()) continue;  // assembled below once
-        seen[v.seriesUid].clear();
+        whole.insert(v.seriesUid);
+        std::vector<std::string> files;
+        std::error_code ec;
+        for (const auto& f : db.filesOfSeries(v.seriesUid))
+            if (std::filesystem::exists(f, ec)) files.push_back(f);  // an unmounted folder's are left out
         core::JobContext scanJob;
-        const auto scan = DicomScanner::scan(db.filesOfSeries(v.seriesUid), scanJob);
+        const auto scan = DicomScanner::scan(files, scanJob);
         std::vector<std::string> notes;
-        for (auto& whole : SeriesAssembler::assemble(scan.instances, notes))
-            if (whole.seriesUid == v.seriesUid) volumes.push_back(std::move(whole));
+        for (auto& part : SeriesAssembler::assemble(scan.instances, notes))
+            if (part.seriesUid == v.seriesUid) volumes.push_back(std::move(part));
     }
     std::map<std::string, std::vector<std::string>> bySeries, warnings;
     for (const auto& v : volumes) {
@@ -165,6 +171,7 @@ void SeriesOctree::recordVolumes(StudyDatabase& db, const std::vector<SeriesVolu
         db.setSeriesVolumes(uid, varying.size() > 1 ? varying : std::vector<std::string>{});
         db.setSeriesWarnings(uid, warnings[uid]);
     }
+    return volumes;
 }
 
 SeriesVolume SeriesOctree::assemble(StudyDatabase& db, const std::string& seriesUid, core::JobContext& job,

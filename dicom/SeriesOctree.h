@@ -47,9 +47,11 @@ public:
                                  std::vector<std::string>* warnings = nullptr, int volume = 0);
     /// Records in the database the volumes of every series in `volumes` that splits into several
     /// (what varies between them), and each series' assembly warnings, as import and retrieve
-    /// find them; a series the database holds more images of than `volumes` do is assembled
-    /// again from all its files first.
-    static void recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes);
+    /// find them; a series the database holds more images of than `batch` (the instances those
+    /// volumes were assembled from) is assembled again from all its files that can be read
+    /// first. Returns the volumes recorded: what import lists and builds.
+    static std::vector<SeriesVolume> recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes,
+                                                   const std::vector<DicomInstance>& batch);
 };
 
 }  // namespace hvx::dicom

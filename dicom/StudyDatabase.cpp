@@ -4,7 +4,6 @@
 
 #include <glm/geometric.hpp>
 
-#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +13,7 @@
 #include <thread>
 
 #include "core/base/Error.h"
+#include "dicom/PersonName.h"
 
 namespace hvx::dicom {
 
@@ -201,17 +201,6 @@ void StudyDatabase::exec(const char* sql) const {
 }
 
 namespace {
-/// Whether two Person Names are one, as systems rewrite them: case, spaces and empty trailing
-/// components ("DOE^JANE^^" is "Doe^Jane").
-bool sameName(const std::string& a, const std::string& b) {
-    auto norm = [](std::string s) {
-        for (auto& c : s) c = char(std::toupper(static_cast<unsigned char>(c)));
-        while (!s.empty() && (s.back() == '^' || s.back() == ' ' || s.back() == '=')) s.pop_back();
-        return s;
-    };
-    return norm(a) == norm(b);
-}
-
 /// Paths are kept absolute, so that a row still names its file from another working folder.
 std::string absolutePath(const std::string& path) {
     std::error_code ec;
@@ -252,7 +241,7 @@ StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomIn
             const std::string who = in.patientName + " (" + in.patientId + ")";
             studyOwner.reset();
             studyOwner.bind(1, in.studyInstanceUid);
-            if (studyOwner.step() && (studyOwner.text(0) != in.patientId || !sameName(studyOwner.text(1), in.patientName))) {
+            if (studyOwner.step() && (studyOwner.text(0) != in.patientId || personNameKey(studyOwner.text(1)) != personNameKey(in.patientName))) {
                 refuse(index, "study " + in.studyInstanceUid + " is filed under patient " + studyOwner.text(1) + " (" +
                                   studyOwner.text(0) + "), not " + who + " whom these images name");
                 continue;

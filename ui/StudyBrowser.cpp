@@ -299,8 +299,8 @@ int StudyBrowser::importPaths(const QStringList& paths) {
             dicom::StudyDatabase database(db);
             const auto stats = database.addInstances(scan.instances);
             std::vector<std::string> notes;  // a 4D series' volumes, for the rows below it
-            dicom::SeriesOctree::recordVolumes(database,
-                                               dicom::SeriesAssembler::assemble(stats.accepted(scan.instances), notes));
+            const auto accepted = stats.accepted(scan.instances);
+            dicom::SeriesOctree::recordVolumes(database, dicom::SeriesAssembler::assemble(accepted, notes), accepted);
             if (scan.instances.empty())
                 throw core::Error(scan.broken ? "no readable DICOM found: " + std::to_string(scan.broken) + " broken files"
                                               : std::string("no DICOM files found there"));

@@ -64,8 +64,10 @@ int importCommand(int argc, char** argv) {
     const auto stats = db.addInstances(scan.instances);
     // What a UID collision refused is never stacked either.
     std::vector<std::string> notes = stats.conflicts;
-    const auto volumes = dicom::SeriesAssembler::assemble(stats.accepted(scan.instances), notes);
-    dicom::SeriesOctree::recordVolumes(db, volumes);
+    const auto accepted = stats.accepted(scan.instances);
+    // The whole series' volumes where earlier imports brought more of it: listed and built.
+    const auto volumes =
+        dicom::SeriesOctree::recordVolumes(db, dicom::SeriesAssembler::assemble(accepted, notes), accepted);
     std::printf("scanned %zu files: %zu DICOM, %zu not DICOM (skipped), %zu broken\n", scan.filesSeen,
                 scan.instances.size(), scan.notDicom, scan.broken);
     for (const auto& r : scan.brokenReasons) std::printf("  broken: %s\n", r.c_str());

@@ -305,6 +305,35 @@ TEST_F(PydicomSeries, NamesInOtherCharacterSetsAreReadAsUtf8) {
     }
 }
 
+// A series imported in two halves (two folders, two retrieves) is recorded whole the second
+// time, its volumes and warnings the whole series' (the first half's gaps had stayed), even when
+// a file of the first half is gone by then; `import` lists the whole series.
+TEST_F(PydicomSeries, ASeriesImportedInTwoHalvesIsRecordedWhole) {
+    std::vector<std::string> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir_->file("dcm/echo"))) files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+    ASSERT_EQ(files.size(), 24u);
+    test::TempDir halves;
+    std::filesystem::create_directories(halves.file("a"));
+    std::filesystem::create_directories(halves.file("b"));
+    for (std::size_t i = 0; i < files.size(); ++i)
+        std::filesystem::copy_file(files[i], halves.file((i < 12 ? "a/" : "b/") + std::to_string(i)));
+    const std::string db = " --db " + halves.file("db.sqlite");
+    auto r = test::runCommand(std::string(HVX_CLI) + " import " + halves.file("a") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::filesystem::remove(halves.file("a/0"));  // gone before the second half comes
+    r = test::runCommand(std::string(HVX_CLI) + " import " + halves.file("b") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("echo 1 (TE 10 ms)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("echo 2 (TE 20 ms)"), std::string::npos) << r.output;
+    dicom::StudyDatabase database(halves.file("db.sqlite"));
+    const auto volumes = import("echo");
+    const auto rows = database.volumesOfSeries(volumes[0].seriesUid);
+    ASSERT_EQ(rows.size(), 2u);
+    EXPECT_EQ(rows[0].varying, "echo 1 (TE 10 ms)");
+    EXPECT_EQ(rows[1].varying, "echo 2 (TE 20 ms)");
+}
+
 TEST_F(PydicomSeries, CliListsEachVolumeAndBuildsTheOneAsked) {
     const std::string db = " --db " + dir_->file("db.sqlite");
     auto r = test::runCommand(std::string(HVX_CLI) + " import " + dir_->file("dcm/echo") + db);
