@@ -11,13 +11,14 @@ namespace hvx::dicom {
 /// Splits the frames of one stack (one series, one geometry) into volumes when several images
 /// share a position, as dcm2niix and 3D Slicer's multi-volume importer do: by image type
 /// (magnitude, phase, ...), echo (number and TE), diffusion b-value and gradient, temporal
-/// position, trigger time, acquisition number or enhanced stack: the one that tells the images
-/// at each position apart into the fewest volumes, else the first that tells some apart, and so
-/// on. Positions closer than a twentieth of the stack's mean spacing count as one. A part whose
+/// position, trigger time, acquisition number or enhanced stack: the first that tells images at
+/// one position apart without leaving a part of less than half the positions, else the first
+/// that tells some apart, and so on where positions still repeat. Positions closer than a
+/// twentieth of the stack's mean spacing count as one. A part whose
 /// images still share a position cannot be told apart: it is refused, never mixed and never
 /// reduced to "the first". Images at distinct but unevenly spaced positions that one of those
-/// dimensions divides into evenly spaced, overlapping parts (two acquisitions offset a little)
-/// are split too, rather than interleaved and interpolated. Images without positions are split
+/// dimensions divides into evenly spaced, overlapping parts closer than one interleaved grid's
+/// (two acquisitions offset a little) are split too, rather than interleaved and interpolated. Images without positions are split
 /// by image type, echo, diffusion or time point where one varies (nothing else is known).
 ///
 /// Threading: pure functions.
