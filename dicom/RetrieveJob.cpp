@@ -110,10 +110,9 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
             if (!buildOctrees || instances.empty() || !series[index].retrieved) return;
             std::vector<std::string> notes;
             auto volumes = SeriesAssembler::assemble(instances, notes);
-            {  // the whole series where a retrieve before this one brought part of it
-                std::lock_guard lock(mutex);
-                volumes = SeriesOctree::recordVolumes(db_, volumes, instances);
-            }
+            // The whole series where a retrieve before this one brought part of it; its files
+            // are read again without the lock, which the receiver needs for every instance.
+            volumes = SeriesOctree::recordVolumes(db_, volumes, instances, &mutex);
             if (volumes.empty()) return;
             std::size_t pick = 0;
             for (std::size_t i = 1; i < volumes.size(); ++i)

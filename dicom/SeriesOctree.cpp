@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <set>
 
 #include "core/base/Error.h"
@@ -133,32 +134,54 @@ std::string SeriesOctree::buildPreview(StudyDatabase& db, const std::string& ser
 }
 
 std::vector<SeriesVolume> SeriesOctree::recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& scanned,
-                                                      const std::vector<DicomInstance>& batch) {
+                                                      const std::vector<DicomInstance>& batch, std::mutex* dbMutex) {
     // A series whose images came in over several imports (two folders, two retrieves) is
     // assembled again from all its files that can be read: its gaps and volumes are the whole
     // series', not the last import's (a filled gap had kept its "missing slices" warning, a new
     // one had none). Counted against the batch, not the volumes, which leave some images out.
+    // The database is read and written under `dbMutex`; the files are read without it, so that
+    // a retrieve's receiver is never held up while a grown series is read again.
+    auto locked = [dbMutex]() { return dbMutex ? std::unique_lock<std::mutex>(*dbMutex) : std::unique_lock<std::mutex>(); };
     std::map<std::string, std::set<std::string>> inBatch;  // series -> SOP Instance UIDs
     for (const auto& in : batch) inBatch[in.seriesInstanceUid].insert(in.sopInstanceUid);
+    std::map<std::string, std::int64_t> grown;  // series to assemble whole -> its instance count when read
     std::vector<SeriesVolume> volumes;
-    std::set<std::string> whole;
-    for (const auto& v : scanned) {
-        if (whole.count(v.seriesUid)) continue;  // assembled whole already
-        SeriesRow row;
-        if (!db.findSeries(v.seriesUid, row) || std::size_t(row.instanceCount) <= inBatch[v.seriesUid].size()) {
-            volumes.push_back(v);
-            continue;
+    {
+        auto lock = locked();
+        for (const auto& v : scanned) {
+            if (grown.count(v.seriesUid)) continue;
+            SeriesRow row;
+            if (db.findSeries(v.seriesUid, row) && std::size_t(row.instanceCount) > inBatch[v.seriesUid].size())
+                grown[v.seriesUid] = row.instanceCount;
+            else
+                volumes.push_back(v);
         }
-        whole.insert(v.seriesUid);
-        std::vector<std::string> files;
-        std::error_code ec;
-        for (const auto& f : db.filesOfSeries(v.seriesUid))
-            if (std::filesystem::exists(f, ec)) files.push_back(f);  // an unmounted folder's are left out
-        core::JobContext scanJob;
-        const auto scan = DicomScanner::scan(files, scanJob);
-        std::vector<std::string> notes;
-        for (auto& part : SeriesAssembler::assemble(scan.instances, notes))
-            if (part.seriesUid == v.seriesUid) volumes.push_back(std::move(part));
+    }
+    for (auto& [uid, count] : grown) {
+        // Read again until the count holds: another import of the same series while its files
+        // were read would otherwise be recorded over by the older, smaller reading.
+        for (int attempt = 0;; ++attempt) {
+            std::vector<std::string> files;
+            {
+                auto lock = locked();
+                files = db.filesOfSeries(uid);
+            }
+            std::vector<std::string> readable;
+            std::error_code ec;
+            for (const auto& f : files)
+                if (std::filesystem::exists(f, ec)) readable.push_back(f);  // an unmounted folder's are left out
+            core::JobContext scanJob;
+            const auto scan = DicomScanner::scan(readable, scanJob);
+            std::vector<std::string> notes;
+            std::vector<SeriesVolume> parts;
+            for (auto& part : SeriesAssembler::assemble(scan.instances, notes))
+                if (part.seriesUid == uid) parts.push_back(std::move(part));
+            SeriesRow row;
+            auto lock = locked();
+            if (attempt < 3 && db.findSeries(uid, row) && row.instanceCount != std::int64_t(files.size())) continue;
+            for (auto& part : parts) volumes.push_back(std::move(part));
+            break;
+        }
     }
     std::map<std::string, std::vector<std::string>> bySeries, warnings;
     for (const auto& v : volumes) {
@@ -167,6 +190,7 @@ std::vector<SeriesVolume> SeriesOctree::recordVolumes(StudyDatabase& db, const s
         for (const auto& text : v.warnings)
             if (std::find(w.begin(), w.end(), text) == w.end()) w.push_back(text);
     }
+    auto lock = locked();
     for (const auto& [uid, varying] : bySeries) {
         db.setSeriesVolumes(uid, varying.size() > 1 ? varying : std::vector<std::string>{});
         db.setSeriesWarnings(uid, warnings[uid]);

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -49,9 +50,11 @@ public:
     /// (what varies between them), and each series' assembly warnings, as import and retrieve
     /// find them; a series the database holds more images of than `batch` (the instances those
     /// volumes were assembled from) is assembled again from all its files that can be read
-    /// first. Returns the volumes recorded: what import lists and builds.
+    /// first. Returns the volumes recorded: what import lists and builds. With `dbMutex`, the
+    /// database is used only while it is held, and the files are read without it.
     static std::vector<SeriesVolume> recordVolumes(StudyDatabase& db, const std::vector<SeriesVolume>& volumes,
-                                                   const std::vector<DicomInstance>& batch);
+                                                   const std::vector<DicomInstance>& batch,
+                                                   std::mutex* dbMutex = nullptr);
 };
 
 }  // namespace hvx::dicom

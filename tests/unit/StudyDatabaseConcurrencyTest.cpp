@@ -2,12 +2,17 @@
 // connection, as the GUI's jobs and the storage receiver do. Nothing may be lost, nothing may
 // land under another patient, and no writer may fail on a busy database.
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <sys/inotify.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <set>
 #include <fstream>
 #include <mutex>
 #include <thread>
 
+#include "dicom/SeriesOctree.h"
 #include "dicom/StudyDatabase.h"
 #include "tests/support/TempDir.h"
 
@@ -123,4 +128,65 @@ TEST(StudyDatabaseConcurrency, EightJobsOpeningANewDatabaseAtOnceAllSucceed) {
         for (const auto& f : failures) ADD_FAILURE() << "round " << round << ": " << f;
         ASSERT_EQ(opened.load(), 8) << "round " << round;
     }
+}
+
+// A retrieve's receiver files every instance under the retrieve's lock. A series that grew (a
+// second retrieve of it) is read again from all its files; that reading must not hold the lock,
+// or the receiver stalls behind it. The files' opens are watched with inotify: the lock must be
+// free while some of the series' files are still unread.
+TEST(StudyDatabaseConcurrency, AGrownSeriesIsReadAgainWithoutHoldingTheRetrievesLock) {
+    test::TempDir dir;
+    dicom::StudyDatabase db(dir.file("db/studies.sqlite"));
+    const Writer w{"P7", 1, false};
+    constexpr int kFiles = 1000;
+    std::vector<dicom::DicomInstance> all;
+    for (int i = 0; i < kFiles; ++i) {
+        all.push_back(instanceOf(dir, w, i));
+        std::ofstream(all.back().path) << "not a DICOM file, only bytes to read " << i;
+    }
+    ASSERT_EQ(db.addInstances(all).added, std::size_t(kFiles));
+    dicom::SeriesVolume scanned;  // what the last retrieve brought: one image of the series
+    scanned.seriesUid = all.front().seriesInstanceUid;
+    const std::vector<dicom::DicomInstance> batch{all.front()};
+
+    const int watch = ::inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
+    ASSERT_GE(watch, 0);
+    ASSERT_GE(::inotify_add_watch(watch, dir.path().c_str(), IN_OPEN), 0);
+    std::mutex retrieveLock;
+    std::atomic<bool> finished{false};
+    std::thread record([&] {
+        dicom::SeriesOctree::recordVolumes(db, {scanned}, batch, &retrieveLock);
+        finished = true;
+    });
+    std::set<std::string> opened;
+    auto drain = [&] {
+        alignas(inotify_event) char buffer[1 << 16];
+        for (ssize_t n; (n = ::read(watch, buffer, sizeof buffer)) > 0;)
+            for (char* at = buffer; at < buffer + n;) {
+                const auto* e = reinterpret_cast<const inotify_event*>(at);
+                if (e->len > 0 && std::string(e->name).find(".dcm") != std::string::npos) opened.insert(e->name);
+                at += sizeof(inotify_event) + e->len;
+            }
+    };
+    while (opened.empty() && !finished) {  // the reading has begun
+        pollfd p{watch, POLLIN, 0};
+        ::poll(&p, 1, 100);
+        drain();
+    }
+    bool lockedWhileReading = false;
+    while (!finished) {
+        if (retrieveLock.try_lock()) {
+            drain();  // every open before this moment is queued
+            lockedWhileReading = opened.size() < std::size_t(kFiles);
+            retrieveLock.unlock();
+            break;
+        }
+        std::this_thread::yield();
+    }
+    record.join();
+    drain();
+    ::close(watch);
+    EXPECT_TRUE(lockedWhileReading) << "the lock was free only once " << opened.size() << " of " << kFiles
+                                    << " files had been opened";
+    EXPECT_EQ(opened.size(), std::size_t(kFiles)) << "every file of the grown series is read again";
 }
