@@ -18,6 +18,7 @@
 
 #include "core/base/Error.h"
 #include "dicom/DcmtkSetup.h"
+#include "dicom/DatasetText.h"
 
 namespace hvx::dicom {
 
@@ -366,13 +367,10 @@ DicomHeaderReader::Kind classify(const OFCondition& status, DcmFileFormat& file,
         if (!preamble) return DicomHeaderReader::Kind::NotDicom;
         throw core::Error(name + ": DICOM file has no SOP Class, study or pixel data");
     }
-    // Names and descriptions in another character set than UTF-8 (ISO_IR 100, 144, GB18030, ...)
-    // are converted through DCMTK (iconv), as PS3.5 6.1 says to read them: Latin-1 bytes had
-    // been stored and shown as they were, and one patient written in two character sets had
-    // become two. A set iconv cannot convert (ISO 2022 IR 87) leaves the text as written.
-    if (OFString set; ds->findAndGetOFStringArray(DCM_SpecificCharacterSet, set).good() && !set.empty() &&
-                      set != "ISO_IR 192")
-        ds->convertToUTF8();
+    // Names and descriptions in another character set than UTF-8 are read as PS3.5 6.1 says:
+    // Latin-1 bytes had been stored and shown as they were, and one patient written in two
+    // character sets had become two.
+    DatasetText::toUtf8(*ds);
     try {
         fromDataset(ds, file.getMetaInfo(), out);
     } catch (const core::Error& e) {  // a malformed value: named with its file

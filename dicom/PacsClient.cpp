@@ -22,6 +22,7 @@
 
 #include "core/base/Error.h"
 #include "dicom/DcmtkSetup.h"
+#include "dicom/DatasetText.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/DicomWebClient.h"
 #include "dicom/IncomingStore.h"
@@ -42,6 +43,9 @@ int integer(DcmItem* ds, const DcmTagKey& key) {
 }
 
 QueryResult toResult(DcmDataset* ds, QueryLevel level) {
+    // An archive answers in the character set its data was stored in (Orthanc's default is
+    // Latin-1): read as UTF-8, as files are (a Latin-1 name had shown as invalid UTF-8).
+    if (ds) DatasetText::toUtf8(*ds);
     QueryResult r;
     r.level = level;
     r.patientName = text(ds, DCM_PatientName);

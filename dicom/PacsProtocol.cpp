@@ -5,6 +5,7 @@
 #include <dcmtk/dcmdata/dcdeftag.h>
 #include <dcmtk/dcmdata/dcuid.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "core/base/Error.h"
@@ -45,6 +46,14 @@ std::vector<const char*> PacsProtocol::storageClasses() {
 void PacsProtocol::fillQuery(DcmDataset& q, QueryLevel level, const QueryKeys& k) {
     q.putAndInsertString(DCM_QueryRetrieveLevel,
                          level == QueryLevel::Study ? "STUDY" : level == QueryLevel::Series ? "SERIES" : "IMAGE");
+    // Keys are UTF-8: a key beyond ASCII ("Müller*") says so, or the archive would read its
+    // bytes as ASCII (PS3.4 C.4.1.1.3.1 matches in the query's character set). An archive
+    // answers in a set of its choosing, which toResult reads.
+    for (const std::string* key : {&k.patientName, &k.patientId, &k.studyDescription, &k.accessionNumber})
+        if (std::any_of(key->begin(), key->end(), [](char c) { return static_cast<unsigned char>(c) >= 0x80; })) {
+            q.putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 192");
+            break;
+        }
     q.putAndInsertString(DCM_PatientName, k.patientName.c_str());
     q.putAndInsertString(DCM_PatientID, k.patientId.c_str());
     q.putAndInsertString(DCM_PatientBirthDate, "");

@@ -7,6 +7,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 #include <map>
@@ -293,6 +294,38 @@ TEST_F(OrthancPeer, WrongCalledAeTitleIsExplained) {
     const auto e = errorOf([&] { dicom::PacsClient(s.local, s.nodes[0]).echo(); });
     EXPECT_NE(e.find("rejected the association"), std::string::npos) << e;
     EXPECT_NE(e.find("NOTORTHANC"), std::string::npos) << e;
+}
+
+// An archive answers C-FIND in a character set of its choosing, whatever the query's (Orthanc:
+// its default encoding, Latin-1; dcmqrscp: the stored file's). pydicom's own Latin-1 and
+// Japanese (ISO 2022 IR 87) files: their names come back as UTF-8 as pydicom reads them, and a
+// key beyond ASCII, sent as UTF-8 and said to be, matches.
+TEST(PacsCharacterSets, AnswersAreReadAsUtf8AndKeysBeyondAsciiMatch) {
+    const auto folder = test::runCommand(
+        "/usr/bin/python3 -c 'import os, pydicom.data; print(os.path.dirname(pydicom.data.__file__))'");
+    ASSERT_EQ(folder.exitCode, 0) << folder.output;
+    const std::string charsets = folder.output.substr(0, folder.output.find('\n')) + "/charset_files/";
+    auto names = [&](test::PacsPeer& peer, dicom::QueryKeys keys) {
+        auto s = peer.settings();
+        std::vector<std::string> found;
+        dicom::PacsClient(s.local, s.nodes[0]).find(dicom::QueryLevel::Study, keys, [&](const dicom::QueryResult& r) {
+            found.push_back(r.patientName);
+            return true;
+        });
+        std::sort(found.begin(), found.end());
+        return found;
+    };
+    const std::string french = "Buc^J\u00e9r\u00f4me";
+    const std::string japanese = "Yamada^Tarou=\u5c71\u7530^\u592a\u90ce=\u3084\u307e\u3060^\u305f\u308d\u3046";
+    dicom::QueryKeys beyondAscii;
+    beyondAscii.patientName = "Buc^J\u00e9r*";
+    auto orthanc = orthancWith({charsets + "chrFren.dcm"});
+    EXPECT_EQ(names(*orthanc, {}), std::vector<std::string>{french});
+    EXPECT_EQ(names(*orthanc, beyondAscii), std::vector<std::string>{french});
+    test::PacsPeer dcmqrscp(test::PacsPeer::Kind::Dcmqrscp);
+    dcmqrscp.start();
+    dcmqrscp.seed({charsets + "chrFren.dcm", charsets + "chrH31.dcm"});
+    EXPECT_EQ(names(dcmqrscp, {}), (std::vector<std::string>{french, japanese}));
 }
 
 TEST(PacsFaults, PeerNotRunning) {
