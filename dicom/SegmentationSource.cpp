@@ -23,6 +23,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/base/Error.h"
+#include "dicom/DatasetText.h"
 #include "dicom/DcmtkSetup.h"
 
 namespace hvx::dicom {
@@ -120,6 +121,7 @@ SegmentationSource::SegmentationSource(const std::string& path) : impl_(std::mak
     m.path = path;
     if (m.file.loadFile(path.c_str()).bad()) m.fail("not a readable DICOM file");
     DcmDataset& ds = *m.file.getDataset();
+    DatasetText::toUtf8(ds);  // segment labels in the file's character set
     OFString sopClass;
     ds.findAndGetOFString(DCM_SOPClassUID, sopClass);
     if (sopClass != UID_SegmentationStorage) m.fail("not a DICOM Segmentation object (SOP class " + std::string(sopClass.c_str()) + ")");

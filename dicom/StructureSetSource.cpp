@@ -15,6 +15,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/base/Error.h"
+#include "dicom/DatasetText.h"
 #include "dicom/DcmtkSetup.h"
 
 namespace hvx::dicom {
@@ -86,6 +87,7 @@ StructureSetSource::StructureSetSource(const std::string& path, const core::Volu
     m.path = path;
     DcmFileFormat file;
     if (file.loadFile(path.c_str()).bad()) m.fail("not a readable DICOM file");
+    DatasetText::toUtf8(*file.getDataset());  // ROI names in the file's character set
     DRTStructureSetIOD rt;
     OFString sopClass;
     file.getDataset()->findAndGetOFString(DCM_SOPClassUID, sopClass);

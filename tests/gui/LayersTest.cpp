@@ -347,7 +347,7 @@ private slots:
         QTRY_VERIFY2_WITH_TIMEOUT(window_->layers()->hasLabels(), qPrintable(window_->layersPanel()->message()), 60000);
         QVERIFY(window_->jobs()->waitIdle(60000));
         QCOMPARE(QString::fromStdString(window_->layers()->labelTable().find(1)->name), QString("GTV"));
-        QCOMPARE(QString::fromStdString(window_->layers()->labelTable().find(2)->name), QString("ring"));
+        QCOMPARE(QString::fromStdString(window_->layers()->labelTable().find(2)->name), QString::fromUtf8("R\u00fcckenmark"));
         QVERIFY2(window_->layersPanel()->message().contains("past the image's slices"),
                  qPrintable(window_->layersPanel()->message()));
     }

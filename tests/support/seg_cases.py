@@ -305,7 +305,8 @@ def rtstruct(path):
     ds.ReferencedFrameOfReferenceSequence = Sequence([ref])
     rois, roic = [], []
     colours = {1: [255, 0, 0], 2: [0, 200, 255], 3: [0, 255, 0]}
-    names = {1: 'GTV', 2: 'ring', 3: 'beyond'}
+    names = {1: 'GTV', 2: 'R\u00fcckenmark', 3: 'beyond'}  # written in Latin-1, as the set says
+    ds.SpecificCharacterSet = 'ISO_IR 100'
     for number in (1, 2, 3):
         r = Dataset()
         r.ROINumber, r.ReferencedFrameOfReferenceUID, r.ROIName, r.ROIGenerationAlgorithm = number, FOR_UID, names[number], 'MANUAL'

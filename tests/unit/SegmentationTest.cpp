@@ -186,6 +186,7 @@ TEST(StructureSet, ContoursFillTheVoxelsPydicomsPolygonsEnclose) {
     EXPECT_GT(count[2], 300u);  // the ring, its hole left empty
     const auto& t = source.table();
     EXPECT_EQ(t.find(1)->name, "GTV");
+    EXPECT_EQ(t.find(2)->name, "R\u00fcckenmark");  // Latin-1 in the file, UTF-8 here
     EXPECT_EQ(t.find(2)->rgba, (std::array<std::uint8_t, 4>{0, 200, 255, 255}));
     ASSERT_EQ(source.warnings().size(), 1u);
     EXPECT_NE(source.warnings()[0].find("1 contour(s) of beyond lie past the image's slices: left out"), std::string::npos)
