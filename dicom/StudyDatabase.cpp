@@ -243,7 +243,9 @@ StudyDatabase::ImportStats StudyDatabase::addInstances(const std::vector<DicomIn
             studyOwner.bind(1, in.studyInstanceUid);
             if (studyOwner.step() && (studyOwner.text(0) != in.patientId || personNameKey(studyOwner.text(1)) != personNameKey(in.patientName))) {
                 refuse(index, "study " + in.studyInstanceUid + " is filed under patient " + studyOwner.text(1) + " (" +
-                                  studyOwner.text(0) + "), not " + who + " whom these images name");
+                                  studyOwner.text(0) + "), not " + who + " whom these images name (if the archive has "
+                                  "corrected the study's patient since, remove the local study first: Remove study in "
+                                  "the study browser, or holovox-cli remove-study " + in.studyInstanceUid + ")");
                 continue;
             }
             seriesOwner.reset();
@@ -417,6 +419,36 @@ StudyDatabase::PruneResult StudyDatabase::prune() {
     });
     result.removed = gone.size();
     return result;
+}
+
+StudyDatabase::RemovedStudy StudyDatabase::removeStudy(const std::string& studyUid) {
+    RemovedStudy removed;
+    transaction([&] {
+        Stmt study(db_, "SELECT st.id, p.name, p.patient_id FROM studies st JOIN patients p ON p.id = st.patient "
+                        "WHERE st.uid = ?1;");
+        study.bind(1, studyUid);
+        if (!study.step()) throw core::Error("study " + studyUid + " is not in the study database");
+        const std::int64_t id = study.integer(0);
+        removed.patient = study.text(1) + " (" + study.text(2) + ")";
+        while (study.step()) {}
+        Stmt files(db_, "SELECT i.path FROM instances i JOIN series se ON se.id = i.series WHERE se.study = ?1 "
+                        "ORDER BY i.path;");
+        files.bind(1, id);
+        while (files.step()) removed.files.push_back(files.text(0));
+        Stmt series(db_, "SELECT uid FROM series WHERE study = ?1 ORDER BY uid;");
+        series.bind(1, id);
+        while (series.step()) removed.series.push_back(series.text(0));
+        Stmt octrees(db_, "SELECT octree FROM series WHERE study = ?1 AND octree IS NOT NULL AND octree != '' UNION "
+                          "SELECT v.octree FROM volumes v JOIN series se ON se.id = v.series WHERE se.study = ?1 "
+                          "AND v.octree IS NOT NULL AND v.octree != '';");
+        octrees.bind(1, id);
+        while (octrees.step()) removed.octrees.push_back(octrees.text(0));
+        Stmt del(db_, "DELETE FROM studies WHERE id = ?1;");  // series, instances and volumes cascade
+        del.bind(1, id);
+        del.step();
+        exec("DELETE FROM patients WHERE id NOT IN (SELECT patient FROM studies);");
+    });
+    return removed;
 }
 
 std::vector<StudyRow> StudyDatabase::findStudies(const StudyQuery& q) const {

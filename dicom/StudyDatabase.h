@@ -95,6 +95,17 @@ public:
     /// missing or empty is taken as unreachable (an unmounted disk leaves an empty mount point;
     /// a renamed folder), kept and counted.
     PruneResult prune();
+    /// What removeStudy() took out of the index.
+    struct RemovedStudy {
+        std::string patient;               ///< "NAME (ID)"
+        std::vector<std::string> series;   ///< the study's Series Instance UIDs
+        std::vector<std::string> files;    ///< the study's instances' files, as indexed
+        std::vector<std::string> octrees;  ///< the octrees recorded for its series and volumes
+    };
+    /// Removes a study from the index: its series, instances and volumes, and its patient when
+    /// no other study is left, in one transaction. Deletes no file (the caller deletes what is
+    /// its own). Throws core::Error naming an unknown study.
+    RemovedStudy removeStudy(const std::string& studyUid);
     /// Instances marked offline by the last checkFiles().
     std::size_t offlineCount() const;
 

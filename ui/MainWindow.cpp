@@ -67,6 +67,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
     setDockNestingEnabled(true);
 
     browser_ = new StudyBrowser(*jobs_, databasePath);
+    browser_->setPacsSettingsPath(pacsSettingsPath);
     pacs_ = new PacsPanel(*jobs_, pacsSettingsPath, databasePath);
     jobsPanel_ = new JobsPanel(*jobs_);
     tfEditor_ = new TransferFunctionEditor;
@@ -146,6 +147,7 @@ MainWindow::MainWindow(QString databasePath, QString pacsSettingsPath, QWidget* 
         layersPanel_->overlaySeries(uid, octree, label, volume);
     });
     connect(browser_, &StudyBrowser::imported, this, [this](const QString& s) { statusBar()->showMessage(tr("Imported: %1").arg(s), 8000); });
+    connect(browser_, &StudyBrowser::studyRemoved, this, [this](const QString& s) { statusBar()->showMessage(s, 8000); });
     connect(browser_, &StudyBrowser::failed, this, &MainWindow::showError);
     connect(pacs_, &PacsPanel::retrieved, browser_, &StudyBrowser::refresh);
     connect(tfEditor_, &TransferFunctionEditor::changed, this, &MainWindow::applyTransferFunction);

@@ -13,6 +13,7 @@
 #include <QImage>
 #include <QLabel>
 #include <QMenu>
+#include <QMessageBox>
 #include <QLineEdit>
 #include <QPixmap>
 #include <QPushButton>
@@ -31,14 +32,16 @@
 #include "dicom/DicomScanner.h"
 #include "dicom/PixelDecoder.h"
 #include "dicom/SeriesAssembler.h"
+#include "dicom/PacsSettings.h"
 #include "dicom/SeriesOctree.h"
+#include "dicom/StudyRemoval.h"
 #include "dicom/StudyDatabase.h"
 #include "ui/JobManager.h"
 
 namespace hvx::ui {
 
 namespace {
-enum Role { SeriesUidRole = Qt::UserRole + 1, OctreeRole, LabelRole, VolumeRole };
+enum Role { SeriesUidRole = Qt::UserRole + 1, OctreeRole, LabelRole, VolumeRole, StudyUidRole };
 
 // A 64-pixel axial thumbnail from the octree's coarse levels (a few bricks).
 QIcon thumbnail(const std::string& octreePath) {
@@ -138,6 +141,12 @@ StudyBrowser::StudyBrowser(JobManager& jobs, QString databasePath, QWidget* pare
     tree_->setContextMenuPolicy(Qt::CustomContextMenu);
     connect(tree_, &QTreeWidget::customContextMenuRequested, this, [this](const QPoint& at) {
         QTreeWidgetItem* item = tree_->itemAt(at);
+        if (item && !item->data(0, StudyUidRole).toString().isEmpty()) {
+            QMenu menu(this);
+            menu.addAction(tr("Remove study from this workstation\u2026"), this, [this, item] { confirmRemoval(item); });
+            menu.exec(tree_->viewport()->mapToGlobal(at));
+            return;
+        }
         if (!item || item->data(0, SeriesUidRole).toString().isEmpty()) return;
         QMenu menu(this);
         menu.addAction(tr("Open"), this, [this, item] { activated(item); });
@@ -180,6 +189,9 @@ void StudyBrowser::refresh() {
                                                         QString::fromStdString(s.date), QString::fromStdString(s.modalities),
                                                         QString::number(images)});
             study->setToolTip(0, tr("Accession %1").arg(QString::fromStdString(s.accession)));
+            study->setData(0, StudyUidRole, QString::fromStdString(s.studyUid));
+            study->setData(0, LabelRole, QString::fromStdString(s.patientName).replace('^', ' ') + tr(", ID ") +
+                                             QString::fromStdString(s.patientId));
             study->setToolTip(3, tr("%n image(s)", nullptr, images) + tr(" in %n series", nullptr, s.seriesCount));
             std::map<std::string, QTreeWidgetItem*> itemOfSeries;  // for the SEG and RTSTRUCT rows below
             for (const auto& se : seriesRows) {
@@ -283,6 +295,44 @@ void StudyBrowser::requestOverlay(QTreeWidgetItem* item) {
     QString uid, octree;
     if (seriesOf(item, uid, octree))
         emit overlaySeries(uid, octree, item->data(0, LabelRole).toString(), item->data(0, VolumeRole).toInt());
+}
+
+void StudyBrowser::confirmRemoval(QTreeWidgetItem* study) {
+    const QString uid = study->data(0, StudyUidRole).toString();
+    QMessageBox ask(QMessageBox::Question, tr("Remove study"),
+                    tr("Remove the study \u201c%1\u201d of %2 (%3 images) from this workstation?")
+                        .arg(study->text(0), study->data(0, LabelRole).toString(), study->text(3)),
+                    QMessageBox::Yes | QMessageBox::Cancel, this);
+    ask.setObjectName("removeStudyQuestion");
+    ask.setInformativeText(tr("It leaves the study database. The files Holovox received from a PACS and the octrees it "
+                              "built are deleted (the PACS keeps its copy); files imported from your own folders stay "
+                              "where they are. A volume of it that is open stays open."));
+    ask.setDefaultButton(QMessageBox::Cancel);
+    if (ask.exec() == QMessageBox::Yes) removeStudy(uid);
+}
+
+int StudyBrowser::removeStudy(const QString& studyUid) {
+    const std::string db = dbPath_.toStdString(), uid = studyUid.toStdString();
+    const std::string settings = pacsSettingsPath_.isEmpty() ? dicom::PacsSettings::defaultPath() : pacsSettingsPath_.toStdString();
+    return jobs_.start(
+        tr("Remove study"),
+        [db, uid, settings](core::JobContext&) {
+            const std::string storage = dicom::PacsSettings::load(settings).local.storageDir;
+            dicom::StudyDatabase database(db);
+            const auto r = dicom::StudyRemoval::remove(database, uid, storage, dicom::SeriesOctree::folderFor(db));
+            QString summary = QObject::tr("study of %1 removed: %2 image(s) forgotten, %3 received file(s) and %4 octree(s) "
+                                          "deleted, %5 imported file(s) kept")
+                                  .arg(QString::fromStdString(r.patient))
+                                  .arg(r.forgotten).arg(r.deleted).arg(r.octrees).arg(r.kept);
+            if (!r.failed.empty())
+                throw core::Error(summary.toStdString() + "; could not delete " + r.failed.front() +
+                                  (r.failed.size() > 1 ? " and " + std::to_string(r.failed.size() - 1) + " more" : ""));
+            return summary;
+        },
+        [this](const QString& summary) {
+            refresh();
+            emit studyRemoved(summary);
+        });
 }
 
 int StudyBrowser::importPaths(const QStringList& paths) {

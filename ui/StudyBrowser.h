@@ -33,6 +33,11 @@ public:
     QTreeWidgetItem* seriesItem(const QString& seriesUid) const;
     /// Asks for `item`'s series to be laid over the open volume (its context menu's action).
     void requestOverlay(QTreeWidgetItem* item);
+    /// The PACS settings whose storage folder holds received files (default: the user's).
+    void setPacsSettingsPath(const QString& path) { pacsSettingsPath_ = path; }
+    /// Removes a study in the background (dicom::StudyRemoval: its rows, its received files and
+    /// its octrees; imported files stay); returns the job id. A study's context menu asks first.
+    int removeStudy(const QString& studyUid);
 
 signals:
     /// octreePath is empty when the series has no octree yet.
@@ -44,14 +49,19 @@ signals:
     /// Import job `jobId` is done: the series it found (SeriesInstanceUIDs), in the order first met.
     void importedSeries(int jobId, const QStringList& seriesUids);
     void failed(const QString& message);
+    /// A study was removed: what was forgotten, deleted and kept.
+    void studyRemoved(const QString& summary);
 
 private:
     void activated(QTreeWidgetItem* item);
+    /// Asks whether to remove a study item's study, saying what goes and what stays.
+    void confirmRemoval(QTreeWidgetItem* study);
     /// openSeries' or overlaySeries' arguments of a series item, false for a study item.
     bool seriesOf(QTreeWidgetItem* item, QString& uid, QString& octree) const;
 
     JobManager& jobs_;
     QString dbPath_;
+    QString pacsSettingsPath_;
     QLineEdit* text_;
     QLineEdit* from_;
     QLineEdit* to_;

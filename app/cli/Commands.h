@@ -13,6 +13,7 @@ int glInfoCommand(int argc, char** argv);
 int importCommand(int argc, char** argv);
 int studiesCommand(int argc, char** argv);
 int pruneCommand(int argc, char** argv);
+int removeStudyCommand(int argc, char** argv);
 int buildSeriesCommand(int argc, char** argv);
 int exportDicomCommand(int argc, char** argv);
 int pacsCommand(int argc, char** argv);

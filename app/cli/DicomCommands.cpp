@@ -19,7 +19,9 @@
 #include "dicom/DicomSeriesWriter.h"
 #include "dicom/SeriesAssembler.h"
 #include "dicom/SegmentationSource.h"
+#include "dicom/PacsSettings.h"
 #include "dicom/SeriesOctree.h"
+#include "dicom/StudyRemoval.h"
 #include "dicom/StudyDatabase.h"
 #include "dicom/UidPath.h"
 
@@ -119,6 +121,24 @@ int pruneCommand(int argc, char** argv) {
                     "they come back online when the folder does\n",
                     r.kept);
     return 0;
+}
+
+int removeStudyCommand(int argc, char** argv) {
+    const CliArgs args(argc, argv, 2, {"db", "config", "storage"}, {});
+    if (args.positional().size() != 1) throw core::Error("usage: holovox-cli remove-study STUDY_UID [--db FILE]");
+    const std::string dbPath = args.value("db").value_or(dicom::StudyDatabase::defaultPath());
+    const auto settings = dicom::PacsSettings::load(args.value("config").value_or(dicom::PacsSettings::defaultPath()));
+    const std::string storage = args.value("storage").value_or(settings.local.storageDir);
+    dicom::StudyDatabase db(dbPath);
+    const std::string uid = args.positional()[0];
+    const auto r = dicom::StudyRemoval::remove(db, uid, storage, dicom::SeriesOctree::folderFor(dbPath));
+    std::printf("removed study %s of %s from the study database: %zu image(s)\n", uid.c_str(), r.patient.c_str(),
+                r.forgotten);
+    if (r.deleted) std::printf("deleted %zu received file(s) from %s\n", r.deleted, storage.c_str());
+    if (r.kept) std::printf("kept %zu imported file(s) where they are (only Holovox's own storage is deleted)\n", r.kept);
+    if (r.octrees) std::printf("deleted %zu octree(s)\n", r.octrees);
+    for (const auto& f : r.failed) std::fprintf(stderr, "could not delete %s\n", f.c_str());
+    return r.failed.empty() ? 0 : 1;
 }
 
 int studiesCommand(int argc, char** argv) {

@@ -24,6 +24,8 @@ const char* const kUsage =
         "  import PATH... [--db FILE] [--build]   scan folders/DICOMDIR/files into the study database\n"
         "  studies [--db FILE] [--patient TEXT] [--from YYYYMMDD] [--to YYYYMMDD] [--modality CT]\n"
         "  prune [--db FILE]             remove the rows of deleted files (unreachable folders are kept)\n"
+        "  remove-study STUDY_UID [--db FILE] [--storage DIR]   forget a study; delete its received files\n"
+        "        and octrees (files imported from your folders are kept)\n"
         "  build-series SERIES_UID -o OUT.hvo [--db FILE] [--volume N]   (N as import numbers them)\n"
         "        [--grid IMAGE.hvo]   an RT Structure Set series, drawn onto that image's grid\n"
         "  export-dicom INPUT -o FOLDER [--syntax explicit-little|implicit-little|explicit-big|deflate|rle|\n"
@@ -115,6 +117,7 @@ int main(int argc, char** argv) {
         if (cmd == "import") return hvx::app::importCommand(argc, argv);
         if (cmd == "studies") return hvx::app::studiesCommand(argc, argv);
         if (cmd == "prune") return hvx::app::pruneCommand(argc, argv);
+        if (cmd == "remove-study") return hvx::app::removeStudyCommand(argc, argv);
         if (cmd == "build-series") return hvx::app::buildSeriesCommand(argc, argv);
         if (cmd == "export-dicom") return hvx::app::exportDicomCommand(argc, argv);
         if (cmd == "pacs") return hvx::app::pacsCommand(argc, argv);

@@ -8,12 +8,16 @@
 #include <QDockWidget>
 #include <QElapsedTimer>
 #include <QLineEdit>
+#include <QMenu>
+#include <QMessageBox>
 #include <QMouseEvent>
 #include <QPushButton>
 #include <QSettings>
 #include <QFile>
 #include <QtMath>
 #include <QSpinBox>
+#include <QStatusBar>
+#include <QTimer>
 #include <QSignalSpy>
 #include <QTest>
 #include <QTreeWidget>
@@ -26,6 +30,7 @@
 #include "core/octree/OctreeBuilder.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "dicom/DicomSeriesWriter.h"
+#include "dicom/PacsSettings.h"
 #include "tests/support/PacsPeer.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
@@ -388,6 +393,63 @@ private slots:
         QVERIFY(window_->openVolumeFile(QString::fromStdString(nrrd), 1));
         QCOMPARE(window_->openLabel(), QString("nospace.nrrd"));  // at once: no build
         QVERIFY2(window_->lastNotice().contains("orientation unknown"), qPrintable(window_->lastNotice()));
+    }
+
+    // A study's context menu removes it from this workstation after asking: the study leaves
+    // the browser, the files received into the PACS settings' storage folder and its octree are
+    // deleted, and the files of a study imported from the user's own folder stay.
+    void removingAStudyDeletesWhatWasReceivedAndKeepsWhatWasImported() {
+        auto settings = dicom::PacsSettings::load(dir_.file("pacs.json"));
+        settings.local.storageDir = dir_.file("received");
+        settings.save(dir_.file("pacs.json"));
+        const auto received = writeSeries(dir_.file("received/study/series"), "GONE^RECEIVED", 21);
+        const auto mine = writeSeries(dir_.file("mine"), "GONE^MINE", 22);
+        auto* browser = window_->browser();
+        browser->importPaths({QString::fromStdString(dir_.file("received")), QString::fromStdString(dir_.file("mine"))});
+        QVERIFY(window_->jobs()->waitIdle(120000));
+        auto studyOf = [&](const QString& patient) -> QTreeWidgetItem* {
+            browser->refresh();
+            for (int i = 0; i < browser->tree()->topLevelItemCount(); ++i)
+                if (browser->tree()->topLevelItem(i)->text(0) == patient) return browser->tree()->topLevelItem(i)->child(0);
+            return nullptr;
+        };
+        auto removeByMenu = [&](QTreeWidgetItem* study) {
+            browser->tree()->scrollToItem(study);
+            const QPoint at = browser->tree()->visualItemRect(study).center();
+            // The menu, then the question: each answered once it is up.
+            QTimer::singleShot(200, [] {
+                auto* menu = qobject_cast<QMenu*>(QApplication::activePopupWidget());
+                QVERIFY(menu && !menu->actions().isEmpty());
+                QVERIFY(menu->actions().first()->text().startsWith("Remove study"));
+                QTimer::singleShot(200, [] {
+                    auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+                    QVERIFY(box && box->objectName() == "removeStudyQuestion");
+                    QVERIFY2(box->informativeText().contains("stay where they are"), qPrintable(box->informativeText()));
+                    box->grab().save(test::guiArtifacts() + "/remove-study-question.png");
+                    box->button(QMessageBox::Yes)->click();
+                });
+                menu->actions().first()->trigger();
+                menu->close();
+            });
+            emit browser->tree()->customContextMenuRequested(at);
+            QVERIFY(window_->jobs()->waitIdle(60000));
+        };
+        QTreeWidgetItem* study = studyOf("GONE RECEIVED");
+        QVERIFY(study);
+        removeByMenu(study);
+        QVERIFY(!studyOf("GONE RECEIVED"));
+        QTRY_VERIFY2(window_->statusBar()->currentMessage().contains("48 received file(s)"),
+                     qPrintable(window_->statusBar()->currentMessage()));
+        for (const auto& f : received) QVERIFY2(!std::filesystem::exists(f), f.c_str());
+        QVERIFY(!std::filesystem::exists(dir_.file("received/study")));
+        QVERIFY(std::filesystem::is_directory(dir_.file("received")));
+        study = studyOf("GONE MINE");
+        QVERIFY(study);
+        removeByMenu(study);
+        QVERIFY(!studyOf("GONE MINE"));
+        QTRY_VERIFY2(window_->statusBar()->currentMessage().contains("48 imported file(s) kept"),
+                     qPrintable(window_->statusBar()->currentMessage()));
+        for (const auto& f : mine) QVERIFY2(std::filesystem::exists(f), f.c_str());
     }
 
     void cleanupTestCase() { close(); }

@@ -175,3 +175,64 @@ for name, out in (('MR_small_RLE.dcm', 'rle'), ('MR_small_jp2klossless.dcm', 'j2
     EXPECT_LT(r.maxRssKiB, 100 * 1024) << "peak memory of the import";
 #endif
 }
+
+// A study whose patient the archive has corrected since (the same Study Instance UID, another
+// Patient ID) is refused as a collision, and the refusal says how to go on: remove-study forgets
+// the local study, deletes the files Holovox received into its storage folder and the octrees
+// it built, and never deletes a file imported from the user's own folders. The corrected study
+// then imports. The patient ID is changed by DCMTK's dcmodify, and the study UID read by dcmdump.
+TEST(CliImport, RemoveStudyForgetsItDeletesOnlyHolovoxsOwnFilesAndLetsTheCorrectedStudyIn) {
+    test::TempDir dir;
+    const std::string db = " --db " + dir.file("db/studies.sqlite");
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 24x20x8 -o " + dir.file("p.nrrd")).exitCode, 0);
+    auto r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " -o " + dir.file("mine/a") +
+                              " --patient DOE^ANN --patient-id P1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " -o " + dir.file("storage/b") +
+                         " --patient ROE^BOB --patient-id P2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    auto studyOf = [&](const std::string& file) {
+        const auto d = test::runCommand("dcmdump +P StudyInstanceUID " + file);
+        const auto open = d.output.find('['), close = d.output.find(']');
+        return d.output.substr(open + 1, close - open - 1);
+    };
+    const std::string mine = studyOf(dir.file("mine/a/IMG00001.dcm")), received = studyOf(dir.file("storage/b/IMG00001.dcm"));
+    ASSERT_FALSE(mine.empty());
+    ASSERT_NE(mine, received);
+    ASSERT_EQ(test::runCommand(cli + " import " + dir.file("mine") + db + " --build").exitCode, 0);
+    ASSERT_EQ(test::runCommand(cli + " import " + dir.file("storage") + db + " --build").exitCode, 0);
+    std::filesystem::copy(dir.file("storage/b"), dir.file("corrected"));
+    ASSERT_EQ(test::runCommand("dcmodify -nb -m '(0010,0020)=P9' " + dir.file("corrected") + "/*.dcm").exitCode, 0);
+    r = test::runCommand(cli + " import " + dir.file("corrected") + db);
+    EXPECT_TRUE(contains(r.output, "is filed under patient ROE^BOB (P2)")) << r.output;
+    EXPECT_TRUE(contains(r.output, "holovox-cli remove-study " + received)) << r.output;
+    const auto octrees = [&] {
+        std::size_t n = 0;
+        for (const auto& e : std::filesystem::directory_iterator(dir.file("db/octrees"))) n += e.path().extension() == ".hvo";
+        return n;
+    };
+    ASSERT_EQ(octrees(), 2u);
+
+    r = test::runCommand(cli + " remove-study " + received + db + " --storage " + dir.file("storage"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "removed study " + received + " of ROE^BOB (P2) from the study database: 8 image(s)")) << r.output;
+    EXPECT_TRUE(contains(r.output, "deleted 8 received file(s)")) << r.output;
+    EXPECT_TRUE(contains(r.output, "deleted 1 octree(s)")) << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("storage/b")));  // emptied, and gone
+    EXPECT_TRUE(std::filesystem::is_directory(dir.file("storage")));
+    EXPECT_EQ(octrees(), 1u);
+
+    r = test::runCommand(cli + " remove-study " + mine + db + " --storage " + dir.file("storage"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "kept 8 imported file(s) where they are")) << r.output;
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.file("mine/a")), {}), 8);
+    EXPECT_EQ(octrees(), 0u);
+
+    r = test::runCommand(cli + " remove-study " + mine + db);
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_TRUE(contains(r.output, "study " + mine + " is not in the study database")) << r.output;
+    r = test::runCommand(cli + " import " + dir.file("corrected") + db);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "8 new")) << r.output;
+    EXPECT_TRUE(contains(r.output, "patient ROE^BOB (P9)")) << r.output;
+}

@@ -1,0 +1,32 @@
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace hvx::dicom {
+
+class StudyDatabase;
+
+/// Removes a study from this workstation: its rows in the study database, and the files that
+/// are Holovox's own: the instances received into its storage folder (by a retrieve or the
+/// listener; the archive keeps the originals) and the octrees built for the study's series.
+/// Files imported from the user's own folders are never deleted, only forgotten. What a study
+/// whose patient the archive has corrected since needs before it can be retrieved again (the
+/// database refuses a study UID under another patient).
+class StudyRemoval {
+public:
+    struct Result {
+        std::string patient;               ///< "NAME (ID)" of the study removed
+        std::size_t forgotten = 0;         ///< instances taken out of the index
+        std::size_t deleted = 0;           ///< of them, received files deleted from the storage folder
+        std::size_t kept = 0;              ///< of them, files outside it, left where they are
+        std::size_t octrees = 0;           ///< octree files deleted
+        std::vector<std::string> failed;   ///< "PATH: why" for files that could not be deleted
+    };
+    /// Removes `studyUid` (throws core::Error naming an unknown study, changing nothing). Only
+    /// files inside `storageDir` and `octreeDir` are deleted; folders left empty in them go too.
+    static Result remove(StudyDatabase& db, const std::string& studyUid, const std::string& storageDir,
+                         const std::string& octreeDir);
+};
+
+}  // namespace hvx::dicom
