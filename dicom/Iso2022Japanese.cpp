@@ -45,6 +45,10 @@ std::optional<std::string> Iso2022Japanese::toUtf8(std::string_view text, const 
     // backslash and tilde, and the backslash is the value delimiter), and with
     // IR 13 the half-width Katakana in G1 (bytes 0xA1..0xDF).
     const bool katakanaFirst = !characterSet.empty() && characterSet.front() == "ISO 2022 IR 13";
+    auto declared = [&](const char* term) {
+        return std::find(characterSet.begin(), characterSet.end(), term) != characterSet.end();
+    };
+    const bool ir13 = declared("ISO 2022 IR 13"), ir87 = declared("ISO 2022 IR 87"), ir159 = declared("ISO 2022 IR 159");
     enum class G0 { Ascii, Jis0208, Jis0212 } g0 = G0::Ascii;
     bool katakana = katakanaFirst;
     std::string euc;
@@ -53,10 +57,12 @@ std::optional<std::string> Iso2022Japanese::toUtf8(std::string_view text, const 
         if (c == 0x1B) {  // ESC: designate a set
             const std::string_view rest = text.substr(i + 1);
             auto starts = [&](std::string_view seq) { return rest.substr(0, seq.size()) == seq; };
-            if (starts("(B") || starts("(J")) g0 = G0::Ascii, i += 3;
-            else if (starts("$B") || starts("$@")) g0 = G0::Jis0208, i += 3;
-            else if (starts("$(D")) g0 = G0::Jis0212, i += 4;
-            else if (starts(")I")) katakana = true, i += 3;
+            // Only the sets Specific Character Set names: ASCII, and with IR 13 its Romaji and
+            // Katakana, with IR 87 JIS X 0208, with IR 159 JIS X 0212.
+            if (starts("(B") || (ir13 && starts("(J"))) g0 = G0::Ascii, i += 3;
+            else if (ir87 && starts("$B")) g0 = G0::Jis0208, i += 3;
+            else if (ir159 && starts("$(D")) g0 = G0::Jis0212, i += 4;
+            else if (ir13 && starts(")I")) katakana = true, i += 3;
             else return std::nullopt;  // a set not named in Specific Character Set
             continue;
         }

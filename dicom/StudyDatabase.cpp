@@ -431,10 +431,10 @@ StudyDatabase::RemovedStudy StudyDatabase::removeStudy(const std::string& studyU
         const std::int64_t id = study.integer(0);
         removed.patient = study.text(1) + " (" + study.text(2) + ")";
         while (study.step()) {}
-        Stmt files(db_, "SELECT i.path FROM instances i JOIN series se ON se.id = i.series WHERE se.study = ?1 "
-                        "ORDER BY i.path;");
+        Stmt files(db_, "SELECT i.path, se.uid, i.sop_uid FROM instances i JOIN series se ON se.id = i.series "
+                        "WHERE se.study = ?1 ORDER BY i.path;");
         files.bind(1, id);
-        while (files.step()) removed.files.push_back(files.text(0));
+        while (files.step()) removed.files.push_back({files.text(0), files.text(1), files.text(2)});
         Stmt series(db_, "SELECT uid FROM series WHERE study = ?1 ORDER BY uid;");
         series.bind(1, id);
         while (series.step()) removed.series.push_back(series.text(0));
@@ -449,6 +449,14 @@ StudyDatabase::RemovedStudy StudyDatabase::removeStudy(const std::string& studyU
         exec("DELETE FROM patients WHERE id NOT IN (SELECT patient FROM studies);");
     });
     return removed;
+}
+
+std::vector<std::string> StudyDatabase::recordedOctrees() const {
+    Stmt s(db_, "SELECT octree FROM series WHERE octree IS NOT NULL AND octree != '' UNION "
+                "SELECT octree FROM volumes WHERE octree IS NOT NULL AND octree != '';");
+    std::vector<std::string> paths;
+    while (s.step()) paths.push_back(s.text(0));
+    return paths;
 }
 
 std::vector<StudyRow> StudyDatabase::findStudies(const StudyQuery& q) const {

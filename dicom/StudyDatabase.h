@@ -97,15 +97,20 @@ public:
     PruneResult prune();
     /// What removeStudy() took out of the index.
     struct RemovedStudy {
+        struct File {
+            std::string path, seriesUid, sopUid;  ///< as indexed
+        };
         std::string patient;               ///< "NAME (ID)"
         std::vector<std::string> series;   ///< the study's Series Instance UIDs
-        std::vector<std::string> files;    ///< the study's instances' files, as indexed
+        std::vector<File> files;           ///< the study's instances
         std::vector<std::string> octrees;  ///< the octrees recorded for its series and volumes
     };
     /// Removes a study from the index: its series, instances and volumes, and its patient when
     /// no other study is left, in one transaction. Deletes no file (the caller deletes what is
     /// its own). Throws core::Error naming an unknown study.
     RemovedStudy removeStudy(const std::string& studyUid);
+    /// Every octree path recorded for a series or a volume.
+    std::vector<std::string> recordedOctrees() const;
     /// Instances marked offline by the last checkFiles().
     std::size_t offlineCount() const;
 

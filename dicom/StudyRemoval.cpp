@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <set>
 
 #include "dicom/StudyDatabase.h"
 #include "dicom/UidPath.h"
@@ -12,30 +13,42 @@ namespace fs = std::filesystem;
 namespace hvx::dicom {
 
 namespace {
-/// Whether `file` lies inside `folder` (both resolved: a link or ".." cannot lead out of it).
-bool inside(const fs::path& folder, const fs::path& file) {
-    if (folder.empty()) return false;
+/// A path with its folder resolved (links, "..", relative) and its own name kept as it is, so
+/// that a link is compared as the link, not as what it points to.
+fs::path resolvedFolder(const fs::path& p) {
     std::error_code ec;
-    const fs::path f = fs::weakly_canonical(folder, ec);
-    if (ec) return false;
-    const fs::path p = fs::weakly_canonical(file, ec);
-    if (ec) return false;
-    const auto [end, at] = std::mismatch(f.begin(), f.end(), p.begin(), p.end());
-    return end == f.end() && at != p.end();
+    const fs::path folder = fs::weakly_canonical(fs::absolute(p, ec).parent_path(), ec);
+    return ec ? fs::path() : folder / p.filename();
 }
 
-/// Whether `name` is one of the octree files SeriesOctree and retrieves make for a series whose
-/// UID's path component is `stem`: "<stem>.hvo", ".preview.hvo", ".rt.hvo", and "<stem>-vN"
-/// with either of the first two (a UID's dots make a plain prefix test match other series).
+/// Whether `file` is where IncomingStore puts an instance it received, and nothing else:
+/// <storage>/<study>/<series>/<sop>.dcm, each a UID's path component, and a plain file (not a
+/// link). Mere containment would not do: a storage folder of "/" or the home folder holds the
+/// user's own files too.
+bool receivedHere(const fs::path& storage, const std::string& studyUid, const StudyDatabase::RemovedStudy::File& f) {
+    if (storage.empty()) return false;
+    std::error_code ec;
+    const fs::path root = fs::weakly_canonical(fs::absolute(storage, ec), ec);
+    if (ec || root.empty()) return false;
+    const fs::path expected = root / UidPath::component(studyUid) / UidPath::component(f.seriesUid) /
+                              (UidPath::component(f.sopUid) + ".dcm");
+    return resolvedFolder(f.path) == expected && fs::is_regular_file(fs::symlink_status(f.path, ec)) && !ec;
+}
+
+/// Whether `name` is one of the octree files SeriesOctree, retrieves and `import --build` make
+/// for a series whose UID's path component is `stem`: "<stem>.hvo", ".preview.hvo", ".rt.hvo",
+/// "<stem>-vN" with either of the first two, and "<stem>-stackN.hvo" (a UID's dots make a
+/// plain prefix test match other series).
 bool octreeOf(const std::string& name, const std::string& stem) {
     if (name.compare(0, stem.size(), stem) != 0) return false;
     std::string rest = name.substr(stem.size());
-    if (rest.rfind("-v", 0) == 0) {
-        std::size_t digits = 2;
-        while (digits < rest.size() && std::isdigit(static_cast<unsigned char>(rest[digits]))) ++digits;
-        if (digits == 2) return false;
-        rest = rest.substr(digits);
-        return rest == ".hvo" || rest == ".preview.hvo";
+    for (const std::string numbered : {"-v", "-stack"}) {
+        if (rest.rfind(numbered, 0) != 0) continue;
+        std::size_t end = numbered.size();
+        while (end < rest.size() && std::isdigit(static_cast<unsigned char>(rest[end]))) ++end;
+        if (end == numbered.size()) return false;
+        rest = rest.substr(end);
+        return rest == ".hvo" || (numbered == "-v" && rest == ".preview.hvo");
     }
     return rest == ".hvo" || rest == ".preview.hvo" || rest == ".rt.hvo";
 }
@@ -44,15 +57,6 @@ void removeFile(const fs::path& file, std::size_t& count, std::vector<std::strin
     std::error_code ec;
     if (fs::remove(file, ec)) ++count;
     else if (ec) failed.push_back(file.string() + ": " + ec.message());
-}
-
-/// Removes the folders between `file` and `top` that are left empty.
-void removeEmptyFolders(const fs::path& top, fs::path file) {
-    std::error_code ec;
-    const fs::path stop = fs::weakly_canonical(top, ec);
-    for (fs::path dir = fs::weakly_canonical(file, ec).parent_path(); !ec && dir != stop && inside(stop, dir);
-         dir = dir.parent_path())
-        if (!fs::is_empty(dir, ec) || ec || !fs::remove(dir, ec)) break;
 }
 }  // namespace
 
@@ -64,31 +68,41 @@ StudyRemoval::Result StudyRemoval::remove(StudyDatabase& db, const std::string& 
     Result r;
     r.patient = removed.patient;
     r.forgotten = removed.files.size();
+    std::set<fs::path> folders;  // the series folders emptied, then their study folder
     for (const auto& f : removed.files) {
-        if (!inside(storageDir, f)) {
+        if (!receivedHere(storageDir, studyUid, f)) {
             ++r.kept;
             continue;
         }
-        std::size_t before = r.failed.size();
-        std::size_t deleted = 0;
-        removeFile(f, deleted, r.failed);
-        r.deleted += deleted;
-        if (r.failed.size() == before) removeEmptyFolders(storageDir, f);
+        const std::size_t failures = r.failed.size();
+        removeFile(f.path, r.deleted, r.failed);
+        if (r.failed.size() == failures) folders.insert(resolvedFolder(f.path).parent_path());
     }
-    // The octrees recorded, and those made for the series without a record (previews, structure
-    // sets drawn onto a grid).
-    std::vector<fs::path> octrees(removed.octrees.begin(), removed.octrees.end());
     std::error_code ec;
+    std::set<fs::path> studies;
+    for (const auto& series : folders) {
+        if (fs::is_empty(series, ec) && !ec) fs::remove(series, ec);
+        studies.insert(series.parent_path());
+    }
+    for (const auto& study : studies)
+        if (fs::is_empty(study, ec) && !ec) fs::remove(study, ec);
+    // The octrees recorded for the study, and those made for its series without a record
+    // (previews, structure sets drawn onto a grid), inside the octree folder; never one that
+    // the database still records for another series.
+    std::set<fs::path> recordedElsewhere;
+    for (const auto& o : db.recordedOctrees()) recordedElsewhere.insert(resolvedFolder(o));
+    std::set<fs::path> octrees;
+    for (const auto& o : removed.octrees) octrees.insert(resolvedFolder(o));
     if (!octreeDir.empty() && fs::is_directory(octreeDir, ec))
-        for (const auto& entry : fs::directory_iterator(octreeDir, ec)) {
-            const std::string name = entry.path().filename().string();
+        for (const auto& entry : fs::directory_iterator(octreeDir, ec))
             for (const auto& uid : removed.series)
-                if (octreeOf(name, UidPath::component(uid))) octrees.push_back(entry.path());
-        }
-    std::sort(octrees.begin(), octrees.end());
-    octrees.erase(std::unique(octrees.begin(), octrees.end()), octrees.end());
+                if (octreeOf(entry.path().filename().string(), UidPath::component(uid)))
+                    octrees.insert(resolvedFolder(entry.path()));
+    const fs::path folder = octreeDir.empty() ? fs::path() : fs::weakly_canonical(fs::absolute(octreeDir, ec), ec);
     for (const auto& o : octrees)
-        if (inside(octreeDir, o) && fs::exists(o, ec)) removeFile(o, r.octrees, r.failed);
+        if (!folder.empty() && o.parent_path() == folder && !recordedElsewhere.count(o) &&
+            fs::is_regular_file(fs::symlink_status(o, ec)))
+            removeFile(o, r.octrees, r.failed);
     return r;
 }
 

@@ -23,8 +23,11 @@ public:
         std::size_t octrees = 0;           ///< octree files deleted
         std::vector<std::string> failed;   ///< "PATH: why" for files that could not be deleted
     };
-    /// Removes `studyUid` (throws core::Error naming an unknown study, changing nothing). Only
-    /// files inside `storageDir` and `octreeDir` are deleted; folders left empty in them go too.
+    /// Removes `studyUid` (throws core::Error naming an unknown study, changing nothing). A file
+    /// is deleted only where IncomingStore would have received it: `storageDir`/<study>/<series>/
+    /// <sop>.dcm, a plain file, not a link (the series and study folders left empty go too); an
+    /// octree only directly in `octreeDir` and named for one of the study's series, unless the
+    /// database records it for another.
     static Result remove(StudyDatabase& db, const std::string& studyUid, const std::string& storageDir,
                          const std::string& octreeDir);
 };

@@ -30,6 +30,7 @@
 #include "core/octree/OctreeBuilder.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "dicom/DicomSeriesWriter.h"
+#include "dicom/IncomingStore.h"
 #include "dicom/PacsSettings.h"
 #include "tests/support/PacsPeer.h"
 #include "tests/support/ProcessRunner.h"
@@ -402,7 +403,14 @@ private slots:
         auto settings = dicom::PacsSettings::load(dir_.file("pacs.json"));
         settings.local.storageDir = dir_.file("received");
         settings.save(dir_.file("pacs.json"));
-        const auto received = writeSeries(dir_.file("received/study/series"), "GONE^RECEIVED", 21);
+        // Received as a retrieve receives: through the IncomingStore, into <storage>/<study>/<series>.
+        std::vector<std::string> received;
+        dicom::IncomingStore store(dir_.file("received"));
+        for (const auto& f : writeSeries(dir_.file("sent"), "GONE^RECEIVED", 21)) {
+            const std::string part = store.temporaryPath();
+            std::filesystem::copy_file(f, part, std::filesystem::copy_options::overwrite_existing);
+            received.push_back(store.finalize(part).path);
+        }
         const auto mine = writeSeries(dir_.file("mine"), "GONE^MINE", 22);
         auto* browser = window_->browser();
         browser->importPaths({QString::fromStdString(dir_.file("received")), QString::fromStdString(dir_.file("mine"))});
@@ -441,7 +449,7 @@ private slots:
         QTRY_VERIFY2(window_->statusBar()->currentMessage().contains("48 received file(s)"),
                      qPrintable(window_->statusBar()->currentMessage()));
         for (const auto& f : received) QVERIFY2(!std::filesystem::exists(f), f.c_str());
-        QVERIFY(!std::filesystem::exists(dir_.file("received/study")));
+        QVERIFY(!std::filesystem::exists(std::filesystem::path(received.front()).parent_path().parent_path()));
         QVERIFY(std::filesystem::is_directory(dir_.file("received")));
         study = studyOf("GONE MINE");
         QVERIFY(study);

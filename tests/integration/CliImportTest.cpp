@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "dicom/IncomingStore.h"
+#include "dicom/UidPath.h"
 #include "tests/support/ProcessRunner.h"
 #include "tests/support/TempDir.h"
 
@@ -188,20 +190,27 @@ TEST(CliImport, RemoveStudyForgetsItDeletesOnlyHolovoxsOwnFilesAndLetsTheCorrect
     auto r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " -o " + dir.file("mine/a") +
                               " --patient DOE^ANN --patient-id P1");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " -o " + dir.file("storage/b") +
+    r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " -o " + dir.file("sent") +
                          " --patient ROE^BOB --patient-id P2");
     ASSERT_EQ(r.exitCode, 0) << r.output;
+    // Received as a retrieve receives: through the IncomingStore, into <storage>/<study>/<series>.
+    dicom::IncomingStore store(dir.file("storage"));
+    for (const auto& e : std::filesystem::directory_iterator(dir.file("sent"))) {
+        const std::string part = store.temporaryPath();
+        std::filesystem::copy_file(e.path(), part, std::filesystem::copy_options::overwrite_existing);
+        store.finalize(part);
+    }
     auto studyOf = [&](const std::string& file) {
         const auto d = test::runCommand("dcmdump +P StudyInstanceUID " + file);
         const auto open = d.output.find('['), close = d.output.find(']');
         return d.output.substr(open + 1, close - open - 1);
     };
-    const std::string mine = studyOf(dir.file("mine/a/IMG00001.dcm")), received = studyOf(dir.file("storage/b/IMG00001.dcm"));
+    const std::string mine = studyOf(dir.file("mine/a/IMG00001.dcm")), received = studyOf(dir.file("sent/IMG00001.dcm"));
     ASSERT_FALSE(mine.empty());
     ASSERT_NE(mine, received);
     ASSERT_EQ(test::runCommand(cli + " import " + dir.file("mine") + db + " --build").exitCode, 0);
     ASSERT_EQ(test::runCommand(cli + " import " + dir.file("storage") + db + " --build").exitCode, 0);
-    std::filesystem::copy(dir.file("storage/b"), dir.file("corrected"));
+    std::filesystem::copy(dir.file("sent"), dir.file("corrected"));
     ASSERT_EQ(test::runCommand("dcmodify -nb -m '(0010,0020)=P9' " + dir.file("corrected") + "/*.dcm").exitCode, 0);
     r = test::runCommand(cli + " import " + dir.file("corrected") + db);
     EXPECT_TRUE(contains(r.output, "is filed under patient ROE^BOB (P2)")) << r.output;
@@ -218,7 +227,7 @@ TEST(CliImport, RemoveStudyForgetsItDeletesOnlyHolovoxsOwnFilesAndLetsTheCorrect
     EXPECT_TRUE(contains(r.output, "removed study " + received + " of ROE^BOB (P2) from the study database: 8 image(s)")) << r.output;
     EXPECT_TRUE(contains(r.output, "deleted 8 received file(s)")) << r.output;
     EXPECT_TRUE(contains(r.output, "deleted 1 octree(s)")) << r.output;
-    EXPECT_FALSE(std::filesystem::exists(dir.file("storage/b")));  // emptied, and gone
+    EXPECT_FALSE(std::filesystem::exists(dir.file("storage/" + dicom::UidPath::component(received))));  // emptied, and gone
     EXPECT_TRUE(std::filesystem::is_directory(dir.file("storage")));
     EXPECT_EQ(octrees(), 1u);
 

@@ -10,6 +10,8 @@ using hvx::dicom::Iso2022Japanese;
 namespace {
 const std::vector<std::string> kIr87{"", "ISO 2022 IR 87"};
 const std::vector<std::string> kIr13{"ISO 2022 IR 13", "ISO 2022 IR 87"};
+const std::vector<std::string> kIr13Only{"ISO 2022 IR 13"};
+const std::vector<std::string> kIr159{"", "ISO 2022 IR 159"};
 }  // namespace
 
 TEST(Iso2022Japanese, KanjiKatakanaAndTheReturnToTheFirstSetAtEachDelimiter) {
@@ -28,6 +30,10 @@ TEST(Iso2022Japanese, BrokenOrForeignTextIsNotGuessed) {
     EXPECT_FALSE(Iso2022Japanese::toUtf8("\x1b$)C\xb1\xe8", kIr87, true)); // Korean, not declared
     EXPECT_FALSE(Iso2022Japanese::toUtf8("\x1b", kIr87, true));            // an escape cut short
     EXPECT_FALSE(Iso2022Japanese::toUtf8("\xd4", kIr87, true));            // Katakana without IR 13
+    EXPECT_FALSE(Iso2022Japanese::toUtf8("\x1b)I\xb6", kIr87, true));      // ... even when designated
+    EXPECT_FALSE(Iso2022Japanese::toUtf8("\x1b$(D0!", kIr87, true));       // JIS X 0212 without IR 159
+    EXPECT_FALSE(Iso2022Japanese::toUtf8("\x1b$B;3", kIr13Only, true));    // Kanji without IR 87
+    EXPECT_TRUE(Iso2022Japanese::toUtf8("\x1b$(D0!", kIr159, true).has_value());
     EXPECT_FALSE(Iso2022Japanese::toUtf8("\xe9", kIr13, true));            // beyond the Katakana
     EXPECT_FALSE(Iso2022Japanese::toUtf8("\x1b$B\x29\x21", kIr87, true));  // row 9: no characters
     EXPECT_FALSE(Iso2022Japanese::handles({"ISO_IR 100"}));

@@ -7,6 +7,7 @@
 
 #include "core/base/Error.h"
 #include "dicom/StudyDatabase.h"
+#include "dicom/StudyRemoval.h"
 #include "tests/support/TempDir.h"
 
 using namespace hvx;
@@ -285,4 +286,62 @@ TEST(StudyDatabase, ASeriesThatGainsImagesForgetsItsOctree) {
     EXPECT_EQ(row.octreePath, "");
     EXPECT_EQ(row.instanceCount, 3);
     for (const auto& f : db.filesOfSeries("1.1.1")) EXPECT_TRUE(std::filesystem::path(f).is_absolute()) << f;
+}
+
+// Removing a study deletes only what Holovox received, where it receives it (storage/<study>/
+// <series>/<sop>.dcm, a plain file) and octrees named for the study's own series: a file of the
+// user's inside the storage folder, a link of the user's to a received file, every file under a
+// storage folder of "/", an octree of a series whose UID merely begins the same way, and one the
+// database records for another series all stay.
+TEST(StudyDatabase, RemovingAStudyDeletesOnlyWhatWasReceivedWhereItIsReceived) {
+    namespace fs = std::filesystem;
+    test::TempDir dir;
+    const std::string storage = dir.file("storage"), octrees = dir.file("db/octrees");
+    fs::create_directories(storage + "/1.9/1.9.1");
+    fs::create_directories(storage + "/mine");
+    fs::create_directories(dir.file("user"));
+    fs::create_directories(octrees);
+    auto touch = [](const std::string& path) {
+        std::ofstream(path) << "x";
+        return path;
+    };
+    dicom::StudyDatabase db(dir.file("db/s.sqlite"));
+    const std::string received = touch(storage + "/1.9/1.9.1/1.9.1.1.dcm"), target = touch(storage + "/1.9/1.9.1/1.9.1.3.dcm");
+    const std::string inStorage = touch(storage + "/mine/1.9.1.2.dcm"), own = touch(dir.file("user/own.dcm"));
+    fs::create_symlink(target, dir.file("user/link.dcm"));
+    auto s = db.addInstances({instance(received, "A^A", "A", "1.9", "20240101", "1.9.1", "CT", "1.9.1.1"),
+                              instance(inStorage, "A^A", "A", "1.9", "20240101", "1.9.1", "CT", "1.9.1.2"),
+                              instance(target, "A^A", "A", "1.9", "20240101", "1.9.1", "CT", "1.9.1.3"),
+                              instance(dir.file("user/link.dcm"), "A^A", "A", "1.9", "20240101", "1.9.1", "CT", "1.9.1.4"),
+                              instance(own, "A^A", "A", "1.9", "20240101", "1.9.1", "CT", "1.9.1.5"),
+                              instance(touch(dir.file("user/b.dcm")), "B^B", "B", "1.8", "20240101", "1.9.1-v2", "CT", "1.8.1.1"),
+                              instance(touch(dir.file("user/c.dcm")), "C^C", "C", "1.7", "20240101", "1.7.1", "CT", "1.7.1.1")});
+    ASSERT_EQ(s.added, 7u);
+    for (const char* name : {"1.9.1.hvo", "1.9.1.preview.hvo", "1.9.1-v2.preview.hvo", "1.9.1-stack2.hvo", "1.9.1-v2.hvo",
+                             "1.9.10.hvo", "1.9.1.hvo.bak"})
+        touch(octrees + "/" + name);
+    db.setSeriesOctree("1.9.1-v2", octrees + "/1.9.1-v2.hvo");  // another study's series records it
+
+    const auto r = dicom::StudyRemoval::remove(db, "1.9", storage, octrees);
+    EXPECT_EQ(r.patient, "A^A (A)");
+    EXPECT_EQ(r.forgotten, 5u);
+    EXPECT_EQ(r.deleted, 2u);  // the received file and the link's target, both where received
+    EXPECT_EQ(r.kept, 3u);
+    EXPECT_TRUE(r.failed.empty());
+    EXPECT_FALSE(fs::exists(received));
+    EXPECT_FALSE(fs::exists(storage + "/1.9"));  // the emptied series and study folders
+    EXPECT_TRUE(fs::exists(inStorage));
+    EXPECT_TRUE(fs::exists(own));
+    EXPECT_TRUE(fs::is_symlink(dir.file("user/link.dcm")));
+    EXPECT_EQ(r.octrees, 4u);
+    for (const char* gone : {"1.9.1.hvo", "1.9.1.preview.hvo", "1.9.1-v2.preview.hvo", "1.9.1-stack2.hvo"})
+        EXPECT_FALSE(fs::exists(octrees + "/" + gone)) << gone;
+    for (const char* kept : {"1.9.1-v2.hvo", "1.9.10.hvo", "1.9.1.hvo.bak"}) EXPECT_TRUE(fs::exists(octrees + "/" + kept)) << kept;
+
+    // A storage folder of "/" makes no file of the user's a received one.
+    const auto c = dicom::StudyRemoval::remove(db, "1.7", "/", octrees);
+    EXPECT_EQ(c.deleted, 0u);
+    EXPECT_EQ(c.kept, 1u);
+    EXPECT_TRUE(fs::exists(dir.file("user/c.dcm")));
+    EXPECT_THROW(dicom::StudyRemoval::remove(db, "1.9", storage, octrees), core::Error);
 }
