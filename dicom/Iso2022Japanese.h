@@ -19,7 +19,8 @@ public:
     /// The text in UTF-8, or nothing when it holds an escape sequence or a byte these sets do not
     /// define. At the delimiters where PS3.5 6.1.2.5.3 returns to the first value's set (line
     /// ends, tab, form feed, the value delimiter "\" and, in a person name, "^" and "="), the
-    /// reading returns there too.
+    /// reading returns there too; inside a two-byte set such bytes are halves of a character
+    /// (the writer returns to the first set before a delimiter, as the standard asks).
     static std::optional<std::string> toUtf8(std::string_view text, const std::vector<std::string>& characterSet,
                                              bool personName);
 };
