@@ -12,6 +12,25 @@ namespace {
 using nlohmann::json;
 
 /// The attribute's values joined by backslashes as DICOM strings are, or "" when absent.
+/// A DICOM JSON person name (PS3.18 F.2.2) as DIMSE writes it: its alphabetic, ideographic and
+/// phonetic groups joined by "=", empty trailing groups left out ("Yamada^Tarou=山田^太郎=...").
+std::string personName(const json& name, const char* tag, const std::string& what) {
+    const char* const keys[3] = {"Alphabetic", "Ideographic", "Phonetic"};
+    std::string groups[3];
+    int last = -1;
+    for (int i = 0; i < 3; ++i) {
+        const auto it = name.find(keys[i]);
+        if (it == name.end() || it->is_null()) continue;
+        if (!it->is_string())
+            throw core::Error(what + ": the " + keys[i] + " group of the person name " + tag + " is not a string");
+        groups[i] = it->get<std::string>();
+        if (!groups[i].empty()) last = i;
+    }
+    std::string out;
+    for (int i = 0; i <= last; ++i) out += (i ? "=" : "") + groups[i];
+    return out;
+}
+
 std::string text(const json& object, const char* tag, const std::string& what) {
     const auto it = object.find(tag);
     if (it == object.end()) return {};
@@ -27,7 +46,7 @@ std::string text(const json& object, const char* tag, const std::string& what) {
         if (v.is_string()) out += v.get<std::string>();
         else if (v.is_number_integer()) out += std::to_string(v.get<long long>());
         else if (v.is_number()) out += std::to_string(v.get<double>());
-        else if (v.is_object()) out += v.value("Alphabetic", std::string());  // a person name
+        else if (v.is_object()) out += personName(v, tag, what);
         else if (!v.is_null()) throw core::Error(what + ": a value of " + std::string(tag) + " has an unexpected kind");
     }
     return out;

@@ -122,6 +122,31 @@ TEST(DicomJson, StowOutcomeCountsStoredAndFailed) {
     EXPECT_TRUE(dicom::DicomJson::queryResults(" \n", dicom::QueryLevel::Study, "x").empty());
 }
 
+// A person name's three groups (PS3.18 F.2.2) read as C-FIND reads them, joined by "=" (a
+// Japanese name had kept its alphabetic group alone); a group that is not a string is a sentence.
+TEST(DicomJson, PersonNamesKeepTheirIdeographicAndPhoneticGroups) {
+    const auto name = [](const std::string& pn) {
+        const auto r = dicom::DicomJson::queryResults("[{\"00100010\": {\"vr\": \"PN\", \"Value\": [" + pn + "]}}]",
+                                                      dicom::QueryLevel::Study, "x");
+        return r.at(0).patientName;
+    };
+    EXPECT_EQ(name("{\"Alphabetic\": \"Yamada^Tarou\", \"Ideographic\": \"\u5c71\u7530^\u592a\u90ce\", "
+                   "\"Phonetic\": \"\u3084\u307e\u3060^\u305f\u308d\u3046\"}"),
+              "Yamada^Tarou=\u5c71\u7530^\u592a\u90ce=\u3084\u307e\u3060^\u305f\u308d\u3046");
+    EXPECT_EQ(name("{\"Alphabetic\": \"Wang^XiaoDong\", \"Ideographic\": \"\u738b^\u5c0f\u6771\", \"Phonetic\": \"\"}"),
+              "Wang^XiaoDong=\u738b^\u5c0f\u6771");
+    EXPECT_EQ(name("{\"Ideographic\": \"\u738b\"}"), "=\u738b");
+    EXPECT_EQ(name("{\"Alphabetic\": \"DOE^JANE\"}"), "DOE^JANE");
+    EXPECT_EQ(name("{}"), "");
+    try {
+        name("{\"Alphabetic\": 7}");
+        ADD_FAILURE() << "a number as a name group was taken";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("Alphabetic group of the person name 00100010 is not a string"), std::string::npos)
+            << e.what();
+    }
+}
+
 // A DICOMweb node, the PDU size and the parallel associations survive a save and a load; the
 // file with credentials is readable by its owner only; bad values are refused naming the field.
 TEST(PacsSettings, DicomWebNodesAndNetworkSettingsRoundTrip) {
