@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -29,6 +30,44 @@ std::array<double, N> numbers(const std::string& value, const std::string& key, 
             throw Error(path + ": its " + key + " is not " + std::to_string(N) + " numbers");
     return out;
 }
+/// The files a MetaIO file pattern names: "slice%03d.raw 1 100 1 [2]", a printf pattern of one
+/// plain integer (%d or %i with an optional 0 flag and width; anything else, such as "%s" or
+/// "%n", is refused rather than handed to a printf), the first and last numbers, the step, and
+/// the dimension of each file (2 if given: a slice each). `reason` says why they are not
+/// streamed, if they are not.
+std::vector<std::string> patternFiles(const std::string& value, const std::string& path, std::string& reason) {
+    std::istringstream fields(value);
+    std::string pattern;
+    long long first = 0, last = 0, step = 0;
+    if (!(fields >> pattern >> first >> last >> step) || step == 0)
+        throw Error(path + ": its ElementDataFile '" + value + "' is not a file pattern, first, last and step");
+    if (std::string dim; fields >> dim && dim != "2") reason = "its data is a pattern of " + dim + "-D files";
+    const auto at = pattern.find('%');
+    std::size_t end = at + 1;
+    const bool zeros = end < pattern.size() && pattern[end] == '0';
+    if (zeros) ++end;
+    std::size_t width = 0;
+    while (end < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[end])) && width < 100)
+        width = width * 10 + std::size_t(pattern[end++] - '0');
+    if (end >= pattern.size() || (pattern[end] != 'd' && pattern[end] != 'i') || pattern.find('%', end) != std::string::npos ||
+        width >= 100)
+        throw Error(path + ": its ElementDataFile pattern '" + pattern + "' is not a name with one integer (%d)");
+    constexpr long long kLimit = 1LL << 40;  // far beyond any slice number, and no overflow below
+    if (std::llabs(first) > kLimit || std::llabs(last) > kLimit || std::llabs(step) > kLimit)
+        throw Error(path + ": its file pattern's numbers are out of range");
+    const long long count = (last - first) / step + 1;
+    if (count < 1) throw Error(path + ": its file pattern's numbers run the wrong way for its step");
+    if (count > (1LL << 20)) throw Error(path + ": its file pattern names " + std::to_string(count) + " files");
+    std::vector<std::string> files;
+    const auto folder = std::filesystem::path(path).parent_path();
+    for (long long i = 0, n = first; i < count; ++i, n += step) {
+        std::string digits = std::to_string(n < 0 ? -n : n);
+        if (digits.size() < width) digits.insert(0, width - digits.size() - (n < 0 ? 1 : 0), zeros ? '0' : ' ');
+        if (n < 0) digits.insert(zeros ? 0 : digits.find_first_not_of(' '), "-");
+        files.push_back((folder / (pattern.substr(0, at) + digits + pattern.substr(end + 1))).string());
+    }
+    return files;
+}
 }  // namespace
 
 MetaImageHeader MetaImageHeader::read(const std::string& path) {
@@ -42,6 +81,7 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     std::int64_t headerSize = 0;
     int channels = 1;
     glm::dvec3 elementSize(0.0);
+    std::string listReason;  // why a list of data files is not streamed, if it is not
     std::string line;
     for (int n = 0; n < 200 && !dataFileSeen && std::getline(in, line); ++n) {
         const auto eq = line.find('=');
@@ -109,7 +149,23 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
             if (value == "LOCAL") {
                 h.dataFile = path;
                 h.dataOffset = std::uint64_t(in.tellg());
-            } else if (value == "LIST" || value.find(' ') != std::string::npos || value.find('%') != std::string::npos) {
+            } else if (value == "LIST" || value.rfind("LIST ", 0) == 0) {
+                // LIST [2D]: the names of the slice files follow, a line each, as MetaIO writes them.
+                h.dataFile = path;
+                const std::string dim = trimBlanks(value.substr(4));
+                if (!dim.empty() && dim != "2D" && dim != "2") listReason = "its data is a list of " + dim + " files";
+                for (std::string name; std::getline(in, name);) {
+                    name = trimBlanks(name);
+                    if (name.empty()) continue;
+                    if (h.sliceFiles.size() >= (std::size_t(1) << 20))
+                        throw Error(path + ": its list of data files is longer than any volume's slices");
+                    h.sliceFiles.push_back((std::filesystem::path(path).parent_path() / name).string());
+                }
+                if (h.sliceFiles.empty()) throw Error(path + ": its ElementDataFile = LIST names no file");
+            } else if (value.find('%') != std::string::npos) {
+                h.dataFile = path;
+                h.sliceFiles = patternFiles(value, path, listReason);
+            } else if (value.find(' ') != std::string::npos) {
                 h.streamReason = "its data is a list of files";
                 h.dataFile = path;
             } else {
@@ -128,6 +184,14 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
         if (h.streamReason.empty()) h.streamReason = why;
     };
     if (ndims != 3) notStreamable("it has NDims = " + std::to_string(ndims));
+    if (!h.sliceFiles.empty()) {  // a file per slice, each the slice's voxels alone
+        if (!listReason.empty()) notStreamable(listReason);
+        if (h.compressed) notStreamable("its list of data files is compressed");
+        if (headerSize != 0) notStreamable("it gives a HeaderSize for a list of data files");
+        if (dims && h.streamReason.empty() && h.sliceFiles.size() != g.dims[2])
+            throw Error(path + ": its ElementDataFile names " + std::to_string(h.sliceFiles.size()) +
+                        " slice files for DimSize's " + std::to_string(g.dims[2]) + " slices");
+    }
     if (!binary) notStreamable("its data is not binary");
     if (channels != 1) notStreamable("it has " + std::to_string(channels) + " channels");
     // MetaIO's element types (metaTypes.h: MET_LONG is 32 bits, MET_LONG_LONG 64).
@@ -145,7 +209,7 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
         h.element = type->second;
         g.scalarType = storedTypeOf(h.element);
     }
-    if (h.streamReason.empty()) {
+    if (h.streamReason.empty() && h.sliceFiles.empty()) {
         // The bytes the data takes in its file: the voxels, or the compressed size when given.
         const std::uint64_t bytes = h.compressed ? h.compressedBytes
                                                  : std::uint64_t(g.dims[0]) * g.dims[1] * g.dims[2] * core::elementSize(h.element);

@@ -16,14 +16,17 @@ namespace hvx::core {
 ///
 /// A plain file (3-D, binary, one channel of any integer or float type, in one data file) is
 /// streamed by Holovox: RawVoxelSource, which checks its size, or InflatedVoxelSource when its
-/// data is compressed. Anything else (a list of slice files, ASCII data, several channels, ...)
-/// goes to VTK's reader (VtkImageSource), and streamReason says why.
+/// data is compressed; so is a list of slice files (ElementDataFile = LIST, or a file pattern
+/// "slice%03d.raw 1 100 1"), uncompressed, by SliceListVoxelSource. Anything else (ASCII data,
+/// several channels, a list of 3-D files, ...) goes to VTK's reader (VtkImageSource), which
+/// reads it whole, and streamReason says why.
 class MetaImageHeader {
 public:
     VolumeGeometry geometry;      ///< dims, spacing, origin, direction; scalarType when streamable
     FileElement element = FileElement::UInt8;  ///< ElementType, when streamable
     bool bigEndian = false;
     std::string dataFile;         ///< the file that holds the voxels (the header's own for LOCAL)
+    std::vector<std::string> sliceFiles;  ///< the files of a slice each, in order, when listed
     std::uint64_t dataOffset = 0; ///< where they begin in it
     bool compressed = false;
     std::uint64_t compressedBytes = 0;  ///< CompressedDataSize, 0 when not given

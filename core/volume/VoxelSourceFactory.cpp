@@ -8,6 +8,7 @@
 #include "core/volume/InflatedVoxelSource.h"
 #include "core/volume/LegacyVtkHeader.h"
 #include "core/volume/MetaImageHeader.h"
+#include "core/volume/SliceListVoxelSource.h"
 #include "core/volume/NiftiVoxelSource.h"
 #include "core/volume/NrrdHeader.h"
 #include "core/volume/PhantomVoxelSource.h"
@@ -104,6 +105,9 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& i
         if (h.compressed && h.compressedBytes > 0 && !ec && size < h.dataOffset + h.compressedBytes)
             throw Error(h.dataFile + ": truncated: its MetaImage header promises " + std::to_string(h.compressedBytes) +
                         " bytes of compressed data, the file holds " + std::to_string(size - std::min(size, h.dataOffset)));
+        if (h.streamReason.empty() && !h.sliceFiles.empty())  // a file per slice, streamed
+            return std::make_unique<SliceListVoxelSource>(
+                h.sliceFiles, RawVoxelSource::described(h.geometry, h.element, h.bigEndian, 0, h.warnings, input), input);
         if (h.streamReason.empty()) {  // streamed by Holovox: the size of plain data checked
             const auto o = RawVoxelSource::described(h.geometry, h.element, h.bigEndian, h.dataOffset, h.warnings, input);
             if (h.compressed) return std::make_unique<InflatedVoxelSource>(h.dataFile, o);

@@ -6,6 +6,7 @@
 #include <zlib.h>
 
 #include <cstdint>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "core/base/Error.h"
 #include "core/volume/MetaImageHeader.h"
 #include "core/volume/VoxelSourceFactory.h"
+#include "core/volume/VtkImageSource.h"
 #include "tests/support/ErrorOf.h"
 #include "tests/support/TempDir.h"
 #include "tests/support/VoxelValues.h"
@@ -169,4 +171,54 @@ TEST(MetaImage, AnOrientationOtherThanItksIsReported) {
     auto src = core::VoxelSourceFactory::open(dir.file("o.mha"));
     ASSERT_EQ(src->warnings().size(), 1u);
     EXPECT_NE(src->warnings()[0].find("AnatomicalOrientation is LPI"), std::string::npos);
+}
+
+// A volume kept as a file per slice (ElementDataFile = LIST, or a file pattern) is streamed slice
+// by slice, with the voxels, order and geometry VTK's own MetaIO reader gives the same files
+// (VtkImageSource, which had read such a list whole). Missing and short files, a list that does
+// not match DimSize, and a pattern that is not a plain integer (a "%s" or "%n" handed to a printf)
+// are refused naming what is wrong.
+TEST(MetaImage, SliceListsAreStreamedAsVtkReadsThem) {
+    test::TempDir dir;
+    const auto v = ramp(6 * 5 * 40);
+    std::string list;
+    for (int k = 0; k < 40; ++k) {
+        const std::vector<std::int16_t> slice(v.begin() + k * 30, v.begin() + (k + 1) * 30);
+        std::ofstream(dir.file("s" + std::to_string(k) + ".raw"), std::ios::binary) << bytesOf(slice, true);
+        std::ofstream(dir.file("p" + std::string(79 - 2 * k < 10 ? "0" : "") + std::to_string(79 - 2 * k) + ".raw"), std::ios::binary)
+            << bytesOf(slice, true);
+        list += "s" + std::to_string(k) + ".raw\n";
+    }
+    const std::string head = std::string(kHead) + "TransformMatrix = 0 1 0 -1 0 0 0 0 1\nBinaryDataByteOrderMSB = True\n";
+    std::ofstream(dir.file("list.mhd")) << head << "ElementDataFile = LIST 2D\n" << list;
+    std::ofstream(dir.file("pattern.mhd")) << head << "ElementDataFile = p%02d.raw 79 1 -2 2\n";
+    for (const char* name : {"list.mhd", "pattern.mhd"}) {
+        EXPECT_EQ(core::MetaImageHeader::read(dir.file(name)).streamReason, "") << name;
+        auto src = core::VoxelSourceFactory::open(dir.file(name));
+        EXPECT_EQ(src->geometry().dims, (std::array<std::uint32_t, 3>{6, 5, 40}));
+        EXPECT_EQ(src->geometry().spacing, glm::dvec3(0.5, 0.5, 2));
+        EXPECT_EQ(src->geometry().direction[1], glm::dvec3(-1, 0, 0));
+        EXPECT_EQ(test::readAll<std::int16_t>(*src), v) << name;
+    }
+    core::VtkImageSource vtk(dir.file("list.mhd"));  // VTK's MetaIO, reading the list whole
+    EXPECT_EQ(vtk.geometry().dims, (std::array<std::uint32_t, 3>{6, 5, 40}));
+    EXPECT_EQ(vtk.geometry().origin, glm::dvec3(-10, 20, -30));
+    EXPECT_EQ(test::readAll<std::int16_t>(vtk), v);
+
+    auto refusal = [&](const std::string& dataFile, const std::string& body = {}) {
+        std::ofstream(dir.file("bad.mhd")) << head << "ElementDataFile = " << dataFile << "\n" << body;
+        return errorOf([&] { core::VoxelSourceFactory::open(dir.file("bad.mhd")); });
+    };
+    std::filesystem::resize_file(dir.file("s7.raw"), 59);
+    EXPECT_NE(refusal("LIST", list).find("slice 7's file " + dir.file("s7.raw") + " holds 59 bytes, not the 60 of one slice"),
+              std::string::npos);
+    std::filesystem::remove(dir.file("s7.raw"));
+    EXPECT_NE(refusal("LIST", list).find("slice 7's file " + dir.file("s7.raw") + " cannot be read"), std::string::npos);
+    EXPECT_NE(refusal("LIST", "s0.raw\ns1.raw\n").find("names 2 slice files for DimSize's 40 slices"), std::string::npos);
+    EXPECT_NE(refusal("LIST").find("LIST names no file"), std::string::npos);
+    for (const char* hostile : {"p%s.raw 1 40 1", "p%n%d.raw 1 40 1", "p%d%d.raw 1 40 1", "p%999999d.raw 1 40 1"})
+        EXPECT_NE(refusal(hostile).find("is not a name with one integer"), std::string::npos) << hostile;
+    EXPECT_NE(refusal("p%02d.raw 1 79 -2").find("run the wrong way"), std::string::npos);
+    EXPECT_NE(refusal("p%02d.raw 1 79 0").find("is not a file pattern, first, last and step"), std::string::npos);
+    EXPECT_NE(refusal("p%d.raw 1 9000000000000000000 1").find("out of range"), std::string::npos);
 }
