@@ -84,7 +84,9 @@ void registerEncoders() {
 void putCommon(DcmItem* ds, const DicomWriteOptions& o, const core::VolumeGeometry& g, const std::string& modality,
                const std::string& studyUid, const std::string& seriesUid, const std::string& frameOfReference,
                bool eightBit) {
-    ds->putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 100");
+    // Names and descriptions are UTF-8 here (the study database, the command line): said so.
+    // Declared Latin-1, a "Müller" had been read back by every other tool as "MÃ¼ller".
+    ds->putAndInsertString(DCM_SpecificCharacterSet, "ISO_IR 192");
     ds->putAndInsertString(DCM_PatientName, o.patientName.c_str());
     ds->putAndInsertString(DCM_PatientID, o.patientId.c_str());
     ds->putAndInsertString(DCM_PatientBirthDate, o.patientBirthDate.c_str());
@@ -112,10 +114,10 @@ void putCommon(DcmItem* ds, const DicomWriteOptions& o, const core::VolumeGeomet
     ds->putAndInsertString(DCM_PhotometricInterpretation, g.monochrome1 ? "MONOCHROME1" : "MONOCHROME2");
     ds->putAndInsertUint16(DCM_Rows, Uint16(g.dims[1]));
     ds->putAndInsertUint16(DCM_Columns, Uint16(g.dims[0]));
-    if (!o.derivation.empty()) {  // ST in ISO_IR 100 (Latin-1): what is not ASCII (UTF-8 names) becomes '?'
-        std::string text;
-        for (const char c : o.derivation.substr(0, 1024)) text += (c & 0x80) ? '?' : c;
-        ds->putAndInsertString(DCM_DerivationDescription, text.c_str());
+    if (!o.derivation.empty()) {  // ST of at most 1024 characters, cut at a character's start
+        std::size_t end = std::min<std::size_t>(o.derivation.size(), 1024);
+        while (end > 0 && end < o.derivation.size() && (static_cast<unsigned char>(o.derivation[end]) & 0xC0) == 0x80) --end;
+        ds->putAndInsertString(DCM_DerivationDescription, o.derivation.substr(0, end).c_str());
     }
     const Uint16 bits = eightBit ? 8 : 16;
     ds->putAndInsertUint16(DCM_BitsAllocated, bits);

@@ -77,6 +77,26 @@ TEST(CliExport, EveryModalityPassesDciodvfy) {
     EXPECT_NE(r.output.find("is written as single-frame images"), std::string::npos) << r.output;
 }
 
+// Names beyond ASCII are written in the character set the files name (UTF-8, ISO_IR 192), and
+// pydicom reads them back as given; declared Latin-1, "Müller" had read as "MÃ¼ller".
+TEST(CliExport, NamesBeyondAsciiAreWrittenInTheCharacterSetTheFilesName) {
+    test::TempDir dir;
+    ASSERT_EQ(test::runCommand(cli + " phantom --size 16x16x3 -o " + dir.file("p.nrrd")).exitCode, 0);
+    const std::string name = "M\u00fcller^J\u00fcrgen=\u5c71\u7530^\u592a\u90ce", study = "\u00c9tude \u00e0 l'\u00e9cole";
+    auto r = test::runCommand(cli + " export-dicom " + dir.file("p.nrrd") + " --modality CT --patient '" + name +
+                              "' --patient-id P1 --study \"" + study + "\" -o " + dir.file("out"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ofstream(dir.file("names.py")) << "import pydicom, sys\n"
+                                           "d = pydicom.dcmread(sys.argv[1])\n"
+                                           "print(d.SpecificCharacterSet)\n"
+                                           "print(str(d.PatientName))\n"
+                                           "print(d.StudyDescription)\n";
+    r = test::runCommand("/usr/bin/python3 " + dir.file("names.py") + " " + dir.file("out/IMG00001.dcm"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output, "ISO_IR 192\n" + name + "\n" + study + "\n");
+    EXPECT_EQ(errorLines(dir.file("out/IMG00001.dcm")), 0u) << test::runCommand("dciodvfy " + dir.file("out/IMG00001.dcm") + " 2>&1").output;
+}
+
 TEST(CliExport, FloatVolumeIsWrittenAsSixteenBitWithinTheReportedError) {
     test::TempDir dir;
     const int nx = 20, ny = 16, nz = 5;
