@@ -30,33 +30,64 @@ std::array<double, N> numbers(const std::string& value, const std::string& key, 
             throw Error(path + ": its " + key + " is not " + std::to_string(N) + " numbers");
     return out;
 }
-/// The files a MetaIO file pattern names: "slice%03d.raw 1 100 1 [2]", a printf pattern of one
-/// plain integer (%d or %i with an optional 0 flag and width; anything else, such as "%s" or
-/// "%n", is refused rather than handed to a printf), the first and last numbers, the step, and
-/// the dimension of each file (2 if given: a slice each). `reason` says why they are not
-/// streamed, if they are not.
-std::vector<std::string> patternFiles(const std::string& value, const std::string& path, std::string& reason) {
-    std::istringstream fields(value);
+/// The files a MetaIO file pattern names, read as MetaIO reads them: "slice%03d.raw" (files 1 to
+/// the number of slices), "slice%03d.raw FIRST" (FIRST and on, one per slice), and "slice%03d.raw
+/// FIRST LAST STEP", the name rejoined when it holds spaces ("my scan%03d.raw 1 3 1"). The name
+/// must hold one plain integer (%d or %i, an optional 0 flag, width and l or ll): anything else, such as
+/// "%s" or "%n", is refused rather than handed to a printf. `slices` is DimSize's third.
+std::vector<std::string> patternFiles(const std::string& value, const std::string& path, std::uint32_t slices) {
+    std::vector<std::string> words;
+    for (std::istringstream fields(value); fields;) {
+        std::string w;
+        if (fields >> w) words.push_back(w);
+    }
+    auto number = [&](const std::string& w) {
+        std::size_t used = 0;
+        long long v = 0;
+        try {
+            v = std::stoll(w, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        // Far beyond any slice number, and no overflow in what follows.
+        if (used != w.size() || v < -(1LL << 40) || v > (1LL << 40))
+            throw Error(path + ": its ElementDataFile '" + value + "' has '" + w + "' where a file number should be");
+        return v;
+    };
     std::string pattern;
-    long long first = 0, last = 0, step = 0;
-    if (!(fields >> pattern >> first >> last >> step) || step == 0)
-        throw Error(path + ": its ElementDataFile '" + value + "' is not a file pattern, first, last and step");
-    if (std::string dim; fields >> dim && dim != "2") reason = "its data is a pattern of " + dim + "-D files";
+    long long first = 1, last = 0, step = 1;
+    if (words.size() == 1 || words.size() == 2) {
+        pattern = words[0];
+        if (words.size() == 2) first = number(words[1]);
+        last = first + (long long)slices - 1;
+    } else if (words.size() >= 4) {
+        for (std::size_t i = 0; i + 3 < words.size(); ++i) pattern += (i ? " " : "") + words[i];
+        first = number(words[words.size() - 3]);
+        last = number(words[words.size() - 2]);
+        step = number(words[words.size() - 1]);
+    } else {
+        throw Error(path + ": its ElementDataFile '" + value + "' is not a file pattern, or one with first, last and step");
+    }
     const auto at = pattern.find('%');
-    std::size_t end = at + 1;
+    std::size_t end = at == std::string::npos ? pattern.size() : at + 1;
     const bool zeros = end < pattern.size() && pattern[end] == '0';
     if (zeros) ++end;
     std::size_t width = 0;
     while (end < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[end])) && width < 100)
         width = width * 10 + std::size_t(pattern[end++] - '0');
+    for (int l = 0; l < 2 && end < pattern.size() && pattern[end] == 'l'; ++l) ++end;  // %ld, %lld
     if (end >= pattern.size() || (pattern[end] != 'd' && pattern[end] != 'i') || pattern.find('%', end) != std::string::npos ||
         width >= 100)
         throw Error(path + ": its ElementDataFile pattern '" + pattern + "' is not a name with one integer (%d)");
-    constexpr long long kLimit = 1LL << 40;  // far beyond any slice number, and no overflow below
-    if (std::llabs(first) > kLimit || std::llabs(last) > kLimit || std::llabs(step) > kLimit)
-        throw Error(path + ": its file pattern's numbers are out of range");
+    // MetaIO counts up only (its loop runs while the number is at most the last): a step down
+    // is read by no other tool, and refused rather than read one way here and another there.
+    if (step < 0)
+        throw Error(path + ": its file pattern counts down (step " + std::to_string(step) +
+                    "), which MetaIO and VTK do not read; refused");
+    if (step == 0 || last < first)
+        throw Error(path + ": its file pattern's numbers run the wrong way for its step (" + std::to_string(first) + " to " +
+                    std::to_string(last) + " by " + std::to_string(step) + ")");
     const long long count = (last - first) / step + 1;
-    if (count < 1) throw Error(path + ": its file pattern's numbers run the wrong way for its step");
     if (count > (1LL << 20)) throw Error(path + ": its file pattern names " + std::to_string(count) + " files");
     std::vector<std::string> files;
     const auto folder = std::filesystem::path(path).parent_path();
@@ -81,7 +112,6 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     std::int64_t headerSize = 0;
     int channels = 1;
     glm::dvec3 elementSize(0.0);
-    std::string listReason;  // why a list of data files is not streamed, if it is not
     std::string line;
     for (int n = 0; n < 200 && !dataFileSeen && std::getline(in, line); ++n) {
         const auto eq = line.find('=');
@@ -153,7 +183,11 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
                 // LIST [2D]: the names of the slice files follow, a line each, as MetaIO writes them.
                 h.dataFile = path;
                 const std::string dim = trimBlanks(value.substr(4));
-                if (!dim.empty() && dim != "2D" && dim != "2") listReason = "its data is a list of " + dim + " files";
+                // Only 2-D files, a slice each, make a 3-D image: VTK's reader had built a "LIST 3D"
+                // as zeros without a word.
+                if (!dim.empty() && dim != "2D" && dim != "2")
+                    throw Error(path + ": its ElementDataFile = " + value + " lists " + dim +
+                                " files; Holovox reads a list of 2-D slice files only");
                 for (std::string name; std::getline(in, name);) {
                     name = trimBlanks(name);
                     if (name.empty()) continue;
@@ -164,7 +198,8 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
                 if (h.sliceFiles.empty()) throw Error(path + ": its ElementDataFile = LIST names no file");
             } else if (value.find('%') != std::string::npos) {
                 h.dataFile = path;
-                h.sliceFiles = patternFiles(value, path, listReason);
+                if (!dims) throw Error(path + ": its file pattern comes before DimSize");
+                h.sliceFiles = patternFiles(value, path, g.dims[2]);
             } else if (value.find(' ') != std::string::npos) {
                 h.streamReason = "its data is a list of files";
                 h.dataFile = path;
@@ -185,7 +220,6 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     };
     if (ndims != 3) notStreamable("it has NDims = " + std::to_string(ndims));
     if (!h.sliceFiles.empty()) {  // a file per slice, each the slice's voxels alone
-        if (!listReason.empty()) notStreamable(listReason);
         if (h.compressed) notStreamable("its list of data files is compressed");
         if (headerSize != 0) notStreamable("it gives a HeaderSize for a list of data files");
         if (dims && h.streamReason.empty() && h.sliceFiles.size() != g.dims[2])

@@ -16,10 +16,10 @@ namespace hvx::core {
 ///
 /// A plain file (3-D, binary, one channel of any integer or float type, in one data file) is
 /// streamed by Holovox: RawVoxelSource, which checks its size, or InflatedVoxelSource when its
-/// data is compressed; so is a list of slice files (ElementDataFile = LIST, or a file pattern
-/// "slice%03d.raw 1 100 1"), uncompressed, by SliceListVoxelSource. Anything else (ASCII data,
-/// several channels, a list of 3-D files, ...) goes to VTK's reader (VtkImageSource), which
-/// reads it whole, and streamReason says why.
+/// data is compressed; so is a list of 2-D slice files (ElementDataFile = LIST, or a MetaIO file
+/// pattern such as "slice%03d.raw 1 100 1"), uncompressed, by SliceListVoxelSource. Anything
+/// else (ASCII data, several channels, ...) goes to VTK's reader (VtkImageSource), which reads
+/// it whole, and streamReason says why.
 class MetaImageHeader {
 public:
     VolumeGeometry geometry;      ///< dims, spacing, origin, direction; scalarType when streamable

@@ -185,14 +185,23 @@ TEST(MetaImage, SliceListsAreStreamedAsVtkReadsThem) {
     for (int k = 0; k < 40; ++k) {
         const std::vector<std::int16_t> slice(v.begin() + k * 30, v.begin() + (k + 1) * 30);
         std::ofstream(dir.file("s" + std::to_string(k) + ".raw"), std::ios::binary) << bytesOf(slice, true);
-        std::ofstream(dir.file("p" + std::string(79 - 2 * k < 10 ? "0" : "") + std::to_string(79 - 2 * k) + ".raw"), std::ios::binary)
+        std::ofstream(dir.file("p" + std::string(1 + 2 * k < 10 ? "0" : "") + std::to_string(1 + 2 * k) + ".raw"), std::ios::binary)
             << bytesOf(slice, true);
         list += "s" + std::to_string(k) + ".raw\n";
     }
     const std::string head = std::string(kHead) + "TransformMatrix = 0 1 0 -1 0 0 0 0 1\nBinaryDataByteOrderMSB = True\n";
     std::ofstream(dir.file("list.mhd")) << head << "ElementDataFile = LIST 2D\n" << list;
-    std::ofstream(dir.file("pattern.mhd")) << head << "ElementDataFile = p%02d.raw 79 1 -2 2\n";
-    for (const char* name : {"list.mhd", "pattern.mhd"}) {
+    std::ofstream(dir.file("pattern.mhd")) << head << "ElementDataFile = p%02d.raw 1 79 2\n";
+    // MetaIO's short forms: files 1 to DimSize's third, or from a first number on; and a name
+    // with spaces, rejoined from all but the last three words.
+    for (int k = 0; k < 40; ++k) {
+        std::filesystem::copy_file(dir.file("s" + std::to_string(k) + ".raw"), dir.file("q" + std::to_string(k + 1) + ".raw"));
+        std::filesystem::copy_file(dir.file("s" + std::to_string(k) + ".raw"), dir.file("my scan" + std::to_string(k + 5) + ".raw"));
+    }
+    std::ofstream(dir.file("short.mhd")) << head << "ElementDataFile = q%d.raw\n";
+    std::ofstream(dir.file("from.mhd")) << head << "ElementDataFile = s%d.raw 0\n";
+    std::ofstream(dir.file("spaces.mhd")) << head << "ElementDataFile = my scan%d.raw 5 44 1\n";
+    for (const char* name : {"list.mhd", "pattern.mhd", "short.mhd", "from.mhd", "spaces.mhd"}) {
         EXPECT_EQ(core::MetaImageHeader::read(dir.file(name)).streamReason, "") << name;
         auto src = core::VoxelSourceFactory::open(dir.file(name));
         EXPECT_EQ(src->geometry().dims, (std::array<std::uint32_t, 3>{6, 5, 40}));
@@ -218,7 +227,14 @@ TEST(MetaImage, SliceListsAreStreamedAsVtkReadsThem) {
     EXPECT_NE(refusal("LIST").find("LIST names no file"), std::string::npos);
     for (const char* hostile : {"p%s.raw 1 40 1", "p%n%d.raw 1 40 1", "p%d%d.raw 1 40 1", "p%999999d.raw 1 40 1"})
         EXPECT_NE(refusal(hostile).find("is not a name with one integer"), std::string::npos) << hostile;
-    EXPECT_NE(refusal("p%02d.raw 1 79 -2").find("run the wrong way"), std::string::npos);
-    EXPECT_NE(refusal("p%02d.raw 1 79 0").find("is not a file pattern, first, last and step"), std::string::npos);
-    EXPECT_NE(refusal("p%d.raw 1 9000000000000000000 1").find("out of range"), std::string::npos);
+    for (const char* wrongWay : {"p%02d.raw 1 79 0", "s%d.raw 3 2 5"})
+        EXPECT_NE(refusal(wrongWay).find("run the wrong way for its step"), std::string::npos) << wrongWay;
+    for (const char* down : {"p%02d.raw 79 1 -2", "s%d.raw 0 1 -5"})
+        EXPECT_NE(refusal(down).find("counts down"), std::string::npos) << down;
+    for (const char* outOfRange : {"p%d.raw 1 9000000000000000000 1", "m%d.raw -9223372036854775808 0 -1", "s%d.raw 0 2 x"})
+        EXPECT_NE(refusal(outOfRange).find("where a file number should be"), std::string::npos) << outOfRange;
+    EXPECT_NE(refusal("i%.raw 0 2 1").find("is not a name with one integer"), std::string::npos);
+    EXPECT_NE(refusal("i.raw 0 2 1 2 %").find("where a file number should be"), std::string::npos);
+    EXPECT_NE(refusal("s%d.raw 1 40").find("is not a file pattern, or one with first, last and step"), std::string::npos);
+    EXPECT_NE(refusal("LIST 3D", list).find("Holovox reads a list of 2-D slice files only"), std::string::npos);
 }
