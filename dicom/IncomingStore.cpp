@@ -131,6 +131,13 @@ DicomInstance IncomingStore::finalize(const std::string& temporary) {
     return std::move(placed.instance);
 }
 
+std::string IncomingStore::placeOf(const std::string& storageDir, const std::string& studyUid,
+                                   const std::string& seriesUid, const std::string& sopUid) {
+    return (fs::path(storageDir) / UidPath::component(studyUid) / UidPath::component(seriesUid) /
+            (UidPath::component(sopUid) + ".dcm"))
+        .string();
+}
+
 void IncomingStore::flushFolder(const std::string& folder) { fsyncPath(folder, O_RDONLY | O_DIRECTORY); }
 
 IncomingStore::Placed IncomingStore::place(const std::string& temporary) {
@@ -142,14 +149,13 @@ IncomingStore::Placed IncomingStore::place(const std::string& temporary) {
         std::remove(temporary.c_str());
         throw;
     }
-    const fs::path folder = fs::path(dir_) / UidPath::component(in.studyInstanceUid) /
-                            UidPath::component(in.seriesInstanceUid);
+    const fs::path target = placeOf(dir_, in.studyInstanceUid, in.seriesInstanceUid, in.sopInstanceUid);
+    const fs::path folder = target.parent_path();
     std::error_code ec;
     if (fs::create_directories(folder, ec)) {  // new folders: their names are on disk too
         fsyncPath(folder.parent_path().string(), O_RDONLY | O_DIRECTORY);
         fsyncPath(dir_, O_RDONLY | O_DIRECTORY);
     }
-    const fs::path target = folder / (UidPath::component(in.sopInstanceUid) + ".dcm");
     fsyncPath(temporary, O_RDONLY);  // the bytes are on disk before the name points at them
     if (!ec && renameNoReplace(temporary, target.string()) == 0) {
         in.path = target.string();

@@ -42,6 +42,10 @@ public:
     /// As finalize() without the folder's flush, so that one flush can cover many renames
     /// (IncomingFiler); the instance must not be reported before flushFolder(placed.folder).
     Placed place(const std::string& temporary);
+    /// Where an instance of these UIDs is placed under `storageDir`:
+    /// <storageDir>/<study>/<series>/<sop>.dcm, each a UidPath component.
+    static std::string placeOf(const std::string& storageDir, const std::string& studyUid, const std::string& seriesUid,
+                               const std::string& sopUid);
     /// Flushes a folder's entries to disk (fsync of the folder).
     static void flushFolder(const std::string& folder);
     const std::string& storageDir() const { return dir_; }

@@ -144,7 +144,7 @@ std::vector<SeriesVolume> SeriesOctree::recordVolumes(StudyDatabase& db, const s
     auto locked = [dbMutex]() { return dbMutex ? std::unique_lock<std::mutex>(*dbMutex) : std::unique_lock<std::mutex>(); };
     std::map<std::string, std::set<std::string>> inBatch;  // series -> SOP Instance UIDs
     for (const auto& in : batch) inBatch[in.seriesInstanceUid].insert(in.sopInstanceUid);
-    std::map<std::string, std::int64_t> grown;  // series to assemble whole -> its instance count when read
+    std::set<std::string> grown;  // series to assemble whole from all their files
     std::vector<SeriesVolume> volumes;
     {
         auto lock = locked();
@@ -152,12 +152,12 @@ std::vector<SeriesVolume> SeriesOctree::recordVolumes(StudyDatabase& db, const s
             if (grown.count(v.seriesUid)) continue;
             SeriesRow row;
             if (db.findSeries(v.seriesUid, row) && std::size_t(row.instanceCount) > inBatch[v.seriesUid].size())
-                grown[v.seriesUid] = row.instanceCount;
+                grown.insert(v.seriesUid);
             else
                 volumes.push_back(v);
         }
     }
-    for (auto& [uid, count] : grown) {
+    for (const auto& uid : grown) {
         // Read again until the count holds: another import of the same series while its files
         // were read would otherwise be recorded over by the older, smaller reading.
         for (int attempt = 0;; ++attempt) {

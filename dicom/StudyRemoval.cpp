@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <set>
 
+#include "dicom/IncomingStore.h"
 #include "dicom/StudyDatabase.h"
 #include "dicom/UidPath.h"
 
@@ -21,18 +22,14 @@ fs::path resolvedFolder(const fs::path& p) {
     return ec ? fs::path() : folder / p.filename();
 }
 
-/// Whether `file` is where IncomingStore puts an instance it received, and nothing else:
-/// <storage>/<study>/<series>/<sop>.dcm, each a UID's path component, and a plain file (not a
-/// link). Mere containment would not do: a storage folder of "/" or the home folder holds the
-/// user's own files too.
-bool receivedHere(const fs::path& storage, const std::string& studyUid, const StudyDatabase::RemovedStudy::File& f) {
-    if (storage.empty()) return false;
+/// Whether `file` is where IncomingStore puts an instance it received (IncomingStore::placeOf
+/// under `root`, the storage folder resolved), and a plain file, not a link. Mere containment
+/// would not do: a storage folder of "/" or the home folder holds the user's own files too.
+bool receivedHere(const fs::path& root, const std::string& studyUid, const StudyDatabase::RemovedStudy::File& f) {
+    if (root.empty()) return false;
     std::error_code ec;
-    const fs::path root = fs::weakly_canonical(fs::absolute(storage, ec), ec);
-    if (ec || root.empty()) return false;
-    const fs::path expected = root / UidPath::component(studyUid) / UidPath::component(f.seriesUid) /
-                              (UidPath::component(f.sopUid) + ".dcm");
-    return resolvedFolder(f.path) == expected && fs::is_regular_file(fs::symlink_status(f.path, ec)) && !ec;
+    return resolvedFolder(f.path) == fs::path(IncomingStore::placeOf(root.string(), studyUid, f.seriesUid, f.sopUid)) &&
+           fs::is_regular_file(fs::symlink_status(f.path, ec)) && !ec;
 }
 
 /// Whether `name` is one of the octree files SeriesOctree, retrieves and `import --build` make
@@ -68,9 +65,11 @@ StudyRemoval::Result StudyRemoval::remove(StudyDatabase& db, const std::string& 
     Result r;
     r.patient = removed.patient;
     r.forgotten = removed.files.size();
+    std::error_code ec;
+    const fs::path root = storageDir.empty() ? fs::path() : fs::weakly_canonical(fs::absolute(storageDir, ec), ec);
     std::set<fs::path> folders;  // the series folders emptied, then their study folder
     for (const auto& f : removed.files) {
-        if (!receivedHere(storageDir, studyUid, f)) {
+        if (ec || !receivedHere(root, studyUid, f)) {
             ++r.kept;
             continue;
         }
@@ -78,7 +77,6 @@ StudyRemoval::Result StudyRemoval::remove(StudyDatabase& db, const std::string& 
         removeFile(f.path, r.deleted, r.failed);
         if (r.failed.size() == failures) folders.insert(resolvedFolder(f.path).parent_path());
     }
-    std::error_code ec;
     std::set<fs::path> studies;
     for (const auto& series : folders) {
         if (fs::is_empty(series, ec) && !ec) fs::remove(series, ec);
