@@ -49,6 +49,9 @@ ToolsPanel::ToolsPanel(Section section, QWidget* parent) : QWidget(parent), sect
         scalar(f, "s_l", [](core::ToolSet& t) -> double& { return t.focal.sl; }, 0, 1, 0.05, 2);
         scalar(f, "s_h", [](core::ToolSet& t) -> double& { return t.focal.sh; }, 0, 1, 0.05, 2);
         scalar(f, tr("Toon a"), [](core::ToolSet& t) -> double& { return t.focal.toon; }, 0, 20, 0.5, 1);
+        scalar(f, tr("Context step"), [](core::ToolSet& t) -> double& { return t.focal.contextStep; }, 1, 8, 1, 0,
+               tr("Samples a ray steps at a time outside the probe, where it draws only the ghosted context "
+                  "(1: every sample). The focus is always sampled in full."));
         auto* c = addGroup("context", tr("Context-preserving probe"),
                            tr("Material turns transparent with penetration; contextual edges show when looking along the "
                               "tool axis (thesis \u00a76.4.2)."),

@@ -207,7 +207,7 @@ struct HvxTools {
     vec4 clipParams;     // thickness, fl, fh, -
     vec4 focalCentre;    // xyz, p
     vec4 focalRadii;     // xyz, q
-    vec4 focalRot0;      // the probe's axes (columns) in patient space
+    vec4 focalRot0;      // the probe's axes (columns) in patient space; focalRot0.w: the context step
     vec4 focalRot1;
     vec4 focalRot2;
     vec4 focalParams;    // beta, rho, g_l, g_h
@@ -269,14 +269,10 @@ HVX_FN bool hvxHidden(HvxTools t, int hvxBits, vec3 p, vec3 v, float hTheta) {
     return false;
 }
 
-// The stretch of a ray (origin, unit direction dir; t in world mm from the origin) outside which
-// hvxHidden holds for every sample, as (first, last): in the focal probe's focus cone
-// (hTheta = 0) and without MImDA, the chord through the probe's bounding sphere grown by a
-// thousandth of its radius against rounding (empty, first > last, when the ray misses it); the
-// whole ray otherwise. The ray caster starts and ends such a ray there, rather than stepping
-// through the hidden context sample by sample.
-HVX_FN vec2 hvxVisibleSpan(HvxTools t, int hvxBits, vec3 origin, vec3 dir, float hTheta) {
-    if (HVX_TOOL_ON(HVX_MIMDA_BIT) || !HVX_TOOL_ON(HVX_FOCAL_BIT) || !(hTheta <= 0.0f)) return vec2(-1e30f, 1e30f);
+// The chord of a ray (origin, unit direction dir; t in world mm from the origin) through the
+// focal probe's bounding sphere grown by a thousandth of its radius against rounding, as (first,
+// last); empty (first > last) when the ray misses it.
+HVX_FN vec2 hvxProbeChord(HvxTools t, vec3 origin, vec3 dir) {
     vec3 toC = vec3(t.focalCentre) - origin;
     float along = dot(toC, dir);
     float r = t.focalStyle.w * 1.001f;
@@ -285,6 +281,37 @@ HVX_FN vec2 hvxVisibleSpan(HvxTools t, int hvxBits, vec3 origin, vec3 dir, float
     if (gap2 > r * r) return vec2(1e30f, -1e30f);
     float chord = sqrt(r * r - gap2);
     return vec2(along - chord, along + chord);
+}
+
+// The stretch of a ray (origin, unit direction dir; t in world mm from the origin) outside which
+// hvxHidden holds for every sample, as (first, last): in the focal probe's focus cone
+// (hTheta = 0) and without MImDA, the chord through the probe's bounding sphere (hvxProbeChord);
+// the whole ray otherwise. The ray caster starts and ends such a ray there, rather than stepping
+// through the hidden context sample by sample.
+HVX_FN vec2 hvxVisibleSpan(HvxTools t, int hvxBits, vec3 origin, vec3 dir, float hTheta) {
+    if (HVX_TOOL_ON(HVX_MIMDA_BIT) || !HVX_TOOL_ON(HVX_FOCAL_BIT) || !(hTheta <= 0.0f)) return vec2(-1e30f, 1e30f);
+    return hvxProbeChord(t, origin, dir);
+}
+
+// Focus and context sampling (ToolSet::FocalProbe::contextStep): the stretch of a ray in which
+// it samples every dt, as hvxProbeChord; the whole ray (every sample) without the focal probe
+// or with a step of 1.
+HVX_FN vec2 hvxFocusChord(HvxTools t, int hvxBits, vec3 origin, vec3 dir) {
+    if (!HVX_TOOL_ON(HVX_FOCAL_BIT) || !(t.focalRot0.w > 1.0f)) return vec2(-1e30f, 1e30f);
+    return hvxProbeChord(t, origin, dir);
+}
+
+// The step from a sample at t (world mm) to the next: dt within the focus chord, and in the
+// context before or behind it k·dt (k = the context step), landing on the last sample before the
+// chord rather than past it. Every step is a whole number of dt, so the ray stays on its
+// sampling grid; pre-integrated segments take any length. The focus is sampled exactly as with
+// k = 1; outside it the probe draws only the ghosted context (Eq. 6.15).
+HVX_FN float hvxStepAfter(float t, float dt, vec2 chord, float k) {
+    if (k <= 1.0f) return dt;
+    if (t >= chord.y) return k * dt;  // behind the probe (or a ray that misses it)
+    float ahead = chord.x - t;         // to the chord (no division of the far sentinels)
+    if (ahead >= k * dt) return k * dt;
+    return max(1.0f, floor(ahead / dt)) * dt;
 }
 
 // Applies the active tools in a fixed order: clip plane, focal probe, context probe, band

@@ -96,6 +96,8 @@ void ToolSet::validate() const {
     check(focal.gl >= 0 && focal.gl < focal.gh && focal.gh <= 1, "focal probe", "need 0 <= g_l < g_h <= 1");
     check(focal.sl >= 0 && focal.sl < focal.sh && focal.sh <= 1, "focal probe", "need 0 <= s_l < s_h <= 1");
     check(focal.toon >= 0 && focal.toon <= 20, "focal probe", "the toon factor a must be between 0 and 20");
+    check(focal.contextStep >= 1 && focal.contextStep <= 8 && focal.contextStep == std::floor(focal.contextStep),
+          "focal probe", "the context step must be a whole number of samples from 1 to 8");
     check(finite(context.centre) && context.radius > 0 && std::isfinite(context.radius), "context probe",
           "the radius must be positive");
     check(finite(context.axis) && glm::length(context.axis) > 1e-9, "context probe", "the axis must be non-zero");
@@ -115,7 +117,8 @@ std::string ToolSet::toJson() const {
                  {"thickness", clip.thickness}, {"fl", clip.fl}, {"fh", clip.fh}};
     j["focal"] = {{"enabled", focal.enabled}, {"centre", vec(focal.centre)}, {"radii", vec(focal.radii)},
                   {"rotationDegrees", vec(focal.rotationDegrees)}, {"p", focal.p}, {"q", focal.q}, {"beta", focal.beta}, {"rho", focal.rho},
-                  {"gl", focal.gl}, {"gh", focal.gh}, {"sl", focal.sl}, {"sh", focal.sh}, {"toon", focal.toon}};
+                  {"gl", focal.gl}, {"gh", focal.gh}, {"sl", focal.sl}, {"sh", focal.sh}, {"toon", focal.toon},
+                  {"contextStep", focal.contextStep}};
     j["context"] = {{"enabled", context.enabled}, {"centre", vec(context.centre)}, {"radius", context.radius},
                     {"axis", vec(context.axis)}, {"gl", context.gl}, {"gh", context.gh}, {"al", context.al},
                     {"ah", context.ah}};
@@ -150,7 +153,7 @@ ToolSet ToolSet::fromJson(const std::string& text) {
         if (f.contains("rotationDegrees")) t.focal.rotationDegrees = vec(f["rotationDegrees"], "focal probe", "rotationDegrees");
         for (auto [key, field] : {std::pair{"p", &t.focal.p}, {"q", &t.focal.q}, {"beta", &t.focal.beta}, {"rho", &t.focal.rho},
                                   {"gl", &t.focal.gl}, {"gh", &t.focal.gh}, {"sl", &t.focal.sl}, {"sh", &t.focal.sh},
-                                  {"toon", &t.focal.toon}})
+                                  {"toon", &t.focal.toon}, {"contextStep", &t.focal.contextStep}})
             *field = get(f, key, "focal probe", *field);
     }
     if (j.contains("context")) {
@@ -189,7 +192,7 @@ glsl::HvxTools packTools(const ToolSet& t, const glm::dvec4& shading) {
     p.focalCentre = glm::vec4(glm::vec3(t.focal.centre), float(t.focal.p));
     p.focalRadii = glm::vec4(glm::vec3(t.focal.radii), float(t.focal.q));
     const glm::dmat3 rotation = t.focal.rotation();
-    p.focalRot0 = glm::vec4(glm::vec3(rotation[0]), 0.0f);
+    p.focalRot0 = glm::vec4(glm::vec3(rotation[0]), float(t.focal.contextStep));
     p.focalRot1 = glm::vec4(glm::vec3(rotation[1]), 0.0f);
     p.focalRot2 = glm::vec4(glm::vec3(rotation[2]), 0.0f);
     p.focalParams = glm::vec4(float(t.focal.beta), float(t.focal.rho), float(t.focal.gl), float(t.focal.gh));

@@ -38,6 +38,10 @@ struct ToolSet {
         double p = 2, q = 2;
         double beta = -2, rho = 0.55;
         double gl = 0.015, gh = 0.95, sl = 0.7, sh = 0.95, toon = 3;
+        /// Focus and context sampling: outside the probe's bounding sphere, where it draws only
+        /// the ghosted context, rays step this many samples at a time (a whole number, 1 to 8;
+        /// 1: the context sampled as finely as the focus). The focus is always sampled in full.
+        double contextStep = 4;
     } focal;
     /// Context-preserving probe (§6.4.2, Eqs 6.17-6.18): a sphere with a tool axis.
     struct ContextProbe {

@@ -309,6 +309,11 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
     const float strengthPerGradientF = float(strengthPerGradient);
     const float gamma = packedTools.bandAxis.w;
     const float hTheta = (toolBits & HVX_FOCAL_BIT) ? glsl::hvxFocalAngle(packedTools, glm::vec3(ow), glm::vec3(dw)) : 1.0f;
+    // The focal probe samples its context every kContext·dt, its focus every dt (hvxStepAfter).
+    const bool contextSteps = (toolBits & HVX_FOCAL_BIT) != 0;
+    const glm::vec2 chord = contextSteps ? glsl::hvxFocusChord(packedTools, toolBits, glm::vec3(ow), glm::vec3(dw))
+                                         : glm::vec2(-1e30f, 1e30f);
+    const float kContext = packedTools.focalRot0.w;
     bool enteredProbe = false;
     glm::vec4 accum(0.0f);
     float importanceMax = 0.0f;
@@ -339,7 +344,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                 havePrev = mode == RenderSettings::Mode::Dvr || mode == RenderSettings::Mode::Iso;
             }
         }
-        for (; t <= tOut; t += dt) {
+        for (; t <= tOut; t += contextSteps ? glsl::hvxStepAfter(t, dt, chord, kContext) : dt) {
             const glm::vec3 p = o + t * d;
             const float s = sample(L, p);
             if (mode == RenderSettings::Mode::Dvr) {
@@ -351,7 +356,10 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                     if (a > 1e-6 && toolBits) {
                         // Enhancers (core/appearance/Enhancers.glsl), then shading and MImDA
                         // compositing, in the shader's order and precision.
-                        const glm::vec3 gOct = gradient(L, p);
+                        // The context's gradient at the scale of its samples, as far as the
+                        // brick's border reaches (the shader's, raycast_march.glsl).
+                        const bool context = contextSteps && (t < chord.x || t > chord.y);
+                        const glm::vec3 gOct = gradient(L, p, context ? std::min(kContext, 2.0f) : 1.0f);
                         const glm::vec3 g = glm::vec3(normalToWorld_ * glm::dvec3(gOct));
                         glsl::HvxSample x;
                         x.p = glm::vec3(ow + double(t) * dw);

@@ -6,6 +6,17 @@
 #ifndef MODE
 #define MODE 0
 #endif
+// Whether the variant draws the focal probe. (Written with / and %: with '&' here, the context
+// probe's variant drew a different image on Mesa's llvmpipe, so the preprocessor did not read
+// it as a bit test.)
+#define HVX_FOCAL_VARIANT ((HVX_TOOLS / HVX_FOCAL_BIT) % 2 == 1)
+// The step after the sample at t: the focal probe samples its context more sparsely
+// (hvxStepAfter; castRay's chord and kContext), every other variant every dt.
+#if MODE == 0 && HVX_FOCAL_VARIANT
+#define HVX_STEP(t) hvxStepAfter(t, dt, chord, kContext)
+#else
+#define HVX_STEP(t) dt
+#endif
 #define HVX_EMPHASIS_EMISSION 0.5  // core::kEmphasisEmission
 
 // Shades a sample and scales its opacity `a` by boundary enhancement and view-dependent
@@ -87,6 +98,11 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     float tPrev = 0.0, sPrev = 0.0;
     float pPrev = 0.0, iPrev = 0.0;  // DVR: the previous sample's TF position and opacity integral
     float tIn = t0;
+#if MODE == 0 && HVX_FOCAL_VARIANT
+    // The focus, sampled every dt; the focal probe's context around it every kContext·dt (HVX_STEP).
+    vec2 chord = hvxFocusChord(tools, HVX_TOOLS, ow, dw);
+    float kContext = tools.focalRot0.w;
+#endif
 #if MODE == 0 && HVX_TOOLS != 0
     // Tools: the focal probe's cone for this ray, its entry, and the MImDA accumulator.
     float hTheta = HVX_TOOL_ON(HVX_FOCAL_BIT) ? hvxFocalAngle(tools, ow, dw) : 1.0;
@@ -150,7 +166,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
             bool significant = false;
             vec3 p = vec3(0.0);
             float s = 0.0, pS = 0.0, iS = 0.0, a = 0.0;
-            for (; t <= tOut; t += dt) {  // samples of this leaf
+            for (; t <= tOut; t += HVX_STEP(t)) {  // samples of this leaf
                 p = o + t * d;
                 s = leafSample(L, p);
 #if MODE == 0
@@ -196,7 +212,13 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
 #if MODE == 0 && HVX_TOOLS != 0
             {  // enhancers, shading and MImDA as core/reference/CpuRayCaster.cpp
                 vec4 f = tfSegment(sPrev, s);
+#if HVX_FOCAL_VARIANT
+                // the context's gradient at the scale of its samples, as far as the brick's border reaches
+                float spread = (t < chord.x || t > chord.y) ? min(kContext, 2.0) : 1.0;
+                vec3 g = transpose(mat3(patientToOctree)) * leafGradientSpread(L, p, spread);
+#else
                 vec3 g = transpose(mat3(patientToOctree)) * leafGradient(L, p);
+#endif
                 HvxSample x;
                 x.p = ow + t * dw;
                 x.v = dw;
@@ -260,7 +282,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
             tPrev = t;
             sPrev = s;
             havePrev = true;
-            t += dt;
+            t += HVX_STEP(t);
         }
         if (done || tExit >= t1) break;
         if (!hvxNextLeaf(0u, o, d, face, tExit, nudge, n, lo, hi)) break;

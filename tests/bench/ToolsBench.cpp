@@ -4,7 +4,9 @@
 //
 //   build/release/tests/bench/hvx_bench_tools FILE.hvo [--size 512] [--frames 5] [--breakdown] [--tf PRESET]
 //        [--opacity S]   (S scales the preset's opacity: the thesis measured semi-transparent functions)
+//        [--save DIR]    (writes each case's frame as DIR/NN-case.png, to look at)
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +17,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "core/appearance/TransferFunctionSpec.h"
+#include "core/image/ImageWriter.h"
 #include "core/streaming/BrickCache.h"
 #include "core/streaming/BrickLoader.h"
 #include "core/streaming/OctreeSpace.h"
@@ -32,7 +35,7 @@ int main(int argc, char** argv) {
     }
     int size = 512, frames = 5;
     bool breakdown = false;
-    std::string preset;
+    std::string preset, saveDir;
     double opacity = 1.0;
     for (int i = 2; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--breakdown")) breakdown = true;
@@ -40,6 +43,7 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--tf") && i + 1 < argc) preset = argv[++i];
         else if (!std::strcmp(argv[i], "--opacity") && i + 1 < argc) opacity = std::atof(argv[++i]);
+        else if (!std::strcmp(argv[i], "--save") && i + 1 < argc) saveDir = argv[++i];
     }
     const auto reader = core::OctreeReader::open(argv[1]);
     const auto& g = reader->geometry();
@@ -128,10 +132,22 @@ int main(int argc, char** argv) {
         add("no tool, rays never stop early", 0, 2.0);
         add("focal probe, rays never stop early", T::FocalBit, 2.0);
         add("focal probe, half the samples", T::FocalBit, 0.99, 2.0);
+        // The context sampled as densely as the focus (ToolSet::FocalProbe::contextStep 1).
+        add("focal probe, context every sample", T::FocalBit);
+        cases.back().rs.tools.focal.contextStep = 1;
         add("context probe, half the samples", T::ContextBit, 0.99, 2.0);
     }
     ws.converge({view}, tf);
-    for (auto& c : cases) gpu.render(*reader, ws.index(), ws.slotBricks(), tf, c.rs, view);  // compile the variants
+    for (std::size_t i = 0; i < cases.size(); ++i) {  // compile the variants
+        const auto image = gpu.render(*reader, ws.index(), ws.slotBricks(), tf, cases[i].rs, view);
+        if (saveDir.empty()) continue;
+        std::string name = cases[i].name;
+        for (char& ch : name)
+            if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '-';
+        char file[32];
+        std::snprintf(file, sizeof file, "%02zu-", i);
+        core::ImageWriter::write(image, saveDir + "/" + file + name + ".png");
+    }
     for (int r = 0; r < frames; ++r)
         for (auto& c : cases) {
             const auto t0 = Clock::now();

@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/appearance/Enhancers.h"
 #include "core/streaming/BrickCache.h"
 #include "core/streaming/BrickLoader.h"
 #include "core/image/ImageWriter.h"
@@ -241,4 +242,68 @@ TEST(Tools, SkippingWhatTheToolsHideLeavesTheImageAsTheCpuReferenceDrawsIt) {
         EXPECT_GT(db, 80.0) << name;
         EXPECT_LT(psnr(want, plain), 40.0) << name << " changes the image";
     }
+}
+
+// Focus and context sampling (ToolSet::FocalProbe::contextStep): outside the focal probe's
+// bounding sphere, where it draws only the ghosted context, rays step several samples at a time.
+// The GPU still equals the CPU reference; a step of 1 is the dense march; and every pixel whose
+// ray lies in the focus cone (hTheta = 0: all it shows is inside the probe) is the dense
+// march's, bit for bit.
+TEST(Tools, TheFocalProbesContextIsSampledSparselyAndItsFocusExactly) {
+    core::PhantomVoxelSource phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0);
+    Scene s(phantom);
+    const auto& g = s.reader->geometry();
+    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
+    s.settle(tf);
+    render::EglOffscreenContext ctx;
+    render::GpuRayCaster gpu;
+    core::RenderSettings sparse, dense;
+    sparse.tools.focal.enabled = true;
+    sparse.tools.focal.centre = s.centre() + glm::dvec3(20, 0, 0);
+    sparse.tools.focal.radii = glm::dvec3(100);
+    sparse.tools.focal.rho = 0.8;
+    dense.tools = sparse.tools;
+    dense.tools.focal.contextStep = 1;
+    ASSERT_EQ(sparse.tools.focal.contextStep, 4) << "the default context step";
+    const auto gpuSparse = gpu.render(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, sparse, s.view);
+    const auto gpuDense = gpu.render(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, dense, s.view);
+    const auto cpuSparse = s.cpu(tf, sparse), cpuDense = s.cpu(tf, dense);
+    const double dbSparse = psnr(gpuSparse, cpuSparse), dbDense = psnr(gpuDense, cpuDense);
+    const double dbStep = psnr(cpuSparse, cpuDense);
+    std::printf("GPU vs CPU: context step 4 %.1f dB, step 1 %.1f dB; step 4 vs step 1 (CPU) %.1f dB\n", dbSparse, dbDense,
+                dbStep);
+    EXPECT_GT(dbSparse, 80.0);
+    EXPECT_GT(dbDense, 80.0);
+    EXPECT_LT(dbStep, 80.0) << "the context is sampled more sparsely";
+    EXPECT_GT(dbStep, 25.0) << "the ghosted context keeps its look (measured 30.0 dB)";
+    // The focus cone's pixels, found as the ray caster finds them (hvxFocalAngle).
+    const auto packed = core::packTools(sparse.tools, glm::dvec4(0.3, 0.7, 0.2, 20));
+    std::size_t focus = 0, equal = 0;
+    float cpuWorst = 0.0f;
+    for (int y = 0; y < s.view.height; ++y)
+        for (int x = 0; x < s.view.width; ++x) {
+            glm::dvec3 o, d;
+            s.view.ray(x, double(y), o, d);
+            if (core::glsl::hvxFocalAngle(packed, glm::vec3(o), glm::vec3(d)) > 0.0f) continue;
+            const std::size_t i = std::size_t(y) * std::size_t(s.view.width) + std::size_t(x);
+            ++focus;
+            equal += gpuSparse.rgba[i] == gpuDense.rgba[i];
+            for (int c = 0; c < 4; ++c) cpuWorst = std::max(cpuWorst, std::abs(cpuSparse.rgba[i][c] - cpuDense.rgba[i][c]));
+        }
+    std::printf("focus cone: %zu pixels, %zu the same at both steps on the GPU; on the CPU at most %.2g apart\n", focus,
+                equal, double(cpuWorst));
+    EXPECT_GT(focus, std::size_t(300));
+    EXPECT_EQ(equal, focus) << "the GPU starts these rays on the probe: the same samples";
+    // The CPU reference marches the hidden context before the probe too, in steps of 4·dt where
+    // the dense march adds dt four times: its samples in the focus move by float rounding only.
+    EXPECT_LT(cpuWorst, 2e-3f);
+    // Without the focal probe its context step changes nothing: the other tools' variants do
+    // not carry the stepping.
+    core::RenderSettings other;
+    other.tools = toolsFor(core::ToolSet::ContextBit | core::ToolSet::ClipBit, s.centre(), g.valueMin, g.valueMax);
+    other.tools.focal.contextStep = 1;
+    const auto one = gpu.render(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, other, s.view);
+    other.tools.focal.contextStep = 8;
+    const auto eight = gpu.render(*s.reader, s.ws->index(), s.ws->slotBricks(), tf, other, s.view);
+    EXPECT_EQ(maxDifference(one, eight), 0.0);
 }

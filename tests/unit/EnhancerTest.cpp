@@ -154,8 +154,11 @@ TEST(ToolSet, OutOfRangeParametersAreRefusedAndJsonRoundTrips) {
     t.mimda.enabled = true;
     t.mimda.gamma = 0.25;
     t.band.band = {-100, 0, 200, 300};
+    t.focal.contextStep = 6;
     EXPECT_NO_THROW(t.validate());
     const auto back = core::ToolSet::fromJson(t.toJson());
+    EXPECT_DOUBLE_EQ(back.focal.contextStep, 6);
+    EXPECT_DOUBLE_EQ(core::ToolSet::fromJson("{}").focal.contextStep, 4) << "the default";
     EXPECT_EQ(back.variantBits(), t.variantBits());
     EXPECT_EQ(back.focal.centre, t.focal.centre);
     EXPECT_DOUBLE_EQ(back.focal.p, 4);
@@ -179,6 +182,12 @@ TEST(ToolSet, OutOfRangeParametersAreRefusedAndJsonRoundTrips) {
     bad = t;
     bad.focal.radii = {10, -1, 10};
     EXPECT_THROW(bad.validate(), core::Error);
+    for (const double step : {0.0, 2.5, 9.0, std::nan("")}) {  // a whole number of samples, 1 to 8
+        bad = t;
+        bad.focal.contextStep = step;
+        EXPECT_THROW(bad.validate(), core::Error) << step;
+    }
+    EXPECT_THROW(core::ToolSet::fromJson("{\"focal\": {\"contextStep\": 1.5}}"), core::Error);
     EXPECT_THROW(core::ToolSet::fromJson("{\"mimda\": {\"gamma\": 7}}"), core::Error);
     EXPECT_THROW(core::ToolSet::fromJson("{\"clip\": {\"normal\": [1, 2]}}"), core::Error);
     EXPECT_THROW(core::ToolSet::fromJson("not json"), core::Error);
@@ -281,4 +290,37 @@ TEST(ToolSet, TheFocalProbesBoundingSphereHoldsTheWholeProbe) {
             EXPECT_LE(farthest, bound * (1 + 1e-5)) << "p " << p << " q " << q;
             if (p == 2 && q == 2) EXPECT_DOUBLE_EQ(bound, 45.0) << "a sphere's bound is its largest radius";
         }
+}
+
+// Focus and context sampling: a ray steps k samples at a time before and behind the focal
+// probe's chord and one at a time within it, always a whole number of samples (on its grid),
+// and never steps past the chord's first sample.
+TEST(Enhancers, TheContextStepLandsOnTheRaysGridJustBeforeTheFocus) {
+    using core::glsl::hvxStepAfter;
+    const glm::vec2 chord(10.0f, 20.0f);
+    const float dt = 0.5f;
+    EXPECT_FLOAT_EQ(hvxStepAfter(0.0f, dt, chord, 4.0f), 2.0f);   // far before: k·dt
+    EXPECT_FLOAT_EQ(hvxStepAfter(8.5f, dt, chord, 4.0f), 1.5f);   // three samples to 10: land on it
+    EXPECT_FLOAT_EQ(hvxStepAfter(9.75f, dt, chord, 4.0f), 0.5f);  // less than a sample away: one
+    EXPECT_FLOAT_EQ(hvxStepAfter(15.0f, dt, chord, 4.0f), 0.5f);  // in the focus: every sample
+    EXPECT_FLOAT_EQ(hvxStepAfter(20.0f, dt, chord, 4.0f), 2.0f);  // behind it: k·dt
+    EXPECT_FLOAT_EQ(hvxStepAfter(3.0f, dt, glm::vec2(1e30f, -1e30f), 4.0f), 2.0f);  // a ray that misses it
+    EXPECT_FLOAT_EQ(hvxStepAfter(3.0f, dt, glm::vec2(-1e30f, 1e30f), 4.0f), 0.5f);  // no probe: every sample
+    for (float t = 0.0f; t < 30.0f;) {  // a march never jumps over the chord's start
+        const float next = t + hvxStepAfter(t, dt, chord, 4.0f);
+        EXPECT_FALSE(t < chord.x && next > chord.x) << t << " -> " << next;
+        t = next;
+    }
+    core::ToolSet tools;
+    tools.focal.enabled = true;
+    tools.focal.radii = glm::dvec3(10);
+    const auto packed = core::packTools(tools, glm::dvec4(0.3, 0.7, 0.2, 20));
+    const glm::vec2 through = core::glsl::hvxFocusChord(packed, core::ToolSet::FocalBit, glm::vec3(0, 0, -50), glm::vec3(0, 0, 1));
+    EXPECT_NEAR(through.x, 40.0f, 0.02f);
+    EXPECT_NEAR(through.y, 60.0f, 0.02f);
+    tools.focal.contextStep = 1;  // the dense march: no chord, every sample
+    const glm::vec2 none = core::glsl::hvxFocusChord(core::packTools(tools, glm::dvec4(0.3, 0.7, 0.2, 20)),
+                                                     core::ToolSet::FocalBit, glm::vec3(0, 0, -50), glm::vec3(0, 0, 1));
+    EXPECT_LT(none.x, -1e29f);
+    EXPECT_GT(none.y, 1e29f);
 }
