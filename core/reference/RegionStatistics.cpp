@@ -93,6 +93,9 @@ MeasureRegion MeasureRegion::movedBy(const glm::dvec3& offset) const {
 }
 
 namespace {
+/// The value import gives CT pixels marked as padding (dicom::DicomSeriesSource): air.
+constexpr double kCtPaddingHu = -1024.0;
+
 /// Two unit axes spanning the plane perpendicular to `n`.
 std::pair<glm::dvec3, glm::dvec3> planeAxes(const glm::dvec3& n) {
     const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
@@ -318,6 +321,8 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
     s.units = g.hounsfield() ? "HU" : "";
     if (between) return noVoxel();
     double mean = 0, m2 = 0;  // Welford's running mean and sum of squared deviations
+    const bool hounsfield = g.hounsfield();
+    std::uint64_t atPadding = 0;
     double minV = std::numeric_limits<double>::max(), maxV = std::numeric_limits<double>::lowest();
     bool lossy = false, empty = false;
     for (std::int64_t bz = from[2] / bs; bz <= to[2] / bs; ++bz)
@@ -342,6 +347,7 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
                             m2 += delta * (v - mean);
                             minV = std::min(minV, v);
                             maxV = std::max(maxV, v);
+                            atPadding += hounsfield && v == kCtPaddingHu;
                             ++inBrick;
                         }
                 s.voxels += inBrick;
@@ -370,6 +376,12 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
     if (reachesOutside()) {  // the figures are those of the part inside, exact as such
         s.note += std::string(s.note.empty() ? "" : "; ") +
                   "the region reaches outside the volume: only the voxels inside the volume are counted";
+    }
+    if (atPadding) {  // the figures are exact; what the voxels stand for is not known
+        s.atPaddingValue = atPadding;
+        s.note += std::string(s.note.empty() ? "" : "; ") + std::to_string(atPadding) + " of the voxels are at exactly " +
+                  "-1024 HU, the value pixels marked as padding (outside the scanned field) are given, as well as air " +
+                  "at the scale's floor: where the region reaches past the scanned field, they are counted as air";
     }
     if (g.spacingAssumed) {
         s.exact = false;

@@ -57,13 +57,17 @@ struct MeasureRegion {
 /// for CT), read from the finest level of the octree (level 0), never from a coarser level or
 /// what a view shows. Voxels of bricks stored without their values (empty below a threshold,
 /// or lossy 8-bit) are counted apart: then `exact` is false and `note` says why. A region that
-/// reaches outside the volume counts its voxels inside it, and `note` says so.
+/// reaches outside the volume counts its voxels inside it, and `note` says so. So does a CT region
+/// holding voxels at -1024 HU, which may be padding outside the scanned field (atPaddingValue).
 struct RegionStatistics {
     std::uint64_t voxels = 0;
     double mean = 0, sd = 0, min = 0, max = 0;  ///< physical units; sd is the population SD
     double volumeMm3 = 0;                       ///< voxels times one voxel's volume
     double areaMm2 = 0;                         ///< a region drawn on a slice: volumeMm3 over its thickness
     std::uint64_t approximateVoxels = 0;        ///< in empty or lossy bricks
+    /// CT in HU: voxels at exactly -1024 HU, the value Holovox gives pixels a series marks as
+    /// padding (outside the scanned field) as well as air at the scale's floor: `note` says so.
+    std::uint64_t atPaddingValue = 0;
     bool exact = true;
     std::string units;  ///< "HU" for CT, else empty
     std::string note;   ///< why the figures are not exact, why there are none, or that the region reaches outside the volume

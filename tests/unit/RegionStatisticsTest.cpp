@@ -380,3 +380,46 @@ TEST(RegionStatistics, ARectangleIsThePolygonOfItsCorners) {
                      *reader, core::MeasureRegion::rectangle({x0, y0, z}, {x0, y1, z}, {0, 0, 1}, {1, 0, 0}, 2.0)),
                  core::Error);
 }
+
+// CT import gives pixels marked as padding (outside the scanned field) -1024 HU, air: a region
+// over them counts them at that value. The figures stay those of the stored voxels, and the
+// note says how many sit at exactly -1024 HU and what they may be; a region without any, or a
+// CT whose values are not HU, says nothing of it.
+TEST(RegionStatistics, VoxelsAtTheCtPaddingValueAreCountedAndNamed) {
+    test::TempDir dir;
+    auto g = ctGeometry({32, 32, 8}, {1.0, 1.0, 2.0});
+    test::DenseVolume v;
+    v.dims = g.dims;
+    std::uint64_t padded = 0;
+    for (std::uint32_t k = 0; k < g.dims[2]; ++k)
+        for (std::uint32_t j = 0; j < g.dims[1]; ++j)
+            for (std::uint32_t i = 0; i < g.dims[0]; ++i) {
+                // outside a circular field of view of radius 14 voxels: padding, stored 0 = -1024 HU
+                const bool outside = std::hypot(double(i) - 15.5, double(j) - 15.5) > 14.0;
+                v.values.push_back(outside ? 0.0 : 1024.0 + 40.0);
+                padded += outside && i >= 24;
+            }
+    const auto reader = core::OctreeReader::open(build(dir, g, v));
+    const glm::dmat4 m = g.indexToPatient();
+    // A box over the right-hand columns i >= 24, all rows and slices: tissue and padding.
+    const auto edge = core::MeasureRegion::box(glm::dvec3(m * glm::dvec4(23.5, -0.5, -0.5, 1)),
+                                               glm::dvec3(m * glm::dvec4(31.5, 31.5, 7.5, 1)));
+    const auto s = core::RegionStatistics::compute(*reader, edge);
+    expectSame(s, bruteForce(g, v, edge), "box over the field's edge");
+    EXPECT_EQ(s.atPaddingValue, padded);
+    EXPECT_TRUE(s.exact);
+    EXPECT_NE(s.note.find(std::to_string(padded) + " of the voxels are at exactly -1024 HU"), std::string::npos) << s.note;
+    EXPECT_NE(s.note.find("padding"), std::string::npos) << s.note;
+    // Inside the field: no such voxel, no such note.
+    const auto inside = core::MeasureRegion::sphere(glm::dvec3(m * glm::dvec4(15.5, 15.5, 4, 1)), 5.0);
+    const auto t = core::RegionStatistics::compute(*reader, inside);
+    EXPECT_EQ(t.atPaddingValue, 0u);
+    EXPECT_EQ(t.note.find("-1024"), std::string::npos) << t.note;
+    // A CT map that is not in HU (RescaleType mg/mL): its values are not HU, nothing is said.
+    test::TempDir other;
+    g.notHounsfield = true;
+    const auto mapReader = core::OctreeReader::open(build(other, g, v));
+    const auto u = core::RegionStatistics::compute(*mapReader, edge);
+    EXPECT_EQ(u.atPaddingValue, 0u);
+    EXPECT_EQ(u.note.find("-1024"), std::string::npos) << u.note;
+}
