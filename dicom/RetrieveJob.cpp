@@ -17,6 +17,7 @@
 #include "dicom/DicomSeriesSource.h"
 #include "dicom/SeriesAssembler.h"
 #include "dicom/SeriesOctree.h"
+#include "dicom/StorageOwners.h"
 #include "dicom/StorageServer.h"
 #include "dicom/StudyDatabase.h"
 #include "dicom/UidPath.h"
@@ -45,6 +46,7 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
                                                    const std::function<void(const SeriesRetrieveStatus&)>& onUpdate) {
     PacsClient client(settings_.local, node_);
     client.cancelWith(job);
+    StorageOwners::add(settings_.local.storageDir, db_.path());  // what it receives, this database indexes
     std::vector<SeriesRetrieveStatus> series;
     // The series, with the description and instance count the PACS gives at series level.
     QueryKeys keys;
@@ -124,7 +126,7 @@ std::vector<SeriesRetrieveStatus> RetrieveJob::run(const std::string& studyUid, 
             core::JobContext buildJob(job, {});  // cancelling the retrieve cancels its builds
             core::OctreeBuilder(core::BuildOptions{}).build(source, out, buildJob);
             std::lock_guard lock(mutex);
-            db_.setSeriesOctree(series[index].seriesUid, out);
+            SeriesOctree::record(db_, series[index].seriesUid, out);  // throws (and deletes it) when removed meanwhile
             series[index].octreePath = out;
         } catch (const std::exception& e) {
             std::lock_guard lock(mutex);

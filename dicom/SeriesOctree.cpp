@@ -94,16 +94,25 @@ std::string SeriesOctree::build(StudyDatabase& db, const std::string& seriesUid,
         SegmentationSource seg(files.front());
         if (outPath.empty()) outPath = defaultPath(db, seriesUid, ".hvo");
         buildLabelMap(seg, seg.table(), files, "segmentation objects", warnings, outPath, job);
-        db.setSeriesOctree(seriesUid, outPath);
+        record(db, seriesUid, outPath);
         return outPath;
     }
     DicomSeriesSource source(assembleSeries(db, seriesUid, job, warnings, volume));
     const std::string suffix = volume > 0 ? "-v" + std::to_string(volume) : std::string();
     if (outPath.empty()) outPath = defaultPath(db, seriesUid, suffix + ".hvo");
     core::OctreeBuilder(core::BuildOptions{}).build(source, outPath, job);
-    if (volume > 0) db.setVolumeOctree(seriesUid, volume, outPath);
-    else db.setSeriesOctree(seriesUid, outPath);
+    record(db, seriesUid, outPath, volume);
     return outPath;
+}
+
+void SeriesOctree::record(StudyDatabase& db, const std::string& seriesUid, const std::string& octreePath, int volume) {
+    if (volume > 0 ? db.setVolumeOctree(seriesUid, volume, octreePath) : db.setSeriesOctree(seriesUid, octreePath)) return;
+    std::error_code ec;
+    std::filesystem::remove(octreePath, ec);
+    std::filesystem::remove(core::LabelTable::sidecarPath(octreePath), ec);
+    throw core::Error("series " + seriesUid + (volume > 0 ? " (volume " + std::to_string(volume) + ")" : std::string()) +
+                      " is no longer in the study database (its study was removed while its octree was built): the "
+                      "octree is deleted");
 }
 
 bool SeriesOctree::isStructureSet(StudyDatabase& db, const std::string& seriesUid) {

@@ -35,6 +35,11 @@ public:
     static std::string buildStructureSet(StudyDatabase& db, const std::string& seriesUid,
                                          const core::VolumeGeometry& grid, core::JobContext& job,
                                          std::vector<std::string>* warnings = nullptr, std::string outPath = {});
+    /// Records `octreePath` as the series' octree (volume 0) or its N-th volume's in `db`. When
+    /// the series is no longer there (its study was removed while the octree was built), deletes
+    /// the octree (and a label map's names beside it), recorded nowhere, and throws core::Error
+    /// saying so.
+    static void record(StudyDatabase& db, const std::string& seriesUid, const std::string& octreePath, int volume = 0);
     /// Whether the series' objects are RT Structure Sets (contours, drawn onto an image's grid).
     static bool isStructureSet(StudyDatabase& db, const std::string& seriesUid);
     /// A quick preview octree of every `factor`-th voxel (reading one slice in `factor`), at

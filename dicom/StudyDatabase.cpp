@@ -548,10 +548,11 @@ std::vector<std::string> StudyDatabase::filesOfSeries(const std::string& seriesU
     return files;
 }
 
-void StudyDatabase::setSeriesOctree(const std::string& seriesUid, const std::string& octreePath) {
+bool StudyDatabase::setSeriesOctree(const std::string& seriesUid, const std::string& octreePath) {
     Stmt s(db_, "UPDATE series SET octree = ?2 WHERE uid = ?1;");
     s.bind(1, seriesUid).bind(2, absolutePath(octreePath));
     s.step();
+    return sqlite3_changes(db_) > 0;
 }
 
 void StudyDatabase::setSeriesWarnings(const std::string& seriesUid, const std::vector<std::string>& warnings) {
@@ -589,10 +590,11 @@ std::vector<VolumeRow> StudyDatabase::volumesOfSeries(const std::string& seriesU
     return out;
 }
 
-void StudyDatabase::setVolumeOctree(const std::string& seriesUid, int number, const std::string& octreePath) {
+bool StudyDatabase::setVolumeOctree(const std::string& seriesUid, int number, const std::string& octreePath) {
     Stmt s(db_, "UPDATE volumes SET octree = ?3 WHERE number = ?2 AND series = (SELECT id FROM series WHERE uid = ?1);");
     s.bind(1, seriesUid).bind(2, std::int64_t(number)).bind(3, absolutePath(octreePath));
     s.step();
+    return sqlite3_changes(db_) > 0;
 }
 
 std::size_t StudyDatabase::instanceCount() const {

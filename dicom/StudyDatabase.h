@@ -122,15 +122,17 @@ public:
     std::map<std::string, std::string> onlineInstancesOfSeries(const std::string& seriesUid) const;
     /// File paths of a series' instances, ordered by instance number.
     std::vector<std::string> filesOfSeries(const std::string& seriesUid) const;
-    /// Records the octree built for a series.
-    void setSeriesOctree(const std::string& seriesUid, const std::string& octreePath);
+    /// Records the octree built for a series; false when the series is not in the index (removed
+    /// while its octree was built), and nothing is recorded.
+    bool setSeriesOctree(const std::string& seriesUid, const std::string& octreePath);
     /// Records the volumes a series splits into (what varies, in order); a series of one volume
     /// has none. Octrees of volumes that stay the same are kept.
     void setSeriesVolumes(const std::string& seriesUid, const std::vector<std::string>& varying);
     /// Replaces the series' assembly warnings (shown in the browser row and by `studies`).
     void setSeriesWarnings(const std::string& seriesUid, const std::vector<std::string>& warnings);
     std::vector<VolumeRow> volumesOfSeries(const std::string& seriesUid) const;
-    void setVolumeOctree(const std::string& seriesUid, int number, const std::string& octreePath);
+    /// As setSeriesOctree, for the N-th volume of a series.
+    bool setVolumeOctree(const std::string& seriesUid, int number, const std::string& octreePath);
     std::size_t instanceCount() const;
     const std::string& path() const { return path_; }
 

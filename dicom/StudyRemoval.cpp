@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <set>
 
+#include "core/base/Error.h"
 #include "dicom/IncomingStore.h"
+#include "dicom/StorageOwners.h"
 #include "dicom/StudyDatabase.h"
 #include "dicom/UidPath.h"
 
@@ -67,10 +69,31 @@ StudyRemoval::Result StudyRemoval::remove(StudyDatabase& db, const std::string& 
     r.forgotten = removed.files.size();
     std::error_code ec;
     const fs::path root = storageDir.empty() ? fs::path() : fs::weakly_canonical(fs::absolute(storageDir, ec), ec);
+    // Received files that another database sharing the folder indexes stay; all of them when
+    // one of those cannot be read.
+    std::vector<std::string> candidates;
+    for (const auto& f : removed.files)
+        if (!ec && receivedHere(root, studyUid, f)) candidates.push_back(f.path);
+    std::set<std::string> shared;
+    if (!candidates.empty())
+        for (const auto& other : StorageOwners::othersThan(storageDir, db.path())) {
+            try {
+                const auto indexed = StorageOwners::indexedIn(other, candidates);
+                if (!indexed.empty()) r.sharers.push_back(other);
+                shared.insert(indexed.begin(), indexed.end());
+            } catch (const core::Error& e) {
+                r.sharers.push_back(e.what());
+                shared.insert(candidates.begin(), candidates.end());
+            }
+        }
     std::set<fs::path> folders;  // the series folders emptied, then their study folder
     for (const auto& f : removed.files) {
         if (ec || !receivedHere(root, studyUid, f)) {
             ++r.kept;
+            continue;
+        }
+        if (shared.count(f.path)) {
+            ++r.shared;
             continue;
         }
         const std::size_t failures = r.failed.size();

@@ -20,6 +20,8 @@ public:
         std::size_t forgotten = 0;         ///< instances taken out of the index
         std::size_t deleted = 0;           ///< of them, received files deleted from the storage folder
         std::size_t kept = 0;              ///< of them, files outside it, left where they are
+        std::size_t shared = 0;            ///< of them, received files another database still indexes, left too
+        std::vector<std::string> sharers;  ///< those databases (StorageOwners), or why one could not be read
         std::size_t octrees = 0;           ///< octree files deleted
         std::vector<std::string> failed;   ///< "PATH: why" for files that could not be deleted
     };
@@ -27,7 +29,9 @@ public:
     /// is deleted only where IncomingStore would have received it: `storageDir`/<study>/<series>/
     /// <sop>.dcm, a plain file, not a link (the series and study folders left empty go too); an
     /// octree only directly in `octreeDir` and named for one of the study's series, unless the
-    /// database records it for another.
+    /// database records it for another. A received file that another study database sharing
+    /// the storage folder indexes (StorageOwners) stays; so do all of them when one of those
+    /// databases cannot be read.
     static Result remove(StudyDatabase& db, const std::string& studyUid, const std::string& storageDir,
                          const std::string& octreeDir);
 };

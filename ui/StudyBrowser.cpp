@@ -324,6 +324,10 @@ int StudyBrowser::removeStudy(const QString& studyUid) {
                                           "deleted, %5 imported file(s) kept")
                                   .arg(QString::fromStdString(r.patient))
                                   .arg(r.forgotten).arg(r.deleted).arg(r.octrees).arg(r.kept);
+            if (r.shared)
+                summary += QObject::tr("; %1 received file(s) kept, which another study database indexes (%2)")
+                               .arg(r.shared)
+                               .arg(QString::fromStdString(r.sharers.front()));
             if (!r.failed.empty())
                 throw core::Error(summary.toStdString() + "; could not delete " + r.failed.front() +
                                   (r.failed.size() > 1 ? " and " + std::to_string(r.failed.size() - 1) + " more" : ""));

@@ -105,7 +105,7 @@ int importCommand(int argc, char** argv) {
                     .string();
             dicom::DicomSeriesSource source(v);
             OctreeBuildRunner::run(source, out, core::BuildOptions{}, false);
-            db.setSeriesOctree(v.seriesUid, out);
+            dicom::SeriesOctree::record(db, v.seriesUid, out);  // deleted, and said, when removed meanwhile
         }
     }
     return scan.instances.empty() && scan.broken > 0 ? 1 : 0;
@@ -136,6 +136,12 @@ int removeStudyCommand(int argc, char** argv) {
                 r.forgotten);
     if (r.deleted) std::printf("deleted %zu received file(s) from %s\n", r.deleted, storage.c_str());
     if (r.kept) std::printf("kept %zu imported file(s) where they are (only Holovox's own storage is deleted)\n", r.kept);
+    if (r.shared) {
+        std::string who;
+        for (const auto& s : r.sharers) who += (who.empty() ? "" : "; ") + s;
+        std::printf("kept %zu received file(s) that another study database sharing %s indexes: %s\n", r.shared,
+                    storage.c_str(), who.c_str());
+    }
     if (r.octrees) std::printf("deleted %zu octree(s)\n", r.octrees);
     for (const auto& f : r.failed) std::fprintf(stderr, "could not delete %s\n", f.c_str());
     return r.failed.empty() ? 0 : 1;
@@ -223,7 +229,7 @@ int buildSeriesCommand(int argc, char** argv) {
     printVolume(volumes[pick], volumes.size() > 1 ? pick + 1 : 0);
     dicom::DicomSeriesSource source(volumes[pick]);
     OctreeBuildRunner::run(source, *out, core::BuildOptions{}, true);
-    db.setSeriesOctree(uid, *out);
+    dicom::SeriesOctree::record(db, uid, *out);  // deleted, and said, when removed meanwhile
     return 0;
 }
 

@@ -13,6 +13,7 @@
 #include "dicom/PacsClient.h"
 #include "dicom/PacsSettings.h"
 #include "dicom/RetrieveJob.h"
+#include "dicom/StorageOwners.h"
 #include "dicom/StorageServer.h"
 #include "dicom/StudyDatabase.h"
 
@@ -218,6 +219,7 @@ int listenCommand(int argc, char** argv) {
         if (n.kind == dicom::NodeKind::Dimse) allowed.push_back(n.aeTitle);
     if (auto a = args.value("allow")) allowed.push_back(*a);
     dicom::StudyDatabase db(args.value("db").value_or(dicom::StudyDatabase::defaultPath()));
+    dicom::StorageOwners::add(s.local.storageDir, db.path());  // what it receives, this database indexes
     std::mutex mutex;
     dicom::StorageServer server(s.local, allowed, [&](const dicom::DicomInstance& in) {
         std::lock_guard lock(mutex);

@@ -16,6 +16,7 @@
 #include "core/base/JobContext.h"
 #include "core/volume/PhantomVoxelSource.h"
 #include "dicom/DicomSeriesWriter.h"
+#include "dicom/StorageOwners.h"
 #include "dicom/StudyDatabase.h"
 #include "tests/support/PacsPeer.h"
 #include "tests/support/ProcessRunner.h"
@@ -221,8 +222,10 @@ TEST(CliPacs, ListenFilesWhatAModalityPushesAndStopsOnSigterm) {
     EXPECT_NE(said.find("stopped after 5 instances"), std::string::npos) << said;
     std::vector<std::string> stored;
     for (const auto& e : std::filesystem::recursive_directory_iterator(dir.file("in")))
-        if (e.is_regular_file()) stored.push_back(e.path().string());
+        if (e.is_regular_file() && e.path().filename() != dicom::StorageOwners::kListName) stored.push_back(e.path().string());
     ASSERT_EQ(stored.size(), files.size());
+    // The listener lists its database in the storage folder (StudyRemoval keeps what another indexes).
+    EXPECT_EQ(dicom::StorageOwners::othersThan(dir.file("in"), dir.file("none.sqlite")).size(), 1u);
     EXPECT_TRUE(pixelsOf(files) == pixelsOf(stored)) << "the stored files carry the pushed pixels";
     r = test::runCommand(cli + " studies --db " + db);
     EXPECT_NE(r.output.find("CLI^PUSHED"), std::string::npos) << r.output;

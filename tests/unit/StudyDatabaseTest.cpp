@@ -7,6 +7,8 @@
 
 #include "core/base/Error.h"
 #include "dicom/StudyDatabase.h"
+#include "dicom/SeriesOctree.h"
+#include "dicom/StorageOwners.h"
 #include "dicom/StudyRemoval.h"
 #include "tests/support/TempDir.h"
 
@@ -344,4 +346,88 @@ TEST(StudyDatabase, RemovingAStudyDeletesOnlyWhatWasReceivedWhereItIsReceived) {
     EXPECT_EQ(c.kept, 1u);
     EXPECT_TRUE(fs::exists(dir.file("user/c.dcm")));
     EXPECT_THROW(dicom::StudyRemoval::remove(db, "1.9", storage, octrees), core::Error);
+}
+
+// A study removed while one of its series' octrees is being built (a retrieve's build, the
+// GUI's open-series job, the CLI's import --build): the finished octree is recorded nowhere, so
+// it is deleted, with its label names beside it, and the build says why instead of leaving it.
+TEST(StudyDatabase, AnOctreeFinishedAfterItsStudyWasRemovedIsDeletedNotLeftBehind) {
+    namespace fs = std::filesystem;
+    test::TempDir dir;
+    dicom::StudyDatabase db(dir.file("s.sqlite"));
+    db.addInstances(sample(dir));
+    auto touch = [](const std::string& path) {
+        std::ofstream(path) << "x";
+        return path;
+    };
+    const std::string kept = touch(dir.file("kept.hvo"));
+    dicom::SeriesOctree::record(db, "1.1.1", kept);
+    dicom::SeriesRow row;
+    ASSERT_TRUE(db.findSeries("1.1.1", row));
+    EXPECT_EQ(row.octreePath, kept);
+    db.removeStudy("1.1");
+    const std::string late = touch(dir.file("late.hvo")), names = touch(dir.file("late.hvo.ctbl"));
+    try {
+        dicom::SeriesOctree::record(db, "1.1.1", late);
+        ADD_FAILURE() << "recorded an octree for a removed series";
+    } catch (const core::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("removed while its octree was built"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(late));
+    EXPECT_FALSE(fs::exists(names));
+    const std::string volume = touch(dir.file("late-v2.hvo"));
+    EXPECT_THROW(dicom::SeriesOctree::record(db, "1.1.1", volume, 2), core::Error);
+    EXPECT_FALSE(fs::exists(volume));
+    EXPECT_FALSE(db.setSeriesOctree("9.9.9", dir.file("none.hvo")));
+    EXPECT_TRUE(db.setSeriesOctree("2.1.1", dir.file("other.hvo"))) << "another study's series is still there";
+}
+
+// Two study databases sharing one storage folder (the PACS settings name one folder; --db picks
+// another database): removing a study from one keeps the received files the other still
+// indexes, and says so; once neither does, they go. A listed database that cannot be read keeps
+// every file.
+TEST(StudyDatabase, RemovingAStudyKeepsReceivedFilesAnotherDatabaseSharingTheFolderIndexes) {
+    namespace fs = std::filesystem;
+    test::TempDir dir;
+    const std::string storage = dir.file("storage");
+    fs::create_directories(storage + "/1.9/1.9.1");
+    const std::string received = storage + "/1.9/1.9.1/1.9.1.1.dcm";
+    std::ofstream(received) << "x";
+    const auto in = instance(received, "A^A", "A", "1.9", "20240101", "1.9.1", "CT", "1.9.1.1");
+    dicom::StudyDatabase a(dir.file("a/s.sqlite")), b(dir.file("b/s.sqlite"));
+    a.addInstances({in});
+    b.addInstances({in});
+    for (int twice = 0; twice < 2; ++twice) {
+        dicom::StorageOwners::add(storage, a.path());
+        dicom::StorageOwners::add(storage, b.path());
+    }
+    std::ifstream list(storage + "/" + dicom::StorageOwners::kListName);
+    std::size_t lines = 0;
+    for (std::string line; std::getline(list, line);) ++lines;
+    EXPECT_EQ(lines, 2u) << "each database listed once";
+    const auto fromA = dicom::StudyRemoval::remove(a, "1.9", storage, dir.file("a/octrees"));
+    EXPECT_EQ(fromA.forgotten, 1u);
+    EXPECT_EQ(fromA.deleted, 0u);
+    EXPECT_EQ(fromA.shared, 1u);
+    ASSERT_EQ(fromA.sharers.size(), 1u);
+    EXPECT_EQ(fs::path(fromA.sharers[0]).filename(), "s.sqlite");
+    EXPECT_TRUE(fs::exists(received)) << "the other database still indexes it";
+    EXPECT_EQ(b.instanceCount(), 1u);
+    const auto fromB = dicom::StudyRemoval::remove(b, "1.9", storage, dir.file("b/octrees"));
+    EXPECT_EQ(fromB.deleted, 1u);
+    EXPECT_EQ(fromB.shared, 0u);
+    EXPECT_FALSE(fs::exists(received));
+
+    // A third database listed that is not a database at all: nothing is deleted, and why is said.
+    fs::create_directories(storage + "/1.9/1.9.1");
+    std::ofstream(received) << "x";
+    a.addInstances({in});
+    std::ofstream(dir.file("c.sqlite")) << "not a database";
+    dicom::StorageOwners::add(storage, dir.file("c.sqlite"));
+    const auto unread = dicom::StudyRemoval::remove(a, "1.9", storage, dir.file("a/octrees"));
+    EXPECT_EQ(unread.deleted, 0u);
+    EXPECT_EQ(unread.shared, 1u);
+    ASSERT_EQ(unread.sharers.size(), 1u);
+    EXPECT_NE(unread.sharers[0].find("cannot read that study database"), std::string::npos) << unread.sharers[0];
+    EXPECT_TRUE(fs::exists(received));
 }
