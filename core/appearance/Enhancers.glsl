@@ -314,6 +314,13 @@ HVX_FN float hvxStepAfter(float t, float dt, vec2 chord, float k) {
     return max(1.0f, floor(ahead / dt)) * dt;
 }
 
+// Opacity correction (Max 1995) for a context segment k samples long (hvxStepAfter): the
+// enhancers scale one sample's opacity, so a segment's is taken back to one sample's before them
+// (hvxOpacityPerSample) and raised to the segment's after (hvxOpacityOfSegment). Without it the
+// context's silhouettes fade as the step grows: scaling 1 - (1 - a)^k is not scaling a k times.
+HVX_FN float hvxOpacityPerSample(float a, float k) { return k > 1.0f ? 1.0f - pow(max(1.0f - a, 0.0f), 1.0f / k) : a; }
+HVX_FN float hvxOpacityOfSegment(float a, float k) { return k > 1.0f ? 1.0f - pow(max(1.0f - a, 0.0f), k) : a; }
+
 // Applies the active tools in a fixed order: clip plane, focal probe, context probe, band
 // picker. HVX_TOOL_ON(bit) is a compile-time constant in the shader (a static variant) and a
 // test of hvxBits on the CPU. `entered` becomes true at the first sample inside the focal probe,

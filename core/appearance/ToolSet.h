@@ -41,7 +41,7 @@ struct ToolSet {
         /// Focus and context sampling: outside the probe's bounding sphere, where it draws only
         /// the ghosted context, rays step this many samples at a time (a whole number, 1 to 8;
         /// 1: the context sampled as finely as the focus). The focus is always sampled in full.
-        double contextStep = 4;
+        double contextStep = 3;
     } focal;
     /// Context-preserving probe (§6.4.2, Eqs 6.17-6.18): a sphere with a tool axis.
     struct ContextProbe {

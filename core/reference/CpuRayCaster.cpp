@@ -356,10 +356,8 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                     if (a > 1e-6 && toolBits) {
                         // Enhancers (core/appearance/Enhancers.glsl), then shading and MImDA
                         // compositing, in the shader's order and precision.
-                        // The context's gradient at the scale of its samples, as far as the
-                        // brick's border reaches (the shader's, raycast_march.glsl).
                         const bool context = contextSteps && (t < chord.x || t > chord.y);
-                        const glm::vec3 gOct = gradient(L, p, context ? std::min(kContext, 2.0f) : 1.0f);
+                        const glm::vec3 gOct = gradient(L, p);
                         const glm::vec3 g = glm::vec3(normalToWorld_ * glm::dvec3(gOct));
                         glsl::HvxSample x;
                         x.p = glm::vec3(ow + double(t) * dw);
@@ -375,7 +373,10 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                         const glm::vec3 gSmooth =
                             focalNorm <= 1.0f ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f))) : g;
                         bool enteredNow = enteredProbe;
+                        const float kSegment = context ? (t - tPrev) / dt : 1.0f;  // a context segment's samples
+                        x.a = glsl::hvxOpacityPerSample(x.a, kSegment);
                         glsl::hvxEnhance(x, packedTools, toolBits, focalNorm, gSmooth, hTheta, enteredNow);
+                        x.a = glsl::hvxOpacityOfSegment(x.a, kSegment);
                         if (enteredNow && !enteredProbe) {  // clip what lies in front of the focal probe
                             accum = glm::vec4(0.0f);
                             importanceMax = 0.0f;

@@ -212,13 +212,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
 #if MODE == 0 && HVX_TOOLS != 0
             {  // enhancers, shading and MImDA as core/reference/CpuRayCaster.cpp
                 vec4 f = tfSegment(sPrev, s);
-#if HVX_FOCAL_VARIANT
-                // the context's gradient at the scale of its samples, as far as the brick's border reaches
-                float spread = (t < chord.x || t > chord.y) ? min(kContext, 2.0) : 1.0;
-                vec3 g = transpose(mat3(patientToOctree)) * leafGradientSpread(L, p, spread);
-#else
                 vec3 g = transpose(mat3(patientToOctree)) * leafGradient(L, p);
-#endif
                 HvxSample x;
                 x.p = ow + t * dw;
                 x.v = dw;
@@ -236,7 +230,14 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                 float focalNorm = HVX_TOOL_ON(HVX_FOCAL_BIT) ? hvxFocalNorm(tools, x.p) : 2.0;
                 vec3 gSmooth = focalNorm <= 1.0 ? transpose(mat3(patientToOctree)) * leafGradientSpread(L, p, 2.0) : g;
                 bool enteredNow = entered;
+#if HVX_FOCAL_VARIANT
+                float kSegment = (t < chord.x || t > chord.y) ? (t - tPrev) / dt : 1.0;  // a context segment's samples
+                x.a = hvxOpacityPerSample(x.a, kSegment);
                 hvxEnhance(x, tools, HVX_TOOLS, focalNorm, gSmooth, hTheta, enteredNow);
+                x.a = hvxOpacityOfSegment(x.a, kSegment);
+#else
+                hvxEnhance(x, tools, HVX_TOOLS, focalNorm, gSmooth, hTheta, enteredNow);
+#endif
                 if (enteredNow && !entered) {  // clip what lies in front of the focal probe
                     accum = vec4(0.0);
                     importanceMax = 0.0;

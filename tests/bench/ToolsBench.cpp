@@ -5,6 +5,7 @@
 //   build/release/tests/bench/hvx_bench_tools FILE.hvo [--size 512] [--frames 5] [--breakdown] [--tf PRESET]
 //        [--opacity S]   (S scales the preset's opacity: the thesis measured semi-transparent functions)
 //        [--save DIR]    (writes each case's frame as DIR/NN-case.png, to look at)
+//        [--context-step K]  (the focal probe's context step, ToolSet::FocalProbe::contextStep; default its default)
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -37,6 +38,7 @@ int main(int argc, char** argv) {
     bool breakdown = false;
     std::string preset, saveDir;
     double opacity = 1.0;
+    double contextStep = core::ToolSet{}.focal.contextStep;
     for (int i = 2; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--breakdown")) breakdown = true;
         else if (!std::strcmp(argv[i], "--size") && i + 1 < argc) size = std::atoi(argv[++i]);
@@ -44,6 +46,7 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--tf") && i + 1 < argc) preset = argv[++i];
         else if (!std::strcmp(argv[i], "--opacity") && i + 1 < argc) opacity = std::atof(argv[++i]);
         else if (!std::strcmp(argv[i], "--save") && i + 1 < argc) saveDir = argv[++i];
+        else if (!std::strcmp(argv[i], "--context-step") && i + 1 < argc) contextStep = std::atof(argv[++i]);
     }
     const auto reader = core::OctreeReader::open(argv[1]);
     const auto& g = reader->geometry();
@@ -82,6 +85,7 @@ int main(int argc, char** argv) {
         t.focal.enabled = bits & core::ToolSet::FocalBit;
         t.focal.centre = centre;
         t.focal.radii = glm::dvec3(radius * 0.4);
+        t.focal.contextStep = contextStep;
         t.context.enabled = bits & core::ToolSet::ContextBit;
         t.context.centre = centre;
         t.context.radius = radius * 0.5;
@@ -159,8 +163,9 @@ int main(int argc, char** argv) {
         return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
     };
     const double none = median(cases[0].ms);
-    std::printf("%s, %dx%d, %s, tf %s at %g of its opacity, median of %d interleaved rounds: no tool %.1f ms/frame\n",
-                argv[1], size, size, ctx.info().renderer.c_str(), preset.c_str(), opacity, frames, none);
+    std::printf("%s, %dx%d, %s, tf %s at %g of its opacity, focal context step %g, median of %d interleaved rounds: "
+                "no tool %.1f ms/frame\n",
+                argv[1], size, size, ctx.info().renderer.c_str(), preset.c_str(), opacity, contextStep, frames, none);
     for (std::size_t i = 1; i < cases.size(); ++i) {
         const double ms = median(cases[i].ms);
         std::printf("  %-40s %.1f ms/frame (%+.0f%%)\n", cases[i].name.c_str(), ms, (ms / none - 1.0) * 100.0);

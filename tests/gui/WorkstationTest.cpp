@@ -330,6 +330,19 @@ private slots:
         const QImage tools = settledFrame();
         QVERIFY2(difference(plain, tools) > 1.0, "the tools change the image");
         saveArtifact("tools.png");
+        // The focal probe's context step is in its dock, shown as the tools hold it and applied
+        // from it.
+        auto stepped = window_->tools();
+        stepped.focal.contextStep = 2;
+        window_->setTools(stepped);
+        QDoubleSpinBox* step = nullptr;
+        for (auto* box : window_->toolsPanel(0)->group("focal")->findChildren<QDoubleSpinBox*>())
+            if (box->toolTip().contains("ghosted context")) step = box;
+        QVERIFY2(step, "a Context step field in the focal probe's group");
+        QCOMPARE(step->value(), 2.0);
+        step->setValue(6);
+        QCOMPARE(window_->tools().focal.contextStep, 6.0);
+        window_->toolsPanel(0)->grab().save(kArtifacts + "/probes-dock.png");
         // The clip plane alone: Ctrl+drag pushes it along its normal.
         auto clipOnly = window_->tools();
         clipOnly.focal.enabled = clipOnly.context.enabled = false;

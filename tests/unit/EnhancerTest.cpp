@@ -158,7 +158,7 @@ TEST(ToolSet, OutOfRangeParametersAreRefusedAndJsonRoundTrips) {
     EXPECT_NO_THROW(t.validate());
     const auto back = core::ToolSet::fromJson(t.toJson());
     EXPECT_DOUBLE_EQ(back.focal.contextStep, 6);
-    EXPECT_DOUBLE_EQ(core::ToolSet::fromJson("{}").focal.contextStep, 4) << "the default";
+    EXPECT_DOUBLE_EQ(core::ToolSet::fromJson("{}").focal.contextStep, 3) << "the default";
     EXPECT_EQ(back.variantBits(), t.variantBits());
     EXPECT_EQ(back.focal.centre, t.focal.centre);
     EXPECT_DOUBLE_EQ(back.focal.p, 4);
