@@ -27,7 +27,7 @@ DicomSeriesSource::DicomSeriesSource(SeriesVolume volume) : volume_(std::move(vo
 
 double DicomSeriesSource::paddingStoredOf(const SeriesVolume& v) {
     const auto& s0 = v.slices.front();
-    if (v.geometry.hounsfield()) return (-1024.0 - s0.rescaleIntercept) / s0.rescaleSlope;
+    if (v.geometry.hounsfield()) return (core::VolumeGeometry::kCtPaddingHu - s0.rescaleIntercept) / s0.rescaleSlope;
     const DicomInstance& first = v.instances[s0.instance];
     return first.pixelRepresentation == 1 ? -double(1u << (first.bitsStored - 1)) : 0.0;
 }

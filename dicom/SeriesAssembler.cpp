@@ -219,7 +219,7 @@ void finishGeometry(SeriesVolume& v) {
         const std::string what = "pixels marked as padding (outside the scanned field) are shown and measured as ";
         if (!g.hounsfield())
             v.warnings.push_back(what + fmt("%.6g, the lowest value the stored bits hold", value));
-        else if (value == -1024.0)
+        else if (value == core::VolumeGeometry::kCtPaddingHu)
             v.warnings.push_back(what + "-1024 HU, air: a region over them counts them as air");
         else
             v.warnings.push_back(what + fmt("%.6g HU (-1024 HU, air, lies below what the stored type holds under "

@@ -1,5 +1,4 @@
 #pragma once
-#include <set>
 #include <string>
 #include <vector>
 
@@ -16,9 +15,6 @@ public:
     static void add(const std::string& storageDir, const std::string& dbPath);
     /// The databases the folder's list names, other than `dbPath`, whose files exist.
     static std::vector<std::string> othersThan(const std::string& storageDir, const std::string& dbPath);
-    /// Of `paths`, those the database at `dbPath` indexes, read without changing it (read-only,
-    /// no schema migration). Throws core::Error naming the database when it cannot be read.
-    static std::set<std::string> indexedIn(const std::string& dbPath, const std::vector<std::string>& paths);
     /// The list's file name in a storage folder.
     static constexpr const char* kListName = ".holovox-databases";
 };

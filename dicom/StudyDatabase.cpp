@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <memory>
 #include <set>
 #include <thread>
 
@@ -546,6 +547,25 @@ std::vector<std::string> StudyDatabase::filesOfSeries(const std::string& seriesU
     std::vector<std::string> files;
     while (s.step()) files.push_back(s.text(0));
     return files;
+}
+
+std::set<std::string> StudyDatabase::indexedPaths(const std::string& dbPath, const std::vector<std::string>& paths) {
+    sqlite3* db = nullptr;
+    const int rc = sqlite3_open_v2(dbPath.c_str(), &db, SQLITE_OPEN_READONLY, nullptr);
+    std::unique_ptr<sqlite3, int (*)(sqlite3*)> closer(db, sqlite3_close);
+    std::set<std::string> out;
+    try {
+        if (rc != SQLITE_OK) throw core::Error(db ? sqlite3_errmsg(db) : "out of memory");
+        sqlite3_busy_timeout(db, 5000);
+        Stmt s(db, "SELECT 1 FROM instances WHERE path = ?1 LIMIT 1;");
+        for (const auto& p : paths) {
+            s.reset();
+            if (s.bind(1, p).step()) out.insert(p);
+        }
+    } catch (const core::Error& e) {
+        throw core::Error(dbPath + ": cannot read that study database (" + e.what() + ")");
+    }
+    return out;
 }
 
 bool StudyDatabase::setSeriesOctree(const std::string& seriesUid, const std::string& octreePath) {

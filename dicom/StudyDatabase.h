@@ -3,6 +3,7 @@
 #include <memory>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -109,6 +110,10 @@ public:
     /// no other study is left, in one transaction. Deletes no file (the caller deletes what is
     /// its own). Throws core::Error naming an unknown study.
     RemovedStudy removeStudy(const std::string& studyUid);
+    /// Of `paths`, those the database file at `dbPath` indexes as instances, read without changing
+    /// it (read-only, no migration): another database sharing a storage folder (StorageOwners).
+    /// Throws core::Error naming that database when it cannot be read.
+    static std::set<std::string> indexedPaths(const std::string& dbPath, const std::vector<std::string>& paths);
     /// Every octree path recorded for a series or a volume.
     std::vector<std::string> recordedOctrees() const;
     /// Instances marked offline by the last checkFiles().

@@ -78,7 +78,7 @@ StudyRemoval::Result StudyRemoval::remove(StudyDatabase& db, const std::string& 
     if (!candidates.empty())
         for (const auto& other : StorageOwners::othersThan(storageDir, db.path())) {
             try {
-                const auto indexed = StorageOwners::indexedIn(other, candidates);
+                const auto indexed = StudyDatabase::indexedPaths(other, candidates);
                 if (!indexed.empty()) r.sharers.push_back(other);
                 shared.insert(indexed.begin(), indexed.end());
             } catch (const core::Error& e) {

@@ -314,6 +314,12 @@ HVX_FN float hvxStepAfter(float t, float dt, vec2 chord, float k) {
     return max(1.0f, floor(ahead / dt)) * dt;
 }
 
+// How many samples long the segment ending at t (the previous sample at tPrev) is when it lies
+// in the context, outside the focus chord; 1 in the focus.
+HVX_FN float hvxContextSegment(float t, float tPrev, float dt, vec2 chord) {
+    return (t < chord.x || t > chord.y) ? (t - tPrev) / dt : 1.0f;
+}
+
 // Opacity correction (Max 1995) for a context segment k samples long (hvxStepAfter): the
 // enhancers scale one sample's opacity, so a segment's is taken back to one sample's before them
 // (hvxOpacityPerSample) and raised to the segment's after (hvxOpacityOfSegment). Without it the

@@ -356,7 +356,6 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                     if (a > 1e-6 && toolBits) {
                         // Enhancers (core/appearance/Enhancers.glsl), then shading and MImDA
                         // compositing, in the shader's order and precision.
-                        const bool context = contextSteps && (t < chord.x || t > chord.y);
                         const glm::vec3 gOct = gradient(L, p);
                         const glm::vec3 g = glm::vec3(normalToWorld_ * glm::dvec3(gOct));
                         glsl::HvxSample x;
@@ -373,7 +372,7 @@ glm::vec4 CpuRayCaster::cast(const glm::dvec3& ow, const glm::dvec3& dw, float& 
                         const glm::vec3 gSmooth =
                             focalNorm <= 1.0f ? glm::vec3(normalToWorld_ * glm::dvec3(gradient(L, p, 2.0f))) : g;
                         bool enteredNow = enteredProbe;
-                        const float kSegment = context ? (t - tPrev) / dt : 1.0f;  // a context segment's samples
+                        const float kSegment = contextSteps ? glsl::hvxContextSegment(t, tPrev, dt, chord) : 1.0f;
                         x.a = glsl::hvxOpacityPerSample(x.a, kSegment);
                         glsl::hvxEnhance(x, packedTools, toolBits, focalNorm, gSmooth, hTheta, enteredNow);
                         x.a = glsl::hvxOpacityOfSegment(x.a, kSegment);

@@ -93,9 +93,6 @@ MeasureRegion MeasureRegion::movedBy(const glm::dvec3& offset) const {
 }
 
 namespace {
-/// The value import gives CT pixels marked as padding (dicom::DicomSeriesSource): air.
-constexpr double kCtPaddingHu = -1024.0;
-
 /// Two unit axes spanning the plane perpendicular to `n`.
 std::pair<glm::dvec3, glm::dvec3> planeAxes(const glm::dvec3& n) {
     const glm::dvec3 helper = std::abs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
@@ -347,7 +344,7 @@ RegionStatistics RegionStatistics::compute(const OctreeReader& reader, const Mea
                             m2 += delta * (v - mean);
                             minV = std::min(minV, v);
                             maxV = std::max(maxV, v);
-                            atPadding += hounsfield && v == kCtPaddingHu;
+                            atPadding += hounsfield && v == VolumeGeometry::kCtPaddingHu;
                             ++inBrick;
                         }
                 s.voxels += inBrick;

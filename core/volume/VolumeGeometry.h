@@ -41,6 +41,8 @@ struct VolumeGeometry {
     /// the default; at most 4 are kept in an .hvo.
     std::vector<DisplayWindow> windows;
 
+    /// The value CT pixels marked as padding (outside the scanned field) are given: air.
+    static constexpr double kCtPaddingHu = -1024.0;
     /// Whether the values are Hounsfield units: a CT whose RescaleType is HU or absent.
     bool hounsfield() const { return modality == "CT" && !notHounsfield; }
     /// Whether `code` has the form of a DICOM modality code (2 to 8 capitals: CT, MR, PT, RTDOSE).

@@ -231,7 +231,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                 vec3 gSmooth = focalNorm <= 1.0 ? transpose(mat3(patientToOctree)) * leafGradientSpread(L, p, 2.0) : g;
                 bool enteredNow = entered;
 #if HVX_FOCAL_VARIANT
-                float kSegment = (t < chord.x || t > chord.y) ? (t - tPrev) / dt : 1.0;  // a context segment's samples
+                float kSegment = hvxContextSegment(t, tPrev, dt, chord);
                 x.a = hvxOpacityPerSample(x.a, kSegment);
                 hvxEnhance(x, tools, HVX_TOOLS, focalNorm, gSmooth, hTheta, enteredNow);
                 x.a = hvxOpacityOfSegment(x.a, kSegment);

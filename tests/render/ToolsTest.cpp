@@ -45,6 +45,22 @@ struct Scene : test::OctreeScene {
     }
 };
 
+/// The CT phantom with soft-tissue DVR, its cut settled, and a GPU ray caster: the scene of
+/// the tests that hold the GPU against the CPU reference.
+struct PhantomScene {
+    core::PhantomVoxelSource phantom;
+    Scene s;
+    core::TransferFunction tf;
+    render::EglOffscreenContext ctx;
+    render::GpuRayCaster gpu;
+    explicit PhantomScene(double az = 30, double el = 15)
+        : phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0), s(phantom, az, el),
+          tf(core::TransferFunction::preset("ct-soft-tissue", s.reader->geometry().valueMin,
+                                            s.reader->geometry().valueMax, 1, 0, 4.0)) {
+        s.settle(tf);
+    }
+};
+
 core::ToolSet toolsFor(int bits, const glm::dvec3& centre, double lo, double hi) {
     core::ToolSet t;
     t.clip.enabled = bits & core::ToolSet::ClipBit;
@@ -66,13 +82,11 @@ core::ToolSet toolsFor(int bits, const glm::dvec3& centre, double lo, double hi)
 }  // namespace
 
 TEST(Tools, EachToolAndThreeTogetherOnTheGpuEqualTheCpuReference) {
-    core::PhantomVoxelSource phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0);
-    Scene s(phantom);
+    PhantomScene scene;
+    Scene& s = scene.s;
     const auto& g = s.reader->geometry();
-    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
-    s.settle(tf);
-    render::EglOffscreenContext ctx;
-    render::GpuRayCaster gpu;
+    const core::TransferFunction& tf = scene.tf;
+    render::GpuRayCaster& gpu = scene.gpu;
     using T = core::ToolSet;
     const int combos[] = {T::ClipBit, T::FocalBit, T::ContextBit, T::BandBit | T::MimdaBit, T::ClipBit | T::FocalBit | T::BandBit,
                           T::ClipBit | T::ContextBit | T::BandBit | T::MimdaBit};
@@ -202,13 +216,10 @@ TEST(Tools, CropBoxOnTheGpuEqualsTheCpuReference) {
 // so that it hides much of the frame: the focal probe's focus cone over the middle of the view,
 // the clip plane face-on, the context probe seen across its axis.
 TEST(Tools, SkippingWhatTheToolsHideLeavesTheImageAsTheCpuReferenceDrawsIt) {
-    core::PhantomVoxelSource phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0);
-    Scene s(phantom, 0, 0);
-    const auto& g = s.reader->geometry();
-    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
-    s.settle(tf);
-    render::EglOffscreenContext ctx;
-    render::GpuRayCaster gpu;
+    PhantomScene scene(0, 0);
+    Scene& s = scene.s;
+    const core::TransferFunction& tf = scene.tf;
+    render::GpuRayCaster& gpu = scene.gpu;
     const glm::dvec3 forward = glm::normalize(s.view.target - s.view.eye);
     std::vector<std::pair<const char*, core::ToolSet>> cases(4);
     cases[0].first = "focal probe, wide focus cone";
@@ -250,13 +261,11 @@ TEST(Tools, SkippingWhatTheToolsHideLeavesTheImageAsTheCpuReferenceDrawsIt) {
 // ray lies in the focus cone (hTheta = 0: all it shows is inside the probe) is the dense
 // march's, bit for bit.
 TEST(Tools, TheFocalProbesContextIsSampledSparselyAndItsFocusExactly) {
-    core::PhantomVoxelSource phantom({96, 96, 80}, 3, {400, 400, 400}, 10.0);
-    Scene s(phantom);
+    PhantomScene scene;
+    Scene& s = scene.s;
     const auto& g = s.reader->geometry();
-    const auto tf = core::TransferFunction::preset("ct-soft-tissue", g.valueMin, g.valueMax, 1, 0, 4.0);
-    s.settle(tf);
-    render::EglOffscreenContext ctx;
-    render::GpuRayCaster gpu;
+    const core::TransferFunction& tf = scene.tf;
+    render::GpuRayCaster& gpu = scene.gpu;
     core::RenderSettings sparse, dense;
     sparse.tools.focal.enabled = true;
     sparse.tools.focal.centre = s.centre() + glm::dvec3(20, 0, 0);
