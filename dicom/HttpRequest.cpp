@@ -141,6 +141,9 @@ HttpAnswer HttpRequest::send(std::size_t maxBody) {
     // A transfer may take long; one that moves nothing for the timeout has stalled.
     curl_easy_setopt(h, CURLOPT_LOW_SPEED_LIMIT, 1L);
     curl_easy_setopt(h, CURLOPT_LOW_SPEED_TIME, long(std::max(1, endpoint_.timeoutSeconds)));
+    // Bodies arrive in reads of up to 512 KiB rather than libcurl's 16 KiB: a WADO-RS of 500
+    // CT instances (66 MB) made 4,000 reads and as many polls.
+    curl_easy_setopt(h, CURLOPT_BUFFERSIZE, 512L * 1024L);
     curl_easy_setopt(h, CURLOPT_WRITEFUNCTION, onWrite);
     curl_easy_setopt(h, CURLOPT_WRITEDATA, &t);
     curl_easy_setopt(h, CURLOPT_NOPROGRESS, 0L);

@@ -12,20 +12,25 @@
 # three kinds alternating.
 #
 #   bash tests/bench/bench_pacs.sh [--cli PATH] [--instances 500] [--repeat 7] [--only store|get|move|wado|study|dcmqrscp]
+#        [--receive-in DIR]  (what the retrieves receive, and their database, go to a fresh folder in DIR,
+#                             for a file system other than the temporary folder's: a journal makes flushes dearer)
 set -euo pipefail
 cli=build/release/app/holovox-cli
 count=500
 repeat=7
 only=
+receiveIn=
 while [ $# -gt 0 ]; do
-  case $1 in --cli) cli=$2; shift 2 ;; --instances) count=$2; shift 2 ;; --only) only=$2; shift 2 ;; --repeat) repeat=$2; shift 2 ;; *) echo "unknown option $1" >&2; exit 2 ;; esac
+  case $1 in --cli) cli=$2; shift 2 ;; --instances) count=$2; shift 2 ;; --only) only=$2; shift 2 ;; --repeat) repeat=$2; shift 2 ;; --receive-in) receiveIn=$2; shift 2 ;; *) echo "unknown option $1" >&2; exit 2 ;; esac
 done
 [ -x "$cli" ] || { echo "build first: cmake --workflow --preset release (or pass --cli)" >&2; exit 2; }
 cli=$(realpath "$cli")
 work=$(mktemp -d)
+recv=$work
+[ -z "$receiveIn" ] || recv=$(mktemp -d -p "$receiveIn")
 cleanup() {
   for f in "$work"/*.pid; do [ -f "$f" ] && kill "$(cat "$f")" 2>/dev/null || true; done
-  rm -rf "$work"
+  rm -rf "$work" "$recv"
 }
 trap cleanup EXIT
 port=$((20000 + RANDOM % 20000)); http=$((port + 1)); scp=$((port + 2)); qr=$((port + 3))
@@ -68,15 +73,15 @@ for s in 1 2 3 4 5; do
 done
 bytes5=$(du -sb "$work/study5" | cut -f1)
 
-export HOLOVOX_PACS_CONFIG="$work/pacs.json" HOLOVOX_DB="$work/db.sqlite"
-"$cli" pacs add bench --ae ORTHANC --host 127.0.0.1 --port $port --local-port $scp --storage "$work/rx" >/dev/null
+export HOLOVOX_PACS_CONFIG="$work/pacs.json" HOLOVOX_DB="$recv/db.sqlite"
+"$cli" pacs add bench --ae ORTHANC --host 127.0.0.1 --port $port --local-port $scp --storage "$recv/rx" >/dev/null
 "$cli" pacs add web --dicomweb "http://127.0.0.1:$http/dicom-web" >/dev/null
 "$cli" pacs add qr --ae DCMQR --host 127.0.0.1 --port $qr >/dev/null
 t() { local s e; s=$(date +%s.%N); "$@" >"$work/last.log" 2>&1 || { cat "$work/last.log" >&2; exit 1; }; e=$(date +%s.%N); echo "$e - $s" | bc -l; }
 row() { printf '  %-40s %7.3f s  %7.1f inst/s  %6.1f MB/s\n' "$1" "$2" "$(echo "$3 / $2" | bc -l)" "$(echo "$4 / 1000000 / $2" | bc -l)"; }
 ratio() { printf '  %-40s %.2fx\n' "$1" "$(echo "$2 / $3" | bc -l)"; }
 want() { [ -z "$only" ] || [ "$only" = "$1" ]; }
-fresh() { rm -rf "$work/rx" "$work/db.sqlite"* "$work/g"; mkdir -p "$work/g"; }
+fresh() { rm -rf "$recv/rx" "$recv/db.sqlite"* "$recv/g"; mkdir -p "$recv/g"; }
 
 if want store; then
   echo "C-STORE of $count instances ($(echo "$bytes/1000000" | bc) MB) to Orthanc on loopback:"
@@ -94,16 +99,16 @@ want dcmqrscp && storescu -aet SEEDER -aec DCMQR 127.0.0.1 $qr "$work"/series/*.
 
 want get || want move || want wado && echo "retrieve of the same series from Orthanc:"
 if want get; then
-  fresh; g1=$(t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+  fresh; g1=$(t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$recv/g" 127.0.0.1 $port)
   row "getscu (C-GET)" "$g1" $count $bytes
-  fresh; g2=$(TCP_NODELAY=1 t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+  fresh; g2=$(TCP_NODELAY=1 t getscu -S -aet HOLOVOX -aec ORTHANC -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$recv/g" 127.0.0.1 $port)
   row "getscu with TCP_NODELAY=1 in its env" "$g2" $count $bytes
   fresh; h1=$(t "$cli" pacs get bench $study --no-build)
   row "holovox pacs get (C-GET)" "$h1" $count $bytes
   ratio "holovox / getscu throughput" "$g1" "$h1"
 fi
 if want move; then
-  fresh; m1=$(t movescu -S -aet MOVESCU -aec ORTHANC -aem MOVESCU --port $scp -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $port)
+  fresh; m1=$(t movescu -S -aet MOVESCU -aec ORTHANC -aem MOVESCU --port $scp -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$recv/g" 127.0.0.1 $port)
   row "movescu (C-MOVE, own SCP)" "$m1" $count $bytes
   fresh; h2=$(t "$cli" pacs move bench $study --no-build)
   row "holovox pacs move (C-MOVE)" "$h2" $count $bytes
@@ -114,10 +119,10 @@ if want wado; then
   # files, flushed (curl writes one file, unflushed).
   c=(); w=(); k=()
   for r in $(seq 1 "$repeat"); do
-    fresh; c+=("$(t curl -s -o "$work/g/all.multipart" -H 'Accept: multipart/related; type="application/dicom"; transfer-syntax=*' "http://127.0.0.1:$http/dicom-web/studies/$study/series/$series")")
-    multipart=$(stat -c %s "$work/g/all.multipart")
+    fresh; c+=("$(t curl -s -o "$recv/g/all.multipart" -H 'Accept: multipart/related; type="application/dicom"; transfer-syntax=*' "http://127.0.0.1:$http/dicom-web/studies/$study/series/$series")")
+    multipart=$(stat -c %s "$recv/g/all.multipart")
     fresh; w+=("$(t "$cli" pacs get web $study --no-build)")
-    fresh; k+=("$(t sh -c "cp -r '$work/series' '$work/g/copy' && sync -f '$work/g/copy/IMG00001.dcm'")")
+    fresh; k+=("$(t sh -c "cp -r '$work/series' '$recv/g/copy' && sync -f '$recv/g/copy/IMG00001.dcm'")")
   done
   median() { printf '%s\n' "$@" | sort -g | awk '{v[NR] = $1} END {print v[int((NR + 1) / 2)]}'; }
   c1=$(median "${c[@]}"); w1=$(median "${w[@]}"); k1=$(median "${k[@]}")
@@ -140,7 +145,7 @@ fi
 
 if want dcmqrscp; then
   echo "retrieve of the same series from dcmqrscp:"
-  fresh; q1=$(t getscu -S -aet HOLOVOX -aec DCMQR -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$work/g" 127.0.0.1 $qr)
+  fresh; q1=$(t getscu -S -aet HOLOVOX -aec DCMQR -k QueryRetrieveLevel=SERIES -k StudyInstanceUID=$study -k SeriesInstanceUID=$series -od "$recv/g" 127.0.0.1 $qr)
   row "getscu (C-GET)" "$q1" $count $bytes
   fresh; q2=$(t "$cli" pacs get qr $study --no-build)
   row "holovox pacs get (C-GET)" "$q2" $count $bytes
