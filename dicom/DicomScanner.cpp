@@ -15,6 +15,7 @@
 #include "core/base/ThreadPool.h"
 #include "dicom/DcmtkSetup.h"
 #include "dicom/DicomHeaderReader.h"
+#include "dicom/StorageOwners.h"
 
 namespace fs = std::filesystem;
 
@@ -66,6 +67,28 @@ std::string resolveCase(const std::string& path) {
     }
     return cur.string();
 }
+/// Whether `p` is a received-instance storage folder's own bookkeeping (IncomingStore,
+/// StorageOwners) in a folder that is one: the list of databases, the instances still being
+/// received (.incoming) and those refused on receipt and set aside (.conflicts). Importing a
+/// storage folder had counted the list as a file that is not DICOM and read half-received files.
+bool isStorageBookkeeping(const fs::path& p) {
+    const std::string name = p.filename().string();
+    if (name != StorageOwners::kListName && name != ".incoming" && name != ".conflicts") return false;
+    std::error_code ec;
+    const fs::path folder = p.parent_path();
+    return fs::is_regular_file(folder / StorageOwners::kListName, ec) || fs::is_directory(folder / ".incoming", ec);
+}
+
+std::size_t countFiles(const fs::path& folder) {
+    std::size_t n = 0;
+    std::error_code ec;
+    for (auto it = fs::recursive_directory_iterator(folder, fs::directory_options::skip_permission_denied, ec);
+         it != fs::recursive_directory_iterator(); it.increment(ec)) {
+        if (ec) break;
+        if (it->is_regular_file(ec)) ++n;
+    }
+    return n;
+}
 }  // namespace
 
 std::vector<std::string> DicomScanner::filesOfDicomdir(const std::string& dicomdirPath) {
@@ -80,6 +103,7 @@ std::vector<std::string> DicomScanner::filesOfDicomdir(const std::string& dicomd
 
 DicomScanner::Result DicomScanner::scan(const std::vector<std::string>& paths, core::JobContext& job) {
     job.report(0.0, "finding files");
+    Result r;
     std::vector<std::string> files;
     std::error_code ec;
     for (const auto& p : paths) {
@@ -101,6 +125,13 @@ DicomScanner::Result DicomScanner::scan(const std::vector<std::string>& paths, c
             for (auto it = fs::recursive_directory_iterator(p, fs::directory_options::skip_permission_denied, ec);
                  it != fs::recursive_directory_iterator(); it.increment(ec)) {
                 if (ec) break;
+                if (isStorageBookkeeping(it->path())) {  // not an instance to import: counted, not read
+                    if (it->is_directory(ec)) {
+                        r.setAside += countFiles(it->path());
+                        it.disable_recursion_pending();
+                    }
+                    continue;
+                }
                 if (it->is_regular_file(ec) && !isDicomdirName(it->path())) files.push_back(it->path().string());
             }
         } else if (isDicomdirName(p)) {
@@ -115,7 +146,6 @@ DicomScanner::Result DicomScanner::scan(const std::vector<std::string>& paths, c
     std::sort(files.begin(), files.end());
     files.erase(std::unique(files.begin(), files.end()), files.end());
 
-    Result r;
     r.filesSeen = files.size();
     std::vector<DicomInstance> found(files.size());
     std::vector<signed char> state(files.size(), 0);  // 1 dicom, 2 not dicom, 3 broken

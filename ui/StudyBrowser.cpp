@@ -363,6 +363,10 @@ int StudyBrowser::importPaths(const QStringList& paths) {
                     found->append(QString::fromStdString(i.seriesInstanceUid));
             QString summary = QObject::tr("%1 DICOM files (%2 new), %3 not DICOM, %4 broken")
                                   .arg(scan.instances.size()).arg(stats.added).arg(scan.notDicom).arg(scan.broken);
+            if (scan.setAside)
+                summary += QObject::tr("; %1 file(s) a receive set aside in its storage folder not imported "
+                                       "(.incoming: still being received; .conflicts: refused on receipt)")
+                               .arg(scan.setAside);
             for (const auto& c : stats.conflicts) summary += "; " + QString::fromStdString(c);
             return summary;
         },

@@ -73,6 +73,9 @@ int importCommand(int argc, char** argv) {
     std::printf("scanned %zu files: %zu DICOM, %zu not DICOM (skipped), %zu broken\n", scan.filesSeen,
                 scan.instances.size(), scan.notDicom, scan.broken);
     for (const auto& r : scan.brokenReasons) std::printf("  broken: %s\n", r.c_str());
+    if (scan.setAside)
+        std::printf("  not imported: %zu file(s) a receive set aside in its storage folder (.incoming: still being "
+                    "received; .conflicts: refused on receipt)\n", scan.setAside);
     std::printf("database %s: %zu new, %zu already known, %zu moved\n", dbPath.c_str(), stats.added, stats.unchanged,
                 stats.moved);
     for (const auto& n : notes) std::printf("  note: %s\n", n.c_str());

@@ -2,6 +2,7 @@
 // the same instance twice is a no-op, another object under the same SOP Instance UID is set
 // aside and never replaces the stored one, and sanitised UIDs cannot collide. And the atomic
 // writer used for every other output: two writers of one target never share a temporary file.
+// Importing a storage folder reads its instances, not what receives keep beside them.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,7 +13,10 @@
 
 #include "core/base/AtomicFileWriter.h"
 #include "core/base/Error.h"
+#include "core/base/JobContext.h"
+#include "dicom/DicomScanner.h"
 #include "dicom/IncomingStore.h"
+#include "dicom/StorageOwners.h"
 #include "dicom/UidPath.h"
 #include "tests/support/TempDir.h"
 
@@ -77,6 +81,38 @@ TEST(IncomingStore, SameInstanceAgainIsANoOpAndDifferentBytesAreSetAside) {
     std::size_t left = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path() / ".incoming")) ++left;
     EXPECT_EQ(left, 0u) << "temporary files left behind";
+}
+
+TEST(IncomingStore, ImportingTheStorageFolderReadsItsInstancesNotItsBookkeeping) {
+    // A storage folder as receives leave it: one instance filed, another object under its UID
+    // set aside, a receive cut off half-way (its part left in .incoming), and the list of the
+    // databases sharing the folder.
+    test::TempDir dir;
+    const std::string storage = dir.file("storage");
+    dicom::IncomingStore store(storage);
+    const std::string original = bytesOf(ctSmall);
+    const auto filed = store.finalize(received(store, original));
+    std::string other = original;
+    other[other.size() - 1] = char(other.back() ^ 0x5a);
+    EXPECT_THROW(store.finalize(received(store, other)), core::Error);
+    (void)received(store, original.substr(0, original.size() / 2));  // the interrupted one
+    dicom::StorageOwners::add(storage, dir.file("a.sqlite"));
+    core::JobContext job;
+    const auto scan = dicom::DicomScanner::scan({storage}, job);
+    ASSERT_EQ(scan.instances.size(), 1u);
+    EXPECT_EQ(scan.instances[0].path, filed.path);
+    EXPECT_EQ(scan.notDicom, 0u) << "the list of databases was counted as a file that is not DICOM";
+    EXPECT_EQ(scan.broken, 0u) << "a half-received file was read";
+    EXPECT_EQ(scan.setAside, 2u);
+    EXPECT_EQ(scan.filesSeen, 1u);
+
+    // Folders of those names elsewhere are nobody's bookkeeping: read as any other.
+    const std::string plain = dir.file("plain");
+    fs::create_directories(plain + "/.conflicts");
+    fs::copy_file(ctSmall, plain + "/.conflicts/ct.dcm");
+    const auto elsewhere = dicom::DicomScanner::scan({plain}, job);
+    EXPECT_EQ(elsewhere.instances.size(), 1u);
+    EXPECT_EQ(elsewhere.setAside, 0u);
 }
 
 TEST(UidPath, SanitisedUidsNeverCollide) {
