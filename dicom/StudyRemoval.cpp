@@ -6,6 +6,7 @@
 #include <set>
 
 #include "core/base/Error.h"
+#include "dicom/DicomHeaderReader.h"
 #include "dicom/IncomingStore.h"
 #include "dicom/StorageOwners.h"
 #include "dicom/StudyDatabase.h"
@@ -52,6 +53,23 @@ bool octreeOf(const std::string& name, const std::string& stem) {
     return rest == ".hvo" || rest == ".preview.hvo" || rest == ".rt.hvo";
 }
 
+/// Indexes again the received files that could not be deleted (their rows are gone): what
+/// stays in the storage folder stays known. Returns how many; a file whose header cannot be
+/// read any more is only named (StudyRemoval::Result::failed).
+std::size_t indexAgain(StudyDatabase& db, const std::vector<std::string>& paths) {
+    std::vector<DicomInstance> again;
+    for (const auto& path : paths) {
+        DicomInstance in;
+        try {
+            if (DicomHeaderReader::read(path, in) == DicomHeaderReader::Kind::Dicom) again.push_back(std::move(in));
+        } catch (const core::Error&) {
+        }
+    }
+    if (again.empty()) return 0;
+    const auto stats = db.addInstances(again);
+    return stats.added + stats.unchanged + stats.moved;
+}
+
 void removeFile(const fs::path& file, std::size_t& count, std::vector<std::string>& failed) {
     std::error_code ec;
     if (fs::remove(file, ec)) ++count;
@@ -87,6 +105,7 @@ StudyRemoval::Result StudyRemoval::remove(StudyDatabase& db, const std::string& 
             }
         }
     std::set<fs::path> folders;  // the series folders emptied, then their study folder
+    std::vector<std::string> undeleted;
     for (const auto& f : removed.files) {
         if (ec || !receivedHere(root, studyUid, f)) {
             ++r.kept;
@@ -99,7 +118,9 @@ StudyRemoval::Result StudyRemoval::remove(StudyDatabase& db, const std::string& 
         const std::size_t failures = r.failed.size();
         removeFile(f.path, r.deleted, r.failed);
         if (r.failed.size() == failures) folders.insert(resolvedFolder(f.path).parent_path());
+        else undeleted.push_back(f.path);
     }
+    r.reindexed = indexAgain(db, undeleted);
     std::set<fs::path> studies;
     for (const auto& series : folders) {
         if (fs::is_empty(series, ec) && !ec) fs::remove(series, ec);

@@ -24,6 +24,9 @@ public:
         std::vector<std::string> sharers;  ///< those databases (StorageOwners), or why one could not be read
         std::size_t octrees = 0;           ///< octree files deleted
         std::vector<std::string> failed;   ///< "PATH: why" for files that could not be deleted
+        /// Of the received files that could not be deleted, those indexed again: the study stays
+        /// listed with them, rather than leaving them in the storage folder unknown to the index.
+        std::size_t reindexed = 0;
     };
     /// Removes `studyUid` (throws core::Error naming an unknown study, changing nothing). A file
     /// is deleted only where IncomingStore would have received it: `storageDir`/<study>/<series>/
@@ -31,7 +34,9 @@ public:
     /// octree only directly in `octreeDir` and named for one of the study's series, unless the
     /// database records it for another. A received file that another study database sharing
     /// the storage folder indexes (StorageOwners) stays; so do all of them when one of those
-    /// databases cannot be read.
+    /// databases cannot be read. A received file that cannot be deleted (a read-only folder, a
+    /// file marked immutable) is indexed again (Result::reindexed), so that removing the study
+    /// again once it can be deleted finishes the job.
     static Result remove(StudyDatabase& db, const std::string& studyUid, const std::string& storageDir,
                          const std::string& octreeDir);
 };

@@ -330,7 +330,11 @@ int StudyBrowser::removeStudy(const QString& studyUid) {
                                .arg(QString::fromStdString(r.sharers.front()));
             if (!r.failed.empty())
                 throw core::Error(summary.toStdString() + "; could not delete " + r.failed.front() +
-                                  (r.failed.size() > 1 ? " and " + std::to_string(r.failed.size() - 1) + " more" : ""));
+                                  (r.failed.size() > 1 ? " and " + std::to_string(r.failed.size() - 1) + " more" : "") +
+                                  (r.reindexed ? "; " + std::to_string(r.reindexed) +
+                                                     " of them indexed again: the study stays listed with them (remove "
+                                                     "it again once they can be deleted)"
+                                               : std::string()));
             return summary;
         },
         [this](const QString& summary) {

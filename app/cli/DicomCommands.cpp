@@ -147,6 +147,9 @@ int removeStudyCommand(int argc, char** argv) {
     }
     if (r.octrees) std::printf("deleted %zu octree(s)\n", r.octrees);
     for (const auto& f : r.failed) std::fprintf(stderr, "could not delete %s\n", f.c_str());
+    if (r.reindexed)
+        std::fprintf(stderr, "indexed again: %zu received file(s) that could not be deleted; the study stays listed with "
+                             "them (remove it again once they can be deleted)\n", r.reindexed);
     return r.failed.empty() ? 0 : 1;
 }
 
