@@ -44,7 +44,8 @@ int sliceCommand(int argc, char** argv) {
     const auto out = args.value("o") ? args.value("o") : args.value("output");
     if (args.positional().size() != 1 || !out)
         throw core::Error("usage: holovox-cli slice FILE.hvo --plane axial|coronal|sagittal|NX,NY,NZ [--at X,Y,Z] "
-                          "[--size WxH] [--pixel MM] [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--scroll N] "
+                          "[--size WxH] [--pixel MM] [--level L (the base volume's octree level; an overlay and labels are sampled at "
+                          "the level their own voxels need)] [--slab MM --slab-mode mip|minip|mean] [--window W,L] [--scroll N] "
                           "[--overlay B.hvo[:lut=NAME,opacity=0.5,window=W/L]] [--labels L.hvo [--lut FILE] "
                           "[--label-opacity A] [--no-outline|--outline-only]] [--force-frame] -o OUT.png");
     const auto reader = core::OctreeReader::open(args.positional()[0]);
