@@ -15,7 +15,8 @@
 namespace hvx::dicom {
 
 /// Files completely received temporary files into an IncomingStore on a few threads of its own,
-/// so that a transfer with no per-instance answer (WADO-RS) goes on receiving while earlier
+/// so that a pull from an archive that keeps the originals (WADO-RS, and C-GET, which answers
+/// each C-STORE once the instance is written) goes on receiving while earlier
 /// instances are flushed to disk: each file is still flushed, renamed and its folder flushed
 /// before it is reported (IncomingStore::place, then flushFolder), and the flushes of several
 /// files at once share the disk's cache flushes (500 files of 128 KiB: 0.8 s one after the

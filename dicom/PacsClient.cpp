@@ -25,6 +25,7 @@
 #include "dicom/DatasetText.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/DicomWebClient.h"
+#include "dicom/IncomingFiler.h"
 #include "dicom/IncomingStore.h"
 #include "dicom/PacsProtocol.h"
 #include "dicom/QuickAckTransport.h"
@@ -92,6 +93,10 @@ public:
     std::size_t delivered = 0;
     Uint16 finalStatus = 0;
     IncomingStore* store = nullptr;
+    /// C-GET: files each received instance while the next ones arrive (the C-STORE is answered
+    /// once the instance is written; the archive keeps the original, and an instance is
+    /// reported, and so indexed, only once flushed and in place).
+    IncomingFiler* filer = nullptr;
     std::function<void(const DicomInstance&)> onStored;
     std::function<void(const RetrieveProgress&)> onProgress;
     RetrieveProgress progress;
@@ -162,14 +167,30 @@ public:
         OFCondition c = DcmSCU::handleSTORERequestFile(presID, tmp.c_str(), request);
         if (c.bad()) return c;
         try {
-            const DicomInstance in = store->finalize(tmp);
-            ++progress.received;
-            if (onStored) onStored(in);
+            if (filer) {
+                filer->submit(tmp, [this](const DicomInstance& in) { stored(in); });
+            } else {
+                stored(store->finalize(tmp));
+            }
         } catch (const core::Error& e) {
             storeError = e.what();
             return EC_IllegalCall;
         }
         return c;
+    }
+    /// Counts and reports an instance in place (on the receiving thread).
+    void stored(const DicomInstance& in) {
+        ++progress.received;
+        if (onStored) onStored(in);
+    }
+    /// After a failed or cancelled C-GET: the instances already filed are reported all the same
+    /// (their error, if any, is the lesser one).
+    void reportFiled() {
+        if (!filer) return;
+        try {
+            filer->finish([this](const DicomInstance& in) { stored(in); });
+        } catch (const std::exception&) {
+        }
     }
     void notifyInstanceStored(const OFString&, const OFString&, const OFString&) const override {}
     /// DcmSCU keeps this protected; call after initNetwork().
@@ -334,9 +355,11 @@ RetrieveProgress PacsClient::get(const std::string& studyUid, const std::string&
                                  const std::vector<std::string>& sopUids) {
     if (impl_->web) return impl_->web->get(studyUid, seriesUid, storageDir, onStored, onProgress, sopUids);
     IncomingStore store(storageDir, impl_->local.minFreeBytes);
+    IncomingFiler filer(store);
     Scu scu;
     scu.job = impl_->job;
     scu.store = &store;
+    scu.filer = &filer;
     scu.onStored = onStored;
     scu.onProgress = onProgress;
     scu.setStorageMode(DCMSCU_STORAGE_BIT_PRESERVING);
@@ -351,12 +374,20 @@ RetrieveProgress PacsClient::get(const std::string& studyUid, const std::string&
         impl_->context(scu, UID_GETStudyRootQueryRetrieveInformationModel, "retrieve by C-GET"), &keys, nullptr);
     if (c.bad()) {
         scu.abortAssociation();
+        scu.reportFiled();
         if (scu.jobCancelled()) throw core::Cancelled();
         std::string why = PacsProtocol::describeDimseFailure(impl_->where(), "C-GET", c.text(), impl_->local.timeoutSeconds);
         if (!scu.storeError.empty()) why += "; " + scu.storeError;
         throw core::Error(why + " (" + std::to_string(scu.progress.received) + " instances were stored completely)");
     }
     scu.releaseAssociation();
+    try {  // the last instances are flushed and reported before the retrieve is done
+        filer.finish([&scu](const DicomInstance& in) { scu.stored(in); });
+    } catch (const core::Error& e) {
+        if (scu.jobCancelled()) throw core::Cancelled();
+        throw core::Error(impl_->where() + " (C-GET): " + e.what() + " (" + std::to_string(scu.progress.received) +
+                          " instances were stored completely)");
+    }
     if (scu.jobCancelled()) throw core::Cancelled();
     PacsProtocol::checkFinalStatus(impl_->where(), "C-GET", scu.finalStatus, impl_->local.aeTitle);
     return scu.progress;

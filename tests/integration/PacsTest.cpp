@@ -383,15 +383,17 @@ TEST(PacsFaults, PeerKilledMidRetrieveThenRetryCompletes) {
     peer->seed(files);
     auto s = peer->settings();
     s.local.timeoutSeconds = 5;
-    // The peer dies as the tenth instance is filed, from inside the retrieve's own callback: no
-    // thread spinning on a count (which hung when the retrieve ended before ten, and could miss).
-    std::atomic<int> stored{0};
+    // The peer dies once it has sent ten instances, from inside the retrieve's own progress
+    // callback: no thread spinning on a count (which hung when the retrieve ended before ten, and
+    // could miss). (Not from the stored callback: instances are filed, and so reported, while the
+    // next ones arrive, and all sixty may have arrived before the tenth is reported.)
+    std::atomic<int> sent{0};
     const auto e = errorOf([&] {
-        dicom::PacsClient(s.local, s.nodes[0]).get(o.studyUid, "", out.file("rx"), [&](const dicom::DicomInstance&) {
-            if (++stored == 10) peer->kill();
-        }, {});
+        dicom::PacsClient(s.local, s.nodes[0]).get(o.studyUid, "", out.file("rx"), {}, [&](const dicom::RetrieveProgress& p) {
+            if (sent < 10 && (sent = p.completed) >= 10) peer->kill();
+        });
     });
-    ASSERT_GE(stored.load(), 10) << "the retrieve ended before the peer was killed: " << e;
+    ASSERT_GE(sent.load(), 10) << "the retrieve ended before the peer was killed: " << e;
     EXPECT_NE(e.find("interrupted"), std::string::npos) << e;
     EXPECT_TRUE(std::filesystem::is_empty(out.file("rx/.incoming"))) << "half-written file left behind";
     // Every file that is there is complete and valid.
