@@ -18,6 +18,7 @@
 #include "core/volume/PhantomVoxelSource.h"
 #include "dicom/DicomHeaderReader.h"
 #include "dicom/DicomSeriesWriter.h"
+#include "dicom/IncomingStore.h"
 #include "dicom/PacsClient.h"
 #include "dicom/RetrieveJob.h"
 #include "dicom/StorageOwners.h"
@@ -159,6 +160,47 @@ TEST_F(OrthancPeer, GetStoresByteIdenticalInstancesUnderSanitizedPaths) {
         EXPECT_EQ(path.rfind(out.file("rx/") + seeded_->studyA + "/" + seeded_->seriesA2 + "/", 0), 0u) << path;
     }
     EXPECT_TRUE(std::filesystem::is_empty(out.file("rx/.incoming")));
+}
+
+// An instance that arrives by C-GET under the UID of another object already stored is set aside,
+// the stored one kept, and the retrieve fails naming it, while every other instance is filed and
+// reported (the filer's threads place instances after their C-STORE is answered).
+TEST_F(OrthancPeer, GetOfAnInstanceConflictingWithAStoredOneSetsItAsideAndSaysSo) {
+    test::TempDir out;
+    const std::string rx = out.file("rx");
+    const auto originals = bySop(seeded_->files);
+    std::string victimSop, victimFile;
+    for (const auto& [sop, path] : originals) {
+        dicom::DicomInstance in;
+        dicom::DicomHeaderReader::read(path, in);
+        if (in.seriesInstanceUid != seeded_->seriesA2) continue;
+        victimSop = sop;
+        victimFile = dicom::IncomingStore::placeOf(rx, in.studyInstanceUid, in.seriesInstanceUid, sop);
+        break;
+    }
+    ASSERT_FALSE(victimFile.empty());
+    std::filesystem::create_directories(std::filesystem::path(victimFile).parent_path());
+    std::filesystem::copy_file(originals.at(victimSop), victimFile);
+    {  // another object under that SOP Instance UID: its last byte changed
+        std::fstream f(victimFile, std::ios::in | std::ios::out | std::ios::binary);
+        f.seekg(-1, std::ios::end);
+        const char last = char(f.get());
+        f.seekp(-1, std::ios::end);
+        f.put(char(last ^ 0x5a));
+    }
+    const std::string stored = datasetBytes(victimFile);
+    std::vector<std::string> reported;
+    const auto e = errorOf([&] {
+        client().get(seeded_->studyA, seeded_->seriesA2, rx, [&](const dicom::DicomInstance& in) { reported.push_back(in.path); }, {});
+    });
+    EXPECT_NE(e.find("instance " + victimSop + " arrived again with different content"), std::string::npos) << e;
+    EXPECT_EQ(datasetBytes(victimFile), stored) << "the stored instance was replaced";
+    EXPECT_EQ(reported.size(), 9u) << "the other instances are filed and reported";
+    std::size_t aside = 0;
+    for (const auto& f : std::filesystem::directory_iterator(rx + "/.conflicts"))
+        aside += datasetBytes(f.path().string()) == datasetBytes(originals.at(victimSop));
+    EXPECT_EQ(aside, 1u);
+    EXPECT_TRUE(std::filesystem::is_empty(rx + "/.incoming"));
 }
 
 TEST_F(OrthancPeer, MoveToOurStorageScpThenIndexAndBuild) {
