@@ -5,6 +5,7 @@
 #include <dcmtk/dcmdata/dcitem.h>
 #include <dcmtk/dcmdata/dcsequen.h>
 
+#include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -63,6 +64,12 @@ void DatasetText::toUtf8(DcmItem& item) {
     OFString set;
     if (item.findAndGetOFStringArray(DCM_SpecificCharacterSet, set).bad() || set.empty() || set == "ISO_IR 192")
         return;
+    // One conversion at a time: each opens and closes iconv (DCMTK's and EUC-JP's here), and
+    // glibc loads and unloads its gconv modules with dlopen and dlclose for it. ThreadSanitizer
+    // cannot see the dynamic loader's own lock and reported two header-reading threads' frees
+    // and allocations in ld.so as a race; the conversions take microseconds.
+    static std::mutex conversions;
+    const std::lock_guard<std::mutex> lock(conversions);
     if (item.convertToUTF8().bad()) convertJapanese(item, {});
 }
 
