@@ -15,6 +15,7 @@
 #include "core/base/ThreadPool.h"
 #include "dicom/DcmtkSetup.h"
 #include "dicom/DicomHeaderReader.h"
+#include "dicom/IncomingStore.h"
 #include "dicom/StorageOwners.h"
 
 namespace fs = std::filesystem;
@@ -73,10 +74,13 @@ std::string resolveCase(const std::string& path) {
 /// storage folder had counted the list as a file that is not DICOM and read half-received files.
 bool isStorageBookkeeping(const fs::path& p) {
     const std::string name = p.filename().string();
-    if (name != StorageOwners::kListName && name != ".incoming" && name != ".conflicts") return false;
+    if (name != StorageOwners::kListName && name != IncomingStore::kIncomingFolder &&
+        name != IncomingStore::kConflictsFolder)
+        return false;
     std::error_code ec;
     const fs::path folder = p.parent_path();
-    return fs::is_regular_file(folder / StorageOwners::kListName, ec) || fs::is_directory(folder / ".incoming", ec);
+    return fs::is_regular_file(folder / StorageOwners::kListName, ec) ||
+           fs::is_directory(folder / IncomingStore::kIncomingFolder, ec);
 }
 
 std::size_t countFiles(const fs::path& folder) {

@@ -60,6 +60,8 @@ public:
     }
     /// Waits for the instances being filed and reports them; throws the first one's error.
     void finish() { filer_.finish(onStored_); }
+    /// After a failed transfer: the instances already filed are reported all the same.
+    void finishAfterFailure() { filer_.finishAfterFailure(onStored_); }
 
 private:
     void flush() {
@@ -89,15 +91,6 @@ private:
     std::vector<char> buffer_ = std::vector<char>(std::size_t(1) << 20);  // writes of 1 MiB, not of each chunk
     std::size_t buffered_ = 0;
 };
-
-/// After a failed transfer: the instances already filed are reported all the same (their error,
-/// if any, is the lesser one).
-void reportFiled(WadoSink& sink) {
-    try {
-        sink.finish();
-    } catch (const std::exception&) {
-    }
-}
 
 std::string randomBoundary() {
     std::random_device rd;
@@ -228,10 +221,10 @@ void DicomWebClient::retrieve(const std::string& url, IncomingStore& store, Retr
         }
         sink.finish();
     } catch (const core::Cancelled&) {
-        reportFiled(sink);
+        sink.finishAfterFailure();
         throw;
     } catch (const core::Error& e) {
-        reportFiled(sink);
+        sink.finishAfterFailure();
         throw core::Error(what() + " (WADO-RS retrieve): " + e.what() + " (" + std::to_string(progress.received) +
                           " instances were stored completely)");
     }

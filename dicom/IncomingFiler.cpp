@@ -54,6 +54,13 @@ void IncomingFiler::finish(const std::function<void(const DicomInstance&)>& onSt
     if (!firstError_.empty()) throw core::Error(std::exchange(firstError_, std::string()));
 }
 
+void IncomingFiler::finishAfterFailure(const std::function<void(const DicomInstance&)>& onStored) {
+    try {
+        finish(onStored);
+    } catch (const std::exception&) {
+    }
+}
+
 void IncomingFiler::deliverDone(std::unique_lock<std::mutex>& lock,
                                 const std::function<void(const DicomInstance&)>& onStored) {
     while (!items_.empty() && items_.front().done) {

@@ -45,6 +45,9 @@ public:
     /// Waits for every submitted file and delivers them; then throws core::Error with the first
     /// file's error (not DICOM, a conflicting instance), if any.
     void finish(const std::function<void(const DicomInstance&)>& onStored);
+    /// After a failed or cancelled transfer: as finish(), the instances already filed reported
+    /// all the same, without throwing (the transfer's own error is the one to tell).
+    void finishAfterFailure(const std::function<void(const DicomInstance&)>& onStored);
     static constexpr std::size_t kMaxPending = 64;
     /// Renames wait for their folder's flush until there are this many, until the receiving
     /// thread waits for them, or for at most kFlushDelay.

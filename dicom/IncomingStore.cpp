@@ -86,7 +86,7 @@ int renameNoReplace(const std::string& from, const std::string& to) {
 IncomingStore::IncomingStore(std::string storageDir, std::uint64_t minFreeBytes)
     : dir_(std::move(storageDir)), minFreeBytes_(minFreeBytes) {
     std::error_code ec;
-    fs::create_directories(fs::path(dir_) / ".incoming", ec);
+    fs::create_directories(fs::path(dir_) / kIncomingFolder, ec);
     if (ec) throw core::Error(dir_ + ": cannot create the storage folder (" + ec.message() + ")");
 }
 
@@ -115,7 +115,7 @@ std::string IncomingStore::temporaryFile(int& fd) {
         char name[96];
         std::snprintf(name, sizeof name, "rx-%d-%lu-%016llx.part", int(::getpid()), ++processCounter,
                       static_cast<unsigned long long>(random()));
-        const std::string path = (fs::path(dir_) / ".incoming" / name).string();
+        const std::string path = (fs::path(dir_) / kIncomingFolder / name).string();
         // Created here, exclusively and without following a link, so the name is ours alone.
         fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
         if (fd >= 0) return path;
@@ -168,7 +168,7 @@ IncomingStore::Placed IncomingStore::place(const std::string& temporary) {
             return Placed{std::move(in), folder.string()};  // (another thread's rename may not be flushed yet)
         }
         // Another object under the same SOP Instance UID: never replace what is stored.
-        const fs::path aside = fs::path(dir_) / ".conflicts";
+        const fs::path aside = fs::path(dir_) / kConflictsFolder;
         fs::create_directories(aside, ec);
         const fs::path kept = aside / (UidPath::component(in.sopInstanceUid) + "-" + fs::path(temporary).stem().string() + ".dcm");
         if (!ec && std::rename(temporary.c_str(), kept.c_str()) == 0)

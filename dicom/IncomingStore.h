@@ -49,6 +49,10 @@ public:
     /// Flushes a folder's entries to disk (fsync of the folder).
     static void flushFolder(const std::string& folder);
     const std::string& storageDir() const { return dir_; }
+    /// The store's own folders inside the storage folder: instances being received, and
+    /// objects refused on receipt and set aside.
+    static constexpr const char* kIncomingFolder = ".incoming";
+    static constexpr const char* kConflictsFolder = ".conflicts";
 
 private:
     std::string dir_;

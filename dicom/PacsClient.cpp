@@ -152,7 +152,7 @@ public:
                                        T_DIMSE_C_StoreRQ* request) override {
         // DCMTK would name the file after the (untrusted) SOP Instance UID; we receive into a
         // temporary name and let the IncomingStore place it.
-        if (!store) return EC_IllegalCall;
+        if (!store || !filer) return EC_IllegalCall;
         if (jobCancelled()) {  // the peer goes on sending: the association is aborted
             storeError = "cancelled";
             return EC_IllegalCall;
@@ -167,11 +167,7 @@ public:
         OFCondition c = DcmSCU::handleSTORERequestFile(presID, tmp.c_str(), request);
         if (c.bad()) return c;
         try {
-            if (filer) {
-                filer->submit(tmp, [this](const DicomInstance& in) { stored(in); });
-            } else {
-                stored(store->finalize(tmp));
-            }
+            filer->submit(tmp, [this](const DicomInstance& in) { stored(in); });
         } catch (const core::Error& e) {
             storeError = e.what();
             return EC_IllegalCall;
@@ -182,15 +178,6 @@ public:
     void stored(const DicomInstance& in) {
         ++progress.received;
         if (onStored) onStored(in);
-    }
-    /// After a failed or cancelled C-GET: the instances already filed are reported all the same
-    /// (their error, if any, is the lesser one).
-    void reportFiled() {
-        if (!filer) return;
-        try {
-            filer->finish([this](const DicomInstance& in) { stored(in); });
-        } catch (const std::exception&) {
-        }
     }
     void notifyInstanceStored(const OFString&, const OFString&, const OFString&) const override {}
     /// DcmSCU keeps this protected; call after initNetwork().
@@ -374,7 +361,7 @@ RetrieveProgress PacsClient::get(const std::string& studyUid, const std::string&
         impl_->context(scu, UID_GETStudyRootQueryRetrieveInformationModel, "retrieve by C-GET"), &keys, nullptr);
     if (c.bad()) {
         scu.abortAssociation();
-        scu.reportFiled();
+        filer.finishAfterFailure([&scu](const DicomInstance& in) { scu.stored(in); });
         if (scu.jobCancelled()) throw core::Cancelled();
         std::string why = PacsProtocol::describeDimseFailure(impl_->where(), "C-GET", c.text(), impl_->local.timeoutSeconds);
         if (!scu.storeError.empty()) why += "; " + scu.storeError;
