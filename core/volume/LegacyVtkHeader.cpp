@@ -103,7 +103,7 @@ LegacyVtkHeader LegacyVtkHeader::parse(const std::string& path) {
         return h;
     }
     if (format == "ascii")
-        notStreamable("its data is ASCII");
+        h.ascii = true;
     else if (format != "binary")
         throw bad("its third line is '" + format + "', not ASCII or BINARY");
     const std::string datasetKey = lowercase(words.next());

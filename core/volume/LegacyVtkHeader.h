@@ -15,18 +15,20 @@ namespace hvx::core {
 /// where both readings agree, and only for data Holovox streams (VTK's reader refuses it).
 /// VTK files name no patient axes; like ITK, which writes them, Holovox takes them as LPS.
 ///
-/// A plain image (BINARY, point data whose first attribute is one-component SCALARS of any
-/// integer or float type but `long`, whose size is the platform's) is streamed by Holovox
-/// (RawVoxelSource: VTK's binary data is big-endian, x fastest, and its size is checked).
-/// Anything else (ASCII data, cell data, field data, several components, ...) goes to VTK's own
-/// reader (VtkImageSource), which reads the whole image, and streamReason says why.
+/// A plain image (point data whose first attribute is one-component SCALARS of any integer or
+/// float type but `long`, whose size is the platform's) is streamed by Holovox: BINARY by
+/// RawVoxelSource (VTK's binary data is big-endian, x fastest, and its size is checked), ASCII
+/// by AsciiVoxelSource (every value checked). Anything else (cell data, field data, several
+/// components, ...) goes to VTK's own reader (VtkImageSource), which reads the whole image, and
+/// streamReason says why.
 class LegacyVtkHeader {
 public:
     VolumeGeometry geometry;  ///< scalarType: storedTypeOf(element) when streamable
     FileElement element = FileElement::UInt8;  ///< the SCALARS type, when streamable
     std::uint64_t dataOffset = 0;  ///< where the voxels begin: after the LOOKUP_TABLE line
+    bool ascii = false;            ///< ASCII: the voxels are written as text
     std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
-    /// Empty when Holovox streams the data itself; otherwise why not ("its data is ASCII").
+    /// Empty when Holovox streams the data itself; otherwise why not ("its SCALARS have 3 components").
     std::string streamReason;
 
     /// Parses the header (at most its first 64 KiB); throws core::Error naming the file and the

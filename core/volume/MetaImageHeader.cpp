@@ -107,7 +107,7 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     MetaImageHeader h;
     VolumeGeometry& g = h.geometry;
     int ndims = 0;
-    bool dims = false, spacing = false, binary = false, dataFileSeen = false;
+    bool dims = false, spacing = false, binary = false, binarySeen = false, dataFileSeen = false;
     std::string elementType;
     std::int64_t headerSize = 0;
     int channels = 1;
@@ -164,6 +164,7 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
                                      "TransformMatrix alone and takes them as LPS");
         } else if (key == "BinaryData") {
             binary = isTrue(value);
+            binarySeen = true;
         } else if (key == "BinaryDataByteOrderMSB" || key == "ElementByteOrderMSB") {
             h.bigEndian = isTrue(value);
         } else if (key == "CompressedData") {
@@ -226,7 +227,11 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
             throw Error(path + ": its ElementDataFile names " + std::to_string(h.sliceFiles.size()) +
                         " slice files for DimSize's " + std::to_string(g.dims[2]) + " slices");
     }
-    if (!binary) notStreamable("its data is not binary");
+    h.ascii = !binary;  // MetaIO's default
+    if (!binarySeen)
+        h.warnings.push_back(path + ": MetaImage header gives no BinaryData: its data are read as text, as MetaIO reads them");
+    if (h.ascii && !h.sliceFiles.empty()) notStreamable("its list of data files is ASCII");
+    if (h.ascii && h.compressed) notStreamable("its data is ASCII and compressed");
     if (channels != 1) notStreamable("it has " + std::to_string(channels) + " channels");
     // MetaIO's element types (metaTypes.h: MET_LONG is 32 bits, MET_LONG_LONG 64).
     static const std::pair<const char*, FileElement> kTypes[] = {
@@ -243,7 +248,11 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
         h.element = type->second;
         g.scalarType = storedTypeOf(h.element);
     }
-    if (h.streamReason.empty() && h.sliceFiles.empty()) {
+    if (h.streamReason.empty() && h.sliceFiles.empty() && h.ascii) {  // text: its length is not the voxels'
+        if (h.dataFile != path && headerSize > 0) h.dataOffset = std::uint64_t(headerSize);
+        if (headerSize == -1) notStreamable("it gives HeaderSize = -1 for ASCII data");
+        if (h.dataFile == path && headerSize != 0) notStreamable("it gives a HeaderSize for local data");
+    } else if (h.streamReason.empty() && h.sliceFiles.empty()) {
         // The bytes the data takes in its file: the voxels, or the compressed size when given.
         const std::uint64_t bytes = h.compressed ? h.compressedBytes
                                                  : std::uint64_t(g.dims[0]) * g.dims[1] * g.dims[2] * core::elementSize(h.element);

@@ -17,9 +17,10 @@ namespace hvx::core {
 /// A plain file (3-D, binary, one channel of any integer or float type, in one data file) is
 /// streamed by Holovox: RawVoxelSource, which checks its size, or InflatedVoxelSource when its
 /// data is compressed; so is a list of 2-D slice files (ElementDataFile = LIST, or a MetaIO file
-/// pattern such as "slice%03d.raw 1 100 1"), uncompressed, by SliceListVoxelSource. Anything
-/// else (ASCII data, several channels, ...) goes to VTK's reader (VtkImageSource), which reads
-/// it whole, and streamReason says why.
+/// pattern such as "slice%03d.raw 1 100 1"), uncompressed, by SliceListVoxelSource; so is ASCII
+/// data (BinaryData = False) in one file, by AsciiVoxelSource, which checks every value. Anything
+/// else (several channels, ASCII slice files, ...) goes to VTK's reader (VtkImageSource), which
+/// reads it whole, and streamReason says why.
 class MetaImageHeader {
 public:
     VolumeGeometry geometry;      ///< dims, spacing, origin, direction; scalarType when streamable
@@ -29,9 +30,10 @@ public:
     std::vector<std::string> sliceFiles;  ///< the files of a slice each, in order, when listed
     std::uint64_t dataOffset = 0; ///< where they begin in it
     bool compressed = false;
+    bool ascii = false;           ///< BinaryData = False: the voxels are written as text
     std::uint64_t compressedBytes = 0;  ///< CompressedDataSize, 0 when not given
     std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
-    /// Empty when Holovox streams the data itself; otherwise why not ("its data is not binary").
+    /// Empty when Holovox streams the data itself; otherwise why not ("it has 3 channels").
     std::string streamReason;
 
     /// Parses the header; throws core::Error naming the file and the bad field.

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/base/Error.h"
+#include "core/volume/AsciiVoxelSource.h"
 #include "core/volume/FiniteValueSource.h"
 #include "core/volume/InflatedVoxelSource.h"
 #include "core/volume/LegacyVtkHeader.h"
@@ -110,6 +111,7 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& i
                 h.sliceFiles, RawVoxelSource::described(h.geometry, h.element, h.bigEndian, 0, h.warnings, input), input);
         if (h.streamReason.empty()) {  // streamed by Holovox: the size of plain data checked
             const auto o = RawVoxelSource::described(h.geometry, h.element, h.bigEndian, h.dataOffset, h.warnings, input);
+            if (h.ascii) return std::make_unique<AsciiVoxelSource>(h.dataFile, o);
             if (h.compressed) return std::make_unique<InflatedVoxelSource>(h.dataFile, o);
             return std::make_unique<RawVoxelSource>(h.dataFile, o);
         }
@@ -120,7 +122,8 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& i
         const LegacyVtkHeader h = LegacyVtkHeader::read(input);
         if (h.streamReason.empty()) {  // streamed by Holovox: big-endian, and the file must hold the voxels
             auto o = RawVoxelSource::described(h.geometry, h.element, true, h.dataOffset, h.warnings, input);
-            o.trailingBytes = true;
+            o.trailingBytes = true;  // other attributes may follow
+            if (h.ascii) return std::make_unique<AsciiVoxelSource>(input, o);
             return std::make_unique<RawVoxelSource>(input, o);
         }
     }

@@ -6,7 +6,7 @@
 #    checksums made valid so that it explores forged files, not checksum failures;
 #  - volume_fuzzer, seeded with tests/fuzz/volume_seeds/ (MetaImage plain, big-endian and
 #    zlib-compressed, NRRD raw, gzip, with skips and 4-D, NIfTI plain, gzip and float64, legacy VTK short and
-#    double; the first byte of each
+#    double, MetaImage and legacy VTK in ASCII; the first byte of each
 #    picks the format).
 # Every seed is executed under the sanitizers first, then mutated.
 # -malloc_limit_mb is above 4 GiB because DCMTK must read deflated streams eagerly and asks
