@@ -1,8 +1,12 @@
 #include "core/volume/VtkImageSource.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -21,6 +25,27 @@ bool endsWith(const std::string& s, const std::string& suffix) {
                                                    [](char a, char b) { return std::tolower(a) == b; });
 }
 
+// Half the machine's memory: the most an image that VTK's reader holds may take.
+double memoryForReading() {
+    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0 ? double(pages) * double(page) / 2.0 : double(std::uint64_t(4) << 30);
+}
+
+std::string gib(double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GiB", bytes / double(std::uint64_t(1) << 30));
+    return text;
+}
+
+// True when a VTK XML file names a compressor in its first 4 KiB (its VTKFile element): its data
+// may then hold more voxels than bytes.
+bool namesCompressor(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(4096, '\0');
+    in.read(head.data(), std::streamsize(head.size()));
+    head.resize(std::size_t(in.gcount()));
+    return head.find("compressor=") != std::string::npos;
+}
 }  // namespace
 
 struct VtkImageSource::Impl {
@@ -104,6 +129,24 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)) {
         geometry_.direction[a] = step / len;
     }
     geometry_.validate(path_);
+    // VTK allocates what the header announces before it reads a value: an extent the file cannot
+    // hold had it take all the memory there is (and fail after minutes).
+    const double sliceVoxels = double(geometry_.dims[0]) * double(geometry_.dims[1]);
+    const double voxels = sliceVoxels * geometry_.dims[2];
+    if (format == HvxVtkXmlImage && !namesCompressor(path_)) {  // uncompressed: a byte a voxel at least
+        const auto size = std::filesystem::file_size(path_, ec);
+        if (!ec && double(size) < voxels)
+            throw Error(path_ + ": its extent gives " + std::to_string(std::uint64_t(voxels)) + " voxels, more than its " +
+                        std::to_string(size) + " bytes can hold uncompressed");
+    }
+    const double width = double(scalarSize(geometry_.scalarType));
+    const double fileWidth = !h.converted ? width : geometry_.scalarType == ScalarType::Int16 ? 1.0 : 8.0;  // int8, float64
+    const double held = sliceVoxels * (h.streams ? std::min<double>(32, geometry_.dims[2]) : voxels / sliceVoxels) *
+                        (fileWidth + width);  // VTK's array, and the slices kept here
+    if (held > memoryForReading())
+        throw Error(path_ + ": VTK's reader would hold " + gib(held) + " of it in memory at once, more than half of this "
+                    "machine's " + gib(2 * memoryForReading()) + "; written as NRRD, NIfTI or a binary MetaImage, Holovox "
+                    "streams it");
 }
 
 VtkImageSource::~VtkImageSource() = default;

@@ -17,7 +17,9 @@ namespace hvx::core {
 /// VtkImageSource (or libraryVersion()) loads it, and throws core::Error when it cannot.
 class VtkImageSource final : public VoxelSource {
 public:
-    /// Opens the file and reads its information; throws core::Error naming it.
+    /// Opens the file and reads its information; throws core::Error naming it, also when VTK
+    /// would have to hold more of it at once than half this machine's memory, or when an
+    /// uncompressed XML file is too short for the voxels its extent announces.
     explicit VtkImageSource(std::string path);
     /// VTK's version as the reader module links it ("9.1.0"), or a sentence when the module
     /// cannot be loaded.

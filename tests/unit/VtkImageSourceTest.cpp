@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstdint>
 #include <fstream>
 #include <functional>
@@ -178,4 +179,35 @@ TEST(VtkImageSource, ATruncatedLegacyFileIsAnErrorNotZeros) {
     });
     EXPECT_EQ(e.rfind(dir.file("b.vtk") + ": cannot read voxel data", 0), 0u) << e;
     EXPECT_NE(e.find("Error reading binary data"), std::string::npos) << e;
+}
+
+TEST(VtkImageSource, AnExtentItsFileCannotHoldIsRefusedBeforeVtkAllocatesIt) {
+    // VTK allocates the extent a header announces before reading a value: this file, whose four
+    // values announce 10^13 voxels, had it take 17 GiB and fail with bad_alloc after 83 s.
+    test::TempDir dir;
+    auto vti = [&](const std::string& name, const std::string& extent, const std::string& fileAttributes) {
+        std::ofstream(dir.file(name)) << "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\" "
+                                         "byte_order=\"LittleEndian\"" << fileAttributes << ">\n<ImageData WholeExtent=\""
+                                      << extent << "\" Origin=\"0 0 0\" Spacing=\"1 1 1\">\n<Piece Extent=\"" << extent
+                                      << "\">\n<PointData Scalars=\"v\">\n<DataArray type=\"Int16\" Name=\"v\" "
+                                         "format=\"ascii\">\n1 2 3 4\n</DataArray>\n</PointData>\n</Piece>\n</ImageData>\n</VTKFile>\n";
+    };
+    vti("big.vti", "0 99999 0 99999 0 999", "");
+    const auto start = std::chrono::steady_clock::now();
+    std::string e = errorOf([&] { core::VoxelSourceFactory::open(dir.file("big.vti")); });
+    EXPECT_EQ(e.rfind(dir.file("big.vti") + ": its extent gives 10000000000000 voxels, more than its ", 0), 0u) << e;
+    EXPECT_NE(e.find(" bytes can hold uncompressed"), std::string::npos) << e;
+    // Compressed data may hold far more voxels than bytes; what VTK would hold at once (32
+    // slices of 10^10 voxels here) must still fit in half the machine's memory.
+    vti("zlib.vti", "0 99999 0 99999 0 999", " compressor=\"vtkZLibDataCompressor\"");
+    e = errorOf([&] { core::VoxelSourceFactory::open(dir.file("zlib.vti")); });
+    EXPECT_EQ(e.rfind(dir.file("zlib.vti") + ": VTK's reader would hold 1192.1 GiB of it in memory at once, more than half of this machine's ", 0), 0u) << e;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+    // A small file is read as before, and one whose values are too few says so.
+    vti("small.vti", "0 1 0 1 0 0", "");
+    auto src = core::VoxelSourceFactory::open(dir.file("small.vti"));
+    EXPECT_EQ(test::readAll<std::int16_t>(*src), (std::vector<std::int16_t>{1, 2, 3, 4}));
+    vti("short.vti", "0 1 0 1 0 1", "");
+    e = errorOf([&] { test::readAll<std::int16_t>(*core::VoxelSourceFactory::open(dir.file("short.vti"))); });
+    EXPECT_NE(e.find("cannot read voxel data"), std::string::npos) << e;
 }
