@@ -51,6 +51,9 @@ public:
     BuildReport build(VoxelSource& source, const std::string& output, JobContext& job);
 
 private:
+    /// Throws core::Error naming `name` when the build would hold more at once than this
+    /// machine's memory (slices too large, or too many bricks), before anything is allocated.
+    void checkMemory(const VolumeGeometry& g, const std::string& name) const;
     BuildOptions options_;
 };
 

@@ -1,5 +1,6 @@
 #include "core/volume/InflatedVoxelSource.h"
 
+#include <sys/stat.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -36,7 +37,21 @@ InflatedVoxelSource::InflatedVoxelSource(std::string path, const RawVoxelSource:
     geometry_.validate(path_);
     stream_->file = std::fopen(path_.c_str(), "rbe");
     if (!stream_->file) throw Error(path_ + ": cannot open (" + std::strerror(errno) + ")");
+    struct stat st {};
+    if (::fstat(::fileno(stream_->file), &st) == 0 && S_ISREG(st.st_mode)) {
+        const std::uint64_t size = std::uint64_t(st.st_size);
+        const double voxelBytes = double(geometry_.voxelCount()) * double(elementSize(options_.element));
+        checkDeflatedCanHold(path_, size > options_.headerBytes ? size - options_.headerBytes : 0,
+                             options_.inflatedTotal ? double(options_.inflatedTotal) : voxelBytes);
+    }
     restart();
+}
+
+void InflatedVoxelSource::checkDeflatedCanHold(const std::string& file, std::uint64_t compressedBytes, double bytes) {
+    constexpr double kMostDeflateRatio = 1032.0;
+    if (bytes > double(compressedBytes) * kMostDeflateRatio)
+        throw Error(file + ": its header needs " + std::to_string(std::uint64_t(bytes)) + " bytes once inflated, more than its " +
+                    std::to_string(compressedBytes) + " bytes of compressed data can hold (deflate packs at most 1032 bytes into one)");
 }
 
 InflatedVoxelSource::~InflatedVoxelSource() = default;

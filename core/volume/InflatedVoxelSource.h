@@ -22,6 +22,11 @@ public:
     InflatedVoxelSource(const InflatedVoxelSource&) = delete;
     InflatedVoxelSource& operator=(const InflatedVoxelSource&) = delete;
 
+    /// Deflate (zlib, gzip) packs at most 1032 bytes into one (zlib's technical notes): throws
+    /// core::Error naming `file` when `compressedBytes` cannot hold `bytes` once inflated, so
+    /// that a header promising more than its data can hold is refused before anything is read.
+    static void checkDeflatedCanHold(const std::string& file, std::uint64_t compressedBytes, double bytes);
+
     const VolumeGeometry& geometry() const override { return geometry_; }
     void readSlices(std::uint32_t firstSlice, std::uint32_t count, void* dst) override;
     std::string describe() const override { return path_; }

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/base/Error.h"
+#include "core/volume/InflatedVoxelSource.h"
 #include "core/volume/VolumeChoice.h"
 
 namespace hvx::core {
@@ -74,10 +75,12 @@ NiftiVoxelSource::NiftiVoxelSource(std::string path, std::uint32_t volume)
     header_ = NiftiHeader::parse(raw, std::size_t(got), path_);
     if (const std::string m = sidecarModality(path_, header_.warnings); !m.empty()) header_.geometry.modality = m;
     VolumeChoice{path_, header_.volumes, volume_}.check();
-    if (!endsWith(path_, ".gz")) {  // uncompressed: the size is known, check it now
-        const std::uint64_t need = header_.voxOffset + std::uint64_t(header_.volumes) *
-                                                           header_.geometry.voxelCount() * std::uint64_t(elementSize(header_.element));
-        const auto size = std::filesystem::file_size(path_, ec);
+    const std::uint64_t need = header_.voxOffset + std::uint64_t(header_.volumes) *
+                                                       header_.geometry.voxelCount() * std::uint64_t(elementSize(header_.element));
+    const auto size = std::filesystem::file_size(path_, ec);
+    if (endsWith(path_, ".gz") && !ec) {  // compressed: its size bounds what it can hold
+        InflatedVoxelSource::checkDeflatedCanHold(path_, size, double(need));
+    } else {  // uncompressed: the size is known, check it now
         if (!ec && size < need)
             throw Error(path_ + ": is truncated: its header needs " + std::to_string(need) + " bytes, the file has " +
                         std::to_string(size));

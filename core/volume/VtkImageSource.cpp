@@ -1,9 +1,6 @@
 #include "core/volume/VtkImageSource.h"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +10,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/base/Error.h"
+#include "core/base/Memory.h"
 #include "core/volume/LegacyVtkHeader.h"
 #include "core/volume/MetaImageHeader.h"
 #include "core/volume/VtkReaderLibrary.h"
@@ -23,18 +21,6 @@ namespace {
 bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() && std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
                                                    [](char a, char b) { return std::tolower(a) == b; });
-}
-
-// Half the machine's memory: the most an image that VTK's reader holds may take.
-double memoryForReading() {
-    const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && page > 0 ? double(pages) * double(page) / 2.0 : double(std::uint64_t(4) << 30);
-}
-
-std::string gib(double bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f GiB", bytes / double(std::uint64_t(1) << 30));
-    return text;
 }
 
 // True when a VTK XML file names a compressor in its first 4 KiB (its VTKFile element): its data
@@ -143,9 +129,10 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)) {
     const double fileWidth = !h.converted ? width : geometry_.scalarType == ScalarType::Int16 ? 1.0 : 8.0;  // int8, float64
     const double held = sliceVoxels * (h.streams ? std::min<double>(32, geometry_.dims[2]) : voxels / sliceVoxels) *
                         (fileWidth + width);  // VTK's array, and the slices kept here
-    if (held > memoryForReading())
-        throw Error(path_ + ": VTK's reader would hold " + gib(held) + " of it in memory at once, more than half of this "
-                    "machine's " + gib(2 * memoryForReading()) + "; written as NRRD, NIfTI or a binary MetaImage, Holovox "
+    const double memory = double(physicalMemoryBytes());
+    if (held > memory / 2)
+        throw Error(path_ + ": VTK's reader would hold " + gibibytes(held) + " of it in memory at once, more than half of "
+                    "this machine's " + gibibytes(memory) + "; written as NRRD, NIfTI or a binary MetaImage, Holovox "
                     "streams it");
 }
 

@@ -8,6 +8,7 @@
 #include "tests/support/ErrorOf.h"
 #include "tests/support/TempDir.h"
 
+#include <chrono>
 #include <filesystem>
 
 using namespace hvx;
@@ -98,6 +99,22 @@ TEST(BuilderOptions, OutOfRangeOptionsAreRefused) {
     o.labels = true;
     o.emptyBelow = 5.0;  // it had dropped every brick of a label-1 map without a word
     EXPECT_THROW(core::OctreeBuilder{o}, core::Error);
+}
+
+// A volume whose slices are too large to hold a brick row of them: refused before the layout,
+// the file or a slice is allocated (a 30000 x 30000 x 1000 NIfTI had taken 5.9 GB of memory
+// before failing; a NRRD of 100000 x 100000 x 1000, 18 GB and 57 s before bad_alloc).
+TEST(BuilderOptions, AVolumeWhoseSlicesNoMachineCanHoldIsRefusedBeforeAnythingIsAllocated) {
+    test::TempDir dir;
+    core::PhantomVoxelSource huge({1000000, 1000000, 2});  // slices of 1.8 TiB
+    core::JobContext job;
+    const auto start = std::chrono::steady_clock::now();
+    const std::string e = test::errorOf([&] { core::OctreeBuilder({}).build(huge, dir.file("huge.hvo"), job); });
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(2));
+    EXPECT_EQ(e.rfind(huge.describe() + ": building its octree would hold about ", 0), 0u) << e;
+    EXPECT_NE(e.find("slices of 1862.6 GiB, and the records of "), std::string::npos) << e;
+    EXPECT_NE(e.find("more than this machine's "), std::string::npos) << e;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("huge.hvo")));
 }
 
 // A label map whose file rescales its values (a NIfTI scl_slope 3, scl_inter 1): ITK reads

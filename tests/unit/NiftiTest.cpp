@@ -3,6 +3,7 @@
 // of the old VTK reader), every integer and float type, scaling, big-endian, micrometres, 4D
 // and gzip. Each voxel's LPS position and value must be nibabel's.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <cstring>
@@ -215,6 +216,20 @@ TEST_F(NiftiVsNibabel, BrokenFilesAreRefusedWithASentence) {
     std::memcpy(&b[108], &offset, 4);
     EXPECT_NE(message(variant("offset.nii", b)).find("vox_offset"), std::string::npos);
     EXPECT_NE(message(variant("garbage.nii.gz", std::string(4000, '\x1f'))).find(".nii"), std::string::npos);
+    // A gzipped header promising more than deflate can hold (dims 30000 x 30000 x 1000 over a
+    // few bytes) is refused when opened: it had taken 5.9 GB of memory before failing.
+    b = bytes;
+    for (const auto& [at, v] : {std::pair{42, 30000}, {44, 30000}, {46, 1000}}) {
+        const auto d = std::int16_t(v);
+        std::memcpy(&b[std::size_t(at)], &d, 2);
+    }
+    const std::string gz = dir_->file("big.nii.gz");
+    gzFile f = gzopen(gz.c_str(), "wb");
+    ASSERT_NE(f, nullptr);
+    gzwrite(f, b.data(), unsigned(b.size()));
+    gzclose(f);
+    EXPECT_NE(message(gz).find("bytes of compressed data can hold (deflate packs at most 1032 bytes into one)"), std::string::npos)
+        << message(gz);
 }
 
 namespace {
