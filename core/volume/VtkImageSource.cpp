@@ -23,14 +23,16 @@ bool endsWith(const std::string& s, const std::string& suffix) {
                                                    [](char a, char b) { return std::tolower(a) == b; });
 }
 
-// True when a VTK XML file names a compressor in its first 4 KiB (its VTKFile element): its data
-// may then hold more voxels than bytes.
-bool namesCompressor(const std::string& path) {
+// True when a VTK XML file's VTKFile element names a compressor (its data may then hold more
+// voxels than bytes), or when that element is not within the file's first 64 KiB.
+bool mayBeCompressed(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    std::string head(4096, '\0');
+    std::string head(std::size_t(64) << 10, '\0');
     in.read(head.data(), std::streamsize(head.size()));
     head.resize(std::size_t(in.gcount()));
-    return head.find("compressor=") != std::string::npos;
+    const auto begin = head.find("<VTKFile");
+    const auto end = begin == std::string::npos ? std::string::npos : head.find('>', begin);
+    return end == std::string::npos || head.substr(begin, end - begin).find("compressor=") != std::string::npos;
 }
 }  // namespace
 
@@ -119,7 +121,7 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)) {
     // hold had it take all the memory there is (and fail after minutes).
     const double sliceVoxels = double(geometry_.dims[0]) * double(geometry_.dims[1]);
     const double voxels = sliceVoxels * geometry_.dims[2];
-    if (format == HvxVtkXmlImage && !namesCompressor(path_)) {  // uncompressed: a byte a voxel at least
+    if (format == HvxVtkXmlImage && !mayBeCompressed(path_)) {  // uncompressed: a byte a voxel at least
         const auto size = std::filesystem::file_size(path_, ec);
         if (!ec && double(size) < voxels)
             throw Error(path_ + ": its extent gives " + std::to_string(std::uint64_t(voxels)) + " voxels, more than its " +
