@@ -1,5 +1,7 @@
 #include "core/volume/NrrdHeader.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -151,7 +153,8 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
             typed = true;
             g.scalarType = storedTypeOf(h.element);
         } else if (key == "encoding") {
-            h.encoding = value;
+            h.encoding = value;  // teem reads its names in any case ("ASCII", as it writes it)
+            std::transform(h.encoding.begin(), h.encoding.end(), h.encoding.begin(), [](unsigned char c) { return char(std::tolower(c)); });
         } else if (key == "endian") {
             if (value != "big" && value != "little")
                 throw Error(path + ": NRRD endian '" + value + "' is neither little nor big");

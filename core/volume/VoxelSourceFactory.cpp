@@ -70,11 +70,17 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& i
     if (ext == ".nrrd" || ext == ".nhdr") {
         const NrrdHeader h = NrrdHeader::read(input);
         const bool gzip = h.encoding == "gzip" || h.encoding == "gz";
-        if (h.encoding != "raw" && !gzip)
-            throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (raw and gzip are)");
+        const bool text = h.encoding == "ascii" || h.encoding == "text" || h.encoding == "txt";
+        if (h.encoding != "raw" && !gzip && !text)
+            throw Error(input + ": NRRD encoding '" + h.encoding + "' is not supported (raw, gzip and ascii are)");
         const std::string& data = h.dataPath;
         const VolumeChoice choice{input, h.volumes, volume};
         choice.check();
+        if (text && h.volumes > 1)
+            throw Error(input + ": a 4-D NRRD in " + h.encoding + " encoding is not read by Holovox (in raw or gzip it is)");
+        if (text)  // every value parsed and checked, slab by slab
+            return std::make_unique<AsciiVoxelSource>(
+                data, RawVoxelSource::described(h.geometry, h.element, false, h.headerBytes, h.warnings, input));
         const std::uint64_t volumeBytes = h.geometry.voxelCount() * elementSize(h.element);
         auto o = RawVoxelSource::described(h.geometry, h.element, h.bigEndian, h.headerBytes, h.warnings, input);
         if (h.volumes > 1) {  // a 4-D file: the volumes one after the other

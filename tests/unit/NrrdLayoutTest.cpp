@@ -63,6 +63,53 @@ TEST(NrrdLayout, LineAndByteSkipsPlaceTheDataAsTeemDoes) {
     }
 }
 
+// NRRD's text encoding, as teem writes it (teem-unu save -e ascii, one value a line, and
+// a float volume whose values need their digits), read as teem reads it; and text data that
+// contradict the header refused naming the voxel.
+TEST(NrrdLayout, TextEncodingIsReadAsTeemReadsIt) {
+    test::TempDir dir;
+    std::ofstream(dir.file("raw.nrrd"), std::ios::binary) << kHead << "encoding: raw\n\n" << voxels();
+    auto r = test::runCommand("teem-unu save -f nrrd -e ascii -i " + dir.file("raw.nrrd") + " -o " + dir.file("text.nrrd"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ofstream(dir.file("crlf.nhdr"), std::ios::binary) << kHead << "encoding: text\nline skip: 1\ndata file: crlf.txt\n";
+    std::string text = "a line teem skips\n";
+    for (int i = 0; i < 60; ++i) text += std::to_string(i * 37 - 900) + (i % 5 == 4 ? "\r\n" : "\t");
+    std::ofstream(dir.file("crlf.txt"), std::ios::binary) << text;
+    for (const char* f : {"text.nrrd", "crlf.nhdr"}) {
+        SCOPED_TRACE(f);
+        const auto [ours, teems] = oursAndTeems(dir, f);
+        EXPECT_EQ(ours, teems);
+        EXPECT_EQ(ours[0], -900);
+        EXPECT_EQ(ours[59], 59 * 37 - 900);
+        auto src = core::VoxelSourceFactory::open(dir.file(f));
+        EXPECT_EQ(src->geometry().spacing, glm::dvec3(0.5, 0.5, 2));
+    }
+    // Floats: teem's text, parsed here, equals teem's own binary re-save bit for bit.
+    std::string floats;
+    for (int i = 0; i < 60; ++i) {
+        const float v = float(i) * 0.1f - 2.5e-3f * float(i * i) + 1e-7f;
+        floats.append(reinterpret_cast<const char*>(&v), 4);
+    }
+    std::ofstream(dir.file("f.nrrd"), std::ios::binary)
+        << "NRRD0004\ntype: float\ndimension: 3\nsizes: 5 4 3\nendian: little\nencoding: raw\n\n" << floats;
+    r = test::runCommand("teem-unu save -f nrrd -e ascii -i " + dir.file("f.nrrd") + " -o " + dir.file("ftext.nrrd"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    r = test::runCommand("teem-unu save -f nrrd -e raw -i " + dir.file("ftext.nrrd") + " -o " + dir.file("fteem.nrrd"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    auto ours = core::VoxelSourceFactory::open(dir.file("ftext.nrrd"));
+    auto teems = core::VoxelSourceFactory::open(dir.file("fteem.nrrd"));
+    EXPECT_EQ(test::readAll<float>(*ours), test::readAll<float>(*teems));
+    // Text that ends early, or holds a word, is refused naming the voxel.
+    std::ofstream(dir.file("short.nrrd"), std::ios::binary) << kHead << "encoding: ascii\n\n" << text.substr(18, 150);
+    EXPECT_NE(errorOf([&] { test::readAll<std::int16_t>(*core::VoxelSourceFactory::open(dir.file("short.nrrd"))); })
+                  .find("its text data end after "),
+              std::string::npos);
+    std::ofstream(dir.file("word.nrrd"), std::ios::binary) << kHead << "encoding: ascii\n\n" << "1 2 three " << text.substr(18);
+    EXPECT_NE(errorOf([&] { test::readAll<std::int16_t>(*core::VoxelSourceFactory::open(dir.file("word.nrrd"))); })
+                  .find("its voxel (2, 0, 0) (value number 3), 'three', is not a number"),
+              std::string::npos);
+}
+
 TEST(NrrdLayout, WhatHolovoxDoesNotReadIsRefusedWithASentence) {
     test::TempDir dir;
     auto refusal = [&](const std::string& text) {
