@@ -1,7 +1,5 @@
 #include "core/volume/NrrdHeader.h"
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -149,13 +147,13 @@ NrrdHeader NrrdHeader::read(const std::string& path) {
             sizes = bool(v >> g.dims[0] >> g.dims[1] >> g.dims[2]);
             if (sizes && dimension == 4) sizes = bool(v >> h.volumes) && h.volumes > 0;
         } else if (key == "type") {
-            h.element = elementOf(value, path);
+            h.element = elementOf(lowercase(value), path);
             typed = true;
             g.scalarType = storedTypeOf(h.element);
         } else if (key == "encoding") {
-            h.encoding = value;  // teem reads its names in any case ("ASCII", as it writes it)
-            std::transform(h.encoding.begin(), h.encoding.end(), h.encoding.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+            h.encoding = lowercase(value);  // teem reads its names in any case ("ASCII", as it writes it)
         } else if (key == "endian") {
+            value = lowercase(value);
             if (value != "big" && value != "little")
                 throw Error(path + ": NRRD endian '" + value + "' is neither little nor big");
             h.bigEndian = value == "big";

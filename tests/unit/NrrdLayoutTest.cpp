@@ -84,6 +84,10 @@ TEST(NrrdLayout, TextEncodingIsReadAsTeemReadsIt) {
         auto src = core::VoxelSourceFactory::open(dir.file(f));
         EXPECT_EQ(src->geometry().spacing, glm::dvec3(0.5, 0.5, 2));
     }
+    // Names in capitals, which teem reads as it reads them in lower case.
+    std::ofstream(dir.file("caps.nrrd"), std::ios::binary)
+        << "NRRD0004\ntype: SHORT\ndimension: 3\nsizes: 5 4 3\nendian: LITTLE\nencoding: RAW\n\n" << voxels();
+    EXPECT_EQ(oursAndTeems(dir, "caps.nrrd").first, oursAndTeems(dir, "caps.nrrd").second);
     // Floats: teem's text, parsed here, equals teem's own binary re-save bit for bit.
     std::string floats;
     for (int i = 0; i < 60; ++i) {
