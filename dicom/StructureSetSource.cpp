@@ -59,7 +59,10 @@ struct StructureSetSource::Impl {
                     }
                 std::sort(xs.begin(), xs.end());
                 for (std::size_t s = 0; s + 1 < xs.size(); s += 2) {
-                    const long from = std::max(0L, long(std::ceil(xs[s]))), to = std::min(long(nx) - 1, long(std::ceil(xs[s + 1])) - 1);
+                    // A vertex far outside the image puts a crossing far outside it: clipped to
+                    // the row before it becomes an index.
+                    const double x0 = std::clamp(xs[s], -1.0, double(nx)), x1 = std::clamp(xs[s + 1], -1.0, double(nx));
+                    const long from = std::max(0L, long(std::ceil(x0))), to = std::min(long(nx) - 1, long(std::ceil(x1)) - 1);
                     for (long i = from; i <= to; ++i) {
                         auto& v = out[std::size_t(j) * nx + std::size_t(i)];
                         if (overlaps && v != 0 && v != roi) ++*overlaps;
@@ -157,7 +160,13 @@ StructureSetSource::StructureSetSource(const std::string& path, const core::Volu
             Polygon poly{int(number), {}};
             double kMin = 1e300, kMax = -1e300;
             for (std::size_t p = 0; p < data.size(); p += 3) {
+                if (!std::isfinite(data[p]) || !std::isfinite(data[p + 1]) || !std::isfinite(data[p + 2]))
+                    m.fail("a contour of " + name + " has a point whose coordinates are not all numbers (point " +
+                           std::to_string(p / 3 + 1) + ")");
                 const glm::dvec4 idx = toIndex * glm::dvec4(data[p], data[p + 1], data[p + 2], 1.0);
+                if (!(std::abs(idx.x) < 1e7 && std::abs(idx.y) < 1e7 && std::abs(idx.z) < 1e7))
+                    m.fail("a contour of " + name + " has a point more than ten million voxels from the image (point " +
+                           std::to_string(p / 3 + 1) + "): not a position in it");
                 poly.points.push_back({idx.x, idx.y});
                 kMin = std::min(kMin, idx.z), kMax = std::max(kMax, idx.z);
             }

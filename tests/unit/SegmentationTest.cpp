@@ -9,6 +9,10 @@
 
 #include <glm/mat3x3.hpp>
 
+#include <dcmtk/config/osconfig.h>
+#include <dcmtk/dcmdata/dcdeftag.h>
+#include <dcmtk/dcmdata/dcfilefo.h>
+
 #include "core/octree/OctreeBuilder.h"
 #include "core/reference/SliceSampler.h"
 #include "dicom/DicomScanner.h"
@@ -191,6 +195,56 @@ TEST(StructureSet, ContoursFillTheVoxelsPydicomsPolygonsEnclose) {
     ASSERT_EQ(source.warnings().size(), 1u);
     EXPECT_NE(source.warnings()[0].find("1 contour(s) of beyond lie past the image's slices: left out"), std::string::npos)
         << source.warnings()[0];
+}
+
+// A contour's point that is not a number, or absurdly far, is refused; one a little outside the
+// image is clipped: its polygon fills up to the image's edge, as a polygon clipped by hand.
+TEST(StructureSet, PointsOutsideTheImageAreClippedAndNonsenseIsRefused) {
+    Cases cases;
+    const auto grid = writersGrid(cases);
+    std::vector<std::uint8_t> before(std::size_t(grid.voxelCount())), after(before.size());
+    dicom::StructureSetSource(cases.dir.file("rtstruct.dcm"), grid).readSlices(0, grid.dims[2], before.data());
+    // The first contour (GTV's, a 40-gon) gets a spike: a vertex inserted after its first one,
+    // at that vertex's row and slice, 50 voxels past the image's last column (or `x` as written).
+    auto withSpike = [&](const std::string& x, const std::string& name) {
+        DcmFileFormat ff;
+        EXPECT_TRUE(ff.loadFile(cases.dir.file("rtstruct.dcm").c_str()).good());
+        DcmElement* e = nullptr;
+        EXPECT_TRUE(ff.getDataset()->findAndGetElement(DCM_ContourData, e, OFTrue).good());
+        Float64 p[3] = {0, 0, 0};
+        for (unsigned long c = 0; c < 3; ++c) e->getFloat64(p[c], c);
+        OFString all;
+        e->getOFStringArray(all);
+        std::string rest = all.c_str();
+        for (int n = 0; n < 3; ++n) rest = rest.substr(rest.find('\\') + 1);  // the points after the first
+        const glm::dvec4 at = glm::inverse(grid.indexToPatient()) * glm::dvec4(p[0], p[1], p[2], 1.0);
+        const glm::dvec4 far = grid.indexToPatient() * glm::dvec4(grid.dims[0] + 50.0, at.y, at.z, 1.0);
+        char spike[160];
+        std::snprintf(spike, sizeof spike, "%.10g\\%.10g\\%.10g\\%s\\%.10g\\%.10g\\", p[0], p[1], p[2],
+                      x.empty() ? std::to_string(far.x).c_str() : x.c_str(), far.y, far.z);
+        e->putString((spike + rest).c_str());
+        EXPECT_TRUE(ff.saveFile(cases.dir.file(name).c_str(), EXS_LittleEndianExplicit).good());
+        return cases.dir.file(name);
+    };
+    dicom::StructureSetSource(withSpike("", "spike.dcm"), grid).readSlices(0, grid.dims[2], after.data());
+    std::size_t kept = 0, edge = 0, lost = 0;
+    for (std::size_t v = 0; v < before.size(); ++v) {
+        if (before[v] == 1 && after[v] == 1) ++kept;
+        if (before[v] == 1 && after[v] != 1) ++lost;
+        if (after[v] == 1 && v % grid.dims[0] == grid.dims[0] - 1) ++edge;
+    }
+    EXPECT_GT(kept, 0u);
+    EXPECT_EQ(lost, 0u);  // the spike only adds
+    EXPECT_GT(edge, 0u);  // and reaches the edge
+    for (const char* nonsense : {"nan", "1e300"}) {
+        try {
+            dicom::StructureSetSource s(withSpike(nonsense, "bad.dcm"), grid);
+            ADD_FAILURE() << nonsense << " was read";
+        } catch (const core::Error& e) {
+            EXPECT_NE(std::string(e.what()).find("a contour of GTV has a point "), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("(point 2)"), std::string::npos) << e.what();
+        }
+    }
 }
 
 TEST(StructureSet, AnotherFrameOrAnotherGridIsRefused) {
