@@ -155,6 +155,10 @@ SegmentationSource::SegmentationSource(const std::string& path) : impl_(std::mak
         !(rowSpacing > 0) || !(colSpacing > 0))
         m.fail("no usable PixelSpacing");
     measures->getSpacingBetweenSlices(between);
+    for (const Float64 v : o)
+        if (!std::isfinite(v)) m.fail("ImageOrientationPatient holds a value that is not a number: left and right would be a guess");
+    if (!(glm::length(glm::dvec3(o[0], o[1], o[2])) > 1e-3 && glm::length(glm::dvec3(o[3], o[4], o[5])) > 1e-3))
+        m.fail("ImageOrientationPatient's rows or columns have no direction");
     const glm::dvec3 r = glm::normalize(glm::dvec3(o[0], o[1], o[2])), c = glm::normalize(glm::dvec3(o[3], o[4], o[5]));
     if (std::abs(glm::dot(r, c)) > 1e-3) m.fail("ImageOrientationPatient's rows and columns are not perpendicular");
     const glm::dvec3 n = glm::cross(r, c);
@@ -165,6 +169,8 @@ SegmentationSource::SegmentationSource(const std::string& path) : impl_(std::mak
         Float64 x = 0, y = 0, z = 0;
         if (!pos || pos->getImagePositionPatient(x, y, z).bad())
             m.fail("frame " + std::to_string(f + 1) + " has no position (PlanePositionSequence): it cannot be placed");
+        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+            m.fail("frame " + std::to_string(f + 1) + "'s position (PlanePositionSequence) is not three numbers: it cannot be placed");
         positions[f] = {x, y, z};
         auto* segFg = dynamic_cast<FGSegmentation*>(fg.get(Uint32(f), DcmFGTypes::EFG_SEGMENTATION));
         Uint16 number = 0;
@@ -209,7 +215,7 @@ SegmentationSource::SegmentationSource(const std::string& path) : impl_(std::mak
         if (std::abs(k - kr) > 0.01)
             m.fail("frame " + std::to_string(f + 1) + " lies between the slices of a " + std::to_string(step) +
                    " mm grid (frames not on one slice grid)");
-        if (kr > 65535) m.fail("frames span more than 65536 slices");
+        if (!(kr <= 65535)) m.fail("frames span more than 65536 slices");
         const auto slice = std::uint32_t(kr);
         maxSlice = std::max(maxSlice, slice);
         m.slices[slice].push_back({f, segments[f]});

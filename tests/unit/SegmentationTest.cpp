@@ -6,6 +6,7 @@
 
 #include <fstream>
 #include <map>
+#include <tuple>
 
 #include <glm/mat3x3.hpp>
 
@@ -126,6 +127,28 @@ TEST(Segmentation, BadObjectsAreRefusedWithASentence) {
     EXPECT_FALSE(dicom::SegmentationSource::isSegmentation(cases.dir.file("junk.dcm")));
     EXPECT_THROW(dicom::SegmentationSource(cases.dir.file("junk.dcm")), core::Error);
     EXPECT_FALSE(dicom::SegmentationSource::isSegmentation(cases.dir.file("absent.dcm")));
+    // A frame position or the orientation that is not a number: refused, never cast to a slice.
+    auto edited = [&](const DcmTagKey& key, const char* value, const std::string& name) {
+        DcmFileFormat ff;
+        EXPECT_TRUE(ff.loadFile(cases.dir.file("binary.dcm").c_str()).good());
+        DcmElement* e = nullptr;
+        EXPECT_TRUE(ff.getDataset()->findAndGetElement(key, e, OFTrue).good());
+        EXPECT_TRUE(e->putString(value).good());
+        EXPECT_TRUE(ff.saveFile(cases.dir.file(name).c_str(), EXS_LittleEndianExplicit).good());
+        return cases.dir.file(name);
+    };
+    for (const auto& [key, value, says] :
+         {std::tuple{DCM_ImagePositionPatient, "nan\\0\\0", "'s position (PlanePositionSequence) is not three numbers"},
+          std::tuple{DCM_ImagePositionPatient, "0\\1e999\\0", "'s position (PlanePositionSequence) is not three numbers"},
+          std::tuple{DCM_ImageOrientationPatient, "1\\0\\0\\0\\nan\\0", "ImageOrientationPatient holds a value that is not a number"},
+          std::tuple{DCM_ImageOrientationPatient, "0\\0\\0\\0\\1\\0", "ImageOrientationPatient's rows or columns have no direction"}}) {
+        try {
+            dicom::SegmentationSource source(edited(key, value, "edited.dcm"));
+            ADD_FAILURE() << value << " was read";
+        } catch (const core::Error& e) {
+            EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << value << ": " << e.what();
+        }
+    }
     // Truncated: the pixel data cut off.
     std::ifstream full(cases.dir.file("binary.dcm"), std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(full)), std::istreambuf_iterator<char>());
