@@ -60,14 +60,17 @@ std::string legacyVtk(const std::string& dims, std::size_t points, const char* t
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
-// Reads slices 3-4, then 6-8 (skipping 5), then 0-1 (going back): every voxel as a double.
+// Reads slices 3-4, then 6-8 (skipping 5), then 0-1 (going back), 2 and 5, then any past 8
+// in order: every voxel as a double.
 std::vector<double> readOutOfOrder(core::VoxelSource& s) {
     const auto& d = s.geometry().dims;
     const std::size_t slice = std::size_t(d[0]) * d[1];
     std::vector<double> out(slice * d[2], -12345.0);
     core::dispatchScalar(s.geometry().scalarType, [&](auto tag) {
         using T = decltype(tag);
-        for (const auto& [first, count] : {std::pair{3u, 2u}, {6u, 3u}, {0u, 2u}, {2u, 1u}, {5u, 1u}}) {
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> slabs{{3u, 2u}, {6u, 3u}, {0u, 2u}, {2u, 1u}, {5u, 1u}};
+        if (d[2] > 9) slabs.push_back({9u, d[2] - 9});
+        for (const auto& [first, count] : slabs) {
             std::vector<T> slab(slice * count);
             s.readSlices(first, count, slab.data());
             for (std::size_t i = 0; i < slab.size(); ++i) out[first * slice + i] = double(slab[i]);
@@ -120,6 +123,31 @@ TEST(AsciiVolumes, EveryTypeReadsAsVtksReadersReadTheWholeImage) {
             EXPECT_EQ(vtk.geometry().scalarType, c.stored);
             EXPECT_EQ(test::voxelValues(vtk), got);
         }
+    }
+}
+
+// Text longer than one read (1 MiB and 256 bytes at a time): a token cut by the read's end is
+// joined with its rest, wherever the cut falls; equal to VTK's reader, in and out of order.
+TEST(AsciiVolumes, TokensCutByTheReadsEndAreJoined) {
+    test::TempDir dir;
+    const std::size_t n = 64 * 64 * 100;  // about 2.5 MiB of text
+    std::vector<double> v(n);
+    for (std::size_t i = 0; i < n; ++i) v[i] = valueAt(i, -32768, 32767, false);
+    const std::string text = asText(v, 0);
+    ASSERT_GT(text.size(), std::size_t(2) << 20);
+    const std::size_t chunk = (std::size_t(1) << 20) + 256;
+    // Pad the text's start so that the first read ends 0, 1, 2 and 3 bytes into a token.
+    std::size_t tokenAt = chunk - 1000;  // a token that begins a little before the first read's end
+    while (tokenAt < text.size() && !(text[tokenAt - 1] == ' ' && text[tokenAt] == '-')) ++tokenAt;
+    ASSERT_LT(tokenAt, chunk);
+    for (const std::size_t into : {0u, 1u, 2u, 3u}) {
+        SCOPED_TRACE("cut " + std::to_string(into) + " bytes into a token");
+        const std::string padded = std::string(chunk - tokenAt - into, ' ') + text;  // the token at chunk - into
+        write(dir.file("long.mha"), metaImage("64 64 100", "MET_SHORT", padded));
+        auto src = core::VoxelSourceFactory::open(dir.file("long.mha"));
+        EXPECT_EQ(readOutOfOrder(*src), v);
+        core::VtkImageSource vtk(dir.file("long.mha"));
+        EXPECT_EQ(test::voxelValues(vtk), v);
     }
 }
 
