@@ -110,7 +110,7 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     bool dims = false, spacing = false, binary = false, binarySeen = false, dataFileSeen = false;
     std::string elementType;
     std::int64_t headerSize = 0;
-    int channels = 1;
+    int& channels = h.channels;
     glm::dvec3 elementSize(0.0);
     std::string line;
     for (int n = 0; n < 200 && !dataFileSeen && std::getline(in, line); ++n) {

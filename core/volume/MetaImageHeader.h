@@ -31,6 +31,7 @@ public:
     std::uint64_t dataOffset = 0; ///< where they begin in it
     bool compressed = false;
     bool ascii = false;           ///< BinaryData = False: the voxels are written as text
+    int channels = 1;             ///< ElementNumberOfChannels: values per voxel
     std::uint64_t compressedBytes = 0;  ///< CompressedDataSize, 0 when not given
     std::vector<std::string> warnings;  ///< what the header leaves open, one sentence each
     /// Empty when Holovox streams the data itself; otherwise why not ("it has 3 channels").

@@ -108,6 +108,9 @@ std::unique_ptr<VoxelSource> VoxelSourceFactory::openFormat(const std::string& i
         std::error_code ec;
         if (!std::filesystem::is_regular_file(p, ec)) throw Error(input + ": no such file");
         const MetaImageHeader h = MetaImageHeader::read(input);
+        if (h.channels != 1)
+            throw Error(input + ": its voxels hold " + std::to_string(h.channels) + " values each (ElementNumberOfChannels), as a "
+                        "colour or vector image does; Holovox shows one value per voxel (save one channel as its own image)");
         const auto size = std::filesystem::file_size(h.dataFile, ec);
         if (h.compressed && h.compressedBytes > 0 && !ec && size < h.dataOffset + h.compressedBytes)
             throw Error(h.dataFile + ": truncated: its MetaImage header promises " + std::to_string(h.compressedBytes) +

@@ -151,6 +151,8 @@ TEST(MetaImage, BrokenHeadersAndDataAreRefusedNamingTheFile) {
          "NDims = 4 (a time series or vectors): Holovox reads 3-D MetaImages only"},
         {"nodata.mha", std::string(kHead), "no ElementDataFile"},
         {"missing.mhd", std::string(kHead) + "ElementDataFile = gone.raw\n", "gone.raw"},
+        {"rgb.mha", std::string(kHead) + "ElementNumberOfChannels = 3\nElementDataFile = LOCAL\n" + bytesOf(v) + bytesOf(v) + bytesOf(v),
+         "its voxels hold 3 values each (ElementNumberOfChannels), as a colour or vector image does"},
     };
     for (const auto& c : cases) {
         std::ofstream(dir.file(c.name), std::ios::binary) << c.text;
