@@ -182,7 +182,7 @@ SegmentationSource::SegmentationSource(const std::string& path) : impl_(std::mak
         Float64 p[6];
         if (po && po->getImageOrientationPatient(p[0], p[1], p[2], p[3], p[4], p[5]).good())
             for (int a = 0; a < 6; ++a)
-                if (std::abs(p[a] - o[a]) > 1e-4) m.fail("frame " + std::to_string(f + 1) + " has another orientation than frame 1");
+                if (!(std::abs(p[a] - o[a]) <= 1e-4)) m.fail("frame " + std::to_string(f + 1) + " has another orientation than frame 1");
     }
     // Slices along the normal: the lowest frame first.
     std::vector<double> depth(frames);
@@ -199,6 +199,11 @@ SegmentationSource::SegmentationSource(const std::string& path) : impl_(std::mak
     std::sort(distinct.begin(), distinct.end());
     distinct.erase(std::unique(distinct.begin(), distinct.end(), [](double a, double b) { return std::abs(a - b) < 1e-3; }),
                    distinct.end());
+    if (!std::isfinite(between)) m.fail("SpacingBetweenSlices is not a number");
+    for (std::size_t i = 1; i < distinct.size() && between > 0; ++i)
+        if (distinct[i] - distinct[i - 1] < 0.99 * between)  // every frame would round onto one slice
+            m.fail("frames lie " + std::to_string(distinct[i] - distinct[i - 1]) + " mm apart, closer than its SpacingBetweenSlices (" +
+                   std::to_string(between) + " mm)");
     double step = between > 0 ? between : 0;
     if (step == 0)
         for (std::size_t i = 1; i < distinct.size(); ++i)

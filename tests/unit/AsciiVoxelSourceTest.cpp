@@ -156,6 +156,15 @@ TEST(AsciiVolumes, WholeNumbersWrittenAsFractionsOrWithASignAreRead) {
     write(dir.file("w.mha"), metaImage("2 2 2", "MET_SHORT", "+5 3.0 1e2 -0 -32768 32767.000 7 -1.5e1\n"));
     auto src = core::VoxelSourceFactory::open(dir.file("w.mha"));
     EXPECT_EQ(test::readAll<std::int16_t>(*src), (std::vector<std::int16_t>{5, 3, 100, 0, -32768, 32767, 7, -15}));
+    // Numbers too small for a float or a double are zero, as a C++ stream and teem read them.
+    write(dir.file("tiny.mha"), metaImage("3 1 1", "MET_FLOAT", "1e-50 -1e-400 2.5\n"));
+    EXPECT_EQ(test::readAll<float>(*core::VoxelSourceFactory::open(dir.file("tiny.mha"))), (std::vector<float>{0.0f, -0.0f, 2.5f}));
+    write(dir.file("tiny64.mha"), metaImage("2 1 1", "MET_DOUBLE", "1e-400 7\n"));
+    EXPECT_EQ(test::readAll<float>(*core::VoxelSourceFactory::open(dir.file("tiny64.mha"))), (std::vector<float>{0.0f, 7.0f}));
+    // The ends of the 64-bit types, written out.
+    write(dir.file("ends.mha"), metaImage("2 1 1", "MET_LONG_LONG", "-9223372036854775808 9223372036854775807\n"));
+    EXPECT_EQ(test::readAll<float>(*core::VoxelSourceFactory::open(dir.file("ends.mha"))),
+              (std::vector<float>{-9223372036854775808.0f, 9223372036854775807.0f}));
 }
 
 TEST(AsciiVolumes, HostileTextIsRefusedNamingTheFileAndTheVoxel) {
@@ -193,6 +202,15 @@ TEST(AsciiVolumes, HostileTextIsRefusedNamingTheFileAndTheVoxel) {
     EXPECT_TRUE(has(refusal(metaImage("2 2 2", "MET_SHORT", "1 2 3 " + std::string(40, '7') + " 5 6 7 8\n")),
                     "'" + std::string(32, '7') + "...', is outside"));
     EXPECT_TRUE(has(refusal(metaImage("2 2 2", "MET_FLOAT", "1 2 3 1e300 5 6 7 8\n")), "'1e300', is beyond what a 32-bit float holds"));
+    EXPECT_TRUE(has(refusal(metaImage("2 2 2", "MET_FLOAT", "1 2 3 -1e999 5 6 7 8\n")), "'-1e999', is beyond what a 32-bit float holds"));
+    EXPECT_TRUE(has(refusal(metaImage("2 2 2", "MET_DOUBLE", "1 2 3 1e999 5 6 7 8\n")), "'1e999', is beyond what a 64-bit float holds"));
+    // Integers one past a 64-bit type's range, written out or with an exponent.
+    EXPECT_TRUE(has(refusal(metaImage("2 1 1", "MET_LONG_LONG", "-9223372036854775809 0\n")),
+                    "is outside what its int64 voxels hold (-9223372036854775808 to 9223372036854775807)"));
+    EXPECT_TRUE(has(refusal(metaImage("2 1 1", "MET_ULONG_LONG", "18446744073709551616 0\n")), "is outside what its uint64 voxels hold"));
+    EXPECT_TRUE(has(refusal(metaImage("2 1 1", "MET_LONG_LONG", "-9.223372036854775809e18 0\n")),
+                    "is too large to be read exactly when written with a fraction or an exponent"));
+    EXPECT_TRUE(has(refusal(metaImage("2 1 1", "MET_SHORT", "1e-400 0\n")), "is not a whole number"));
     EXPECT_TRUE(has(refusal(metaImage("2 2 2", "MET_DOUBLE", "1 2 3 1e300 5 6 7 8\n")), "holds a value beyond what a 32-bit float can hold"));
     EXPECT_TRUE(has(refusal(metaImage("2 2 2", "MET_SHORT", std::string("1 2 3 4\0 5 6 7 8\n", 17))), "'4\\x00', is not a number"));
     // A header that promises more values than its file can hold is refused when opened: VTK's

@@ -141,7 +141,10 @@ TEST(Segmentation, BadObjectsAreRefusedWithASentence) {
          {std::tuple{DCM_ImagePositionPatient, "nan\\0\\0", "'s position (PlanePositionSequence) is not three numbers"},
           std::tuple{DCM_ImagePositionPatient, "0\\1e999\\0", "'s position (PlanePositionSequence) is not three numbers"},
           std::tuple{DCM_ImageOrientationPatient, "1\\0\\0\\0\\nan\\0", "ImageOrientationPatient holds a value that is not a number"},
-          std::tuple{DCM_ImageOrientationPatient, "0\\0\\0\\0\\1\\0", "ImageOrientationPatient's rows or columns have no direction"}}) {
+          std::tuple{DCM_ImageOrientationPatient, "0\\0\\0\\0\\1\\0", "ImageOrientationPatient's rows or columns have no direction"},
+          std::tuple{DCM_SpacingBetweenSlices, "1e999", "SpacingBetweenSlices is not a number"},
+          // Every frame would have rounded onto slice 0 of a 1 km grid.
+          std::tuple{DCM_SpacingBetweenSlices, "1e6", "mm apart, closer than its SpacingBetweenSlices (1000000.000000 mm)"}}) {
         try {
             dicom::SegmentationSource source(edited(key, value, "edited.dcm"));
             ADD_FAILURE() << value << " was read";
