@@ -110,7 +110,6 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
     bool dims = false, spacing = false, binary = false, binarySeen = false, dataFileSeen = false;
     std::string elementType;
     std::int64_t headerSize = 0;
-    int& channels = h.channels;
     glm::dvec3 elementSize(0.0);
     std::string line;
     for (int n = 0; n < 200 && !dataFileSeen && std::getline(in, line); ++n) {
@@ -172,7 +171,7 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
         } else if (key == "CompressedDataSize") {
             h.compressedBytes = std::strtoull(value.c_str(), nullptr, 10);
         } else if (key == "ElementNumberOfChannels") {
-            channels = std::atoi(value.c_str());
+            h.channels = std::atoi(value.c_str());
         } else if (key == "HeaderSize") {
             headerSize = std::strtoll(value.c_str(), nullptr, 10);
         } else if (key == "ElementDataFile") {
@@ -232,7 +231,7 @@ MetaImageHeader MetaImageHeader::read(const std::string& path) {
         h.warnings.push_back(path + ": MetaImage header gives no BinaryData: its data are read as text, as MetaIO reads them");
     if (h.ascii && !h.sliceFiles.empty()) notStreamable("its list of data files is ASCII");
     if (h.ascii && h.compressed) notStreamable("its data is ASCII and compressed");
-    if (channels != 1) notStreamable("it has " + std::to_string(channels) + " channels");
+    if (h.channels != 1) notStreamable("it has " + std::to_string(h.channels) + " channels");
     // MetaIO's element types (metaTypes.h: MET_LONG is 32 bits, MET_LONG_LONG 64).
     static const std::pair<const char*, FileElement> kTypes[] = {
         {"MET_CHAR", FileElement::Int8},        {"MET_UCHAR", FileElement::UInt8},

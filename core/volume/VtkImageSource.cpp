@@ -23,6 +23,9 @@ bool endsWith(const std::string& s, const std::string& suffix) {
                                                    [](char a, char b) { return std::tolower(a) == b; });
 }
 
+// Slices a reader that streams (the XML reader) is asked for at a time.
+constexpr std::uint32_t kSlicesPerRead = 32;
+
 // True when a VTK XML file's VTKFile element names a compressor (its data may then hold more
 // voxels than bytes), or when that element is not within the file's first 64 KiB.
 bool mayBeCompressed(const std::string& path) {
@@ -129,7 +132,7 @@ VtkImageSource::VtkImageSource(std::string path) : path_(std::move(path)) {
     }
     const double width = double(scalarSize(geometry_.scalarType));
     const double fileWidth = !h.converted ? width : geometry_.scalarType == ScalarType::Int16 ? 1.0 : 8.0;  // int8, float64
-    const double held = sliceVoxels * (h.streams ? std::min<double>(32, geometry_.dims[2]) : voxels / sliceVoxels) *
+    const double held = sliceVoxels * double(h.streams ? std::min(kSlicesPerRead, geometry_.dims[2]) : geometry_.dims[2]) *
                         (fileWidth + width);  // VTK's array, and the slices kept here
     const double memory = double(physicalMemoryBytes());
     if (held > memory / 2)
@@ -150,7 +153,7 @@ void VtkImageSource::readSlices(std::uint32_t firstSlice, std::uint32_t count, v
             // reader writes all of it whatever extent it is asked for).
             const bool streams = impl_->header.streams != 0;
             const std::uint32_t from = streams ? s : 0;
-            const std::uint32_t chunk = streams ? std::min<std::uint32_t>(32, geometry_.dims[2] - s) : geometry_.dims[2];
+            const std::uint32_t chunk = streams ? std::min(kSlicesPerRead, geometry_.dims[2] - s) : geometry_.dims[2];
             const int k0 = impl_->header.extent[4] + int(from);
             impl_->cache.resize(sliceVoxels * chunk * outWidth);
             char error[256] = "";
