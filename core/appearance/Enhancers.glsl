@@ -283,14 +283,35 @@ HVX_FN vec2 hvxProbeChord(HvxTools t, vec3 origin, vec3 dir) {
     return vec2(along - chord, along + chord);
 }
 
+// The part of a ray (origin, unit direction dir) on the kept side of a clip plane seen so nearly
+// face-on that mu = 0 (hvxClip), as (first, last); the whole ray when the plane shows context
+// to this ray. The cut-away side is delta = dot(n, p) + offset > 0; the span reaches a ten
+// thousandth of its distance (at least 1e-4 mm) into it against rounding, so that every sample
+// outside it computes delta > 0 as hvxHidden does.
+HVX_FN vec2 hvxClipSpan(HvxTools t, vec3 origin, vec3 dir) {
+    if (hvxClipMu(t.clipPlane, dir, t.clipParams.y, t.clipParams.z) > 0.0f) return vec2(-1e30f, 1e30f);
+    float d0 = dot(vec3(t.clipPlane), origin) + t.clipPlane.w;  // delta at t = 0
+    float rate = dot(vec3(t.clipPlane), dir);                    // d delta / dt
+    if (rate == 0.0f) return d0 > 0.0f ? vec2(1e30f, -1e30f) : vec2(-1e30f, 1e30f);
+    float tCut = -d0 / rate;  // delta = 0
+    float margin = 1e-4f * max(1.0f, abs(tCut));
+    return rate < 0.0f ? vec2(tCut - margin, 1e30f) : vec2(-1e30f, tCut + margin);
+}
+
 // The stretch of a ray (origin, unit direction dir; t in world mm from the origin) outside which
-// hvxHidden holds for every sample, as (first, last): in the focal probe's focus cone
-// (hTheta = 0) and without MImDA, the chord through the probe's bounding sphere (hvxProbeChord);
-// the whole ray otherwise. The ray caster starts and ends such a ray there, rather than stepping
-// through the hidden context sample by sample.
+// hvxHidden holds for every sample, as (first, last; empty when first > last). Without MImDA:
+// in the focal probe's focus cone (hTheta = 0), the chord through the probe's bounding sphere
+// (hvxProbeChord); without the focal probe, the kept side of a clip plane seen face-on
+// (hvxClipSpan); the whole ray otherwise. The ray caster starts and ends such a ray there,
+// rather than stepping through the hidden samples one by one. (Outside the focus cone the focal
+// probe samples its context k samples at a time, on a grid that starts where the ray does: a
+// ray that started at the cut would sample the context elsewhere than the dense march.)
 HVX_FN vec2 hvxVisibleSpan(HvxTools t, int hvxBits, vec3 origin, vec3 dir, float hTheta) {
-    if (HVX_TOOL_ON(HVX_MIMDA_BIT) || !HVX_TOOL_ON(HVX_FOCAL_BIT) || !(hTheta <= 0.0f)) return vec2(-1e30f, 1e30f);
-    return hvxProbeChord(t, origin, dir);
+    vec2 all = vec2(-1e30f, 1e30f);
+    if (HVX_TOOL_ON(HVX_MIMDA_BIT)) return all;
+    if (HVX_TOOL_ON(HVX_FOCAL_BIT)) return hTheta <= 0.0f ? hvxProbeChord(t, origin, dir) : all;
+    if (HVX_TOOL_ON(HVX_CLIP_BIT)) return hvxClipSpan(t, origin, dir);
+    return all;
 }
 
 // Focus and context sampling (ToolSet::FocalProbe::contextStep): the stretch of a ray in which

@@ -109,8 +109,9 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     bool entered = false;
     vec4 accum = vec4(0.0);
     float importanceMax = 0.0;
-    // In the focus cone, what lies outside the probe's bounding sphere is hidden: the ray
-    // starts and ends there (hvxVisibleSpan), on its own sampling grid from t0.
+    // What the tools hide at either end of the ray (in the focus cone, all outside the probe's
+    // bounding sphere; a clip plane seen face-on, its cut-away side) is not stepped through:
+    // the ray starts and ends at hvxVisibleSpan, on its own sampling grid from t0.
     vec2 span = hvxVisibleSpan(tools, HVX_TOOLS, ow, dw, hTheta);
     tIn = max(t0, span.x);
     t1 = min(t1, span.y);

@@ -210,7 +210,7 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
     int hidden = 0, checked = 0, outsideSpan = 0;
     for (int bits : {int(T::FocalBit), int(T::ClipBit), int(T::ContextBit), T::ClipBit | T::FocalBit | T::BandBit,
                      T::ClipBit | T::ContextBit | T::FocalBit, T::FocalBit | T::BandBit | T::MimdaBit}) {
-        const int hiddenBefore = hidden;
+        const int hiddenBefore = hidden, outsideBefore = outsideSpan;
         for (int trial = 0; trial < 40; ++trial) {
             core::ToolSet t;
             t.clip.enabled = bits & T::ClipBit;
@@ -261,11 +261,14 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
         }
         if (bits & T::MimdaBit) EXPECT_EQ(hidden, hiddenBefore) << "nothing is hidden under MImDA";
         else EXPECT_GT(hidden, hiddenBefore + 100) << "tools " << bits << " hide something";
+        // the focus cone's ends, and the cut-away side of a clip plane seen face-on, are skipped
+        if (bits == T::FocalBit || bits == T::ClipBit)
+            EXPECT_GT(outsideSpan, outsideBefore + 100) << "tools " << bits << " skip part of the ray";
     }
     std::printf("%d hidden samples, %d runs of the chain, %d samples outside the visible span\n", hidden, checked,
                 outsideSpan);
     EXPECT_GT(hidden, 2000);
-    EXPECT_GT(outsideSpan, 500) << "focus cones that skip part of the ray";
+    EXPECT_GT(outsideSpan, 500) << "focus cones and face-on clip planes that skip part of the ray";
 }
 
 TEST(ToolSet, TheFocalProbesBoundingSphereHoldsTheWholeProbe) {
