@@ -314,6 +314,27 @@ HVX_FN vec2 hvxVisibleSpan(HvxTools t, int hvxBits, vec3 origin, vec3 dir, float
     return all;
 }
 
+// A stretch inside a ray where hvxHidden holds for every sample, as (first, last; empty when
+// first >= last): the context probe's front half when its axis is so far from the ray that
+// omega_a = 0 (Eq. 6.17: mu_a = omega_d · eta, eta = 0), from where the ray enters the probe's
+// sphere to where it crosses the plane through the centre, each end moved a ten thousandth of
+// its distance (at least 1e-4 mm) inwards against rounding. Only without the focal probe (whose
+// context grid starts where the ray does, as in hvxVisibleSpan) and without MImDA. The ray
+// caster jumps over it.
+HVX_FN vec2 hvxHiddenGap(HvxTools t, int hvxBits, vec3 origin, vec3 dir) {
+    vec2 none = vec2(1e30f, -1e30f);
+    if (HVX_TOOL_ON(HVX_MIMDA_BIT) || HVX_TOOL_ON(HVX_FOCAL_BIT) || !HVX_TOOL_ON(HVX_CONTEXT_BIT)) return none;
+    if (hvxSmooth(t.contextParams.z, t.contextParams.w, abs(dot(vec3(t.contextAxis), dir))) > 0.0f) return none;
+    vec3 toC = vec3(t.contextCentre) - origin;
+    float along = dot(toC, dir);  // where the ray crosses the plane through the centre
+    vec3 gap = toC - along * dir;
+    float r2 = t.contextCentre.w * t.contextCentre.w, gap2 = dot(gap, gap);
+    if (gap2 >= r2) return none;
+    float first = along - sqrt(r2 - gap2);
+    float margin = 1e-4f * max(1.0f, abs(along) + t.contextCentre.w);
+    return vec2(first + margin, along - margin);
+}
+
 // Focus and context sampling (ToolSet::FocalProbe::contextStep): the stretch of a ray in which
 // it samples every dt, as hvxProbeChord; the whole ray (every sample) without the focal probe
 // or with a step of 1.

@@ -98,6 +98,10 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     float tPrev = 0.0, sPrev = 0.0;
     float pPrev = 0.0, iPrev = 0.0;  // DVR: the previous sample's TF position and opacity integral
     float tIn = t0;
+    // A stretch inside the ray that the tools hide (hvxHiddenGap): the march stops at its start
+    // (tStop) and goes on from its end.
+    vec2 gap = vec2(1e30, -1e30);
+    float tStop = t1;
 #if MODE == 0 && HVX_FOCAL_VARIANT
     // The focus, sampled every dt; the focal probe's context around it every kContext·dt (HVX_STEP).
     vec2 chord = hvxFocusChord(tools, HVX_TOOLS, ow, dw);
@@ -115,7 +119,10 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     vec2 span = hvxVisibleSpan(tools, HVX_TOOLS, ow, dw, hTheta);
     tIn = max(t0, span.x);
     t1 = min(t1, span.y);
+    gap = hvxHiddenGap(tools, HVX_TOOLS, ow, dw);
+    if (gap.x <= tIn && gap.y > tIn) tIn = gap.y;  // the ray starts in it
     if (!(t1 > tIn)) return vec4(0.0);
+    tStop = gap.x > tIn && gap.x < gap.y ? min(t1, gap.x) : t1;
 #endif
     uint n = 0u;
     vec3 lo = vec3(0.0), hi = vec3(1.0);
@@ -132,7 +139,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     for (int guard = 0; guard < 65536 && !done; ++guard) {
         float tExit = 0.0;
         int face = hvxExitFace(o, inv, lo, hi, tExit);
-        float tOut = min(tExit, t1);
+        float tOut = min(tExit, tStop);
         bool inLeaf = false;
         // For a leaf with a brick: its sampler, step and first sample on the ray's own sampling
         // grid. After empty space, the segment leading into the brick starts at its border
@@ -287,6 +294,14 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
             t += HVX_STEP(t);
         }
         if (done || tExit >= t1) break;
+        if (tExit >= tStop) {  // the hidden stretch: go on from its end, on the ray's sampling grid
+            tIn = gap.y;
+            tStop = t1;
+            if (!(t1 > tIn)) break;
+            havePrev = false;
+            hvxDescend(0u, n, lo, hi, o + (tIn + nudge) * d);
+            continue;
+        }
         if (!hvxNextLeaf(0u, o, d, face, tExit, nudge, n, lo, hi)) break;
         tIn = max(tIn, tExit);
     }

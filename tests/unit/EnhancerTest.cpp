@@ -207,10 +207,10 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
         return glm::normalize(v);
     };
     using T = core::ToolSet;
-    int hidden = 0, checked = 0, outsideSpan = 0;
+    int hidden = 0, checked = 0, outsideSpan = 0, inGap = 0;
     for (int bits : {int(T::FocalBit), int(T::ClipBit), int(T::ContextBit), T::ClipBit | T::FocalBit | T::BandBit,
                      T::ClipBit | T::ContextBit | T::FocalBit, T::FocalBit | T::BandBit | T::MimdaBit}) {
-        const int hiddenBefore = hidden, outsideBefore = outsideSpan;
+        const int hiddenBefore = hidden, outsideBefore = outsideSpan, inGapBefore = inGap;
         for (int trial = 0; trial < 40; ++trial) {
             core::ToolSet t;
             t.clip.enabled = bits & T::ClipBit;
@@ -236,12 +236,18 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
                 const float hTheta = (bits & T::FocalBit) ? hvxFocalAngle(tools, eye, v) : 1.0f;
                 // the ray caster starts and ends a ray at hvxVisibleSpan: all outside it is hidden
                 const glm::vec2 span = hvxVisibleSpan(tools, bits, eye, v, hTheta);
+                // and jumps over hvxHiddenGap: all inside it is hidden too
+                const glm::vec2 gap = hvxHiddenGap(tools, bits, eye, v);
                 for (int k = 0; k < 60; ++k) {
                     const float along = 200.0f + 200.0f * pos(rng);
                     const glm::vec3 p = eye + v * along;
                     if (along < span.x || along > span.y) {
                         EXPECT_TRUE(hvxHidden(tools, bits, p, v, hTheta)) << "tools " << bits << " outside the span";
                         ++outsideSpan;
+                    }
+                    if (along >= gap.x && along <= gap.y) {
+                        EXPECT_TRUE(hvxHidden(tools, bits, p, v, hTheta)) << "tools " << bits << " in the gap";
+                        ++inGap;
                     }
                     if (!hvxHidden(tools, bits, p, v, hTheta)) continue;
                     ++hidden;
@@ -264,9 +270,12 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
         // the focus cone's ends, and the cut-away side of a clip plane seen face-on, are skipped
         if (bits == T::FocalBit || bits == T::ClipBit)
             EXPECT_GT(outsideSpan, outsideBefore + 100) << "tools " << bits << " skip part of the ray";
+        // the context probe's front half, seen across its axis, is jumped over
+        if (bits == T::ContextBit) EXPECT_GT(inGap, inGapBefore + 100) << "tools " << bits << " skip part of the ray";
+        if (bits & (T::FocalBit | T::MimdaBit)) EXPECT_EQ(inGap, inGapBefore) << "tools " << bits << ": no gap";
     }
-    std::printf("%d hidden samples, %d runs of the chain, %d samples outside the visible span\n", hidden, checked,
-                outsideSpan);
+    std::printf("%d hidden samples, %d runs of the chain, %d samples outside the visible span, %d in a hidden gap\n",
+                hidden, checked, outsideSpan, inGap);
     EXPECT_GT(hidden, 2000);
     EXPECT_GT(outsideSpan, 500) << "focus cones and face-on clip planes that skip part of the ray";
 }
