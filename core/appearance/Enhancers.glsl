@@ -285,16 +285,18 @@ HVX_FN vec2 hvxProbeChord(HvxTools t, vec3 origin, vec3 dir) {
 
 // The part of a ray (origin, unit direction dir) on the kept side of a clip plane seen so nearly
 // face-on that mu = 0 (hvxClip), as (first, last); the whole ray when the plane shows context
-// to this ray. The cut-away side is delta = dot(n, p) + offset > 0; the span reaches a ten
-// thousandth of its distance (at least 1e-4 mm) into it against rounding, so that every sample
-// outside it computes delta > 0 as hvxHidden does.
+// to this ray, or when the ray (nearly) parallels it. The cut-away side is
+// delta = dot(n, p) + offset > 0; the span reaches into it by a margin against rounding (1e-4 of
+// the distances involved: to the cut, and the origin's and the plane's from the patient origin),
+// so that every sample outside it computes delta > 0 as hvxHidden does.
 HVX_FN vec2 hvxClipSpan(HvxTools t, vec3 origin, vec3 dir) {
-    if (hvxClipMu(t.clipPlane, dir, t.clipParams.y, t.clipParams.z) > 0.0f) return vec2(-1e30f, 1e30f);
+    vec2 whole = vec2(-1e30f, 1e30f);
+    if (hvxClipMu(t.clipPlane, dir, t.clipParams.y, t.clipParams.z) > 0.0f) return whole;
     float d0 = dot(vec3(t.clipPlane), origin) + t.clipPlane.w;  // delta at t = 0
     float rate = dot(vec3(t.clipPlane), dir);                    // d delta / dt
-    if (rate == 0.0f) return d0 > 0.0f ? vec2(1e30f, -1e30f) : vec2(-1e30f, 1e30f);
+    if (abs(rate) < 1e-3f) return whole;  // only with f_l near 1: a plane along the ray
     float tCut = -d0 / rate;  // delta = 0
-    float margin = 1e-4f * max(1.0f, abs(tCut));
+    float margin = 1e-4f * (1.0f + abs(tCut) + (length(origin) + abs(t.clipPlane.w)) / abs(rate));
     return rate < 0.0f ? vec2(tCut - margin, 1e30f) : vec2(-1e30f, tCut + margin);
 }
 
@@ -307,20 +309,21 @@ HVX_FN vec2 hvxClipSpan(HvxTools t, vec3 origin, vec3 dir) {
 // probe samples its context k samples at a time, on a grid that starts where the ray does: a
 // ray that started at the cut would sample the context elsewhere than the dense march.)
 HVX_FN vec2 hvxVisibleSpan(HvxTools t, int hvxBits, vec3 origin, vec3 dir, float hTheta) {
-    vec2 all = vec2(-1e30f, 1e30f);
-    if (HVX_TOOL_ON(HVX_MIMDA_BIT)) return all;
-    if (HVX_TOOL_ON(HVX_FOCAL_BIT)) return hTheta <= 0.0f ? hvxProbeChord(t, origin, dir) : all;
+    vec2 whole = vec2(-1e30f, 1e30f);
+    if (HVX_TOOL_ON(HVX_MIMDA_BIT)) return whole;
+    if (HVX_TOOL_ON(HVX_FOCAL_BIT)) return hTheta <= 0.0f ? hvxProbeChord(t, origin, dir) : whole;
     if (HVX_TOOL_ON(HVX_CLIP_BIT)) return hvxClipSpan(t, origin, dir);
-    return all;
+    return whole;
 }
 
 // A stretch inside a ray where hvxHidden holds for every sample, as (first, last; empty when
 // first >= last): the context probe's front half when its axis is so far from the ray that
 // omega_a = 0 (Eq. 6.17: mu_a = omega_d · eta, eta = 0), from where the ray enters the probe's
-// sphere to where it crosses the plane through the centre, each end moved a ten thousandth of
-// its distance (at least 1e-4 mm) inwards against rounding. Only without the focal probe (whose
-// context grid starts where the ray does, as in hvxVisibleSpan) and without MImDA. The ray
-// caster jumps over it.
+// sphere to where it crosses the plane through the centre. Against rounding the sphere shrinks
+// and the plane moves towards the viewer by a margin (1e-4 of the distances involved: along the
+// ray, the radius, and the origin's and the centre's from the patient origin). Only without the
+// focal probe (whose context grid starts where the ray does, as in hvxVisibleSpan) and without
+// MImDA. The ray caster jumps over it.
 HVX_FN vec2 hvxHiddenGap(HvxTools t, int hvxBits, vec3 origin, vec3 dir) {
     vec2 none = vec2(1e30f, -1e30f);
     if (HVX_TOOL_ON(HVX_MIMDA_BIT) || HVX_TOOL_ON(HVX_FOCAL_BIT) || !HVX_TOOL_ON(HVX_CONTEXT_BIT)) return none;
@@ -328,11 +331,10 @@ HVX_FN vec2 hvxHiddenGap(HvxTools t, int hvxBits, vec3 origin, vec3 dir) {
     vec3 toC = vec3(t.contextCentre) - origin;
     float along = dot(toC, dir);  // where the ray crosses the plane through the centre
     vec3 gap = toC - along * dir;
-    float r2 = t.contextCentre.w * t.contextCentre.w, gap2 = dot(gap, gap);
-    if (gap2 >= r2) return none;
-    float first = along - sqrt(r2 - gap2);
-    float margin = 1e-4f * max(1.0f, abs(along) + t.contextCentre.w);
-    return vec2(first + margin, along - margin);
+    float margin = 1e-4f * (1.0f + abs(along) + t.contextCentre.w + length(origin) + length(vec3(t.contextCentre)));
+    float r = t.contextCentre.w - margin, gap2 = dot(gap, gap);
+    if (!(r > 0.0f) || gap2 >= r * r) return none;
+    return vec2(along - sqrt(r * r - gap2), along - margin);
 }
 
 // Focus and context sampling (ToolSet::FocalProbe::contextStep): the stretch of a ray in which

@@ -130,6 +130,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
     // The current leaf: where the ray leaves it, its sampler, step and next sample.
     float dt = 1.0, t = 0.0;
     LeafSampler L;
+    uint counted = 0xFFFFFFFFu;  // the leaf last counted for the visibility feedback
 
     // Three nested loops, so that each kind of work runs as often as it must: leaves
     // (traversal), significant samples in a leaf (gradient, shading, compositing), and the
@@ -151,7 +152,10 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
                 havePrev = false;
             } else {
                 inLeaf = true;
-                if (extra.z > 0.5) atomicAdd(rayCounts[n], 1u);  // visibility feedback
+                if (extra.z > 0.5 && n != counted) {  // visibility feedback, once a leaf (a jump may land in the same)
+                    atomicAdd(rayCounts[n], 1u);
+                    counted = n;
+                }
                 L = leafSampler(n, nd, lo);
                 float voxel = 1.0 / (float(brick.x) * float(1u << (nd.y & 0xFFu)));
                 dt = tfRange.w * voxel / octPerMm;
@@ -294,7 +298,7 @@ vec4 castRay(vec3 ow, vec3 dw, out float depth) {
             t += HVX_STEP(t);
         }
         if (done || tExit >= t1) break;
-        if (tExit >= tStop) {  // the hidden stretch: go on from its end, on the ray's sampling grid
+        if (tExit >= tStop) {  // the hidden stretch: go on from its end (on the grid from t0, as after an empty leaf)
             tIn = gap.y;
             tStop = t1;
             if (!(t1 > tIn)) break;

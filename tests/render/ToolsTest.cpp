@@ -214,14 +214,16 @@ TEST(Tools, CropBoxOnTheGpuEqualsTheCpuReference) {
 // Where the tools leave nothing to see (core::glsl::hvxHidden), the GPU skips the samples'
 // gradients and enhancers; the CPU reference runs the whole chain on them. Each tool is set up
 // so that it hides much of the frame: the focal probe's focus cone over the middle of the view,
-// the clip plane face-on, the context probe seen across its axis.
+// the clip plane face-on, the context probe seen across its axis. Where the hidden samples lie at
+// an end of a ray or in one stretch of it, the GPU does not step through them at all
+// (hvxVisibleSpan, hvxHiddenGap).
 TEST(Tools, SkippingWhatTheToolsHideLeavesTheImageAsTheCpuReferenceDrawsIt) {
     PhantomScene scene(0, 0);
     Scene& s = scene.s;
     const core::TransferFunction& tf = scene.tf;
     render::GpuRayCaster& gpu = scene.gpu;
     const glm::dvec3 forward = glm::normalize(s.view.target - s.view.eye);
-    std::vector<std::pair<const char*, core::ToolSet>> cases(4);
+    std::vector<std::pair<const char*, core::ToolSet>> cases(5);
     cases[0].first = "focal probe, wide focus cone";
     cases[0].second.focal.enabled = true;
     cases[0].second.focal.centre = s.centre();
@@ -242,6 +244,10 @@ TEST(Tools, SkippingWhatTheToolsHideLeavesTheImageAsTheCpuReferenceDrawsIt) {
     cases[3].second.clip.offset += 30;
     cases[3].second.context = cases[2].second.context;
     cases[3].second.context.centre += glm::dvec3(40, 0, 0);
+    // without the focal probe, rays start at the cut and jump over the context probe's front half
+    cases[4].first = "clip plane face-on and context probe across its axis";
+    cases[4].second.clip = cases[3].second.clip;
+    cases[4].second.context = cases[3].second.context;
     const auto plain = s.cpu(tf, {});
     for (const auto& [name, tools] : cases) {
         core::RenderSettings rs;

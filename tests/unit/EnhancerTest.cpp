@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "core/appearance/Enhancers.h"
 #include "core/base/Error.h"
@@ -208,8 +209,9 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
     };
     using T = core::ToolSet;
     int hidden = 0, checked = 0, outsideSpan = 0, inGap = 0;
-    for (int bits : {int(T::FocalBit), int(T::ClipBit), int(T::ContextBit), T::ClipBit | T::FocalBit | T::BandBit,
-                     T::ClipBit | T::ContextBit | T::FocalBit, T::FocalBit | T::BandBit | T::MimdaBit}) {
+    for (int bits : {int(T::FocalBit), int(T::ClipBit), int(T::ContextBit), T::ClipBit | T::ContextBit,
+                     T::ClipBit | T::FocalBit | T::BandBit, T::ClipBit | T::ContextBit | T::FocalBit,
+                     T::FocalBit | T::BandBit | T::MimdaBit}) {
         const int hiddenBefore = hidden, outsideBefore = outsideSpan, inGapBefore = inGap;
         for (int trial = 0; trial < 40; ++trial) {
             core::ToolSet t;
@@ -229,17 +231,27 @@ TEST(Enhancers, WhatTheToolsHideIsFullyTransparentWhateverTheSample) {
             t.band.enabled = bits & T::BandBit;
             t.band.band = {50, 80, 150, 200};
             t.mimda.enabled = bits & T::MimdaBit;
+            // every other trial far from the patient origin, as a scanner's table positions are
+            const glm::vec3 shift = trial % 2 ? glm::vec3(1500, -900, 1800) : glm::vec3(0.0f);
+            t.clip.offset -= glm::dot(t.clip.normal, glm::dvec3(shift));
+            t.focal.centre += glm::dvec3(shift);
+            t.context.centre += glm::dvec3(shift);
             const auto tools = core::packTools(t, {0.3, 0.7, 0.2, 16});
-            const glm::vec3 eye = 300.0f * unit();
+            const glm::vec3 eye = shift + 300.0f * unit();
             for (int ray = 0; ray < 50; ++ray) {
-                const glm::vec3 v = glm::normalize(-eye + 40.0f * unit());
+                const glm::vec3 v = glm::normalize(shift - eye + 40.0f * unit());
                 const float hTheta = (bits & T::FocalBit) ? hvxFocalAngle(tools, eye, v) : 1.0f;
                 // the ray caster starts and ends a ray at hvxVisibleSpan: all outside it is hidden
                 const glm::vec2 span = hvxVisibleSpan(tools, bits, eye, v, hTheta);
                 // and jumps over hvxHiddenGap: all inside it is hidden too
                 const glm::vec2 gap = hvxHiddenGap(tools, bits, eye, v);
-                for (int k = 0; k < 60; ++k) {
-                    const float along = 200.0f + 200.0f * pos(rng);
+                // random samples, and each end of the span and the gap and a float step either side
+                std::vector<float> alongs;
+                for (int k = 0; k < 60; ++k) alongs.push_back(200.0f + 200.0f * pos(rng));
+                for (float end : {span.x, span.y, gap.x, gap.y})
+                    if (end > 0.0f && end < 1000.0f)
+                        for (float a : {std::nextafter(end, 0.0f), end, std::nextafter(end, 1e4f)}) alongs.push_back(a);
+                for (const float along : alongs) {
                     const glm::vec3 p = eye + v * along;
                     if (along < span.x || along > span.y) {
                         EXPECT_TRUE(hvxHidden(tools, bits, p, v, hTheta)) << "tools " << bits << " outside the span";
