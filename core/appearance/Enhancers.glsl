@@ -270,17 +270,22 @@ HVX_FN bool hvxHidden(HvxTools t, int hvxBits, vec3 p, vec3 v, float hTheta) {
 }
 
 // The chord of a ray (origin, unit direction dir; t in world mm from the origin) through the
+// sphere (centre, r), as (first, last); empty (first > last) when the ray misses it.
+HVX_FN vec2 hvxSphereChord(vec3 centre, float r, vec3 origin, vec3 dir) {
+    vec3 toC = centre - origin;
+    float along = dot(toC, dir);
+    vec3 gap = toC - along * dir;  // from the ray's line to the centre (not |toC|² - along², which cancels far away)
+    float gap2 = dot(gap, gap);
+    if (!(r > 0.0f) || gap2 > r * r) return vec2(1e30f, -1e30f);
+    float chord = sqrt(r * r - gap2);
+    return vec2(along - chord, along + chord);
+}
+
+// The chord of a ray (origin, unit direction dir; t in world mm from the origin) through the
 // focal probe's bounding sphere grown by a thousandth of its radius against rounding, as (first,
 // last); empty (first > last) when the ray misses it.
 HVX_FN vec2 hvxProbeChord(HvxTools t, vec3 origin, vec3 dir) {
-    vec3 toC = vec3(t.focalCentre) - origin;
-    float along = dot(toC, dir);
-    float r = t.focalStyle.w * 1.001f;
-    vec3 gap = toC - along * dir;  // from the ray's line to the centre (not |toC|² - along², which cancels far away)
-    float gap2 = dot(gap, gap);
-    if (gap2 > r * r) return vec2(1e30f, -1e30f);
-    float chord = sqrt(r * r - gap2);
-    return vec2(along - chord, along + chord);
+    return hvxSphereChord(vec3(t.focalCentre), t.focalStyle.w * 1.001f, origin, dir);
 }
 
 // The part of a ray (origin, unit direction dir) on the kept side of a clip plane seen so nearly
@@ -328,13 +333,10 @@ HVX_FN vec2 hvxHiddenGap(HvxTools t, int hvxBits, vec3 origin, vec3 dir) {
     vec2 none = vec2(1e30f, -1e30f);
     if (HVX_TOOL_ON(HVX_MIMDA_BIT) || HVX_TOOL_ON(HVX_FOCAL_BIT) || !HVX_TOOL_ON(HVX_CONTEXT_BIT)) return none;
     if (hvxSmooth(t.contextParams.z, t.contextParams.w, abs(dot(vec3(t.contextAxis), dir))) > 0.0f) return none;
-    vec3 toC = vec3(t.contextCentre) - origin;
-    float along = dot(toC, dir);  // where the ray crosses the plane through the centre
-    vec3 gap = toC - along * dir;
+    float along = dot(vec3(t.contextCentre) - origin, dir);  // where the ray crosses the plane through the centre
     float margin = 1e-4f * (1.0f + abs(along) + t.contextCentre.w + length(origin) + length(vec3(t.contextCentre)));
-    float r = t.contextCentre.w - margin, gap2 = dot(gap, gap);
-    if (!(r > 0.0f) || gap2 >= r * r) return none;
-    return vec2(along - sqrt(r * r - gap2), along - margin);
+    vec2 chord = hvxSphereChord(vec3(t.contextCentre), t.contextCentre.w - margin, origin, dir);
+    return chord.x <= chord.y ? vec2(chord.x, along - margin) : none;
 }
 
 // Focus and context sampling (ToolSet::FocalProbe::contextStep): the stretch of a ray in which
