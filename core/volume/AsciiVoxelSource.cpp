@@ -72,7 +72,7 @@ std::string parseValue(std::string_view t, FileElement e, unsigned char* out) {
     const char* last = t.data() + t.size();
     // A number too small for a double ("1e-400"): from_chars reports it as out of range, as it
     // does one too large; a C++ stream and teem read it as zero.
-    const bool tiny = t.find("e-") != std::string_view::npos || t.find("E-") != std::string_view::npos;
+    auto tiny = [t] { return t.find("e-") != std::string_view::npos || t.find("E-") != std::string_view::npos; };
     const bool negative = !t.empty() && t[0] == '-';
     if (e == FileElement::Float32) {  // parsed as a float: rounded once, as a C++ stream reads it
         float f = 0;
@@ -82,7 +82,7 @@ std::string parseValue(std::string_view t, FileElement e, unsigned char* out) {
         }
         double d = 0;  // out of a float's range, either way: too small is zero, too large refused
         const auto r = std::from_chars(first, last, d);
-        if (r.ec == std::errc::result_out_of_range && r.ptr == last && tiny) d = negative ? -0.0 : 0.0;
+        if (r.ec == std::errc::result_out_of_range && r.ptr == last && tiny()) d = negative ? -0.0 : 0.0;
         else if (r.ec != std::errc() || r.ptr != last) return r.ptr == last ? "is beyond what a 32-bit float holds" : "is not a number";
         if (std::abs(d) > double(std::numeric_limits<float>::max())) return "is beyond what a 32-bit float holds";
         put(out, float(d));
@@ -91,7 +91,7 @@ std::string parseValue(std::string_view t, FileElement e, unsigned char* out) {
     if (e == FileElement::Float64) {
         double d = 0;
         const auto r = std::from_chars(first, last, d);
-        if (r.ec == std::errc::result_out_of_range && r.ptr == last && tiny) d = negative ? -0.0 : 0.0;
+        if (r.ec == std::errc::result_out_of_range && r.ptr == last && tiny()) d = negative ? -0.0 : 0.0;
         else if (r.ec == std::errc::result_out_of_range && r.ptr == last) return "is beyond what a 64-bit float holds";
         else if (r.ec != std::errc() || r.ptr != last) return "is not a number";
         put(out, d);
@@ -103,10 +103,9 @@ std::string parseValue(std::string_view t, FileElement e, unsigned char* out) {
     long long s = 0;
     unsigned long long u = 0;
     const auto r = std::from_chars(first, last, s);
-    const auto r2 = std::from_chars(first, last, u);
     if (r.ec == std::errc() && r.ptr == last) {
         v = static_cast<long double>(s);
-    } else if (r2.ec == std::errc() && r2.ptr == last) {
+    } else if (const auto r2 = std::from_chars(first, last, u); r2.ec == std::errc() && r2.ptr == last) {
         v = static_cast<long double>(u);
     } else if (r.ec == std::errc::result_out_of_range && r.ptr == last) {  // digits beyond 64 bits
         v = beyond;
@@ -114,7 +113,7 @@ std::string parseValue(std::string_view t, FileElement e, unsigned char* out) {
         double d = 0;
         const auto r3 = std::from_chars(first, last, d, std::chars_format::general);
         const bool whole = r3.ptr == last;
-        if (r3.ec == std::errc::result_out_of_range && whole && tiny) return "is not a whole number, as its " + std::string(elementName(e)) + " voxels are";
+        if (r3.ec == std::errc::result_out_of_range && whole && tiny()) return "is not a whole number, as its " + std::string(elementName(e)) + " voxels are";
         if (r3.ec == std::errc::result_out_of_range && whole) d = double(beyond);
         else if (r3.ec != std::errc() || !whole || std::isnan(d)) return "is not a number";
         if (std::isfinite(d) && d != std::floor(d)) return "is not a whole number, as its " + std::string(elementName(e)) + " voxels are";
